@@ -1,0 +1,33 @@
+#include "core/color.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/embedded_data.h"
+#include "core/spectrum_csv.h"
+
+namespace kasha {
+
+const Observer& Observer::cie1931() {
+  static const Observer obs = [] {
+    const SpectralTable t = parseSpectralCsv(embeddedFile("cie1931_2deg_cmf_1nm.csv"), "cie1931_2deg_cmf_1nm.csv");
+    Observer o{spectrumFromTable(t, "xbar").zeroOutside(), spectrumFromTable(t, "ybar").zeroOutside(),
+               spectrumFromTable(t, "zbar").zeroOutside(), 0.0f};
+    o.yIntegral = o.ybar.integral(360.0f, 830.0f);
+    return o;
+  }();
+  return obs;
+}
+
+Vec3 xyzToLinearSrgb(const Vec3& c) {
+  return Vec3(3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z,
+              -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z,
+              0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z);
+}
+
+float srgbEncode(float v) {
+  v = std::clamp(v, 0.0f, 1.0f);
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace kasha

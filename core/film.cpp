@@ -1,0 +1,26 @@
+#include "core/film.h"
+
+namespace kasha {
+
+Vec3 Film::xyz(int x, int y) const {
+  if (spp_ == 0) return Vec3(0.0f);
+  const DVec3& s = sum_[size_t(y) * w_ + x];
+  return Vec3(float(s.x / spp_), float(s.y / spp_), float(s.z / spp_));
+}
+
+DVec3 Film::meanXyz() const {
+  DVec3 m;
+  if (spp_ == 0) return m;
+  const double n = double(sum_.size()) * spp_;
+  for (const DVec3& s : sum_) m.x += s.x / n, m.y += s.y / n, m.z += s.z / n;
+  return m;
+}
+
+void Film::recordNonFinite(int x, int y) {
+  if (nonFinite_.fetch_add(1) == 0) {
+    std::lock_guard<std::mutex> lock(badMutex_);
+    firstBad_ = {x, y};
+  }
+}
+
+}  // namespace kasha

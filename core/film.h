@@ -1,0 +1,50 @@
+#pragma once
+// The film: per-pixel sums of XYZ estimates. Non-finite samples never reach it; they are counted
+// with the first pixel that produced one, so that a bug can be found.
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <vector>
+
+#include "core/math.h"
+
+namespace kasha {
+
+struct DVec3 {
+  double x = 0.0, y = 0.0, z = 0.0;
+};
+
+class Film {
+ public:
+  Film(int width, int height) : w_(width), h_(height), sum_(size_t(width) * height) {}
+
+  // Not thread-safe per pixel: each pixel is written by one task at a time.
+  void add(int x, int y, const Vec3& xyz) {
+    if (!std::isfinite(xyz.x) || !std::isfinite(xyz.y) || !std::isfinite(xyz.z)) {
+      recordNonFinite(x, y);
+      return;
+    }
+    DVec3& s = sum_[size_t(y) * w_ + x];
+    s.x += xyz.x, s.y += xyz.y, s.z += xyz.z;
+  }
+  void setSamplesPerPixel(int spp) { spp_ = spp; }
+  int samplesPerPixel() const { return spp_; }
+  int width() const { return w_; }
+  int height() const { return h_; }
+  // The estimate of a pixel: sum / spp.
+  Vec3 xyz(int x, int y) const;
+  // Mean XYZ over the whole image.
+  DVec3 meanXyz() const;
+  uint64_t nonFiniteCount() const { return nonFinite_.load(); }
+  std::pair<int, int> firstNonFinitePixel() const { return firstBad_; }
+
+ private:
+  void recordNonFinite(int x, int y);
+  int w_, h_, spp_ = 0;
+  std::vector<DVec3> sum_;
+  std::atomic<uint64_t> nonFinite_{0};
+  std::mutex badMutex_;
+  std::pair<int, int> firstBad_{-1, -1};
+};
+
+}  // namespace kasha

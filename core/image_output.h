@@ -1,0 +1,16 @@
+#pragma once
+// Writing renders: OpenEXR (32-bit float linear sRGB R, G, B plus an XYZ layer XYZ.X/Y/Z),
+// PNG (8-bit sRGB with an exposure in stops). Files are written to a temporary name and renamed,
+// so an interrupted write never leaves a half file under the final name.
+#include <string>
+
+#include "core/film.h"
+
+namespace kasha {
+
+void writeExr(const Film& film, const std::string& path);
+void writePng(const Film& film, const std::string& path, float exposureStops);
+// Writes text to path atomically.
+void writeTextFile(const std::string& path, const std::string& text);
+
+}  // namespace kasha

@@ -1,0 +1,76 @@
+#include "core/json_fields.h"
+
+#include <cmath>
+
+namespace kasha {
+
+std::string jsonTypeName(const nlohmann::json& v) { return v.type_name(); }
+
+JsonFields::JsonFields(const nlohmann::json& obj, std::string file, std::string pointer)
+    : obj_(obj), file_(std::move(file)), pointer_(std::move(pointer)) {
+  if (!obj_.is_object()) throw InputError(file_, pointer_.empty() ? "/" : pointer_, "expected an object, got " + jsonTypeName(obj_));
+}
+
+void JsonFields::fail(const std::string& key, const std::string& reason) const {
+  throw InputError(file_, path(key), reason);
+}
+
+const nlohmann::json& JsonFields::get(const std::string& key) {
+  if (!obj_.contains(key)) fail(key, "missing required field");
+  used_.insert(key);
+  return obj_.at(key);
+}
+
+float JsonFields::number(const std::string& key) {
+  const nlohmann::json& v = get(key);
+  if (!v.is_number()) fail(key, "expected a number, got " + jsonTypeName(v));
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) fail(key, "number is not finite");
+  return float(d);
+}
+
+float JsonFields::number(const std::string& key, float fallback) { return has(key) ? number(key) : fallback; }
+
+int JsonFields::integer(const std::string& key, int fallback) {
+  if (!has(key)) return fallback;
+  const nlohmann::json& v = get(key);
+  if (!v.is_number_integer()) fail(key, "expected an integer, got " + jsonTypeName(v));
+  return v.get<int>();
+}
+
+bool JsonFields::boolean(const std::string& key, bool fallback) {
+  if (!has(key)) return fallback;
+  const nlohmann::json& v = get(key);
+  if (!v.is_boolean()) fail(key, "expected true or false, got " + jsonTypeName(v));
+  return v.get<bool>();
+}
+
+std::string JsonFields::string(const std::string& key) {
+  const nlohmann::json& v = get(key);
+  if (!v.is_string()) fail(key, "expected a string, got " + jsonTypeName(v));
+  return v.get<std::string>();
+}
+
+std::string JsonFields::string(const std::string& key, const std::string& fallback) {
+  return has(key) ? string(key) : fallback;
+}
+
+Vec3 JsonFields::vec3(const std::string& key) {
+  const nlohmann::json& v = get(key);
+  if (!v.is_array() || v.size() != 3) fail(key, "expected an array of 3 numbers");
+  Vec3 r;
+  for (int i = 0; i < 3; ++i) {
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) fail(key, "expected an array of 3 finite numbers");
+    r[i] = v[i].get<float>();
+  }
+  return r;
+}
+
+Vec3 JsonFields::vec3(const std::string& key, Vec3 fallback) { return has(key) ? vec3(key) : fallback; }
+
+void JsonFields::finish() const {
+  for (auto it = obj_.begin(); it != obj_.end(); ++it)
+    if (!used_.count(it.key())) throw InputError(file_, path(it.key()), "unknown field");
+}
+
+}  // namespace kasha

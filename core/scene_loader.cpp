@@ -1,0 +1,296 @@
+#include "core/scene_loader.h"
+
+#include <tiny_obj_loader.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/json_fields.h"
+#include "core/spectrum_json.h"
+#include "materials/material_json.h"
+
+namespace kasha {
+namespace {
+
+using nlohmann::json;
+
+struct Loader {
+  std::string file;
+  SpectrumContext ctx;
+  std::map<std::string, Spectrum> named;
+  std::map<std::string, uint32_t> materialIndex;
+  Scene& scene;
+
+  Loader(std::string f, Scene& s) : file(std::move(f)), scene(s) {
+    ctx.file = file;
+    ctx.baseDir = std::filesystem::path(file).parent_path().string();
+    if (ctx.baseDir.empty()) ctx.baseDir = ".";
+    ctx.named = &named;
+  }
+
+  std::string resolve(const std::string& rel) const { return (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel; }
+
+  // A light's spectrum must put some energy into the scene's range.
+  Spectrum emitterSpectrum(JsonFields& f, const std::string& key) {
+    Spectrum s = parseSpectrum(f.get(key), ctx, f.path(key));
+    if (!(s.integral(scene.range) > 0.0f))
+      f.fail(key, "emission integrates to zero over the wavelength range [" + std::to_string(int(scene.range.min)) +
+                      ", " + std::to_string(int(scene.range.max)) + "] nm");
+    return s;
+  }
+
+  float scaleField(JsonFields& f) {
+    const float s = f.number("scale", 1.0f);
+    if (!(s > 0.0f)) f.fail("scale", "must be positive");
+    return s;
+  }
+
+  void range(JsonFields& root) {
+    if (!root.has("wavelength_range")) return;
+    const json& r = root.get("wavelength_range");
+    if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number())
+      root.fail("wavelength_range", "expected [min, max] in nm");
+    scene.range = {r[0].get<float>(), r[1].get<float>()};
+    if (!(scene.range.min >= 200.0f && scene.range.max <= 2500.0f && scene.range.min < scene.range.max))
+      root.fail("wavelength_range", "expected 200 <= min < max <= 2500 nm");
+    if (scene.range.max <= 360.0f || scene.range.min >= 830.0f)
+      root.fail("wavelength_range", "does not overlap the visible range 360-830 nm");
+  }
+
+  void render(JsonFields& root) {
+    if (!root.has("render")) return;
+    JsonFields f(root.get("render"), file, "/render");
+    RenderSettings& r = scene.render;
+    r.spp = f.integer("spp", r.spp);
+    if (r.spp < 1) f.fail("spp", "must be at least 1");
+    r.timeBudgetSeconds = f.number("time", 0.0f);
+    if (r.timeBudgetSeconds < 0.0) f.fail("time", "must not be negative");
+    r.maxDepth = f.integer("max_depth", r.maxDepth);
+    if (r.maxDepth < 0) f.fail("max_depth", "must not be negative");
+    r.rrDepth = f.integer("rr_depth", r.rrDepth);
+    if (r.rrDepth < 0) f.fail("rr_depth", "must not be negative");
+    const int seed = f.integer("seed", int(r.seed));
+    if (seed < 0) f.fail("seed", "must not be negative");
+    r.seed = uint64_t(seed);
+    const std::string ws = f.string("sensor_sampling", toString(r.sensor));
+    try {
+      r.sensor = parseSensorSampling(ws);
+    } catch (const std::exception& e) {
+      f.fail("sensor_sampling", e.what());
+    }
+    f.finish();
+  }
+
+  void camera(JsonFields& root) {
+    JsonFields f(root.get("camera"), file, "/camera");
+    const Vec3 pos = f.vec3("position"), at = f.vec3("look_at"), up = f.vec3("up", Vec3(0, 1, 0));
+    const float fov = f.number("fov");
+    if (!(fov > 0.0f && fov < 180.0f)) f.fail("fov", "vertical field of view must be in (0, 180) degrees");
+    const json& res = f.get("resolution");
+    if (!res.is_array() || res.size() != 2 || !res[0].is_number_integer() || !res[1].is_number_integer())
+      f.fail("resolution", "expected [width, height] in pixels");
+    const int w = res[0].get<int>(), h = res[1].get<int>();
+    if (w < 1 || h < 1 || w > 16384 || h > 16384) f.fail("resolution", "width and height must be in 1..16384");
+    const Vec3 fwd = at - pos;
+    if (!(glm::length(fwd) > 0.0f)) f.fail("look_at", "equals /camera/position");
+    if (!(glm::length(glm::cross(fwd, up)) > 1e-6f * glm::length(fwd) * glm::length(up)))
+      f.fail("up", "is parallel to the viewing direction");
+    f.finish();
+    scene.camera = Camera(pos, at, up, fov, w, h);
+  }
+
+  void spectra(JsonFields& root) {
+    if (!root.has("spectra")) return;
+    const json& s = root.get("spectra");
+    if (!s.is_object()) root.fail("spectra", "expected an object of named spectra");
+    for (auto it = s.begin(); it != s.end(); ++it) named[it.key()] = parseSpectrum(it.value(), ctx, "/spectra/" + it.key());
+  }
+
+  void materials(JsonFields& root) {
+    const json& m = root.get("materials");
+    if (!m.is_object() || m.empty()) root.fail("materials", "expected an object of named materials");
+    for (auto it = m.begin(); it != m.end(); ++it) {
+      materialIndex[it.key()] = uint32_t(scene.materials.size());
+      scene.materialNames.push_back(it.key());
+      scene.materials.push_back(parseMaterial(it.value(), ctx, "/materials/" + it.key(), scene.range));
+    }
+  }
+
+  void loadObj(JsonFields& f, Shape& s) {
+    const std::string path = resolve(f.string("file"));
+    tinyobj::ObjReaderConfig cfg;
+    cfg.triangulate = true;
+    cfg.vertex_color = false;
+    tinyobj::ObjReader reader;
+    if (!std::filesystem::is_regular_file(path)) f.fail("file", "cannot open '" + path + "'");
+    if (!reader.ParseFromFile(path, cfg)) f.fail("file", "'" + path + "': " + reader.Error());
+    const auto& v = reader.GetAttrib().vertices;
+    for (size_t i = 0; i + 2 < v.size(); i += 3) {
+      const Vec3 p(v[i], v[i + 1], v[i + 2]);
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        f.fail("file", "'" + path + "': vertex " + std::to_string(i / 3 + 1) + " is not finite");
+      s.positions.push_back(p);
+    }
+    for (const auto& shape : reader.GetShapes())
+      for (const auto& idx : shape.mesh.indices) {
+        if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= s.positions.size())
+          f.fail("file", "'" + path + "': face refers to a missing vertex");
+        s.indices.push_back(uint32_t(idx.vertex_index));
+      }
+    const float scale = f.number("scale", 1.0f);
+    if (!(scale > 0.0f)) f.fail("scale", "must be positive");
+    const Vec3 translate = f.vec3("translate", Vec3(0.0f));
+    for (Vec3& p : s.positions) p = p * scale + translate;
+  }
+
+  void rectangle(JsonFields& f, Shape& s) {
+    if (f.has("corners")) {
+      const json& c = f.get("corners");
+      if (!c.is_array() || c.size() != 4) f.fail("corners", "expected 4 corner points in order around the rectangle");
+      for (size_t i = 0; i < 4; ++i) {
+        if (!c[i].is_array() || c[i].size() != 3) f.fail("corners/" + std::to_string(i), "expected [x, y, z]");
+        Vec3 p;
+        for (int k = 0; k < 3; ++k) {
+          if (!c[i][k].is_number() || !std::isfinite(c[i][k].get<double>()))
+            f.fail("corners/" + std::to_string(i), "expected 3 finite numbers");
+          p[k] = c[i][k].get<float>();
+        }
+        s.positions.push_back(p);
+      }
+    } else {
+      const Vec3 c = f.vec3("center"), u = f.vec3("u"), v = f.vec3("v");  // u, v: half edges
+      s.positions = {c - u - v, c + u - v, c + u + v, c - u + v};
+    }
+    s.indices = {0, 1, 2, 0, 2, 3};
+  }
+
+  void shapes(JsonFields& root) {
+    const json& arr = root.get("shapes");
+    if (!arr.is_array() || arr.empty()) root.fail("shapes", "expected a non-empty array of shapes");
+    for (size_t i = 0; i < arr.size(); ++i) {
+      const std::string ptr = "/shapes/" + std::to_string(i);
+      JsonFields f(arr[i], file, ptr);
+      Shape s;
+      s.name = f.string("name", "shape" + std::to_string(i));
+      const std::string type = f.string("type");
+      if (type == "sphere") {
+        s.kind = Shape::Kind::Sphere;
+        s.center = f.vec3("center");
+        s.radius = f.number("radius");
+        if (!(s.radius > 0.0f)) f.fail("radius", "must be positive");
+      } else if (type == "mesh") {
+        loadObj(f, s);
+      } else if (type == "rectangle") {
+        rectangle(f, s);
+      } else {
+        f.fail("type", "unknown shape type '" + type + "' (sphere, rectangle, mesh)");
+      }
+      const std::string mat = f.string("material");
+      auto it = materialIndex.find(mat);
+      if (it == materialIndex.end()) f.fail("material", "no material named '" + mat + "' in /materials");
+      s.material = it->second;
+      if (f.has("emission")) {
+        JsonFields e(f.get("emission"), file, ptr + "/emission");
+        AreaEmission em;
+        em.radiance = emitterSpectrum(e, "radiance");
+        em.scale = scaleField(e);
+        em.twoSided = e.boolean("two_sided", false);
+        e.finish();
+        s.emission = em;
+      }
+      f.finish();
+      s.finalize();
+      if (!(s.area > 0.0f)) throw InputError(file, ptr, "degenerate " + type + ": total area is zero");
+      scene.shapes.push_back(std::move(s));
+    }
+  }
+
+  void lights(JsonFields& root) {
+    const SceneBounds bounds = scene.accel->bounds();
+    if (root.has("lights")) {
+      const json& arr = root.get("lights");
+      if (!arr.is_array()) root.fail("lights", "expected an array of lights");
+      for (size_t i = 0; i < arr.size(); ++i) {
+        const std::string ptr = "/lights/" + std::to_string(i);
+        JsonFields f(arr[i], file, ptr);
+        const std::string type = f.string("type");
+        std::unique_ptr<Light> l;
+        if (type == "point") {
+          const Vec3 p = f.vec3("position");
+          Spectrum I = emitterSpectrum(f, "intensity");
+          l = std::make_unique<PointLight>(p, std::move(I), scaleField(f));
+        } else if (type == "spot") {
+          const Vec3 p = f.vec3("position");
+          const Vec3 at = f.vec3("look_at");
+          if (!(glm::length(at - p) > 0.0f)) f.fail("look_at", "equals the position");
+          const float cone = f.number("cone_angle");
+          if (!(cone > 0.0f && cone <= 90.0f)) f.fail("cone_angle", "must be in (0, 90] degrees");
+          const float falloff = f.number("falloff_start", cone);
+          if (!(falloff > 0.0f && falloff <= cone)) f.fail("falloff_start", "must be in (0, cone_angle] degrees");
+          Spectrum I = emitterSpectrum(f, "intensity");
+          l = std::make_unique<SpotLight>(p, at - p, cone, falloff, std::move(I), scaleField(f));
+        } else if (type == "distant") {
+          const Vec3 d = f.vec3("direction");
+          if (!(glm::length(d) > 0.0f)) f.fail("direction", "must not be zero");
+          Spectrum E = emitterSpectrum(f, "irradiance");
+          l = std::make_unique<DistantLight>(d, std::move(E), scaleField(f), bounds);
+        } else if (type == "environment") {
+          if (scene.environmentLight >= 0) f.fail("type", "only one environment light is allowed");
+          Spectrum L = emitterSpectrum(f, "radiance");
+          scene.environmentLight = int(scene.lights.size());
+          l = std::make_unique<EnvironmentLight>(std::move(L), scaleField(f), bounds);
+        } else {
+          f.fail("type", "unknown light type '" + type + "' (point, spot, distant, environment)");
+        }
+        f.finish();
+        scene.lights.push_back(std::move(l));
+      }
+    }
+    scene.shapeLight.assign(scene.shapes.size(), -1);
+    for (size_t i = 0; i < scene.shapes.size(); ++i)
+      if (scene.shapes[i].emission) {
+        scene.shapeLight[i] = int(scene.lights.size());
+        scene.lights.push_back(std::make_unique<AreaLight>(scene.shapes[i]));
+      }
+    if (scene.lights.empty()) throw InputError(file, "/lights", "the scene has no light (no light and no emissive shape)");
+    scene.lightSelector = std::make_unique<LightSelector>(scene.lights);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::string& path) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw InputError(path, "", std::string("malformed JSON: ") + e.what());
+  }
+  auto scene = std::make_unique<Scene>();
+  scene->path = path;
+  Loader L(path, *scene);
+  JsonFields f(root, path, "");
+  L.range(f);
+  L.render(f);
+  L.camera(f);
+  L.spectra(f);
+  L.materials(f);
+  L.shapes(f);
+  scene->accel = std::make_unique<Accel>(scene->shapes);
+  L.lights(f);
+  f.string("description", "");
+  f.finish();
+  return scene;
+}
+
+std::unique_ptr<Scene> loadScene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return loadSceneFromString(ss.str(), path);
+}
+
+}  // namespace kasha

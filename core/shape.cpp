@@ -1,0 +1,56 @@
+#include "core/shape.h"
+
+#include <algorithm>
+
+#include "core/sampling.h"
+
+namespace kasha {
+
+size_t Shape::finalize() {
+  if (kind == Kind::Sphere) {
+    area = 4.0f * kPi * radius * radius;
+    return 0;
+  }
+  std::vector<uint32_t> kept;
+  size_t removed = 0;
+  triangleCdf.clear();
+  double acc = 0.0;
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    const Vec3 a = positions[indices[t]], b = positions[indices[t + 1]], c = positions[indices[t + 2]];
+    const float triArea = 0.5f * glm::length(glm::cross(b - a, c - a));
+    if (!(triArea > 0.0f)) {
+      ++removed;
+      continue;
+    }
+    kept.insert(kept.end(), {indices[t], indices[t + 1], indices[t + 2]});
+    acc += triArea;
+    triangleCdf.push_back(float(acc));
+  }
+  indices = std::move(kept);
+  area = float(acc);
+  return removed;
+}
+
+Vec3 Shape::triangleNormal(uint32_t prim) const {
+  const Vec3 a = positions[indices[3 * prim]], b = positions[indices[3 * prim + 1]], c = positions[indices[3 * prim + 2]];
+  return glm::normalize(glm::cross(b - a, c - a));
+}
+
+SurfaceSample Shape::sampleUniform(Vec2 u) const {
+  if (kind == Kind::Sphere) {
+    const Vec3 n = sampleUniformSphere(u);
+    return {center + radius * n, n, 1.0f / area};
+  }
+  // Pick a triangle by area, reuse u.x within it.
+  const float target = u.x * area;
+  size_t t = size_t(std::upper_bound(triangleCdf.begin(), triangleCdf.end(), target) - triangleCdf.begin());
+  t = std::min(t, triangleCdf.size() - 1);
+  const float lo = t == 0 ? 0.0f : triangleCdf[t - 1];
+  const float ux = std::clamp((target - lo) / std::max(triangleCdf[t] - lo, 1e-30f), 0.0f, 0x1.fffffep-1f);
+  const Vec2 b = sampleUniformTriangle(Vec2(ux, u.y));
+  const Vec3 a = positions[indices[3 * t]], bb = positions[indices[3 * t + 1]], c = positions[indices[3 * t + 2]];
+  const Vec3 p = b.x * a + b.y * bb + (1.0f - b.x - b.y) * c;
+  return {p, triangleNormal(uint32_t(t)), 1.0f / area};
+}
+
+}  // namespace kasha

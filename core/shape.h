@@ -1,0 +1,49 @@
+#pragma once
+// Scene geometry: triangle meshes (OBJ files, rectangles) and spheres, each with a material and
+// optional area emission, and uniform-by-area point sampling for emissive shapes.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/ray.h"
+#include "core/spectrum.h"
+
+namespace kasha {
+
+struct AreaEmission {
+  Spectrum radiance;  // L_e(λ), W·m⁻²·sr⁻¹·nm⁻¹ up to the scene's unit
+  float scale = 1.0f;
+  bool twoSided = false;  // else emits on the side of the geometric normal only
+  float eval(float lambda, const Vec3& ng, const Vec3& wOut) const {
+    if (!twoSided && glm::dot(ng, wOut) <= 0.0f) return 0.0f;
+    return scale * radiance(lambda);
+  }
+};
+
+struct SurfaceSample {
+  Vec3 p, ng;
+  float pdfArea = 0.0f;
+};
+
+struct Shape {
+  enum class Kind { Mesh, Sphere } kind = Kind::Mesh;
+  std::string name;
+  uint32_t material = 0;
+  std::optional<AreaEmission> emission;
+  // Mesh
+  std::vector<Vec3> positions;
+  std::vector<uint32_t> indices;  // three per triangle
+  std::vector<float> triangleCdf;  // cumulative area, for sampling
+  // Sphere
+  Vec3 center{0.0f};
+  float radius = 0.0f;
+
+  float area = 0.0f;
+
+  // Precomputes areas; returns the number of zero-area triangles removed.
+  size_t finalize();
+  Vec3 triangleNormal(uint32_t prim) const;
+  SurfaceSample sampleUniform(Vec2 u) const;
+};
+
+}  // namespace kasha

@@ -1,0 +1,54 @@
+#pragma once
+// A spectral function of wavelength (nm). Every spectrum is held as a piecewise-linear function:
+// tabulated data as given, analytic shapes (Gaussian, blackbody) tabulated finely, bands as steps.
+// Evaluation, exact integrals and exact importance sampling all use this one representation, so
+// what is rendered and what the closed-form tests integrate are the same function.
+#include <string>
+#include <vector>
+
+namespace kasha {
+
+// The wavelengths a scene transports, in nm. Default: the visible range of the CIE observer.
+struct WavelengthRange {
+  float min = 360.0f;
+  float max = 830.0f;
+  float width() const { return max - min; }
+  bool contains(float l) const { return l >= min && l <= max; }
+};
+
+class Spectrum {
+ public:
+  Spectrum() : Spectrum(constant(0.0f)) {}
+
+  static Spectrum constant(float value);
+  // Knots sorted by wavelength; a repeated wavelength makes a step (right-continuous). Values
+  // outside the knots are the end values (constant extrapolation).
+  static Spectrum piecewiseLinear(std::vector<float> lambdas, std::vector<float> values);
+  // value on [lo, hi), zero elsewhere.
+  static Spectrum box(float lo, float hi, float value);
+  // Gaussian with the given centre and full width at half maximum, peak value `peak`,
+  // tabulated at FWHM/100 over centre ± 3 FWHM (zero beyond).
+  static Spectrum gaussian(float centre, float fwhm, float peak = 1.0f);
+  // Planck's law at `kelvin`, normalised to 1 at its maximum over 300–830 nm, tabulated per nm.
+  static Spectrum blackbody(float kelvin);
+
+  float operator()(float lambda) const;
+  // ∫ over [lo, hi] of this spectrum, exact for the piecewise-linear representation.
+  float integral(float lo, float hi) const;
+  float integral(const WavelengthRange& r) const { return integral(r.min, r.max); }
+  float maxValue(float lo, float hi) const;
+  float minValue(float lo, float hi) const;
+  Spectrum scaled(float s) const;
+  // Zero outside [first knot, last knot] instead of constant extrapolation.
+  Spectrum zeroOutside() const;
+
+  const std::vector<float>& lambdas() const { return x_; }
+  const std::vector<float>& values() const { return y_; }
+
+ private:
+  Spectrum(std::vector<float> x, std::vector<float> y);
+  std::vector<float> x_, y_;
+  float uniformStep_ = 0.0f;  // > 0 when knots are equally spaced (O(1) lookup)
+};
+
+}  // namespace kasha

@@ -1,0 +1,110 @@
+#include "core/spectrum_json.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/json_fields.h"
+#include "core/spectrum_csv.h"
+#include "core/spectrum_presets.h"
+
+namespace kasha {
+namespace {
+
+std::string presetList() {
+  std::string s;
+  for (const std::string& n : presetNames()) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+float nonNegative(JsonFields& f, const std::string& key, float fallback, bool required) {
+  const float v = required ? f.number(key) : f.number(key, fallback);
+  if (v < 0.0f) f.fail(key, "must not be negative (" + std::to_string(v) + ")");
+  return v;
+}
+
+Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr) {
+  JsonFields f(v, ctx.file, ptr);
+  const std::string type = f.string("type");
+  Spectrum s;
+  if (type == "constant") {
+    s = Spectrum::constant(nonNegative(f, "value", 0.0f, true));
+  } else if (type == "tabulated") {
+    const nlohmann::json& wl = f.get("wavelengths");
+    const nlohmann::json& val = f.get("values");
+    if (!wl.is_array() || wl.empty()) f.fail("wavelengths", "expected a non-empty array of numbers");
+    if (!val.is_array() || val.size() != wl.size())
+      f.fail("values", "expected an array of numbers as long as /wavelengths (" + std::to_string(wl.size()) + ")");
+    std::vector<float> x, y;
+    for (size_t i = 0; i < wl.size(); ++i) {
+      const std::string wi = "wavelengths/" + std::to_string(i), vi = "values/" + std::to_string(i);
+      if (!wl[i].is_number() || !std::isfinite(wl[i].get<double>())) f.fail(wi, "expected a finite number");
+      if (!val[i].is_number() || !std::isfinite(val[i].get<double>())) f.fail(vi, "expected a finite number");
+      if (!x.empty() && wl[i].get<float>() <= x.back()) f.fail(wi, "wavelengths must be strictly increasing");
+      if (val[i].get<float>() < 0.0f) f.fail(vi, "negative value " + std::to_string(val[i].get<float>()));
+      x.push_back(wl[i].get<float>());
+      y.push_back(val[i].get<float>());
+    }
+    s = Spectrum::piecewiseLinear(x, y);
+  } else if (type == "file") {
+    const std::string rel = f.string("file");
+    const std::string path = (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel;
+    const std::string outside = f.string("outside", "clamp");
+    if (outside != "clamp" && outside != "zero") f.fail("outside", "expected \"clamp\" or \"zero\", got \"" + outside + "\"");
+    const std::string column = f.string("column", "");
+    try {
+      s = spectrumFromTable(readSpectralCsv(path), column);
+    } catch (const InputError& e) {
+      throw InputError(ctx.file, ptr, e.what());
+    }
+    if (outside == "zero") s = s.zeroOutside();
+  } else if (type == "gaussian") {
+    const float centre = f.number("center");
+    const float fwhm = f.number("fwhm");
+    if (!(fwhm > 0.0f)) f.fail("fwhm", "must be positive");
+    if (!(centre > 0.0f)) f.fail("center", "must be a positive wavelength");
+    s = Spectrum::gaussian(centre, fwhm, nonNegative(f, "peak", 1.0f, false));
+  } else if (type == "blackbody") {
+    const float k = f.number("kelvin");
+    if (!(k > 0.0f)) f.fail("kelvin", "must be positive");
+    s = Spectrum::blackbody(k);
+  } else if (type == "box") {
+    const float lo = f.number("min"), hi = f.number("max");
+    if (!(hi > lo)) f.fail("max", "must exceed /min");
+    s = Spectrum::box(lo, hi, nonNegative(f, "value", 1.0f, false));
+  } else if (type == "preset") {
+    const std::string name = f.string("name");
+    const auto p = presetSpectrum(name);
+    if (!p) f.fail("name", "unknown preset '" + name + "' (known: " + presetList() + ")");
+    s = *p;
+  } else {
+    f.fail("type", "unknown spectrum type '" + type +
+                       "' (constant, tabulated, file, gaussian, blackbody, box, preset)");
+  }
+  const float scale = nonNegative(f, "scale", 1.0f, false);
+  f.finish();
+  return scale == 1.0f ? s : s.scaled(scale);
+}
+
+}  // namespace
+
+Spectrum parseSpectrum(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr) {
+  if (v.is_number()) {
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) throw InputError(ctx.file, ptr, "spectrum value is not finite");
+    if (d < 0.0) throw InputError(ctx.file, ptr, "spectrum value must not be negative (" + std::to_string(d) + ")");
+    return Spectrum::constant(float(d));
+  }
+  if (v.is_string()) {
+    const std::string name = v.get<std::string>();
+    if (ctx.named) {
+      auto it = ctx.named->find(name);
+      if (it != ctx.named->end()) return it->second;
+    }
+    if (auto p = presetSpectrum(name)) return *p;
+    throw InputError(ctx.file, ptr, "unknown spectrum '" + name + "' (not in /spectra; presets: " + presetList() + ")");
+  }
+  if (v.is_object()) return parseObject(v, ctx, ptr);
+  throw InputError(ctx.file, ptr, "expected a spectrum (number, name or object), got " + jsonTypeName(v));
+}
+
+}  // namespace kasha

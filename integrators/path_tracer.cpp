@@ -1,0 +1,114 @@
+#include "integrators/path_tracer.h"
+
+#include "core/color.h"
+#include "core/sampling.h"
+
+namespace kasha {
+
+PathTracer::PathTracer(const Scene& scene, SensorSampling sensor, int maxDepth, int rrDepth)
+    : sensor_(sensor, scene.range), maxDepth_(maxDepth), rrDepth_(rrDepth) {}
+
+Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, RayCounter& counter) const {
+  const WavelengthSample ws = sensor_.sample(rng.uniform());
+  if (ws.pdf <= 0.0f) return Vec3(0.0f);
+  const Vec2 jitter(rng.uniform(), rng.uniform());
+  const Ray ray = scene.camera.generateRay(pixel + jitter);
+  const float L = radiance(scene, ray, ws.lambda, rng, counter);
+  // W(λ)·L(λ)/p(λ): the sensor responds at the wavelength arriving at it (transport.md §1).
+  return Observer::cie1931().weight(ws.lambda) * (L / ws.pdf);
+}
+
+float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, RayCounter& counter) const {
+  const LightSelector& lights = *scene.lightSelector;
+  float L = 0.0f, beta = 1.0f;
+  float prevDirPdf = 0.0f;     // solid-angle density of the direction that led here
+  bool prevSpecular = true;    // the camera ray counts as specular: no MIS on direct hits
+  Vec3 prevP = ray.o;
+  for (int depth = 0;; ++depth) {
+    const std::optional<Hit> hit = scene.accel->intersect(ray);
+    ++counter.rays;
+    if (!hit) {
+      if (const EnvironmentLight* env = scene.environment()) {
+        const float Le = env->Le(lambda);
+        float w = 1.0f;
+        if (!prevSpecular) {
+          const float lightPdf = lights.probability(size_t(scene.environmentLight), lambda) * env->pdfDirection();
+          w = powerHeuristic(prevDirPdf, lightPdf);
+        }
+        L += beta * Le * w;
+      }
+      break;
+    }
+    const Shape& shape = scene.shapes[hit->shape];
+    if (shape.emission) {
+      const float Le = shape.emission->eval(lambda, hit->ng, -ray.d);
+      if (Le > 0.0f) {
+        float w = 1.0f;
+        if (!prevSpecular) {
+          const size_t li = size_t(scene.shapeLight[hit->shape]);
+          const float lightPdf = lights.probability(li, lambda) * scene.lights[li]->pdfLi(prevP, hit->p, hit->ng);
+          w = powerHeuristic(prevDirPdf, lightPdf);
+        }
+        L += beta * Le * w;
+      }
+    }
+    if (depth >= maxDepth_) break;
+
+    const Material& mat = scene.material(*hit);
+    const Frame frame = Frame::fromNormal(hit->ng);
+    const Vec3 wo = frame.toLocal(-ray.d);
+    // Spectral stage: lobe and the wavelength the light had before this vertex.
+    const SpectralChoice sc = mat.sampleSpectral(TransportMode::Radiance, lambda, rng.uniform());
+    if (sc.pdf <= 0.0f) break;
+    const float lambdaIn = sc.lambda;
+
+    // Next-event estimation at λ_i.
+    const float uLight = rng.uniform();
+    const Vec2 uPos(rng.uniform(), rng.uniform());
+    if (!mat.purelySpecular()) {
+      const auto [li, pSelect] = lights.select(lambdaIn, uLight);
+      if (pSelect > 0.0f) {
+        const std::optional<LightSample> ls = scene.lights[li]->sampleLi(hit->p, lambdaIn, uPos);
+        if (ls && ls->Li > 0.0f && ls->pdf > 0.0f) {
+          const Vec3 wi = frame.toLocal(ls->wi);
+          const float f = mat.eval(wi, wo, lambdaIn, lambda, sc.lobe);
+          if (f > 0.0f) {
+            const Vec3 origin = offsetPoint(hit->p, hit->ng, ls->wi);
+            const float tMax = std::isinf(ls->dist) ? kInf : ls->dist * (1.0f - 1e-4f) - rayEpsilon(hit->p);
+            ++counter.rays;
+            if (!scene.accel->occluded(origin, ls->wi, tMax)) {
+              const float lightPdf = pSelect * ls->pdf;
+              const float w = ls->delta ? 1.0f
+                                        : powerHeuristic(lightPdf, mat.directionPdf(TransportMode::Radiance, wo, wi, sc.lobe));
+              L += beta * (f * std::abs(wi.z) / sc.pdf) * ls->Li * w / lightPdf;
+            }
+          }
+        }
+      }
+    }
+
+    // Direction stage.
+    const std::optional<DirectionSample> ds =
+        mat.sampleDirection(TransportMode::Radiance, wo, sc.lobe, Vec2(rng.uniform(), rng.uniform()));
+    if (!ds || ds->pdf <= 0.0f) break;
+    const float f = mat.eval(ds->w, wo, lambdaIn, lambda, sc.lobe);
+    beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);
+    if (!(beta > 0.0f)) break;
+    prevDirPdf = ds->pdf;
+    prevSpecular = ds->specular;
+    prevP = hit->p;
+    lambda = lambdaIn;
+    const Vec3 wiWorld = frame.toWorld(ds->w);
+    ray = Ray{offsetPoint(hit->p, hit->ng, wiWorld), wiWorld};
+
+    // Russian roulette on the throughput.
+    if (depth + 1 >= rrDepth_) {
+      const float q = std::min(1.0f, beta);
+      if (rng.uniform() >= q) break;
+      beta /= q;
+    }
+  }
+  return L;
+}
+
+}  // namespace kasha

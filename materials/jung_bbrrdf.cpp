@@ -1,0 +1,120 @@
+#include "materials/jung_bbrrdf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "materials/diffuse_lobe.h"
+
+namespace kasha {
+namespace {
+
+std::string checkUnitSpectrum(const Spectrum& s, WavelengthRange range, const char* field) {
+  const float lo = s.minValue(range.min, range.max), hi = s.maxValue(range.min, range.max);
+  if (!std::isfinite(lo) || !std::isfinite(hi)) return std::string(field) + ": value is not finite";
+  if (lo < 0.0f) return std::string(field) + ": negative value " + std::to_string(lo) + " in the wavelength range";
+  if (hi > 1.0f + 1e-6f) return std::string(field) + ": value " + std::to_string(hi) + " exceeds 1 in the wavelength range";
+  return {};
+}
+
+}  // namespace
+
+std::string checkJungParams(const JungParams& p, WavelengthRange range) {
+  if (!(p.concentration >= 0.0f && p.concentration <= 1.0f))
+    return "c: concentration " + std::to_string(p.concentration) + " is outside [0, 1]";
+  if (!(p.energyRatio >= 0.0f && p.energyRatio <= 1.0f))
+    return "Q: energy ratio " + std::to_string(p.energyRatio) + " is outside [0, 1]";
+  if (std::string m = checkUnitSpectrum(p.absorption, range, "absorption"); !m.empty()) return m;
+  if (std::string m = checkUnitSpectrum(p.reflectance, range, "reflectance"); !m.empty()) return m;
+  if (p.emission.minValue(range.min, range.max) < 0.0f) return "emission: negative value in the wavelength range";
+  if (!(p.emission.integral(range) > 0.0f)) return "emission: integrates to zero over the wavelength range";
+  return {};
+}
+
+JungBbrrdf::JungBbrrdf(JungParams params, WavelengthRange range)
+    : p_(std::move(params)), range_(range), absorption_(p_.absorption, range), emission_(p_.emission, range) {
+  if (std::string m = checkJungParams(p_, range_); !m.empty()) throw std::invalid_argument(m);
+}
+
+float JungBbrrdf::eval(const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut, SpectralLobe lobe) const {
+  if (!diffuse::sameSide(wi, wo)) return 0.0f;
+  const float ca = c() * a(lambdaIn);
+  if (lobe == SpectralLobe::Elastic) return (1.0f - ca) * r(lambdaIn) * kInvPi;  // Jung18 eq. 3
+  return ca * q() * e(lambdaOut) * kInvPi;                                        // Jung18 eq. 2
+}
+
+float JungBbrrdf::probFluorescenceLight(float lambdaIn) const {
+  // Jung18 eq. 6: P_l = c·a(λ_i)·Q / (c·a(λ_i)·Q + (1 − c·a(λ_i))·r(λ_i))
+  const float ca = c() * a(lambdaIn);
+  const float fl = ca * q(), el = (1.0f - ca) * r(lambdaIn);
+  return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
+}
+
+float JungBbrrdf::probFluorescenceCamera(float lambdaOut) const {
+  // Jung18 eq. 7: P_c = c·∫a·Q·e(λ_o) / (c·∫a·Q·e(λ_o) + (1 − c·a(λ_o))·r(λ_o))
+  const float fl = c() * absorptionIntegral() * q() * e(lambdaOut);
+  const float el = (1.0f - c() * a(lambdaOut)) * r(lambdaOut);
+  return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
+}
+
+float JungBbrrdf::albedoIn(float lambdaIn) const {
+  const float ca = c() * a(lambdaIn);
+  return (1.0f - ca) * r(lambdaIn) + ca * q();
+}
+
+float JungBbrrdf::albedoOut(float lambdaOut) const {
+  return (1.0f - c() * a(lambdaOut)) * r(lambdaOut) + c() * q() * absorptionIntegral() * e(lambdaOut);
+}
+
+SpectralChoice JungBbrrdf::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
+  const bool radiance = mode == TransportMode::Radiance;
+  const bool anything = radiance ? albedoOut(lambdaKnown) > 0.0f : albedoIn(lambdaKnown) > 0.0f;
+  if (!anything) return {};
+  const float pFluor = radiance ? probFluorescenceCamera(lambdaKnown) : probFluorescenceLight(lambdaKnown);
+  if (u < pFluor) {
+    // Radiance: λ_i ∝ a (camera paths); Importance: λ_o ∝ e (light paths).
+    const WavelengthSample ws = (radiance ? absorption_ : emission_).sample(std::min(u / pFluor, 0x1.fffffep-1f));
+    if (ws.pdf <= 0.0f) return {};
+    return {SpectralLobe::Fluorescent, ws.lambda, pFluor * ws.pdf};
+  }
+  return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
+}
+
+float JungBbrrdf::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
+  const bool radiance = mode == TransportMode::Radiance;
+  const bool anything = radiance ? albedoOut(lambdaKnown) > 0.0f : albedoIn(lambdaKnown) > 0.0f;
+  if (!anything) return 0.0f;
+  const float pFluor = radiance ? probFluorescenceCamera(lambdaKnown) : probFluorescenceLight(lambdaKnown);
+  if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
+  return pFluor * (radiance ? absorption_.pdf(lambdaOther) : emission_.pdf(lambdaOther));
+}
+
+std::optional<DirectionSample> JungBbrrdf::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe,
+                                                           Vec2 u) const {
+  return diffuse::sample(wKnown, u);
+}
+
+float JungBbrrdf::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe) const {
+  return diffuse::pdf(wKnown, wSampled);
+}
+
+ReradiationMatrix JungBbrrdf::reradiationMatrix(const std::vector<float>& grid) const {
+  ReradiationMatrix out;
+  out.grid = grid;
+  const size_t n = grid.size();
+  std::vector<float> eBand(n);
+  for (size_t j = 0; j < n; ++j) {
+    const float lo = j == 0 ? range_.min : 0.5f * (grid[j - 1] + grid[j]);
+    const float hi = j + 1 == n ? range_.max : 0.5f * (grid[j] + grid[j + 1]);
+    eBand[j] = p_.emission.integral(std::max(lo, range_.min), std::min(hi, range_.max)) / emission_.integral();
+  }
+  out.m.assign(n, std::vector<float>(n, 0.0f));
+  for (size_t i = 0; i < n; ++i) {
+    const float ca = c() * a(grid[i]);
+    for (size_t j = 0; j < n; ++j) out.m[i][j] = ca * q() * eBand[j];  // Jung18 eq. 5: c·a·Q·eᵀ
+    out.m[i][i] += (1.0f - ca) * r(grid[i]);                              // + R
+  }
+  return out;
+}
+
+}  // namespace kasha

@@ -1,0 +1,77 @@
+#pragma once
+// The diffuse fluorescent BBRRDF of Jung, Hanika, Marschner & Dachsbacher (2018),
+// "A Simple Diffuse Fluorescent BBRRDF Model" (Jung18):
+//   f(λ_i, ω_i, ω_o, λ_o) = [δ(λ_i − λ_o)(1 − c·a(λ_i))·r(λ_i) + c·a(λ_i)·Q·e(λ_o)] / π   (eq. 4)
+// with absorption a, emission e normalised to ∫e dλ = 1 over the scene's wavelength range,
+// non-fluorescent reflectance r, energy ratio Q and concentration c.
+#include <string>
+#include <vector>
+
+#include "core/spectral_distribution.h"
+#include "materials/material.h"
+
+namespace kasha {
+
+struct JungParams {
+  Spectrum absorption;   // a(λ), peak-normalised measurements are fine
+  Spectrum emission;     // e(λ), any scale: normalised internally
+  Spectrum reflectance;  // r(λ)
+  float concentration = 0.0f;  // c
+  float energyRatio = 0.0f;    // Q
+};
+
+// Eq. 8's conditions for energy conservation: c, Q, a(λ), r(λ) in [0, 1] and e ≥ 0 with a positive
+// integral over the range. Returns an empty string if they hold, else "field: reason".
+std::string checkJungParams(const JungParams& p, WavelengthRange range);
+
+// Reradiation matrix on a wavelength grid (eq. 5): M = R + c·a·Q·eᵀ with R = diag((1 − c·a_i)·r_i).
+// Row i is the input wavelength grid[i], column j the output wavelength grid[j]; e_j is the mass of
+// e in the band of grid[j] (midpoints between neighbours), so each row sums to the energy reflected
+// at grid[i] — at most 1 when eq. 8 holds.
+struct ReradiationMatrix {
+  std::vector<float> grid;
+  std::vector<std::vector<float>> m;  // m[in][out]
+};
+
+class JungBbrrdf final : public Material {
+ public:
+  // Throws std::invalid_argument with checkJungParams' message if eq. 8's conditions fail.
+  JungBbrrdf(JungParams params, WavelengthRange range);
+
+  float eval(const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut, SpectralLobe lobe) const override;
+  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
+  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
+  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
+                                                 Vec2 u) const override;
+  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe) const override;
+  bool fluoresces() const override { return p_.concentration > 0.0f && p_.energyRatio > 0.0f; }
+  std::string describe() const override { return "jung_fluorescent"; }
+
+  // Jung18 eq. 6: probability of the fluorescent lobe on a light path, given λ_i.
+  float probFluorescenceLight(float lambdaIn) const;
+  // Jung18 eq. 7: probability of the fluorescent lobe on a camera path, given λ_o.
+  float probFluorescenceCamera(float lambdaOut) const;
+  // Hemispherical-spectral albedo for light arriving at λ_i: ∫∫ f cos dω_o dλ_o (eq. 8's left side).
+  float albedoIn(float lambdaIn) const;
+  // Energy leaving at λ_o per unit of white (constant 1) incident light: ∫∫ f cos dω_i dλ_i.
+  float albedoOut(float lambdaOut) const;
+
+  // Normalised emission e(λ) (∫e = 1 over the range) and the other parameters.
+  float a(float l) const { return p_.absorption(l); }
+  float e(float l) const { return emission_.pdf(l); }
+  float r(float l) const { return p_.reflectance(l); }
+  float c() const { return p_.concentration; }
+  float q() const { return p_.energyRatio; }
+  float absorptionIntegral() const { return absorption_.integral(); }
+  const WavelengthRange& range() const { return range_; }
+
+  ReradiationMatrix reradiationMatrix(const std::vector<float>& grid) const;
+
+ private:
+  JungParams p_;
+  WavelengthRange range_;
+  SpectralDistribution absorption_;  // samples λ_i ∝ a on camera paths
+  SpectralDistribution emission_;    // samples λ_o ∝ e on light paths; its pdf is the normalised e
+};
+
+}  // namespace kasha

@@ -1,0 +1,27 @@
+#pragma once
+// Lambertian reflector: f = r(λ)/π, elastic only, both sides of the surface.
+#include "core/spectrum.h"
+#include "materials/material.h"
+
+namespace kasha {
+
+class Lambertian final : public Material {
+ public:
+  explicit Lambertian(Spectrum reflectance) : r_(std::move(reflectance)) {}
+
+  float eval(const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut, SpectralLobe lobe) const override;
+  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
+  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
+  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
+                                                 Vec2 u) const override;
+  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe) const override;
+  bool fluoresces() const override { return false; }
+  std::string describe() const override { return "lambertian"; }
+
+  const Spectrum& reflectance() const { return r_; }
+
+ private:
+  Spectrum r_;
+};
+
+}  // namespace kasha
