@@ -23,6 +23,8 @@ class Accel {
   // True if anything blocks the open segment from o along unit d up to distance tMax.
   bool occluded(const Vec3& o, const Vec3& d, float tMax) const;
   SceneBounds bounds() const { return bounds_; }
+  // The Embree scene, for baselines that call Embree directly.
+  RTCScene handle() const { return scene_; }
 
  private:
   RTCDevice device_ = nullptr;

@@ -84,6 +84,8 @@ class DistantLight final : public Light {
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   float power(float lambda) const override { return kPi * sqr(bounds_.radius) * scale_ * E_(lambda); }
   bool isDelta() const override { return true; }
+  float irradiance(float lambda) const { return scale_ * E_(lambda); }
+  const Vec3& direction() const { return dir_; }
 
  private:
   Vec3 dir_;

@@ -14,6 +14,7 @@ size_t Shape::finalize() {
   std::vector<uint32_t> kept;
   size_t removed = 0;
   triangleCdf.clear();
+  normals.clear();
   double acc = 0.0;
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
     const Vec3 a = positions[indices[t]], b = positions[indices[t + 1]], c = positions[indices[t + 2]];
@@ -23,17 +24,13 @@ size_t Shape::finalize() {
       continue;
     }
     kept.insert(kept.end(), {indices[t], indices[t + 1], indices[t + 2]});
+    normals.push_back(glm::normalize(glm::cross(b - a, c - a)));
     acc += triArea;
     triangleCdf.push_back(float(acc));
   }
   indices = std::move(kept);
   area = float(acc);
   return removed;
-}
-
-Vec3 Shape::triangleNormal(uint32_t prim) const {
-  const Vec3 a = positions[indices[3 * prim]], b = positions[indices[3 * prim + 1]], c = positions[indices[3 * prim + 2]];
-  return glm::normalize(glm::cross(b - a, c - a));
 }
 
 SurfaceSample Shape::sampleUniform(Vec2 u) const {

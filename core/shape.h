@@ -34,6 +34,7 @@ struct Shape {
   std::vector<Vec3> positions;
   std::vector<uint32_t> indices;  // three per triangle
   std::vector<float> triangleCdf;  // cumulative area, for sampling
+  std::vector<Vec3> normals;       // unit geometric normal per triangle
   // Sphere
   Vec3 center{0.0f};
   float radius = 0.0f;
@@ -42,7 +43,7 @@ struct Shape {
 
   // Precomputes areas; returns the number of zero-area triangles removed.
   size_t finalize();
-  Vec3 triangleNormal(uint32_t prim) const;
+  const Vec3& triangleNormal(uint32_t prim) const { return normals[prim]; }
   SurfaceSample sampleUniform(Vec2 u) const;
 };
 

@@ -32,14 +32,20 @@ SpectralDistribution::SpectralDistribution(const Spectrum& s, WavelengthRange ra
     cdf_[i + 1] = float(acc);
   }
   total_ = float(acc);
+  guide_.resize(std::min<size_t>(256, x_.size()));
+  for (size_t k = 0, i = 0; k < guide_.size(); ++k) {
+    const float target = total_ * float(k) / float(guide_.size());
+    while (i + 1 < cdf_.size() && cdf_[i + 1] <= target) ++i;
+    guide_[k] = uint32_t(i);
+  }
 }
 
 WavelengthSample SpectralDistribution::sample(float u) const {
   if (total_ <= 0.0f) return {};
   const float target = u * total_;
   // segment i: cdf_[i] <= target < cdf_[i+1], skipping zero-width and zero-mass segments
-  size_t i = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin());
-  i = std::clamp<size_t>(i, 1, x_.size() - 1) - 1;
+  size_t i = guide_[std::min(size_t(u * float(guide_.size())), guide_.size() - 1)];
+  while (i + 2 < x_.size() && cdf_[i + 1] <= target) ++i;
   while (i + 1 < x_.size() - 1 && cdf_[i + 1] <= cdf_[i]) ++i;
   const float y0 = y_[i], y1 = y_[i + 1], w = x_[i + 1] - x_[i];
   const float mass = cdf_[i + 1] - cdf_[i];

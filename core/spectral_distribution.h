@@ -26,6 +26,7 @@ class SpectralDistribution {
 
  private:
   std::vector<float> x_, y_, cdf_;  // knots restricted to the range; cdf_[i] = mass before knot i
+  std::vector<uint32_t> guide_;     // guide_[k]: first knot with cdf_ > k/size·total (search start)
   Spectrum spectrum_;
   WavelengthRange range_;
   float total_ = 0.0f;

@@ -10,12 +10,15 @@ namespace kasha {
 
 Spectrum::Spectrum(std::vector<float> x, std::vector<float> y) : x_(std::move(x)), y_(std::move(y)) {
   assert(!x_.empty() && x_.size() == y_.size());
-  if (x_.size() >= 3) {
-    const float step = (x_.back() - x_.front()) / float(x_.size() - 1);
+  size_t i0 = 0, i1 = x_.size() - 1;
+  if (i1 >= 1 && x_[0] == x_[1]) i0 = 1;
+  if (i1 >= 1 && x_[i1] == x_[i1 - 1]) --i1;
+  if (i1 >= i0 + 2) {
+    const float step = (x_[i1] - x_[i0]) / float(i1 - i0);
     bool uniform = step > 0.0f;
-    for (size_t i = 1; i < x_.size() && uniform; ++i)
-      uniform = std::abs((x_[i] - x_[0]) - step * float(i)) <= 1e-4f * step;
-    if (uniform) uniformStep_ = step;
+    for (size_t i = i0 + 1; i <= i1 && uniform; ++i)
+      uniform = std::abs((x_[i] - x_[i0]) - step * float(i - i0)) <= 1e-4f * step;
+    if (uniform) uniformStep_ = step, i0_ = i0, i1_ = i1;
   }
 }
 
@@ -60,14 +63,15 @@ Spectrum Spectrum::blackbody(float kelvin) {
 }
 
 float Spectrum::operator()(float lambda) const {
+  if (uniformStep_ > 0.0f && lambda > x_[i0_] && lambda < x_[i1_]) {
+    const size_t i = std::min(i0_ + size_t((lambda - x_[i0_]) / uniformStep_), i1_ - 1);
+    const float t = (lambda - x_[i]) / (x_[i + 1] - x_[i]);
+    return y_[i] + t * (y_[i + 1] - y_[i]);
+  }
   if (lambda <= x_.front()) return lambda < x_.front() ? y_.front() : y_[std::upper_bound(x_.begin(), x_.end(), lambda) - x_.begin() - 1];
   if (lambda >= x_.back()) return y_.back();
-  size_t i;  // segment [x_i, x_{i+1}) holding lambda
-  if (uniformStep_ > 0.0f) {
-    i = std::min(size_t((lambda - x_.front()) / uniformStep_), x_.size() - 2);
-  } else {
-    i = size_t(std::upper_bound(x_.begin(), x_.end(), lambda) - x_.begin()) - 1;
-  }
+  // segment [x_i, x_{i+1}) holding lambda
+  const size_t i = size_t(std::upper_bound(x_.begin(), x_.end(), lambda) - x_.begin()) - 1;
   const float t = (lambda - x_[i]) / (x_[i + 1] - x_[i]);
   return y_[i] + t * (y_[i + 1] - y_[i]);
 }

@@ -48,7 +48,10 @@ class Spectrum {
  private:
   Spectrum(std::vector<float> x, std::vector<float> y);
   std::vector<float> x_, y_;
-  float uniformStep_ = 0.0f;  // > 0 when knots are equally spaced (O(1) lookup)
+  // O(1) lookup where the knots are equally spaced: between knots i0_ and i1_ (the table without
+  // the duplicated end knots that zeroOutside() adds) with spacing uniformStep_ > 0.
+  float uniformStep_ = 0.0f;
+  size_t i0_ = 0, i1_ = 0;
 };
 
 }  // namespace kasha

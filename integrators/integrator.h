@@ -11,7 +11,8 @@
 namespace kasha {
 
 struct RayCounter {
-  uint64_t rays = 0;  // closest-hit and shadow rays cast
+  uint64_t closest = 0;  // closest-hit queries
+  uint64_t shadow = 0;   // occlusion queries
 };
 
 class Integrator {

@@ -26,7 +26,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
   Vec3 prevP = ray.o;
   for (int depth = 0;; ++depth) {
     const std::optional<Hit> hit = scene.accel->intersect(ray);
-    ++counter.rays;
+    ++counter.closest;
     if (!hit) {
       if (const EnvironmentLight* env = scene.environment()) {
         const float Le = env->Le(lambda);
@@ -75,7 +75,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
           if (f > 0.0f) {
             const Vec3 origin = offsetPoint(hit->p, hit->ng, ls->wi);
             const float tMax = std::isinf(ls->dist) ? kInf : ls->dist * (1.0f - 1e-4f) - rayEpsilon(hit->p);
-            ++counter.rays;
+            ++counter.shadow;
             if (!scene.accel->occluded(origin, ls->wi, tMax)) {
               const float lightPdf = pSelect * ls->pdf;
               const float w = ls->delta ? 1.0f

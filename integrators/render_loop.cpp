@@ -18,7 +18,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   const int w = film.width(), h = film.height();
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  std::atomic<uint64_t> rays{0};
+  std::atomic<uint64_t> closest{0}, shadow{0};
   RenderStats st;
   st.integrator = integrator.name();
   st.threads = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
@@ -39,7 +39,8 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
             film.add(x, y, integrator.samplePixel(scene, Vec2(float(x), float(y)), rng, counter));
           }
         }
-      rays.fetch_add(counter.rays, std::memory_order_relaxed);
+      closest.fetch_add(counter.closest, std::memory_order_relaxed);
+      shadow.fetch_add(counter.shadow, std::memory_order_relaxed);
     });
     pass += count;
     film.setSamplesPerPixel(pass);
@@ -56,7 +57,9 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   st.seconds = elapsed();
   st.spp = pass;
   st.samples = uint64_t(pass) * uint64_t(w) * uint64_t(h);
-  st.rays = rays.load();
+  st.closestRays = closest.load();
+  st.shadowRays = shadow.load();
+  st.rays = st.closestRays + st.shadowRays;
   st.samplesPerSecond = st.seconds > 0.0 ? double(st.samples) / st.seconds : 0.0;
   st.raysPerSecond = st.seconds > 0.0 ? double(st.rays) / st.seconds : 0.0;
   st.nonFiniteSamples = film.nonFiniteCount();
@@ -73,6 +76,8 @@ nlohmann::json toJson(const RenderStats& s) {
           {"spp", s.spp},
           {"samples", s.samples},
           {"rays", s.rays},
+          {"closest_hit_rays", s.closestRays},
+          {"shadow_rays", s.shadowRays},
           {"samples_per_second", s.samplesPerSecond},
           {"rays_per_second", s.raysPerSecond},
           {"non_finite_samples", s.nonFiniteSamples},

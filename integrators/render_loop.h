@@ -23,7 +23,7 @@ struct RenderStats {
   std::string integrator;
   double seconds = 0.0;
   int spp = 0;
-  uint64_t samples = 0, rays = 0;
+  uint64_t samples = 0, rays = 0, closestRays = 0, shadowRays = 0;
   double samplesPerSecond = 0.0, raysPerSecond = 0.0;
   uint64_t nonFiniteSamples = 0;
   int threads = 0;
