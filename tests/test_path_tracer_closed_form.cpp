@@ -186,6 +186,24 @@ TEST(PathTracerClosedForm, UniformSensorSamplingAgrees) {
   expectAgreement(*scene, 1000, exact, 16, 256, SensorSampling::Uniform);
 }
 
+TEST(PathTracerClosedForm, PointLightInsideFluorescentSphere) {
+  // Direct irradiance E = I/R² is uniform over the sphere, so every later bounce stays uniform:
+  // L = Σ_k T^k L_1, i.e. the furnace closed form with L_1 in place of L_e.
+  auto scene = load("furnace_point_light.json");
+  const JungBbrrdf& m = jung(*scene);
+  const auto& light = *scene->lights.at(0);
+  const float R = scene->shapes.at(0).radius;
+  const Grid g(scene->range);
+  // The point light's intensity from its power: power = 4π·I.
+  const Fn E = [&](double l) { return light.power(float(l)) / (4.0 * kPi) / (R * R); };
+  const double absorbed = g.integrate(g.sample([&](double l) { return m.c() * m.a(float(l)) * E(l); }));
+  const Fn L1 = [&](double l) {
+    const float lf = float(l);
+    return ((1.0 - m.c() * m.a(lf)) * m.r(lf) * E(l) + m.q() * m.e(lf) * absorbed) / kPi;
+  };
+  expectAgreement(*scene, 1000, toXyz(g, furnaceClosedForm(g, m, L1)));
+}
+
 // validation.md §2, uniform environment: L_o = (1 − c·a)·r·L_i + Q·e·∫ c·a·L_i dλ.
 TEST(PathTracerClosedForm, SingleScatteringSphereUnderEnvironment) {
   auto scene = load("single_sphere_environment.json");
