@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "core/image_output.h"
 #include "core/scene_loader.h"
-#include "integrators/path_tracer.h"
+#include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "materials/jung_bbrrdf.h"
 
@@ -58,7 +58,12 @@ int runRender(const RenderArgs& a) {
   if (a.seed >= 0) r.seed = uint64_t(a.seed);
   if (a.maxDepth >= 0) r.maxDepth = a.maxDepth;
   if (!a.sensor.empty()) r.sensor = parseSensorSampling(a.sensor);
-  if (a.integrator != "pt") throw InputError("--integrator", "", "unknown integrator '" + a.integrator + "' (pt)");
+  std::unique_ptr<Integrator> integrator;
+  try {
+    integrator = makeIntegrator(a.integrator, *scene, r);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--integrator", "", e.what());
+  }
 
   const std::string exr = a.output.empty() ? std::filesystem::path(a.scene).stem().string() + ".exr" : a.output;
   const std::string png = a.noPng ? "" : (a.png.empty() ? withExtension(exr, ".png") : a.png);
@@ -66,7 +71,6 @@ int runRender(const RenderArgs& a) {
   checkWritable(exr);
   if (!png.empty()) checkWritable(png);
 
-  PathTracer pt(*scene, r.sensor, r.maxDepth, r.rrDepth);
   Film film(scene->camera.width(), scene->camera.height());
   RenderOptions opt;
   opt.spp = r.spp;
@@ -75,7 +79,7 @@ int runRender(const RenderArgs& a) {
   opt.threads = a.threads;
   ProgressBar bar(std::filesystem::path(a.scene).filename().string());
   if (!a.quiet) opt.progress = [&](int spp, double t, double total) { bar.update(spp, t, total); };
-  const RenderStats st = render(*scene, pt, film, opt);
+  const RenderStats st = render(*scene, *integrator, film, opt);
   bar.finish();
 
   writeExr(film, exr);
@@ -144,7 +148,7 @@ int main(int argc, char** argv) {
   render->add_option("--time", ra.time, "Time budget in seconds (whole passes)")->check(CLI::NonNegativeNumber);
   render->add_option("--seed", ra.seed, "Random seed")->check(CLI::NonNegativeNumber);
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
-  render->add_option("--integrator", ra.integrator, "Integrator: pt");
+  render->add_option("--integrator", ra.integrator, "Integrator: pt (path tracing) | lt (light tracing)");
   render->add_option("--sensor-sampling", ra.sensor, "Camera wavelength sampling: uniform | cmf")
       ->check(CLI::IsMember({"uniform", "cmf"}));
   render->add_option("--max-depth", ra.maxDepth, "Maximum number of scattering events")->check(CLI::NonNegativeNumber);

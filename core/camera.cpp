@@ -18,3 +18,40 @@ Ray Camera::generateRay(Vec2 pixel) const {
 }
 
 }  // namespace kasha
+
+namespace kasha {
+
+std::optional<Camera::Connection> Camera::connect(const Vec3& p) const {
+  Vec3 d = pos_ - p;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f)) return std::nullopt;
+  const float dist = std::sqrt(dist2);
+  d /= dist;
+  const Vec3 toPoint = -d;
+  const float cosTheta = glm::dot(toPoint, forward_);
+  if (cosTheta <= 0.0f) return std::nullopt;
+  // Image-plane coordinates at distance 1 along the view axis.
+  const Vec3 onPlane = toPoint / cosTheta;
+  const float sx = glm::dot(onPlane, right_) / (tanHalfY_ * aspect_);
+  const float sy = glm::dot(onPlane, up_) / tanHalfY_;
+  if (sx < -1.0f || sx >= 1.0f || sy <= -1.0f || sy > 1.0f) return std::nullopt;
+  const Vec2 pixel((sx + 1.0f) * 0.5f * float(width_), (1.0f - sy) * 0.5f * float(height_));
+  const float planeArea = 4.0f * tanHalfY_ * tanHalfY_ * aspect_;
+  const float pixelArea = planeArea / (float(width_) * float(height_));
+  const float cos2 = cosTheta * cosTheta;
+  // W_j·cosθ / d² with W_j = 1/(A_j·cos⁴θ)
+  return Connection{pixel, d, dist, 1.0f / (pixelArea * cos2 * cosTheta * dist2)};
+}
+
+float Camera::directionPdf(const Vec3& d) const {
+  const float cosTheta = glm::dot(d, forward_);
+  if (cosTheta <= 0.0f) return 0.0f;
+  const Vec3 onPlane = d / cosTheta;
+  const float sx = glm::dot(onPlane, right_) / (tanHalfY_ * aspect_);
+  const float sy = glm::dot(onPlane, up_) / tanHalfY_;
+  if (sx < -1.0f || sx > 1.0f || sy < -1.0f || sy > 1.0f) return 0.0f;
+  const float planeArea = 4.0f * tanHalfY_ * tanHalfY_ * aspect_;
+  return 1.0f / (planeArea * cosTheta * cosTheta * cosTheta);
+}
+
+}  // namespace kasha

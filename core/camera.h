@@ -1,5 +1,7 @@
 #pragma once
 // Pinhole perspective camera: vertical field of view, look-at frame, image in pixels.
+#include <optional>
+
 #include "core/ray.h"
 
 namespace kasha {
@@ -11,6 +13,22 @@ class Camera {
 
   // Ray through the continuous film position (x right, y down, in pixels).
   Ray generateRay(Vec2 pixel) const;
+
+  // The pinhole as a sensor for light paths. Each pixel j measures the mean radiance over the
+  // directions through it, i.e. importance W_j(ω) = 1 / (A_j·cos⁴θ) for ω through pixel j, where
+  // A_j is the pixel's area on the image plane at distance 1 and θ the angle to the view axis.
+  struct Connection {
+    Vec2 pixel;              // continuous film position hit by the direction towards the camera
+    Vec3 wi;                 // unit direction from the point towards the camera
+    float dist = 0.0f;
+    float importance = 0.0f; // W_j·cosθ_cam / d²: the factor multiplying f·|cosθ_x| at the point
+  };
+  // Connects a point to the pinhole; nothing if it is behind the camera or off the film.
+  std::optional<Connection> connect(const Vec3& p) const;
+  // Solid-angle density with which generateRay (uniform over the film) produces direction d:
+  // 1 / (A·cos³θ), A the whole image-plane area at distance 1.
+  float directionPdf(const Vec3& d) const;
+  const Vec3& forward() const { return forward_; }
   int width() const { return width_; }
   int height() const { return height_; }
   const Vec3& position() const { return pos_; }

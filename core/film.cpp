@@ -5,7 +5,8 @@ namespace kasha {
 Vec3 Film::xyz(int x, int y) const {
   if (spp_ == 0) return Vec3(0.0f);
   const DVec3& s = sum_[size_t(y) * w_ + x];
-  return Vec3(float(s.x / spp_), float(s.y / spp_), float(s.z / spp_));
+  const DVec3& p = splat_[size_t(y) * w_ + x];
+  return Vec3(float((s.x + p.x) / spp_), float((s.y + p.y) / spp_), float((s.z + p.z) / spp_));
 }
 
 DVec3 Film::meanXyz() const {
@@ -13,6 +14,7 @@ DVec3 Film::meanXyz() const {
   if (spp_ == 0) return m;
   const double n = double(sum_.size()) * spp_;
   for (const DVec3& s : sum_) m.x += s.x / n, m.y += s.y / n, m.z += s.z / n;
+  for (const DVec3& s : splat_) m.x += s.x / n, m.y += s.y / n, m.z += s.z / n;
   return m;
 }
 

@@ -16,17 +16,12 @@ struct DVec3 {
 
 class Film {
  public:
-  Film(int width, int height) : w_(width), h_(height), sum_(size_t(width) * height) {}
+  Film(int width, int height) : w_(width), h_(height), sum_(size_t(width) * height), splat_(size_t(width) * height) {}
 
   // Not thread-safe per pixel: each pixel is written by one task at a time.
-  void add(int x, int y, const Vec3& xyz) {
-    if (!std::isfinite(xyz.x) || !std::isfinite(xyz.y) || !std::isfinite(xyz.z)) {
-      recordNonFinite(x, y);
-      return;
-    }
-    DVec3& s = sum_[size_t(y) * w_ + x];
-    s.x += xyz.x, s.y += xyz.y, s.z += xyz.z;
-  }
+  void add(int x, int y, const Vec3& xyz) { accumulate(sum_, x, y, xyz); }
+  // Splats from light paths: summed separately, divided by the same samples per pixel.
+  void addSplat(int x, int y, const Vec3& xyz) { accumulate(splat_, x, y, xyz); }
   void setSamplesPerPixel(int spp) { spp_ = spp; }
   int samplesPerPixel() const { return spp_; }
   int width() const { return w_; }
@@ -39,9 +34,17 @@ class Film {
   std::pair<int, int> firstNonFinitePixel() const { return firstBad_; }
 
  private:
+  void accumulate(std::vector<DVec3>& buffer, int x, int y, const Vec3& xyz) {
+    if (!std::isfinite(xyz.x) || !std::isfinite(xyz.y) || !std::isfinite(xyz.z)) {
+      recordNonFinite(x, y);
+      return;
+    }
+    DVec3& s = buffer[size_t(y) * w_ + x];
+    s.x += xyz.x, s.y += xyz.y, s.z += xyz.z;
+  }
   void recordNonFinite(int x, int y);
   int w_, h_, spp_ = 0;
-  std::vector<DVec3> sum_;
+  std::vector<DVec3> sum_, splat_;
   std::atomic<uint64_t> nonFinite_{0};
   std::mutex badMutex_;
   std::pair<int, int> firstBad_{-1, -1};

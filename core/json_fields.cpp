@@ -1,5 +1,6 @@
 #include "core/json_fields.h"
 
+#include <climits>
 #include <cmath>
 
 namespace kasha {
@@ -35,6 +36,9 @@ int JsonFields::integer(const std::string& key, int fallback) {
   if (!has(key)) return fallback;
   const nlohmann::json& v = get(key);
   if (!v.is_number_integer()) fail(key, "expected an integer, got " + jsonTypeName(v));
+  const bool fits = v.is_number_unsigned() ? v.get<uint64_t>() <= uint64_t(INT_MAX)
+                                           : v.get<int64_t>() >= INT_MIN && v.get<int64_t>() <= INT_MAX;
+  if (!fits) fail(key, "integer " + v.dump() + " is out of range");
   return v.get<int>();
 }
 

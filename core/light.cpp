@@ -5,6 +5,23 @@
 #include "core/sampling.h"
 
 namespace kasha {
+namespace {
+
+// A unit disk of radius r perpendicular to d, centred on c: a uniform point on it.
+Vec3 pointOnDisk(const Vec3& c, const Vec3& d, float r, Vec2 u) {
+  const Frame f = Frame::fromNormal(d);
+  const Vec2 q = sampleConcentricDisk(u) * r;
+  return c + q.x * f.s + q.y * f.t;
+}
+
+}  // namespace
+
+// ---- area ----------------------------------------------------------------------------------
+
+AreaLight::AreaLight(const Shape& shape)
+    : Light(shape.emission->radiance, shape.emission->scale,
+            kPi * shape.area * (shape.emission->twoSided ? 2.0f : 1.0f)),
+      shape_(shape) {}
 
 std::optional<LightSample> AreaLight::sampleLi(const Vec3& p, float lambda, Vec2 u) const {
   const SurfaceSample s = shape_.sampleUniform(u);
@@ -27,26 +44,71 @@ float AreaLight::pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const {
   return cosLight > 0.0f ? dist2 / (cosLight * shape_.area) : 0.0f;
 }
 
-float AreaLight::power(float lambda) const {
+std::optional<EmissionSample> AreaLight::sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const {
+  const SurfaceSample s = shape_.sampleUniform(uPos);
   const AreaEmission& e = *shape_.emission;
-  return kPi * shape_.area * e.scale * e.radiance(lambda) * (e.twoSided ? 2.0f : 1.0f);
+  Vec3 n = s.ng;
+  Vec2 u = uDir;
+  if (e.twoSided) {  // pick a side with probability 1/2, reusing u.x
+    if (u.x < 0.5f) {
+      u.x *= 2.0f;
+    } else {
+      u.x = std::min(2.0f * u.x - 1.0f, 0x1.fffffep-1f);
+      n = -n;
+    }
+  }
+  const Vec3 local = sampleCosineHemisphere(u);
+  if (local.z <= 0.0f) return std::nullopt;
+  EmissionSample es;
+  es.p = s.p;
+  es.n = s.ng;
+  es.w = Frame::fromNormal(n).toWorld(local);
+  es.Le = e.eval(lambda, s.ng, es.w);
+  es.cosOrigin = local.z;
+  es.pdfPos = s.pdfArea;
+  es.pdfDir = pdfEmissionDirection(s.ng, es.w);
+  return es;
 }
+
+float AreaLight::pdfEmissionDirection(const Vec3& n, const Vec3& w) const {
+  const float c = glm::dot(n, w);
+  if (shape_.emission->twoSided) return 0.5f * std::abs(c) * kInvPi;
+  return c > 0.0f ? c * kInvPi : 0.0f;
+}
+
+// ---- point ---------------------------------------------------------------------------------
 
 std::optional<LightSample> PointLight::sampleLi(const Vec3& p, float lambda, Vec2) const {
   const Vec3 d = pos_ - p;
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.0f)) return std::nullopt;
   const float dist = std::sqrt(dist2);
-  return LightSample{d / dist, dist, scale_ * I_(lambda) / dist2, 1.0f, true};
+  return LightSample{d / dist, dist, intensity(lambda) / dist2, 1.0f, true};
 }
 
+std::optional<EmissionSample> PointLight::sampleEmission(float lambda, Vec2, Vec2 uDir) const {
+  EmissionSample es;
+  es.p = pos_;
+  es.w = sampleUniformSphere(uDir);
+  es.Le = intensity(lambda);
+  es.pdfPos = 1.0f;
+  es.pdfDir = kUniformSpherePdf;
+  es.deltaPos = true;
+  return es;
+}
+
+// ---- spot ----------------------------------------------------------------------------------
+
 SpotLight::SpotLight(Vec3 position, Vec3 direction, float coneDeg, float falloffDeg, Spectrum intensity, float scale)
-    : pos_(position),
+    : Light(std::move(intensity), scale, 0.0f),
+      pos_(position),
       dir_(glm::normalize(direction)),
       cosTotal_(std::cos(coneDeg * kPi / 180.0f)),
-      cosStart_(std::cos(std::min(falloffDeg, coneDeg) * kPi / 180.0f)),
-      I_(std::move(intensity)),
-      scale_(scale) {}
+      cosStart_(std::cos(std::min(falloffDeg, coneDeg) * kPi / 180.0f)) {
+  // ∫ falloff dω ≈ 2π(1 − (cosStart + cosTotal)/2): exact for a linear ramp, close for the cubic;
+  // it only steers light selection.
+  powerFactor_ = 2.0f * kPi * (1.0f - 0.5f * (cosStart_ + cosTotal_));
+}
 
 float SpotLight::falloff(float cosTheta) const {
   if (cosTheta >= cosStart_) return 1.0f;
@@ -61,23 +123,65 @@ std::optional<LightSample> SpotLight::sampleLi(const Vec3& p, float lambda, Vec2
   if (!(dist2 > 0.0f)) return std::nullopt;
   const float dist = std::sqrt(dist2);
   const Vec3 wi = d / dist;
-  return LightSample{wi, dist, scale_ * I_(lambda) * falloff(glm::dot(-wi, dir_)) / dist2, 1.0f, true};
+  return LightSample{wi, dist, scale_ * spectrum_(lambda) * falloff(glm::dot(-wi, dir_)) / dist2, 1.0f, true};
 }
 
-float SpotLight::power(float lambda) const {
-  // ∫ falloff dω ≈ 2π(1 − (cosStart + cosTotal)/2): exact for a linear ramp, close for the cubic.
-  return scale_ * I_(lambda) * 2.0f * kPi * (1.0f - 0.5f * (cosStart_ + cosTotal_));
+std::optional<EmissionSample> SpotLight::sampleEmission(float lambda, Vec2, Vec2 uDir) const {
+  const Vec3 local = sampleUniformCone(uDir, cosTotal_);
+  EmissionSample es;
+  es.p = pos_;
+  es.w = Frame::fromNormal(dir_).toWorld(local);
+  es.Le = scale_ * spectrum_(lambda) * falloff(local.z);
+  es.pdfPos = 1.0f;
+  es.pdfDir = 1.0f / (2.0f * kPi * (1.0f - cosTotal_));
+  es.deltaPos = true;
+  return es;
 }
+
+// ---- distant -------------------------------------------------------------------------------
 
 std::optional<LightSample> DistantLight::sampleLi(const Vec3&, float lambda, Vec2) const {
-  return LightSample{-dir_, kInf, scale_ * E_(lambda), 1.0f, true};
+  return LightSample{-dir_, kInf, irradiance(lambda), 1.0f, true};
 }
+
+std::optional<EmissionSample> DistantLight::sampleEmission(float lambda, Vec2 uPos, Vec2) const {
+  // A uniform point on the disk of the scene's bounding radius, upstream of the scene.
+  EmissionSample es;
+  es.p = pointOnDisk(bounds_.center - dir_ * bounds_.radius, dir_, bounds_.radius, uPos);
+  es.w = dir_;
+  es.Le = irradiance(lambda);
+  es.pdfPos = 1.0f / (kPi * sqr(bounds_.radius));
+  es.pdfDir = 1.0f;
+  es.deltaDir = true;
+  return es;
+}
+
+// ---- environment ---------------------------------------------------------------------------
 
 std::optional<LightSample> EnvironmentLight::sampleLi(const Vec3&, float lambda, Vec2 u) const {
   return LightSample{sampleUniformSphere(u), kInf, Le(lambda), kUniformSpherePdf, false};
 }
 
 float EnvironmentLight::pdfDirection() const { return kUniformSpherePdf; }
+
+std::optional<EmissionSample> EnvironmentLight::sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const {
+  // Direction of travel w uniform over the sphere, then a uniform point on the disk facing it.
+  EmissionSample es;
+  es.w = -sampleUniformSphere(uDir);
+  es.p = pointOnDisk(bounds_.center - es.w * bounds_.radius, es.w, bounds_.radius, uPos);
+  es.Le = Le(lambda);
+  es.pdfPos = 1.0f / (kPi * sqr(bounds_.radius));
+  es.pdfDir = kUniformSpherePdf;
+  return es;
+}
+
+// ---- selection -----------------------------------------------------------------------------
+
+LightSelector::LightSelector(const std::vector<std::unique_ptr<Light>>& lights, WavelengthRange range) : lights_(lights) {
+  std::vector<std::pair<float, const Spectrum*>> terms;
+  for (const auto& l : lights) terms.emplace_back(l->powerFactor() * l->scale(), &l->spectrum());
+  totalPower_ = SpectralDistribution(Spectrum::weightedSum(terms), range);
+}
 
 std::pair<size_t, float> LightSelector::select(float lambda, float u) const {
   float total = 0.0f;
@@ -100,6 +204,14 @@ float LightSelector::probability(size_t light, float lambda) const {
   float total = 0.0f;
   for (const auto& l : lights_) total += l->power(lambda);
   return total > 0.0f ? lights_[light]->power(lambda) / total : 0.0f;
+}
+
+LightSelector::LightWavelength LightSelector::sampleLightAndWavelength(float uLambda, float uLight) const {
+  const WavelengthSample ws = totalPower_.sample(uLambda);
+  if (ws.pdf <= 0.0f) return {};
+  const auto [light, p] = select(ws.lambda, uLight);
+  if (p <= 0.0f) return {};
+  return {light, ws.lambda, p * ws.pdf};
 }
 
 }  // namespace kasha

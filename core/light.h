@@ -1,11 +1,14 @@
 #pragma once
 // Light sources: area (an emissive shape), point, spot, distant and a uniform environment. Each
-// has a spectrum and a scale; all quantities are evaluated at one wavelength.
+// has a spectrum and a scale; every quantity is evaluated at one wavelength. Lights are sampled
+// from a receiving point (next-event estimation: sampleLi) and as the start of light subpaths
+// (sampleEmission), with the densities both need for MIS.
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "core/shape.h"
+#include "core/spectral_distribution.h"
 
 namespace kasha {
 
@@ -17,6 +20,18 @@ struct LightSample {
   bool delta = false;
 };
 
+// The start of a light subpath. Its weight is Le·cosOrigin / (pdfPos·pdfDir).
+struct EmissionSample {
+  Vec3 p;                  // origin
+  Vec3 n{0.0f};            // emitter normal at p (area lights), else zero
+  Vec3 w;                  // direction of travel
+  float Le = 0.0f;         // radiance (area, environment), intensity (point, spot), irradiance (distant)
+  float cosOrigin = 1.0f;  // |cos| between n and w for area lights, else 1
+  float pdfPos = 0.0f;     // per unit area (1 for point and spot lights)
+  float pdfDir = 0.0f;     // per steradian (1 for distant lights)
+  bool deltaPos = false, deltaDir = false;
+};
+
 struct SceneBounds {
   Vec3 center{0.0f};
   float radius = 1.0f;
@@ -24,23 +39,38 @@ struct SceneBounds {
 
 class Light {
  public:
+  Light(Spectrum spectrum, float scale, float powerFactor)
+      : spectrum_(std::move(spectrum)), scale_(scale), powerFactor_(powerFactor) {}
   virtual ~Light() = default;
   // Samples a direction towards the light from point p at wavelength lambda.
   virtual std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const = 0;
   // Solid-angle density of sampleLi choosing the point pl (normal nl) seen from p; area and
   // environment lights only (delta lights cannot be hit).
   virtual float pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const { return 0.0f; }
-  // Emitted power at lambda, up to a common factor: used to choose among lights.
-  virtual float power(float lambda) const = 0;
+  // Samples the origin and direction of a light subpath at wavelength lambda.
+  virtual std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const = 0;
   virtual bool isDelta() const { return false; }
+
+  // Emitted power at lambda (W/nm up to the scene's unit): powerFactor·scale·spectrum(λ).
+  float power(float lambda) const { return powerFactor_ * scale_ * spectrum_(lambda); }
+  const Spectrum& spectrum() const { return spectrum_; }
+  float scale() const { return scale_; }
+  float powerFactor() const { return powerFactor_; }
+
+ protected:
+  Spectrum spectrum_;
+  float scale_;
+  float powerFactor_;  // geometric factor turning scale·spectrum into power
 };
 
 class AreaLight final : public Light {
  public:
-  explicit AreaLight(const Shape& shape) : shape_(shape) {}
+  explicit AreaLight(const Shape& shape);
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   float pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const override;
-  float power(float lambda) const override;
+  std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  // Solid-angle density of sampleEmission's direction w leaving a point with normal n.
+  float pdfEmissionDirection(const Vec3& n, const Vec3& w) const;
   const Shape& shape() const { return shape_; }
 
  private:
@@ -49,48 +79,45 @@ class AreaLight final : public Light {
 
 class PointLight final : public Light {
  public:
-  PointLight(Vec3 position, Spectrum intensity, float scale) : pos_(position), I_(std::move(intensity)), scale_(scale) {}
+  PointLight(Vec3 position, Spectrum intensity, float scale)
+      : Light(std::move(intensity), scale, 4.0f * kPi), pos_(position) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
-  float power(float lambda) const override { return 4.0f * kPi * scale_ * I_(lambda); }
+  std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
   bool isDelta() const override { return true; }
+  float intensity(float lambda) const { return scale_ * spectrum_(lambda); }
+  const Vec3& position() const { return pos_; }
 
  private:
   Vec3 pos_;
-  Spectrum I_;
-  float scale_;
 };
 
-// Intensity I inside cosFalloffStart, smoothly to zero at cosTotal (cubic Hermite in cos θ).
+// Intensity I inside falloffStart, smoothly to zero at the cone angle (cubic Hermite in cos θ).
 class SpotLight final : public Light {
  public:
   SpotLight(Vec3 position, Vec3 direction, float coneDeg, float falloffDeg, Spectrum intensity, float scale);
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
-  float power(float lambda) const override;
+  std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
   bool isDelta() const override { return true; }
   float falloff(float cosTheta) const;
 
  private:
   Vec3 pos_, dir_;
   float cosTotal_, cosStart_;
-  Spectrum I_;
-  float scale_;
 };
 
 // Parallel light travelling along `direction`, irradiance E on a perpendicular plane.
 class DistantLight final : public Light {
  public:
   DistantLight(Vec3 direction, Spectrum irradiance, float scale, SceneBounds bounds)
-      : dir_(glm::normalize(direction)), E_(std::move(irradiance)), scale_(scale), bounds_(bounds) {}
+      : Light(std::move(irradiance), scale, kPi * sqr(bounds.radius)), dir_(glm::normalize(direction)), bounds_(bounds) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
-  float power(float lambda) const override { return kPi * sqr(bounds_.radius) * scale_ * E_(lambda); }
+  std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
   bool isDelta() const override { return true; }
-  float irradiance(float lambda) const { return scale_ * E_(lambda); }
+  float irradiance(float lambda) const { return scale_ * spectrum_(lambda); }
   const Vec3& direction() const { return dir_; }
 
  private:
   Vec3 dir_;
-  Spectrum E_;
-  float scale_;
   SceneBounds bounds_;
 };
 
@@ -98,29 +125,39 @@ class DistantLight final : public Light {
 class EnvironmentLight final : public Light {
  public:
   EnvironmentLight(Spectrum radiance, float scale, SceneBounds bounds)
-      : L_(std::move(radiance)), scale_(scale), bounds_(bounds) {}
+      : Light(std::move(radiance), scale, 4.0f * kPi * kPi * sqr(bounds.radius)), bounds_(bounds) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
   float pdfDirection() const;
-  float power(float lambda) const override { return 4.0f * kPi * kPi * sqr(bounds_.radius) * Le(lambda); }
-  float Le(float lambda) const { return scale_ * L_(lambda); }
+  float Le(float lambda) const { return scale_ * spectrum_(lambda); }
 
  private:
-  Spectrum L_;
-  float scale_;
   SceneBounds bounds_;
 };
 
-// Chooses a light in proportion to its power at the path's wavelength, so that at a UV
-// wavelength only UV sources are picked.
+// Chooses lights in proportion to their power at the path's wavelength (next-event estimation:
+// at a UV wavelength only UV sources are picked), and starts light subpaths with the joint
+// density p(light, λ) = Φ_light(λ) / Σ_l ∫Φ_l, i.e. λ from the scene's total emitted power
+// spectrum and then the light in proportion to its power at λ.
 class LightSelector {
  public:
-  explicit LightSelector(const std::vector<std::unique_ptr<Light>>& lights) : lights_(lights) {}
+  LightSelector(const std::vector<std::unique_ptr<Light>>& lights, WavelengthRange range);
   // Returns the index of the chosen light and its probability, or probability 0.
   std::pair<size_t, float> select(float lambda, float u) const;
   float probability(size_t light, float lambda) const;
 
+  struct LightWavelength {
+    size_t light = 0;
+    float lambda = 0.0f;
+    float pdf = 0.0f;  // joint: P(light | λ)·p(λ), per nm
+  };
+  LightWavelength sampleLightAndWavelength(float uLambda, float uLight) const;
+  // Density of λ under the total emitted power spectrum (per nm).
+  float wavelengthPdf(float lambda) const { return totalPower_.pdf(lambda); }
+
  private:
   const std::vector<std::unique_ptr<Light>>& lights_;
+  SpectralDistribution totalPower_;
 };
 
 }  // namespace kasha

@@ -2,6 +2,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -91,14 +92,14 @@ struct Loader {
     const json& res = f.get("resolution");
     if (!res.is_array() || res.size() != 2 || !res[0].is_number_integer() || !res[1].is_number_integer())
       f.fail("resolution", "expected [width, height] in pixels");
-    const int w = res[0].get<int>(), h = res[1].get<int>();
+    const int64_t w = res[0].get<int64_t>(), h = res[1].get<int64_t>();  // int64: 2^32 + 8 must not wrap to 8
     if (w < 1 || h < 1 || w > 16384 || h > 16384) f.fail("resolution", "width and height must be in 1..16384");
     const Vec3 fwd = at - pos;
     if (!(glm::length(fwd) > 0.0f)) f.fail("look_at", "equals /camera/position");
     if (!(glm::length(glm::cross(fwd, up)) > 1e-6f * glm::length(fwd) * glm::length(up)))
       f.fail("up", "is parallel to the viewing direction");
     f.finish();
-    scene.camera = Camera(pos, at, up, fov, w, h);
+    scene.camera = Camera(pos, at, up, fov, int(w), int(h));
   }
 
   void spectra(JsonFields& root) {
@@ -255,9 +256,20 @@ struct Loader {
         scene.lights.push_back(std::make_unique<AreaLight>(scene.shapes[i]));
       }
     if (scene.lights.empty()) throw InputError(file, "/lights", "the scene has no light (no light and no emissive shape)");
-    scene.lightSelector = std::make_unique<LightSelector>(scene.lights);
+    scene.lightSelector = std::make_unique<LightSelector>(scene.lights, scene.range);
   }
 };
+
+// Every number is used as a 32-bit float: one finite as a double but beyond ±3.4e38 would
+// silently become infinite.
+void checkFloatRange(const json& v, const std::string& file, const std::string& ptr) {
+  if (v.is_number_float() && !std::isfinite(float(v.get<double>())))
+    throw InputError(file, ptr, "number " + v.dump() + " is out of range of a 32-bit float");
+  if (v.is_object())
+    for (auto it = v.begin(); it != v.end(); ++it) checkFloatRange(it.value(), file, ptr + "/" + it.key());
+  if (v.is_array())
+    for (size_t i = 0; i < v.size(); ++i) checkFloatRange(v[i], file, ptr + "/" + std::to_string(i));
+}
 
 }  // namespace
 
@@ -265,9 +277,10 @@ std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::s
   json root;
   try {
     root = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e400
     throw InputError(path, "", std::string("malformed JSON: ") + e.what());
   }
+  checkFloatRange(root, path, "");
   auto scene = std::make_unique<Scene>();
   scene->path = path;
   Loader L(path, *scene);

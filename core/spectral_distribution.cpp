@@ -55,8 +55,15 @@ WavelengthSample SpectralDistribution::sample(float u) const {
   const float disc = std::max(0.0f, y0 * y0 + 2.0f * (y1 - y0) * v * a);
   const float denom = y0 + std::sqrt(disc);
   const float t = denom > 0.0f ? std::clamp(2.0f * v * a / denom, 0.0f, 1.0f) : v;
-  const float lambda = std::min(x_[i] + t * w, range_.max);
-  return {lambda, pdf(lambda)};
+  float lambda = std::min(x_[i] + t * w, range_.max);
+  float p = pdf(lambda);
+  if (p <= 0.0f) {
+    // u at the ends of its float grid can land exactly on a segment end where the density is zero
+    // (a zero-valued knot, or the far side of a step): step one ulp into the segment.
+    lambda = std::min(std::max(lambda, std::nextafter(x_[i], x_[i + 1])), std::nextafter(x_[i + 1], x_[i]));
+    p = pdf(lambda);
+  }
+  return {lambda, p};
 }
 
 float SpectralDistribution::pdf(float lambda) const {

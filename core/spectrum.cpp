@@ -76,6 +76,35 @@ float Spectrum::operator()(float lambda) const {
   return y_[i] + t * (y_[i + 1] - y_[i]);
 }
 
+float Spectrum::leftLimit(float lambda) const {
+  auto hit = std::lower_bound(x_.begin(), x_.end(), lambda);
+  if (hit != x_.end() && *hit == lambda) return y_[size_t(hit - x_.begin())];
+  return (*this)(lambda);
+}
+
+Spectrum Spectrum::weightedSum(const std::vector<std::pair<float, const Spectrum*>>& terms) {
+  std::vector<float> knots;
+  for (const auto& [w, s] : terms) knots.insert(knots.end(), s->x_.begin(), s->x_.end());
+  std::sort(knots.begin(), knots.end());
+  knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
+  if (knots.empty()) return constant(0.0f);
+  std::vector<float> x, y;
+  for (float k : knots) {
+    float left = 0.0f, right = 0.0f;
+    for (const auto& [w, s] : terms) {
+      left += w * s->leftLimit(k);
+      right += w * (*s)(k);
+    }
+    if (left != right) {
+      x.push_back(k);
+      y.push_back(left);
+    }
+    x.push_back(k);
+    y.push_back(right);
+  }
+  return Spectrum(std::move(x), std::move(y));
+}
+
 float Spectrum::integral(float lo, float hi) const {
   if (hi <= lo) return 0.0f;
   // Knots strictly inside (lo, hi) plus the ends; the function is linear between them.

@@ -4,6 +4,7 @@
 // Evaluation, exact integrals and exact importance sampling all use this one representation, so
 // what is rendered and what the closed-form tests integrate are the same function.
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace kasha {
@@ -32,7 +33,12 @@ class Spectrum {
   // Planck's law at `kelvin`, normalised to 1 at its maximum over 300–830 nm, tabulated per nm.
   static Spectrum blackbody(float kelvin);
 
+  // Σ w_k·s_k, exact: piecewise linear on the union of all knots, steps kept.
+  static Spectrum weightedSum(const std::vector<std::pair<float, const Spectrum*>>& terms);
+
   float operator()(float lambda) const;
+  // Limit from the left (differs from operator() only at a step).
+  float leftLimit(float lambda) const;
   // ∫ over [lo, hi] of this spectrum, exact for the piecewise-linear representation.
   float integral(float lo, float hi) const;
   float integral(const WavelengthRange& r) const { return integral(r.min, r.max); }

@@ -1,6 +1,7 @@
 #include "core/spectrum_csv.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -40,6 +41,10 @@ SpectralTable parseSpectralCsv(const std::string& text, const std::string& sourc
     const std::string where = source + ":" + std::to_string(lineNo);
     if (!haveHeader) {
       if (cells.size() < 2) throw InputError(where, "header", "needs a wavelength column and at least one value column");
+      char* end = nullptr;
+      std::strtod(cells[0].c_str(), &end);
+      if (!cells[0].empty() && *end == '\0')  // a number where the wavelength column's name belongs
+        throw InputError(where, "header", "the header line is missing (found numbers, expected column names)");
       t.columns = cells;
       t.data.assign(cells.size() - 1, {});
       haveHeader = true;
@@ -50,16 +55,14 @@ SpectralTable parseSpectralCsv(const std::string& text, const std::string& sourc
                                       std::to_string(t.columns.size()));
     std::vector<float> row;
     for (size_t c = 0; c < cells.size(); ++c) {
-      size_t used = 0;
-      double v = 0.0;
-      try {
-        v = std::stod(cells[c], &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != cells[c].size())
+      // strtod, not stod: an overflow is a non-finite value, not an exception.
+      char* end = nullptr;
+      const double v = std::strtod(cells[c].c_str(), &end);
+      if (cells[c].empty() || *end != '\0')
         throw InputError(where, t.columns[c], "'" + cells[c] + "' is not a number");
       if (!std::isfinite(v)) throw InputError(where, t.columns[c], "value is not finite");
+      if (!std::isfinite(float(v)))
+        throw InputError(where, t.columns[c], "value " + cells[c] + " is out of range of a 32-bit float");
       row.push_back(float(v));
     }
     if (!t.lambdas.empty() && row[0] <= t.lambdas.back())

@@ -8,12 +8,12 @@ namespace kasha {
 PathTracer::PathTracer(const Scene& scene, SensorSampling sensor, int maxDepth, int rrDepth)
     : sensor_(sensor, scene.range), maxDepth_(maxDepth), rrDepth_(rrDepth) {}
 
-Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, RayCounter& counter) const {
+Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
   const WavelengthSample ws = sensor_.sample(rng.uniform());
   if (ws.pdf <= 0.0f) return Vec3(0.0f);
   const Vec2 jitter(rng.uniform(), rng.uniform());
   const Ray ray = scene.camera.generateRay(pixel + jitter);
-  const float L = radiance(scene, ray, ws.lambda, rng, counter);
+  const float L = radiance(scene, ray, ws.lambda, rng, ctx.counter);
   // W(λ)·L(λ)/p(λ): the sensor responds at the wavelength arriving at it (transport.md §1).
   return Observer::cie1931().weight(ws.lambda) * (L / ws.pdf);
 }

@@ -12,7 +12,7 @@ namespace kasha {
 class PathTracer final : public Integrator {
  public:
   PathTracer(const Scene& scene, SensorSampling sensor, int maxDepth, int rrDepth);
-  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, RayCounter& counter) const override;
+  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const override;
   std::string name() const override { return "pt"; }
   // Radiance arriving at the camera along `ray` at wavelength lambda (one sample).
   float radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, RayCounter& counter) const;

@@ -1,6 +1,6 @@
 #include "integrators/render_loop.h"
 
-#include <tbb/blocked_range2d.h>
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
@@ -18,7 +18,6 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   const int w = film.width(), h = film.height();
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  std::atomic<uint64_t> closest{0}, shadow{0};
   RenderStats st;
   st.integrator = integrator.name();
   st.threads = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
@@ -26,22 +25,34 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   // A pass is at least ~64k samples, so small images keep every core busy; the stream of a sample
   // depends only on its index, not on how samples are grouped into passes.
   const int perPass = std::max(1, 65536 / std::max(1, w * h));
+  constexpr int kTile = 16;
+  const int tilesX = (w + kTile - 1) / kTile, tilesY = (h + kTile - 1) / kTile, tileCount = tilesX * tilesY;
+  std::vector<SampleContext> contexts(static_cast<size_t>(tileCount));
   int pass = 0;
   while (pass < opt.spp) {
     const int first = pass, count = std::min(perPass, opt.spp - pass);
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
-      RayCounter counter;
-      for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-        for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-          const uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
-          for (int s = first; s < first + count; ++s) {
-            Rng rng(mixBits(seedMix ^ mixBits(pixel)), uint64_t(s));
-            film.add(x, y, integrator.samplePixel(scene, Vec2(float(x), float(y)), rng, counter));
+    // Fixed 16×16 tiles; each keeps its splats, merged in tile order so the sums do not depend
+    // on scheduling.
+    tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
+      for (int tile = range.begin(); tile < range.end(); ++tile) {
+        SampleContext& ctx = contexts[size_t(tile)];
+        ctx.splats.clear();
+        const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
+        for (int y = y0; y < std::min(y0 + kTile, h); ++y)
+          for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
+            const uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
+            for (int s = first; s < first + count; ++s) {
+              Rng rng(mixBits(seedMix ^ mixBits(pixel)), uint64_t(s));
+              film.add(x, y, integrator.samplePixel(scene, Vec2(float(x), float(y)), rng, ctx));
+            }
           }
-        }
-      closest.fetch_add(counter.closest, std::memory_order_relaxed);
-      shadow.fetch_add(counter.shadow, std::memory_order_relaxed);
-    });
+      }
+    }, tbb::simple_partitioner());
+    for (SampleContext& ctx : contexts)
+      for (const Splat& sp : ctx.splats) {
+        const int x = std::clamp(int(sp.pixel.x), 0, w - 1), y = std::clamp(int(sp.pixel.y), 0, h - 1);
+        film.addSplat(x, y, sp.xyz);
+      }
     pass += count;
     film.setSamplesPerPixel(pass);
     const double t = elapsed();
@@ -57,8 +68,10 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   st.seconds = elapsed();
   st.spp = pass;
   st.samples = uint64_t(pass) * uint64_t(w) * uint64_t(h);
-  st.closestRays = closest.load();
-  st.shadowRays = shadow.load();
+  for (const SampleContext& ctx : contexts) {
+    st.closestRays += ctx.counter.closest;
+    st.shadowRays += ctx.counter.shadow;
+  }
   st.rays = st.closestRays + st.shadowRays;
   st.samplesPerSecond = st.seconds > 0.0 ? double(st.samples) / st.seconds : 0.0;
   st.raysPerSecond = st.seconds > 0.0 ? double(st.rays) / st.seconds : 0.0;

@@ -4,7 +4,7 @@
 #include "core/scene_loader.h"
 #include "integrators/path_tracer.h"
 #include "integrators/render_loop.h"
-#include "tests/test_support.h"
+#include "tests/support.h"
 
 namespace kasha {
 namespace {

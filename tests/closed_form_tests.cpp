@@ -1,16 +1,17 @@
-// The path tracer against the closed forms of validation.md §1–2, with tolerances of 4 standard
+// Every integrator against the closed forms of validation.md §1–2, with tolerances of 4 standard
 // errors estimated from independent batches. Expected values are computed here by quadrature of
-// the formulas from the very spectra the scene files load.
+// the formulas from the very spectra the scene files load. This file is compiled once per
+// integrator (tests/CMakeLists.txt), with KASHA_TEST_INTEGRATOR naming it.
 #include <gtest/gtest.h>
 
 #include <functional>
 
 #include "core/color.h"
 #include "core/scene_loader.h"
-#include "integrators/path_tracer.h"
+#include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "materials/jung_bbrrdf.h"
-#include "tests/test_support.h"
+#include "tests/support.h"
 
 namespace kasha {
 namespace {
@@ -84,17 +85,26 @@ std::vector<double> furnaceClosedForm(const Grid& g, const JungBbrrdf& m, const 
   return L;
 }
 
+const std::string gIntegrator = KASHA_TEST_INTEGRATOR;
+// Light tracing spends most paths where the small test cameras do not look: it gets more samples
+// so that every test keeps its power (the standard-error check below).
+const int gSppScale = gIntegrator == "lt" ? 8 : 1;
+
 // Mean image XYZ over `batches` independent renders; checks each channel within 4σ.
 void expectAgreement(Scene& scene, int maxDepth, const Vec3& exact, int batches = 16, int spp = 256,
                      SensorSampling sensor = SensorSampling::ColorMatching) {
-  PathTracer pt(scene, sensor, maxDepth, 3);
+  RenderSettings settings = scene.render;
+  settings.maxDepth = maxDepth;
+  settings.rrDepth = 3;
+  settings.sensor = sensor;
+  const std::unique_ptr<Integrator> integrator = makeIntegrator(gIntegrator, scene, settings);
   std::vector<double> bx, by, bz;
   for (int b = 0; b < batches; ++b) {
     Film film(scene.camera.width(), scene.camera.height());
     RenderOptions opt;
-    opt.spp = spp;
+    opt.spp = spp * gSppScale;
     opt.seed = 1000 + uint64_t(b);
-    render(scene, pt, film, opt);
+    render(scene, *integrator, film, opt);
     const DVec3 m = film.meanXyz();
     bx.push_back(m.x), by.push_back(m.y), bz.push_back(m.z);
   }
@@ -116,7 +126,7 @@ Fn emissionOf(const Scene& s) {
   return [e](double l) { return double(e.scale * e.radiance(float(l))); };
 }
 
-TEST(PathTracerClosedForm, WorkedExampleMatchesValidationDoc) {
+TEST(ClosedForm, WorkedExampleMatchesValidationDoc) {
   // validation.md §1 quotes L = 1.111 / 2.000 / 3.600 in the absorption / neutral / emission bands.
   auto scene = load("furnace_fluorescent.json");
   const Grid g(scene->range);
@@ -127,7 +137,7 @@ TEST(PathTracerClosedForm, WorkedExampleMatchesValidationDoc) {
   EXPECT_NEAR(at(575.0), 3.600, 1e-3);
 }
 
-TEST(PathTracerClosedForm, NeumannSeriesConvergesToClosedForm) {
+TEST(ClosedForm, NeumannSeriesConvergesToClosedForm) {
   for (const char* name : {"furnace_fluorescent.json", "furnace_overlap.json", "furnace_uv.json"}) {
     auto scene = load(name);
     const Grid g(scene->range);
@@ -169,7 +179,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Furnace,
                          ::testing::Values("furnace_white.json", "furnace_fluorescent.json", "furnace_overlap.json",
                                            "furnace_uv.json"));
 
-TEST(PathTracerClosedForm, WhiteFurnaceIsLeOverOneMinusR) {
+TEST(ClosedForm, WhiteFurnaceIsLeOverOneMinusR) {
   auto scene = load("furnace_white.json");
   const Grid g(scene->range);
   // c = 0: the ordinary white furnace L = L_e / (1 − r), independently of the fluorescent formula.
@@ -179,23 +189,22 @@ TEST(PathTracerClosedForm, WhiteFurnaceIsLeOverOneMinusR) {
   expectAgreement(*scene, 1000, exact, 8, 256);
 }
 
-TEST(PathTracerClosedForm, UniformSensorSamplingAgrees) {
+TEST(ClosedForm, UniformSensorSamplingAgrees) {
   auto scene = load("furnace_overlap.json");
   const Grid g(scene->range);
   const Vec3 exact = toXyz(g, furnaceClosedForm(g, jung(*scene), emissionOf(*scene)));
   expectAgreement(*scene, 1000, exact, 16, 256, SensorSampling::Uniform);
 }
 
-TEST(PathTracerClosedForm, PointLightInsideFluorescentSphere) {
+TEST(ClosedForm, PointLightInsideFluorescentSphere) {
   // Direct irradiance E = I/R² is uniform over the sphere, so every later bounce stays uniform:
   // L = Σ_k T^k L_1, i.e. the furnace closed form with L_1 in place of L_e.
   auto scene = load("furnace_point_light.json");
   const JungBbrrdf& m = jung(*scene);
-  const auto& light = *scene->lights.at(0);
+  const auto& light = dynamic_cast<const PointLight&>(*scene->lights.at(0));
   const float R = scene->shapes.at(0).radius;
   const Grid g(scene->range);
-  // The point light's intensity from its power: power = 4π·I.
-  const Fn E = [&](double l) { return light.power(float(l)) / (4.0 * kPi) / (R * R); };
+  const Fn E = [&](double l) { return light.intensity(float(l)) / (R * R); };
   const double absorbed = g.integrate(g.sample([&](double l) { return m.c() * m.a(float(l)) * E(l); }));
   const Fn L1 = [&](double l) {
     const float lf = float(l);
@@ -205,7 +214,7 @@ TEST(PathTracerClosedForm, PointLightInsideFluorescentSphere) {
 }
 
 // validation.md §2, uniform environment: L_o = (1 − c·a)·r·L_i + Q·e·∫ c·a·L_i dλ.
-TEST(PathTracerClosedForm, SingleScatteringSphereUnderEnvironment) {
+TEST(ClosedForm, SingleScatteringSphereUnderEnvironment) {
   auto scene = load("single_sphere_environment.json");
   const JungBbrrdf& m = jung(*scene);
   const EnvironmentLight& env = *scene->environment();
@@ -218,7 +227,7 @@ TEST(PathTracerClosedForm, SingleScatteringSphereUnderEnvironment) {
   // The worked example: 0.10 / 0.50 / 1.22 in the three bands.
   EXPECT_NEAR(L[size_t((425.0 - scene->range.min) / kStep)], 0.10, 1e-3);
   EXPECT_NEAR(L[size_t((575.0 - scene->range.min) / kStep)], 1.22, 1e-3);
-  expectAgreement(*scene, 1000, toXyz(g, L));
+  expectAgreement(*scene, 1000, toXyz(g, L), 16, 512);
 }
 
 // validation.md §2, distant light: L_o = cos θ·[(1 − c·a)·r·E + Q·e·∫ c·a·E dλ] / π.
@@ -236,8 +245,8 @@ void checkPlane(const std::string& name) {
   expectAgreement(*scene, 1000, toXyz(g, L));
 }
 
-TEST(PathTracerClosedForm, SingleScatteringPlaneUnderDistantLight) { checkPlane("single_plane_distant.json"); }
-TEST(PathTracerClosedForm, SingleScatteringPlaneUnderUvLightIsPurelyFluorescent) { checkPlane("single_plane_uv.json"); }
+TEST(ClosedForm, SingleScatteringPlaneUnderDistantLight) { checkPlane("single_plane_distant.json"); }
+TEST(ClosedForm, SingleScatteringPlaneUnderUvLightIsPurelyFluorescent) { checkPlane("single_plane_uv.json"); }
 
 }  // namespace
 }  // namespace kasha

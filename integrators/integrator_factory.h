@@ -1,0 +1,15 @@
+#pragma once
+// Integrators by name, for the command line, tests and benchmarks.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/integrator.h"
+
+namespace kasha {
+
+// "pt" (path tracing), "lt" (light tracing). Throws std::invalid_argument for other names.
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& settings);
+std::vector<std::string> integratorNames();
+
+}  // namespace kasha

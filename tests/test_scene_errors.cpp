@@ -1,0 +1,641 @@
+// The JSON scene loader (core/scene_loader.h): a scene using every feature loads as written, and
+// every class of bad input is an InputError "file: /json/pointer: reason".
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/scene_loader.h"
+#include "tests/support.h"
+
+namespace kasha {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+#define EXPECT_CONTAINS(haystack, needle) \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "message: " << (haystack)
+
+// A camera, one lambertian material and one emissive rectangle: the smallest valid scene.
+const char* kBaseScene = R"({
+  "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0], "fov": 40, "resolution": [8, 8]},
+  "materials": {"white": {"type": "lambertian", "reflectance": 0.5}},
+  "shapes": [{"type": "rectangle", "center": [0, 0, 0], "u": [1, 0, 0], "v": [0, 1, 0],
+              "material": "white", "emission": {"radiance": 1}}]
+})";
+
+const char* kJungMaterial = R"({"type": "jung_fluorescent",
+  "absorption": {"type": "gaussian", "center": 450, "fwhm": 40},
+  "emission": {"type": "gaussian", "center": 520, "fwhm": 30},
+  "reflectance": 0.5, "c": 0.5, "Q": 0.9})";
+
+class SceneLoader : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    // The process id keeps concurrent runs (two build directories, ctest -j) apart.
+    dir = (fs::path(::testing::TempDir()) / ("kasha_scene_errors." + std::to_string(getpid())) / info->name()).string();
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    path = dir + "/scene.json";
+    base = json::parse(kBaseScene);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(fs::path(dir).parent_path());  // kept for inspection on failure
+  }
+
+  std::string write(const std::string& rel, const std::string& text) const {
+    const fs::path p = fs::path(dir) / rel;
+    fs::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary) << text;
+    return p.string();
+  }
+
+  // The message of the InputError that loading `text` throws.
+  std::string errorOfText(const std::string& text) const {
+    try {
+      loadSceneFromString(text, path);
+    } catch (const InputError& e) {
+      return e.what();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "threw a non-InputError: " << e.what();
+      return "";
+    }
+    ADD_FAILURE() << "the scene loaded, expected an InputError";
+    return "";
+  }
+
+  // Loading j fails with "file: pointer: ...reason...".
+  void expectError(const json& j, const std::string& pointer, const std::string& reason) const {
+    const std::string msg = errorOfText(j.dump());
+    const std::string prefix = path + ": " + pointer + ": ";
+    EXPECT_EQ(msg.rfind(prefix, 0), 0u) << "expected prefix '" << prefix << "' in: " << msg;
+    EXPECT_CONTAINS(msg, reason);
+  }
+
+  // Loads `base` with one mutation applied.
+  void expectError(const std::function<void(json&)>& mutate, const std::string& pointer,
+                   const std::string& reason) const {
+    json j = base;
+    mutate(j);
+    expectError(j, pointer, reason);
+  }
+
+  std::string dir, path;
+  json base;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Valid scenes
+
+TEST_F(SceneLoader, BaseSceneLoadsWithDefaults) {
+  const auto scene = loadSceneFromString(base.dump(), path);
+  ASSERT_TRUE(scene);
+  EXPECT_EQ(scene->path, path);
+  EXPECT_EQ(scene->range.min, 360.0f);
+  EXPECT_EQ(scene->range.max, 830.0f);
+  EXPECT_EQ(scene->render.spp, 16);
+  EXPECT_EQ(scene->render.timeBudgetSeconds, 0.0);
+  EXPECT_EQ(scene->render.maxDepth, 64);
+  EXPECT_EQ(scene->render.rrDepth, 3);
+  EXPECT_EQ(scene->render.seed, 1u);
+  EXPECT_EQ(scene->render.sensor, SensorSampling::ColorMatching);
+  EXPECT_EQ(scene->camera.width(), 8);
+  EXPECT_EQ(scene->camera.height(), 8);
+  ASSERT_EQ(scene->shapes.size(), 1u);
+  EXPECT_EQ(scene->shapes[0].name, "shape0");
+  ASSERT_TRUE(scene->shapes[0].emission);
+  EXPECT_EQ(scene->shapes[0].emission->scale, 1.0f);
+  EXPECT_FALSE(scene->shapes[0].emission->twoSided);
+  EXPECT_NEAR(scene->shapes[0].area, 4.0f, 1e-5f);  // u, v are half edges
+  // A one-sided rectangle emits on the side of u × v (here +z, away from the camera).
+  EXPECT_NEAR(glm::dot(scene->shapes[0].triangleNormal(0), Vec3(0, 0, 1)), 1.0f, 1e-6f);
+  EXPECT_EQ(scene->shapes[0].emission->eval(550.0f, scene->shapes[0].triangleNormal(0), Vec3(0, 0, 1)), 1.0f);
+  EXPECT_EQ(scene->shapes[0].emission->eval(550.0f, scene->shapes[0].triangleNormal(0), Vec3(0, 0, -1)), 0.0f);
+  EXPECT_EQ(scene->materials.size(), 1u);
+  EXPECT_EQ(scene->lights.size(), 1u);  // the area light of the emissive rectangle
+  EXPECT_EQ(scene->shapeLight, (std::vector<int>{0}));
+  EXPECT_EQ(scene->environmentLight, -1);
+}
+
+TEST_F(SceneLoader, EveryFeatureLoads) {
+  write("spectra/lamp.csv", "# a lamp\nwavelength_nm,lamp,other\n400,1,5\n700,3,5\n");
+  // The mtllib names a file that does not exist: OBJ materials are ignored.
+  write("mesh/tet.obj",
+        "mtllib missing.mtl\no tet\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nvt 0 0\n"
+        "usemtl nothing\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  write("mesh/quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  const json j = json::parse(R"({
+    "description": "every feature of the format",
+    "wavelength_range": [380, 780],
+    "render": {"spp": 4, "time": 1.5, "max_depth": 8, "rr_depth": 2, "seed": 7, "sensor_sampling": "uniform"},
+    "camera": {"position": [0, 1, -5], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 45, "resolution": [32, 24]},
+    "spectra": {
+      "lamp": {"type": "file", "file": "spectra/lamp.csv", "column": "lamp", "outside": "zero"},
+      "grey": {"type": "constant", "value": 0.4},
+      "ramp": {"type": "tabulated", "wavelengths": [380, 780], "values": [0.2, 0.8]},
+      "absorb": {"type": "gaussian", "center": 460, "fwhm": 40, "peak": 0.9},
+      "warm": {"type": "blackbody", "kelvin": 3000, "scale": 2},
+      "band": {"type": "box", "min": 500, "max": 560, "value": 0.7},
+      "daylight": {"type": "preset", "name": "D65", "scale": 0.01}
+    },
+    "materials": {
+      "wall": {"type": "lambertian", "reflectance": "ramp"},
+      "grey": {"type": "lambertian", "reflectance": "grey"},
+      "tinted": {"type": "lambertian", "reflectance": "band"},
+      "dye": {"type": "jung_fluorescent", "absorption": "absorb",
+              "emission": {"type": "gaussian", "center": 530, "fwhm": 35},
+              "reflectance": 0.3, "c": 0.6, "Q": 0.8}
+    },
+    "shapes": [
+      {"name": "floor", "type": "rectangle", "corners": [[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]],
+       "material": "wall"},
+      {"name": "lamp", "type": "rectangle", "center": [0, 3, 0], "u": [0.5, 0, 0], "v": [0, 0, 0.5],
+       "material": "grey", "emission": {"radiance": "daylight", "scale": 3, "two_sided": true}},
+      {"name": "ball", "type": "sphere", "center": [0, 1, 0], "radius": 0.5, "material": "dye"},
+      {"name": "tet", "type": "mesh", "file": "mesh/tet.obj", "scale": 2, "translate": [1, 0, 0], "material": "tinted"},
+      {"type": "mesh", "file": "mesh/quad.obj", "material": "grey"}
+    ],
+    "lights": [
+      {"type": "point", "position": [0, 2, 0], "intensity": "lamp", "scale": 5},
+      {"type": "spot", "position": [0, 3, -1], "look_at": [0, 0, 0], "cone_angle": 30, "falloff_start": 20,
+       "intensity": "warm"},
+      {"type": "distant", "direction": [0, -1, 0], "irradiance": "E", "scale": 1.5},
+      {"type": "environment", "radiance": 0.1, "scale": 2}
+    ]
+  })");
+  const auto scene = loadSceneFromString(j.dump(), path);
+  ASSERT_TRUE(scene);
+
+  EXPECT_EQ(scene->range.min, 380.0f);
+  EXPECT_EQ(scene->range.max, 780.0f);
+  EXPECT_EQ(scene->render.spp, 4);
+  EXPECT_EQ(scene->render.timeBudgetSeconds, 1.5);
+  EXPECT_EQ(scene->render.maxDepth, 8);
+  EXPECT_EQ(scene->render.rrDepth, 2);
+  EXPECT_EQ(scene->render.seed, 7u);
+  EXPECT_EQ(scene->render.sensor, SensorSampling::Uniform);
+  EXPECT_EQ(scene->camera.width(), 32);
+  EXPECT_EQ(scene->camera.height(), 24);
+  EXPECT_EQ(scene->camera.fovYDegrees(), 45.0f);
+
+  // Materials, in the (alphabetical) order of the JSON object.
+  ASSERT_EQ(scene->materials.size(), 4u);
+  EXPECT_EQ(scene->materialNames, (std::vector<std::string>{"dye", "grey", "tinted", "wall"}));
+  EXPECT_EQ(scene->materials[0]->describe(), "jung_fluorescent");
+  EXPECT_TRUE(scene->materials[0]->fluoresces());
+
+  ASSERT_EQ(scene->shapes.size(), 5u);
+  const auto& s = scene->shapes;
+  EXPECT_EQ(s[0].name, "floor");
+  EXPECT_EQ(scene->materialNames[s[0].material], "wall");
+  EXPECT_NEAR(s[0].area, 16.0f, 1e-4f);
+  EXPECT_NEAR(glm::dot(s[0].triangleNormal(0), Vec3(0, 1, 0)), 1.0f, 1e-6f);  // corners order: normal +y
+  EXPECT_EQ(s[1].name, "lamp");
+  EXPECT_NEAR(s[1].area, 1.0f, 1e-5f);
+  ASSERT_TRUE(s[1].emission);
+  EXPECT_EQ(s[1].emission->scale, 3.0f);
+  EXPECT_TRUE(s[1].emission->twoSided);
+  EXPECT_NEAR(s[1].emission->radiance(560.0f), 1.0f, 5e-3f);  // D65 is 100 at 560 nm, scaled by 0.01
+  EXPECT_EQ(s[2].kind, Shape::Kind::Sphere);
+  EXPECT_EQ(s[2].center, Vec3(0, 1, 0));
+  EXPECT_EQ(s[2].radius, 0.5f);
+  EXPECT_NEAR(s[2].area, 3.14159265f, 1e-5f);
+  EXPECT_EQ(scene->materialNames[s[2].material], "dye");
+  // The tetrahedron, scaled by 2 then moved by (1, 0, 0): three right triangles of area 2 and an
+  // equilateral one of side 2√2.
+  EXPECT_EQ(s[3].kind, Shape::Kind::Mesh);
+  EXPECT_EQ(s[3].indices.size(), 12u);
+  ASSERT_EQ(s[3].positions.size(), 4u);
+  EXPECT_EQ(s[3].positions[0], Vec3(1, 0, 0));
+  EXPECT_EQ(s[3].positions[1], Vec3(3, 0, 0));
+  EXPECT_EQ(s[3].positions[3], Vec3(1, 0, 2));
+  EXPECT_NEAR(s[3].area, 6.0f + 2.0f * std::sqrt(3.0f), 1e-4f);
+  EXPECT_EQ(s[4].name, "shape4");
+  EXPECT_EQ(s[4].indices.size(), 6u);  // the quad face, triangulated
+  EXPECT_NEAR(s[4].area, 1.0f, 1e-6f);
+
+  // 4 lights from /lights plus the area light of the emissive shape, appended after them.
+  ASSERT_EQ(scene->lights.size(), 5u);
+  EXPECT_EQ(scene->shapeLight, (std::vector<int>{-1, 4, -1, -1, -1}));
+  EXPECT_EQ(scene->environmentLight, 3);
+  ASSERT_NE(scene->environment(), nullptr);
+  EXPECT_NEAR(scene->environment()->Le(500.0f), 0.2f, 1e-6f);
+  const auto* point = dynamic_cast<const PointLight*>(scene->lights[0].get());
+  ASSERT_NE(point, nullptr);
+  const float fourPi = 4.0f * 3.14159265f;
+  EXPECT_NEAR(point->power(550.0f), fourPi * 5.0f * 2.0f, 1e-3f);  // the file's column, scaled by 5
+  EXPECT_EQ(point->power(390.0f), 0.0f);                            // "outside": "zero"
+  EXPECT_EQ(point->power(750.0f), 0.0f);
+  EXPECT_NE(dynamic_cast<const SpotLight*>(scene->lights[1].get()), nullptr);
+  const auto* distant = dynamic_cast<const DistantLight*>(scene->lights[2].get());
+  ASSERT_NE(distant, nullptr);
+  EXPECT_NEAR(distant->irradiance(600.0f), 1.5f, 1e-6f);
+  EXPECT_NEAR(distant->direction().y, -1.0f, 1e-6f);
+  EXPECT_NE(dynamic_cast<const AreaLight*>(scene->lights[4].get()), nullptr);
+  EXPECT_TRUE(scene->accel);
+  EXPECT_TRUE(scene->lightSelector);
+}
+
+TEST_F(SceneLoader, PathsAreRelativeToTheSceneFile) {
+  write("data/grey.csv", "wavelength,v\n300,0.5\n900,0.5\n");
+  const std::string obj = write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  json j = base;
+  j["materials"]["white"]["reflectance"] = {{"type", "file"}, {"file", "data/grey.csv"}};
+  j["shapes"].push_back({{"type", "mesh"}, {"file", obj}, {"material", "white"}});  // absolute path
+  write("scene.json", j.dump());
+  const auto scene = loadScene(path);
+  EXPECT_EQ(scene->shapes.size(), 2u);
+  // The same text, named as a file in another directory, does not find the CSV.
+  const std::string other = dir + "/elsewhere/scene.json";
+  try {
+    loadSceneFromString(j.dump(), other);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_CONTAINS(e.what(), other + ": /materials/white/reflectance: " + dir + "/elsewhere/data/grey.csv");
+    EXPECT_CONTAINS(e.what(), "cannot open file");
+  }
+}
+
+TEST_F(SceneLoader, ShippedScenesLoad) {
+  for (const char* name : {"scenes/cornell_fluorescent.json", "scenes/cornell_uv.json"}) {
+    SCOPED_TRACE(name);
+    const auto scene = loadScene(test::sourcePath(name));
+    EXPECT_GT(scene->shapes.size(), 5u);
+    EXPECT_GE(scene->lights.size(), 1u);
+    EXPECT_EQ(scene->materials.size(), 5u);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input, one class at a time
+
+TEST_F(SceneLoader, MissingSceneFile) {
+  const std::string missing = dir + "/nope.json";
+  try {
+    loadScene(missing);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), missing + ": cannot open scene file");
+  }
+}
+
+TEST_F(SceneLoader, MalformedJson) {
+  for (const char* text : {"", "{", "{\"camera\": }", "{\"camera\": {\"fov\": 40,}}", "[1, 2", "{\"a\": 1} x"}) {
+    SCOPED_TRACE(text);
+    const std::string msg = errorOfText(text);
+    EXPECT_EQ(msg.rfind(path + ": malformed JSON: ", 0), 0u) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+  // The parser's position is in the message.
+  EXPECT_CONTAINS(errorOfText("{\n  \"camera\": ?\n}"), "line 2");
+  // A number that overflows a double is also a parse failure naming the file.
+  const std::string msg = errorOfText(R"({"camera": {"fov": 1e400}})");
+  EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << msg;
+  EXPECT_CONTAINS(msg, "1e400");
+  // Not an object at the top level.
+  EXPECT_EQ(errorOfText("[1, 2]"), path + ": /: expected an object, got array");
+}
+
+TEST_F(SceneLoader, MissingRequiredField) {
+  expectError([](json& j) { j.erase("camera"); }, "/camera", "missing required field");
+  expectError([](json& j) { j.erase("materials"); }, "/materials", "missing required field");
+  expectError([](json& j) { j.erase("shapes"); }, "/shapes", "missing required field");
+  expectError([](json& j) { j["camera"].erase("fov"); }, "/camera/fov", "missing required field");
+  expectError([](json& j) { j["camera"].erase("position"); }, "/camera/position", "missing required field");
+  expectError([](json& j) { j["camera"].erase("resolution"); }, "/camera/resolution", "missing required field");
+  expectError([](json& j) { j["materials"]["white"].erase("reflectance"); }, "/materials/white/reflectance",
+              "missing required field");
+  expectError([](json& j) { j["materials"]["white"].erase("type"); }, "/materials/white/type", "missing required field");
+  expectError([](json& j) { j["shapes"][0].erase("material"); }, "/shapes/0/material", "missing required field");
+  expectError([](json& j) { j["shapes"][0].erase("type"); }, "/shapes/0/type", "missing required field");
+  expectError([](json& j) { j["shapes"][0].erase("v"); }, "/shapes/0/v", "missing required field");
+  expectError([](json& j) { j["shapes"][0]["emission"].erase("radiance"); }, "/shapes/0/emission/radiance",
+              "missing required field");
+  expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "point", "intensity": 1}])"); }, "/lights/0/position",
+              "missing required field");
+  expectError([](json& j) { j["materials"]["fluo"] = json::parse(kJungMaterial); j["materials"]["fluo"].erase("Q"); },
+              "/materials/fluo/Q", "missing required field");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "gaussian"}, {"center", 500}}; },
+              "/materials/white/reflectance/fwhm", "missing required field");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"value", 0.5}}; },
+              "/materials/white/reflectance/type", "missing required field");
+}
+
+TEST_F(SceneLoader, UnknownField) {
+  expectError([](json& j) { j["colour"] = "red"; }, "/colour", "unknown field");
+  expectError([](json& j) { j["camera"]["fov_deg"] = 40; }, "/camera/fov_deg", "unknown field");
+  expectError([](json& j) { j["render"] = {{"samples", 4}}; }, "/render/samples", "unknown field");
+  expectError([](json& j) { j["materials"]["white"]["albedo"] = 0.5; }, "/materials/white/albedo", "unknown field");
+  expectError([](json& j) { j["shapes"][0]["radius"] = 1; }, "/shapes/0/radius", "unknown field");
+  expectError([](json& j) { j["shapes"][0]["emission"]["power"] = 1; }, "/shapes/0/emission/power", "unknown field");
+  expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "point", "position": [0, 1, 0], "intensity": 1, "color": 1}])"); },
+              "/lights/0/color", "unknown field");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "constant"}, {"value", 0.5}, {"unit", "W"}}; },
+              "/materials/white/reflectance/unit", "unknown field");
+  // A rectangle given both ways: the unused form is reported.
+  expectError([](json& j) { j["shapes"][0]["corners"] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}; },
+              "/shapes/0/center", "unknown field");
+}
+
+TEST_F(SceneLoader, WrongType) {
+  expectError([](json& j) { j["camera"]["fov"] = "wide"; }, "/camera/fov", "expected a number, got string");
+  expectError([](json& j) { j["camera"]["position"] = "origin"; }, "/camera/position", "expected an array of 3 numbers");
+  expectError([](json& j) { j["camera"]["position"] = {0, 0}; }, "/camera/position", "expected an array of 3 numbers");
+  expectError([](json& j) { j["camera"]["look_at"] = {0, "0", 0}; }, "/camera/look_at", "expected an array of 3 finite numbers");
+  expectError([](json& j) { j["camera"] = 5; }, "/camera", "expected an object, got number");
+  expectError([](json& j) { j["materials"] = json::array(); }, "/materials", "expected an object of named materials");
+  expectError([](json& j) { j["materials"] = json::object(); }, "/materials", "expected an object of named materials");
+  expectError([](json& j) { j["materials"]["white"] = "lambertian"; }, "/materials/white", "expected an object, got string");
+  expectError([](json& j) { j["shapes"] = json::object(); }, "/shapes", "expected a non-empty array of shapes");
+  expectError([](json& j) { j["shapes"] = json::array(); }, "/shapes", "expected a non-empty array of shapes");
+  expectError([](json& j) { j["shapes"][0] = 3; }, "/shapes/0", "expected an object, got number");
+  expectError([](json& j) { j["shapes"][0]["type"] = 1; }, "/shapes/0/type", "expected a string, got number");
+  expectError([](json& j) { j["shapes"][0]["emission"]["two_sided"] = "yes"; }, "/shapes/0/emission/two_sided",
+              "expected true or false, got string");
+  expectError([](json& j) { j["render"] = {{"spp", 2.5}}; }, "/render/spp", "expected an integer, got number");
+  expectError([](json& j) { j["render"] = 16; }, "/render", "expected an object, got number");
+  expectError([](json& j) { j["lights"] = json::object(); }, "/lights", "expected an array of lights");
+  expectError([](json& j) { j["spectra"] = json::array(); }, "/spectra", "expected an object of named spectra");
+  expectError([](json& j) { j["description"] = 1; }, "/description", "expected a string, got number");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = true; }, "/materials/white/reflectance",
+              "expected a spectrum (number, name or object), got boolean");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {0.5, 0.5}; }, "/materials/white/reflectance",
+              "expected a spectrum (number, name or object), got array");
+}
+
+TEST_F(SceneLoader, UnknownTypes) {
+  expectError([](json& j) { j["materials"]["white"]["type"] = "glass"; }, "/materials/white/type",
+              "unknown material type 'glass' (lambertian, jung_fluorescent)");
+  expectError([](json& j) { j["shapes"][0]["type"] = "cube"; }, "/shapes/0/type",
+              "unknown shape type 'cube' (sphere, rectangle, mesh)");
+  expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "area"}])"); }, "/lights/0/type",
+              "unknown light type 'area' (point, spot, distant, environment)");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "rgb"}}; },
+              "/materials/white/reflectance/type", "unknown spectrum type 'rgb'");
+  expectError([](json& j) { j["render"] = {{"sensor_sampling", "random"}}; }, "/render/sensor_sampling",
+              "unknown sensor wavelength sampling 'random'");
+}
+
+TEST_F(SceneLoader, MissingMaterial) {
+  expectError([](json& j) { j["shapes"][0]["material"] = "black"; }, "/shapes/0/material",
+              "no material named 'black' in /materials");
+}
+
+TEST_F(SceneLoader, UnknownNamedSpectrum) {
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = "chartreuse"; }, "/materials/white/reflectance",
+              "unknown spectrum 'chartreuse' (not in /spectra; presets: E, D65, A, F1");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "preset"}, {"name", "D50"}}; },
+              "/materials/white/reflectance/name", "unknown preset 'D50'");
+  // Named spectra are looked up case-sensitively.
+  expectError([](json& j) { j["shapes"][0]["emission"]["radiance"] = "d65"; }, "/shapes/0/emission/radiance",
+              "unknown spectrum 'd65'");
+}
+
+TEST_F(SceneLoader, NegativeSpectrum) {
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = -0.5; }, "/materials/white/reflectance",
+              "must not be negative");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "constant"}, {"value", -1}}; },
+              "/materials/white/reflectance/value", "must not be negative");
+  expectError([](json& j) {
+    j["materials"]["white"]["reflectance"] = {{"type", "tabulated"}, {"wavelengths", {400, 500}}, {"values", {0.5, -0.1}}};
+  }, "/materials/white/reflectance/values/1", "negative value");
+  expectError([](json& j) { j["shapes"][0]["emission"]["radiance"] = {{"type", "box"}, {"min", 400}, {"max", 500}, {"value", -2}}; },
+              "/shapes/0/emission/radiance/value", "must not be negative");
+  expectError([](json& j) { j["shapes"][0]["emission"]["radiance"] = {{"type", "gaussian"}, {"center", 500}, {"fwhm", 20}, {"peak", -1}}; },
+              "/shapes/0/emission/radiance/peak", "must not be negative");
+  expectError([](json& j) { j["shapes"][0]["emission"]["radiance"] = {{"type", "preset"}, {"name", "D65"}, {"scale", -1}}; },
+              "/shapes/0/emission/radiance/scale", "must not be negative");
+  // In a CSV file, the message names the CSV line.
+  const std::string csv = write("neg.csv", "wavelength,v\n400,0.5\n500,-0.5\n");
+  expectError([&](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "file"}, {"file", "neg.csv"}}; },
+              "/materials/white/reflectance", csv + ":3: v: negative value");
+}
+
+TEST_F(SceneLoader, InvalidNumbers) {
+  // JSON has no NaN or infinity; the ways one is attempted all fail.
+  expectError([](json& j) { j["camera"]["fov"] = "NaN"; }, "/camera/fov", "expected a number, got string");
+  expectError([](json& j) { j["camera"]["fov"] = nullptr; }, "/camera/fov", "expected a number, got null");
+  expectError([](json& j) { j["camera"]["position"] = {0, "inf", 0}; }, "/camera/position", "finite numbers");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = "NaN"; }, "/materials/white/reflectance",
+              "unknown spectrum 'NaN'");
+  expectError([](json& j) {
+    j["materials"]["white"]["reflectance"] = {{"type", "tabulated"}, {"wavelengths", {400, 500}}, {"values", {0.5, "nan"}}};
+  }, "/materials/white/reflectance/values/1", "expected a finite number");
+  expectError([](json& j) { j["shapes"][0]["corners"] = {{0, 0, 0}, {1, 0, 0}, {1, nullptr, 0}, {0, 1, 0}};
+                            j["shapes"][0].erase("center"); j["shapes"][0].erase("u"); j["shapes"][0].erase("v"); },
+              "/shapes/0/corners/2", "expected 3 finite numbers");
+  // Finite as a double but not as the 32-bit float the renderer uses.
+  expectError([](json& j) { j["shapes"][0]["emission"]["scale"] = 1e39; }, "/shapes/0/emission/scale", "32-bit");
+  expectError([](json& j) { j["shapes"][0]["emission"]["radiance"] = 1e39; }, "/shapes/0/emission/radiance", "32-bit");
+  // Integers that do not fit an int are not wrapped around.
+  expectError([](json& j) { j["render"] = {{"spp", 4294967297LL}}; }, "/render/spp", "out of range");
+  expectError([](json& j) { j["render"] = {{"seed", 4294967296LL}}; }, "/render/seed", "out of range");
+}
+
+TEST_F(SceneLoader, SpectrumFileProblems) {
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "file"}, {"file", "missing.csv"}}; },
+              "/materials/white/reflectance", dir + "/missing.csv: cannot open file");
+  write("two.csv", "wavelength,a,b\n400,0.1,0.2\n500,0.1,0.2\n");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "file"}, {"file", "two.csv"}}; },
+              "/materials/white/reflectance", "2 value columns; name one");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "file"}, {"file", "two.csv"}, {"column", "c"}}; },
+              "/materials/white/reflectance", "no column named 'c'");
+  expectError([](json& j) {
+    j["materials"]["white"]["reflectance"] = {{"type", "file"}, {"file", "two.csv"}, {"column", "a"}, {"outside", "extend"}};
+  }, "/materials/white/reflectance/outside", "expected \"clamp\" or \"zero\"");
+  const std::string bad = write("bad.csv", "wavelength,a\n400,0.1\n500,x\n");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "file"}, {"file", "bad.csv"}}; },
+              "/materials/white/reflectance", bad + ":3: a: 'x' is not a number");
+}
+
+TEST_F(SceneLoader, BadSpectrumParameters) {
+  auto refl = [](json spec) { return [spec](json& j) { j["materials"]["white"]["reflectance"] = spec; }; };
+  expectError(refl({{"type", "gaussian"}, {"center", 500}, {"fwhm", 0}}), "/materials/white/reflectance/fwhm", "must be positive");
+  expectError(refl({{"type", "gaussian"}, {"center", -5}, {"fwhm", 10}}), "/materials/white/reflectance/center",
+              "must be a positive wavelength");
+  expectError(refl({{"type", "blackbody"}, {"kelvin", 0}}), "/materials/white/reflectance/kelvin", "must be positive");
+  expectError(refl({{"type", "box"}, {"min", 500}, {"max", 500}}), "/materials/white/reflectance/max", "must exceed /min");
+  expectError(refl({{"type", "tabulated"}, {"wavelengths", {500, 400}}, {"values", {0.1, 0.2}}}),
+              "/materials/white/reflectance/wavelengths/1", "strictly increasing");
+  expectError(refl({{"type", "tabulated"}, {"wavelengths", {400, 500}}, {"values", {0.1}}}),
+              "/materials/white/reflectance/values", "as long as /wavelengths (2)");
+  expectError(refl({{"type", "tabulated"}, {"wavelengths", json::array()}, {"values", json::array()}}),
+              "/materials/white/reflectance/wavelengths", "non-empty array");
+}
+
+TEST_F(SceneLoader, JungParametersOutsideUnitInterval) {
+  auto jung = [](const char* key, json value) {
+    return [=](json& j) {
+      j["materials"]["fluo"] = json::parse(kJungMaterial);
+      j["materials"]["fluo"][key] = value;
+    };
+  };
+  // The valid material loads.
+  {
+    json j = base;
+    jung("c", 0.5)(j);
+    EXPECT_NO_THROW(loadSceneFromString(j.dump(), path));
+  }
+  expectError(jung("c", 1.5), "/materials/fluo/c", "outside [0, 1]");
+  expectError(jung("c", -0.1), "/materials/fluo/c", "outside [0, 1]");
+  expectError(jung("Q", 1.01), "/materials/fluo/Q", "outside [0, 1]");
+  expectError(jung("Q", -1), "/materials/fluo/Q", "outside [0, 1]");
+  expectError(jung("absorption", 1.5), "/materials/fluo/absorption", "exceeds 1");
+  expectError(jung("reflectance", 2), "/materials/fluo/reflectance", "exceeds 1");
+  expectError(jung("emission", json{{"type", "box"}, {"min", 900}, {"max", 950}}), "/materials/fluo/emission",
+              "integrates to zero");
+}
+
+TEST_F(SceneLoader, ReflectanceAboveOne) {
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = 1.5; }, "/materials/white/reflectance", "exceeds 1");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = "D65"; }, "/materials/white/reflectance", "exceeds 1");
+  // Only the scene's wavelength range counts.
+  json j = base;
+  j["materials"]["white"]["reflectance"] = {{"type", "tabulated"}, {"wavelengths", {300, 340, 360, 830}}, {"values", {3, 3, 0.5, 0.5}}};
+  EXPECT_NO_THROW(loadSceneFromString(j.dump(), path));
+  j["wavelength_range"] = {300, 830};
+  expectError(j, "/materials/white/reflectance", "exceeds 1");
+}
+
+TEST_F(SceneLoader, EmissionThatIntegratesToZero) {
+  expectError([](json& j) { j["shapes"][0]["emission"]["radiance"] = {{"type", "box"}, {"min", 900}, {"max", 1000}}; },
+              "/shapes/0/emission/radiance", "emission integrates to zero over the wavelength range [360, 830] nm");
+  expectError([](json& j) { j["shapes"][0]["emission"]["radiance"] = 0; }, "/shapes/0/emission/radiance",
+              "integrates to zero");
+  expectError([](json& j) { j["shapes"][0]["emission"]["scale"] = 0; }, "/shapes/0/emission/scale", "must be positive");
+  expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "point", "position": [0, 1, 0], "intensity": {"type": "gaussian", "center": 300, "fwhm": 10}}])"); },
+              "/lights/0/intensity", "integrates to zero");
+  expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "environment", "radiance": 1, "scale": -1}])"); },
+              "/lights/0/scale", "must be positive");
+}
+
+TEST_F(SceneLoader, DegenerateShapes) {
+  expectError([](json& j) {
+    auto& s = j["shapes"][0];
+    s.erase("center"), s.erase("u"), s.erase("v");
+    s["corners"] = {{1, 2, 3}, {1, 2, 3}, {1, 2, 3}, {1, 2, 3}};
+  }, "/shapes/0", "degenerate rectangle: total area is zero");
+  expectError([](json& j) { j["shapes"][0]["v"] = {2, 0, 0}; }, "/shapes/0", "degenerate rectangle");  // u ∥ v
+  expectError([](json& j) { j["shapes"][0]["corners"] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+                            j["shapes"][0].erase("center"); },
+              "/shapes/0/corners", "expected 4 corner points");
+  expectError([](json& j) { j["shapes"][0] = {{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 0}, {"material", "white"}}; },
+              "/shapes/0/radius", "must be positive");
+}
+
+TEST_F(SceneLoader, MeshProblems) {
+  auto mesh = [](const std::string& file) {
+    return [file](json& j) { j["shapes"].push_back({{"type", "mesh"}, {"file", file}, {"material", "white"}}); };
+  };
+  expectError(mesh("nope.obj"), "/shapes/1/file", "cannot open '" + dir + "/nope.obj'");
+  write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3\nf 2 3 4\nf 1 1 2\n");
+  expectError(mesh("flat.obj"), "/shapes/1", "degenerate mesh: total area is zero");
+  write("empty.obj", "# no faces\nv 0 0 0\n");
+  expectError(mesh("empty.obj"), "/shapes/1", "degenerate mesh: total area is zero");
+  write("inf.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n");
+  expectError(mesh("inf.obj"), "/shapes/1/file", "vertex 2 is not finite");
+  write("missing_vertex.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+  {
+    json j = base;
+    mesh("missing_vertex.obj")(j);
+    const std::string msg = errorOfText(j.dump());
+    EXPECT_EQ(msg.rfind(path + ": /shapes/1/file: ", 0), 0u) << msg;
+    EXPECT_CONTAINS(msg, "missing_vertex.obj");
+  }
+  // tinyobjloader reads "nan" as 0 rather than NaN: whatever it makes of it, no non-finite
+  // position reaches the scene.
+  write("nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  json j = base;
+  mesh("nan.obj")(j);
+  try {
+    const auto scene = loadSceneFromString(j.dump(), path);
+    for (const Vec3& p : scene->shapes[1].positions)
+      EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ": /shapes/1", 0), 0u) << e.what();
+  }
+  expectError([&](json& j) { mesh("flat.obj")(j); j["shapes"][1]["scale"] = 0; }, "/shapes/1/scale", "must be positive");
+}
+
+TEST_F(SceneLoader, BadWavelengthRange) {
+  expectError([](json& j) { j["wavelength_range"] = {700, 400}; }, "/wavelength_range", "expected 200 <= min < max <= 2500 nm");
+  expectError([](json& j) { j["wavelength_range"] = {500, 500}; }, "/wavelength_range", "expected 200 <= min < max <= 2500 nm");
+  expectError([](json& j) { j["wavelength_range"] = {100, 900}; }, "/wavelength_range", "expected 200 <= min < max <= 2500 nm");
+  expectError([](json& j) { j["wavelength_range"] = {400, 3000}; }, "/wavelength_range", "expected 200 <= min < max <= 2500 nm");
+  expectError([](json& j) { j["wavelength_range"] = {850, 1000}; }, "/wavelength_range", "does not overlap the visible range");
+  expectError([](json& j) { j["wavelength_range"] = {250, 360}; }, "/wavelength_range", "does not overlap the visible range");
+  expectError([](json& j) { j["wavelength_range"] = {400}; }, "/wavelength_range", "expected [min, max] in nm");
+  expectError([](json& j) { j["wavelength_range"] = "visible"; }, "/wavelength_range", "expected [min, max] in nm");
+  expectError([](json& j) { j["wavelength_range"] = {"400", 700}; }, "/wavelength_range", "expected [min, max] in nm");
+}
+
+TEST_F(SceneLoader, BadResolution) {
+  for (const json& res : {json{0, 8}, json{8, -1}, json{20000, 8}}) {
+    SCOPED_TRACE(res.dump());
+    expectError([&](json& j) { j["camera"]["resolution"] = res; }, "/camera/resolution", "width and height must be in 1..16384");
+  }
+  for (const json& res : {json{8}, json{8, 8, 8}, json{8.5, 8}, json{"8", 8}, json("8x8")}) {
+    SCOPED_TRACE(res.dump());
+    expectError([&](json& j) { j["camera"]["resolution"] = res; }, "/camera/resolution", "expected [width, height] in pixels");
+  }
+  // 2³² + 8 must not wrap around to 8.
+  expectError([](json& j) { j["camera"]["resolution"] = {4294967304LL, 8}; }, "/camera/resolution",
+              "width and height must be in 1..16384");
+}
+
+TEST_F(SceneLoader, BadCamera) {
+  expectError([](json& j) { j["camera"]["look_at"] = {0, 0, -3}; }, "/camera/look_at", "equals /camera/position");
+  expectError([](json& j) { j["camera"]["up"] = {0, 0, 2}; }, "/camera/up", "parallel to the viewing direction");
+  expectError([](json& j) { j["camera"]["up"] = {0, 0, 0}; }, "/camera/up", "parallel to the viewing direction");
+  expectError([](json& j) { j["camera"]["fov"] = 0; }, "/camera/fov", "(0, 180) degrees");
+  expectError([](json& j) { j["camera"]["fov"] = 180; }, "/camera/fov", "(0, 180) degrees");
+}
+
+TEST_F(SceneLoader, BadRenderSettings) {
+  expectError([](json& j) { j["render"] = {{"spp", 0}}; }, "/render/spp", "must be at least 1");
+  expectError([](json& j) { j["render"] = {{"time", -1}}; }, "/render/time", "must not be negative");
+  expectError([](json& j) { j["render"] = {{"max_depth", -1}}; }, "/render/max_depth", "must not be negative");
+  expectError([](json& j) { j["render"] = {{"rr_depth", -2}}; }, "/render/rr_depth", "must not be negative");
+  expectError([](json& j) { j["render"] = {{"seed", -3}}; }, "/render/seed", "must not be negative");
+}
+
+TEST_F(SceneLoader, BadLights) {
+  auto light = [](json l) { return [l](json& j) { j["lights"] = json::array({l}); }; };
+  expectError(light({{"type", "spot"}, {"position", {0, 1, 0}}, {"look_at", {0, 1, 0}}, {"cone_angle", 30}, {"intensity", 1}}),
+              "/lights/0/look_at", "equals the position");
+  expectError(light({{"type", "spot"}, {"position", {0, 1, 0}}, {"look_at", {0, 0, 0}}, {"cone_angle", 120}, {"intensity", 1}}),
+              "/lights/0/cone_angle", "(0, 90] degrees");
+  expectError(light({{"type", "spot"}, {"position", {0, 1, 0}}, {"look_at", {0, 0, 0}}, {"cone_angle", 30},
+                     {"falloff_start", 40}, {"intensity", 1}}),
+              "/lights/0/falloff_start", "(0, cone_angle] degrees");
+  expectError(light({{"type", "distant"}, {"direction", {0, 0, 0}}, {"irradiance", 1}}), "/lights/0/direction",
+              "must not be zero");
+  expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "environment", "radiance": 1}, {"type": "environment", "radiance": 2}])"); },
+              "/lights/1/type", "only one environment light is allowed");
+  expectError([](json& j) { j["lights"] = json::array({5}); }, "/lights/0", "expected an object, got number");
+}
+
+TEST_F(SceneLoader, SceneWithoutLight) {
+  expectError([](json& j) { j["shapes"][0].erase("emission"); }, "/lights", "the scene has no light");
+  expectError([](json& j) { j["shapes"][0].erase("emission"); j["lights"] = json::array(); }, "/lights",
+              "the scene has no light");
+  // A light alone is enough.
+  json j = base;
+  j["shapes"][0].erase("emission");
+  j["lights"] = json::parse(R"([{"type": "point", "position": [0, 1, -1], "intensity": "D65"}])");
+  const auto scene = loadSceneFromString(j.dump(), path);
+  EXPECT_EQ(scene->lights.size(), 1u);
+  EXPECT_EQ(scene->shapeLight, (std::vector<int>{-1}));
+}
+
+}  // namespace
+}  // namespace kasha
