@@ -66,7 +66,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Rng& rng, SampleContext&
     if (depth == maxDepth_) break;
 
     const std::optional<DirectionSample> ds =
-        mat.sampleDirection(TransportMode::Importance, wi, sc.lobe, Vec2(rng.uniform(), rng.uniform()));
+        mat.sampleDirection(TransportMode::Importance, wi, sc.lobe, lambda, lambdaOut, Vec2(rng.uniform(), rng.uniform()));
     if (!ds || ds->pdf <= 0.0f) break;
     const float f = mat.eval(wi, ds->w, lambda, lambdaOut, sc.lobe);
     beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);

@@ -79,7 +79,8 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
             if (!scene.accel->occluded(origin, ls->wi, tMax)) {
               const float lightPdf = pSelect * ls->pdf;
               const float w = ls->delta ? 1.0f
-                                        : powerHeuristic(lightPdf, mat.directionPdf(TransportMode::Radiance, wo, wi, sc.lobe));
+                                        : powerHeuristic(lightPdf, mat.directionPdf(TransportMode::Radiance, wo, wi, sc.lobe,
+                                                                                     lambdaIn, lambda));
               L += beta * (f * std::abs(wi.z) / sc.pdf) * ls->Li * w / lightPdf;
             }
           }
@@ -89,7 +90,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
 
     // Direction stage.
     const std::optional<DirectionSample> ds =
-        mat.sampleDirection(TransportMode::Radiance, wo, sc.lobe, Vec2(rng.uniform(), rng.uniform()));
+        mat.sampleDirection(TransportMode::Radiance, wo, sc.lobe, lambdaIn, lambda, Vec2(rng.uniform(), rng.uniform()));
     if (!ds || ds->pdf <= 0.0f) break;
     const float f = mat.eval(ds->w, wo, lambdaIn, lambda, sc.lobe);
     beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);

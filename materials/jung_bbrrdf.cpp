@@ -89,12 +89,13 @@ float JungBbrrdf::spectralPdf(TransportMode mode, float lambdaKnown, float lambd
   return pFluor * (radiance ? absorption_.pdf(lambdaOther) : emission_.pdf(lambdaOther));
 }
 
-std::optional<DirectionSample> JungBbrrdf::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe,
-                                                           Vec2 u) const {
+std::optional<DirectionSample> JungBbrrdf::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe, float, float,
+                                                            Vec2 u) const {
   return diffuse::sample(wKnown, u);
 }
 
-float JungBbrrdf::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe) const {
+float JungBbrrdf::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
+                              float) const {
   return diffuse::pdf(wKnown, wSampled);
 }
 

@@ -18,12 +18,13 @@ float Lambertian::spectralPdf(TransportMode, float lambdaKnown, float, SpectralL
   return lobe == SpectralLobe::Elastic && r_(lambdaKnown) > 0.0f ? 1.0f : 0.0f;
 }
 
-std::optional<DirectionSample> Lambertian::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe,
-                                                           Vec2 u) const {
+std::optional<DirectionSample> Lambertian::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe, float, float,
+                                                            Vec2 u) const {
   return diffuse::sample(wKnown, u);
 }
 
-float Lambertian::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe) const {
+float Lambertian::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
+                              float) const {
   return diffuse::pdf(wKnown, wSampled);
 }
 

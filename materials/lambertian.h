@@ -13,8 +13,9 @@ class Lambertian final : public Material {
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                 Vec2 u) const override;
-  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe) const override;
+                                                 float lambdaIn, float lambdaOut, Vec2 u) const override;
+  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
+                     float lambdaOut) const override;
   bool fluoresces() const override { return false; }
   std::string describe() const override { return "lambertian"; }
 

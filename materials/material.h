@@ -77,10 +77,12 @@ class Material {
   // Density of that choice: lambdaOther is the sampled side's wavelength.
   virtual float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const = 0;
 
-  // Directional stage given the spectral event; wKnown is ω_o (Radiance) or ω_i (Importance).
+  // Directional stage given the spectral event (lobe and both wavelengths, which a dispersive
+  // material needs); wKnown is ω_o (Radiance) or ω_i (Importance).
   virtual std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                         Vec2 u) const = 0;
-  virtual float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe) const = 0;
+                                                         float lambdaIn, float lambdaOut, Vec2 u) const = 0;
+  virtual float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
+                             float lambdaIn, float lambdaOut) const = 0;
 
   // True if any lobe changes wavelength.
   virtual bool fluoresces() const = 0;
