@@ -34,7 +34,7 @@ std::optional<LightSample> AreaLight::sampleLi(const Vec3& p, float lambda, Vec2
   if (cosLight <= 0.0f) return std::nullopt;
   const float Li = shape_.emission->eval(lambda, s.ng, -d);
   // area density → solid angle: p_ω = p_A · d² / |cos θ_l|
-  return LightSample{d, dist, Li, s.pdfArea * dist2 / cosLight, false};
+  return LightSample{d, dist, Li, s.pdfArea * dist2 / cosLight, false, s.ng};
 }
 
 float AreaLight::pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const {
@@ -70,6 +70,11 @@ std::optional<EmissionSample> AreaLight::sampleEmission(float lambda, Vec2 uPos,
   return es;
 }
 
+void AreaLight::emissionPdfs(const Vec3&, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const {
+  pdfPos = 1.0f / shape_.area;
+  pdfDir = pdfEmissionDirection(n, w);
+}
+
 float AreaLight::pdfEmissionDirection(const Vec3& n, const Vec3& w) const {
   const float c = glm::dot(n, w);
   if (shape_.emission->twoSided) return 0.5f * std::abs(c) * kInvPi;
@@ -95,6 +100,11 @@ std::optional<EmissionSample> PointLight::sampleEmission(float lambda, Vec2, Vec
   es.pdfDir = kUniformSpherePdf;
   es.deltaPos = true;
   return es;
+}
+
+void PointLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float& pdfPos, float& pdfDir) const {
+  pdfPos = 1.0f;
+  pdfDir = kUniformSpherePdf;
 }
 
 // ---- spot ----------------------------------------------------------------------------------
@@ -138,6 +148,11 @@ std::optional<EmissionSample> SpotLight::sampleEmission(float lambda, Vec2, Vec2
   return es;
 }
 
+void SpotLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3& w, float& pdfPos, float& pdfDir) const {
+  pdfPos = 1.0f;
+  pdfDir = glm::dot(w, dir_) >= cosTotal_ ? 1.0f / (2.0f * kPi * (1.0f - cosTotal_)) : 0.0f;
+}
+
 // ---- distant -------------------------------------------------------------------------------
 
 std::optional<LightSample> DistantLight::sampleLi(const Vec3&, float lambda, Vec2) const {
@@ -154,6 +169,11 @@ std::optional<EmissionSample> DistantLight::sampleEmission(float lambda, Vec2 uP
   es.pdfDir = 1.0f;
   es.deltaDir = true;
   return es;
+}
+
+void DistantLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float& pdfPos, float& pdfDir) const {
+  pdfPos = 1.0f / (kPi * sqr(bounds_.radius));
+  pdfDir = 1.0f;
 }
 
 // ---- environment ---------------------------------------------------------------------------
@@ -173,6 +193,11 @@ std::optional<EmissionSample> EnvironmentLight::sampleEmission(float lambda, Vec
   es.pdfPos = 1.0f / (kPi * sqr(bounds_.radius));
   es.pdfDir = kUniformSpherePdf;
   return es;
+}
+
+void EnvironmentLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float& pdfPos, float& pdfDir) const {
+  pdfPos = 1.0f / (kPi * sqr(bounds_.radius));
+  pdfDir = kUniformSpherePdf;
 }
 
 // ---- selection -----------------------------------------------------------------------------

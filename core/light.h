@@ -18,6 +18,7 @@ struct LightSample {
   float Li = 0.0f;   // incident radiance (for delta lights: intensity/d² or irradiance)
   float pdf = 0.0f;  // per steradian at the receiver; 1 for delta lights
   bool delta = false;
+  Vec3 n{0.0f};      // normal at the light point (area lights)
 };
 
 // The start of a light subpath. Its weight is Le·cosOrigin / (pdfPos·pdfDir).
@@ -49,7 +50,12 @@ class Light {
   virtual float pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const { return 0.0f; }
   // Samples the origin and direction of a light subpath at wavelength lambda.
   virtual std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const = 0;
+  // The densities sampleEmission would have for leaving point p (normal n) along w: per area
+  // (per area of the disk for lights at infinity) and per steradian.
+  virtual void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const = 0;
   virtual bool isDelta() const { return false; }
+  // Distant and environment lights: vertices at infinity, densities per steradian.
+  virtual bool atInfinity() const { return false; }
 
   // Emitted power at lambda (W/nm up to the scene's unit): powerFactor·scale·spectrum(λ).
   float power(float lambda) const { return powerFactor_ * scale_ * spectrum_(lambda); }
@@ -69,6 +75,7 @@ class AreaLight final : public Light {
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   float pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   // Solid-angle density of sampleEmission's direction w leaving a point with normal n.
   float pdfEmissionDirection(const Vec3& n, const Vec3& w) const;
   const Shape& shape() const { return shape_; }
@@ -83,6 +90,7 @@ class PointLight final : public Light {
       : Light(std::move(intensity), scale, 4.0f * kPi), pos_(position) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   float intensity(float lambda) const { return scale_ * spectrum_(lambda); }
   const Vec3& position() const { return pos_; }
@@ -97,6 +105,7 @@ class SpotLight final : public Light {
   SpotLight(Vec3 position, Vec3 direction, float coneDeg, float falloffDeg, Spectrum intensity, float scale);
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   float falloff(float cosTheta) const;
 
@@ -112,7 +121,9 @@ class DistantLight final : public Light {
       : Light(std::move(irradiance), scale, kPi * sqr(bounds.radius)), dir_(glm::normalize(direction)), bounds_(bounds) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
+  bool atInfinity() const override { return true; }
   float irradiance(float lambda) const { return scale_ * spectrum_(lambda); }
   const Vec3& direction() const { return dir_; }
 
@@ -128,7 +139,9 @@ class EnvironmentLight final : public Light {
       : Light(std::move(radiance), scale, 4.0f * kPi * kPi * sqr(bounds.radius)), bounds_(bounds) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   float pdfDirection() const;
+  bool atInfinity() const override { return true; }
   float Le(float lambda) const { return scale_ * spectrum_(lambda); }
 
  private:

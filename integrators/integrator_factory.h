@@ -8,7 +8,9 @@
 
 namespace kasha {
 
-// "pt" (path tracing), "lt" (light tracing). Throws std::invalid_argument for other names.
+// "pt" (path tracing), "lt" (light tracing), "bdpt-shared" / "bdpt-independent" (BDPT in either
+// wavelength family; "bdpt" is the independent one), "ppm" (progressive photon mapping). Throws
+// std::invalid_argument otherwise.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& settings);
 std::vector<std::string> integratorNames();
 

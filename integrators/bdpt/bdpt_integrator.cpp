@@ -1,0 +1,40 @@
+#include "integrators/bdpt/bdpt_integrator.h"
+
+#include "core/color.h"
+#include "integrators/bdpt/connect.h"
+
+namespace kasha {
+
+Bdpt::Bdpt(const Scene& scene, SensorSampling sensor, bdpt::WalkSettings settings)
+    : sensor_(sensor, scene.range), ws_(settings) {}
+
+std::string Bdpt::name() const {
+  return ws_.mode == bdpt::WavelengthMode::Shared ? "bdpt-shared" : "bdpt-independent";
+}
+
+Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
+  using namespace bdpt;
+  thread_local std::vector<PathVertex> C, L;
+  if (C.capacity() < 16) C.reserve(16), L.reserve(16);
+  const WavelengthSample ws = sensor_.sample(rng.uniform());
+  if (ws.pdf <= 0.0f) return Vec3(0.0f);
+  const Vec2 film = pixel + Vec2(rng.uniform(), rng.uniform());
+  traceCameraSubpath(scene, film, ws.lambda, ws.pdf, ws_, rng, ctx.counter, C);
+  traceLightSubpath(scene, ws.lambda, ws_, rng, ctx.counter, L);
+  const Context c{scene, ws_.mode, ws.lambda, ws.pdf, sensor_, ctx.counter};
+
+  // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelength.
+  float L_pixel = 0.0f;
+  for (int t = 2; t <= int(C.size()); ++t) {
+    const PathVertex& ct = C[size_t(t - 1)];
+    L_pixel += emitterHit(c, C, t);
+    if (ct.kind != PathVertex::Kind::Surface) continue;
+    if (t - 1 <= ws_.maxDepth) L_pixel += nextEvent(c, C, t, rng);
+    for (int s = 2; s <= int(L.size()) && (s - 1) + (t - 1) <= ws_.maxDepth; ++s) L_pixel += connect(c, L, s, C, t);
+  }
+  // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
+  for (int s = 1; s <= int(L.size()) && s - 1 <= ws_.maxDepth; ++s) connectToCamera(c, L, s, ctx.splats);
+  return Observer::cie1931().weight(ws.lambda) * (L_pixel / ws.pdf);
+}
+
+}  // namespace kasha

@@ -1,0 +1,258 @@
+#include "integrators/bdpt/connect.h"
+
+#include "core/color.h"
+
+namespace kasha::bdpt {
+namespace {
+
+using Kind = PathVertex::Kind;
+
+Vec3 towards(const PathVertex& from, const PathVertex& to) {
+  return to.kind == Kind::Infinite ? -to.dir : glm::normalize(to.p - from.p);
+}
+
+// Area density at `target` (per sr at infinity) of a solid-angle density at `at`; vertices no
+// other strategy can sample (the pinhole, delta lights) get 0.
+double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathVertex& target) {
+  if (target.kind == Kind::Camera || target.deltaPosition) return 0.0;
+  if (target.kind == Kind::Infinite) return scene.lights[size_t(target.light)]->isDelta() ? 0.0 : pdfSA;
+  return toAreaDensity(pdfSA, at, target);
+}
+
+// Camera-side (Radiance) density of `target` sampled at `at`, whose camera-side neighbour is
+// `camNext`: the spectral event (lobe, λ_in given λ_out) and the direction.
+double cameraSide(const Scene& scene, const PathVertex& at, const PathVertex& camNext, const PathVertex& target,
+                  SpectralLobe lobe, float lambdaIn, float lambdaOut) {
+  const Frame f = Frame::fromNormal(at.n);
+  const Vec3 wo = f.toLocal(towards(at, camNext)), wi = f.toLocal(towards(at, target));
+  const float pdf = at.material->spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe) *
+                    at.material->directionPdf(TransportMode::Radiance, wo, wi, lobe, lambdaIn, lambdaOut);
+  return toArea(scene, pdf, at, target);
+}
+
+// Light-side (Importance) density of `target` sampled at `at`, whose light-side neighbour is
+// `lightPrev`.
+double lightSide(const Scene& scene, const PathVertex& at, const PathVertex& lightPrev, const PathVertex& target,
+                 SpectralLobe lobe, float lambdaIn, float lambdaOut) {
+  const Frame f = Frame::fromNormal(at.n);
+  const Vec3 wi = f.toLocal(towards(at, lightPrev)), wo = f.toLocal(towards(at, target));
+  const float pdf = at.material->spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe) *
+                    at.material->directionPdf(TransportMode::Importance, wi, wo, lobe, lambdaIn, lambdaOut);
+  return toArea(scene, pdf, at, target);
+}
+
+// The densities at the light end: x_0 on light `light` at wavelength λ_0, x_1 its neighbour.
+void lightEnd(const Context& c, int light, float lambda0, const PathVertex& x0, const PathVertex& x1, FullPath& fp) {
+  const Light& L = *c.scene.lights[size_t(light)];
+  const Vec3 w = L.atInfinity() ? x0.dir : glm::normalize(x1.p - x0.p);
+  float pdfPos = 0.0f, pdfDir = 0.0f;
+  L.emissionPdfs(x0.p, x0.n, w, pdfPos, pdfDir);
+  const float startDensity = L.atInfinity() ? pdfDir : pdfPos;  // of x_0 itself
+  fp.v[0].pdfLight = double(lightChoicePdf(c.scene, light, lambda0, c.mode)) * startDensity;
+  fp.v[0].connectible = true;
+  if (x1.kind != Kind::Camera)
+    fp.v[1].pdfLight = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
+  fp.pdfNee = double(c.scene.lightSelector->probability(size_t(light), lambda0)) * startDensity;
+}
+
+// Stored densities of the subpath vertices L[0..s−1], C[0..t−1] laid out as x_0 … x_k.
+FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t) {
+  FullPath fp;
+  fp.mode = c.mode;
+  const int k = s + t - 1;
+  fp.v.resize(size_t(k + 1));
+  for (int i = 0; i < s; ++i) {
+    const PathVertex& v = (*L)[size_t(i)];
+    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible()};
+  }
+  for (int j = 0; j < t; ++j) {
+    const PathVertex& v = C[size_t(j)];
+    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible()};
+  }
+  fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
+  fp.v[size_t(k)].pdfLight = 0.0;
+  return fp;
+}
+
+// Camera-side spectral density of x_1's event (needed by next-event estimation's density).
+double specCamera(const PathVertex& x1, SpectralLobe lobe, float lambda0, float lambda1) {
+  return x1.material->spectralPdf(TransportMode::Radiance, lambda1, lambda0, lobe);
+}
+
+bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
+  ++c.counter.shadow;
+  if (b.kind == Kind::Infinite) return !c.scene.accel->occluded(offsetPoint(a.p, a.n, -b.dir), -b.dir, kInf);
+  const Vec3 d = b.p - a.p;
+  const float dist = glm::length(d);
+  const Vec3 w = d / dist;
+  const Vec3 o = glm::dot(a.n, a.n) > 0.0f ? offsetPoint(a.p, a.n, w) : a.p;
+  const float shorten = glm::dot(b.n, b.n) > 0.0f ? rayEpsilon(b.p) : 0.0f;
+  return !c.scene.accel->occluded(o, w, dist * (1.0f - 1e-4f) - shorten - rayEpsilon(a.p));
+}
+
+}  // namespace
+
+float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
+  const PathVertex& e = C[size_t(t - 1)];
+  if (e.light < 0) return 0.0f;
+  const PathVertex& next = C[size_t(t - 2)];
+  const float Le = e.kind == Kind::Infinite
+                       ? c.scene.environment()->Le(e.lambda)
+                       : static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission->eval(
+                             e.lambda, e.n, towards(e, next));
+  if (!(Le > 0.0f)) return 0.0f;
+  FullPath fp = layout(c, nullptr, 0, C, t);
+  lightEnd(c, e.light, e.lambda, e, next, fp);
+  const int k = t - 1;
+  if (k >= 2) fp.specCam1 = C[size_t(t - 2)].spectralPdf;
+  else fp.lightSeenByPinhole = e.kind == Kind::Surface;
+  return e.beta * Le * misWeight(fp, 0);
+}
+
+float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& rng) {
+  const PathVertex& x1 = C[size_t(t - 1)];
+  const float uSel = rng.uniform();
+  const Vec2 uPos(rng.uniform(), rng.uniform());
+  if (!x1.extended || !x1.connectible()) return 0.0f;
+  const float lambda0 = x1.lambdaNext;
+  const auto [li, pSel] = c.scene.lightSelector->select(lambda0, uSel);
+  if (pSel <= 0.0f) return 0.0f;
+  const Light& light = *c.scene.lights[li];
+  const std::optional<LightSample> ls = light.sampleLi(x1.p, lambda0, uPos);
+  if (!ls || !(ls->Li > 0.0f) || ls->pdf <= 0.0f) return 0.0f;
+  // The light vertex x_0.
+  PathVertex x0;
+  x0.kind = light.atInfinity() ? Kind::Infinite : Kind::Light;
+  x0.light = int(li);
+  x0.lambda = lambda0;
+  x0.deltaPosition = light.isDelta() && !light.atInfinity();
+  if (light.atInfinity()) {
+    x0.dir = -ls->wi;
+  } else {
+    x0.p = x1.p + ls->wi * ls->dist;
+    x0.n = ls->n;
+  }
+  const Frame f = Frame::fromNormal(x1.n);
+  const PathVertex& x2 = C[size_t(t - 2)];
+  const Vec3 wi = f.toLocal(ls->wi), wo = f.toLocal(towards(x1, x2));
+  const float fx = x1.material->eval(TransportMode::Radiance, wi, wo, lambda0, x1.lambda, x1.lobe);
+  if (!(fx > 0.0f) || !visible(c, x1, x0)) return 0.0f;
+  FullPath fp = layout(c, nullptr, 0, C, t);  // x_1 … x_k; prepend x_0
+  fp.v.insert(fp.v.begin(), FullVertex{});
+  lightEnd(c, int(li), lambda0, x0, x1, fp);
+  fp.v[0].pdfCam = cameraSide(c.scene, x1, x2, x0, x1.lobe, lambda0, x1.lambda);
+  if (x2.kind != Kind::Camera) fp.v[2].pdfLight = lightSide(c.scene, x1, x0, x2, x1.lobe, lambda0, x1.lambda);
+  fp.specCam1 = x1.spectralPdf;
+  const float value = x1.beta * fx * std::abs(wi.z) / x1.spectralPdf * ls->Li / (pSel * ls->pdf);
+  return value * misWeight(fp, 1);
+}
+
+float connect(const Context& c, const std::vector<PathVertex>& L, int s, const std::vector<PathVertex>& C, int t) {
+  const PathVertex& a = L[size_t(s - 1)];
+  const PathVertex& b = C[size_t(t - 1)];
+  if (a.kind != Kind::Surface || b.kind != Kind::Surface || !a.connectible() || !b.connectible()) return 0.0f;
+  const PathVertex& aPrev = L[size_t(s - 2)];
+  const PathVertex& bNext = C[size_t(t - 2)];
+  const Vec3 d = b.p - a.p;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f)) return 0.0f;
+  const Vec3 w = d / std::sqrt(dist2);  // from a to b
+  const Frame fa = Frame::fromNormal(a.n), fb = Frame::fromNormal(b.n);
+  const Vec3 aWi = fa.toLocal(towards(a, aPrev)), aWo = fa.toLocal(w);
+  const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
+  const float G = std::abs(aWo.z) * std::abs(bWi.z) / dist2;
+
+  // The exact lobe pairs (docs/bdpt-mis.md §4) and the connecting segment's wavelength.
+  struct Pair {
+    SpectralLobe la, lb;
+    float lambda;
+  };
+  Pair pairs[2];
+  int n = 0;
+  if (c.mode == WavelengthMode::Shared) {
+    pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, c.lambdaCamera};
+  } else {
+    if (a.material->fluoresces()) pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, b.lambda};
+    if (b.material->fluoresces()) pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda};
+  }
+  float sum = 0.0f;
+  bool checked = false, unoccluded = false;
+  for (int i = 0; i < n; ++i) {
+    const Pair& p = pairs[i];
+    const float fA = a.material->eval(TransportMode::Importance, aWi, aWo, a.lambda, p.lambda, p.la);
+    const float fB = b.material->eval(TransportMode::Radiance, bWi, bWo, p.lambda, b.lambda, p.lb);
+    if (!(fA > 0.0f && fB > 0.0f)) continue;
+    FullPath fp = layout(c, &L, s, C, t);
+    fp.v[size_t(s - 1)].lobe = p.la;
+    fp.v[size_t(s)].lobe = p.lb;
+    fp.v[size_t(s)].pdfLight = lightSide(c.scene, a, aPrev, b, p.la, a.lambda, p.lambda);
+    fp.v[size_t(s + 1)].pdfLight = lightSide(c.scene, b, a, bNext, p.lb, p.lambda, b.lambda);
+    fp.v[size_t(s - 1)].pdfCam = cameraSide(c.scene, b, bNext, a, p.lb, p.lambda, b.lambda);
+    fp.v[size_t(s - 2)].pdfCam = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambda);
+    const PathVertex& x1 = L[1];
+    fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+    lightEnd(c, L[0].light, L[0].lambda, L[0], L[1], fp);
+    fp.v[0].pdfLight = L[0].pdfFwd;  // as sampled (same value; avoids recomputation drift)
+    const float weight = misWeight(fp, s);
+    if (!(weight > 0.0f)) continue;
+    if (!checked) {
+      checked = true;
+      unoccluded = visible(c, a, b);
+    }
+    if (!unoccluded) return 0.0f;
+    sum += a.beta * fA * G * fB * b.beta * weight;
+  }
+  return sum;
+}
+
+void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, std::vector<Splat>& splats) {
+  const PathVertex& a = L[size_t(s - 1)];
+  if (a.kind == Kind::Infinite || !a.connectible()) return;
+  const std::optional<Camera::Connection> conn = c.scene.camera.connect(a.p);
+  if (!conn) return;
+  PathVertex cam;
+  cam.kind = Kind::Camera;
+  cam.p = c.scene.camera.position();
+  cam.deltaPosition = true;
+  const float lambda = a.lambda;  // elastic at a (Independent), or the shared wavelength
+  float value = 0.0f;
+  const std::vector<PathVertex> camOnly{cam};
+  FullPath fp = layout(c, &L, s, camOnly, 1);
+  const int k = s;
+  // The camera's density of a: its direction over the whole film, [× the sensor's density of the
+  // wavelength arriving at it].
+  const float sensor = c.mode == WavelengthMode::Independent ? c.sensor.pdf(lambda) : 1.0f;
+  fp.v[size_t(k - 1)].pdfCam = toAreaDensity(c.scene.camera.directionPdf(-conn->wi) * sensor, cam, a);
+  if (s == 1) {
+    // The light itself, seen directly (area lights only).
+    if (a.kind != Kind::Light || a.deltaPosition) return;
+    const AreaEmission& em = *static_cast<const AreaLight&>(*c.scene.lights[size_t(a.light)]).shape().emission;
+    const float Le = em.eval(lambda, a.n, conn->wi);
+    if (!(Le > 0.0f)) return;
+    value = Le * std::abs(glm::dot(a.n, conn->wi)) / a.pdfFwd;
+    fp.lightSeenByPinhole = true;
+  } else {
+    const PathVertex& aPrev = L[size_t(s - 2)];
+    const Frame f = Frame::fromNormal(a.n);
+    const Vec3 wi = f.toLocal(towards(a, aPrev)), wo = f.toLocal(conn->wi);
+    const float fa = a.material->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, SpectralLobe::Elastic);
+    if (!(fa > 0.0f)) return;
+    value = a.beta * fa * std::abs(wo.z);
+    fp.v[size_t(k - 1)].lobe = SpectralLobe::Elastic;
+    fp.v[size_t(k - 2)].pdfCam = cameraSide(c.scene, a, cam, aPrev, SpectralLobe::Elastic, a.lambda, lambda);
+    const PathVertex& x1 = L[1];
+    fp.specCam1 = s == 2 ? specCamera(x1, SpectralLobe::Elastic, x1.lambda, lambda)
+                         : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+    lightEnd(c, L[0].light, L[0].lambda, L[0], L[1], fp);
+    fp.v[0].pdfLight = L[0].pdfFwd;
+  }
+  const float weight = misWeight(fp, s);
+  if (!(weight > 0.0f) || !visible(c, a, cam)) return;
+  // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel).
+  const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
+  float sensorWeight = perPath;
+  if (c.mode == WavelengthMode::Shared) sensorWeight /= c.sensorPdf;  // λ was the sensor's sample
+  splats.push_back({conn->pixel, Observer::cie1931().weight(lambda) * (value * weight * conn->importance * sensorWeight)});
+}
+
+}  // namespace kasha::bdpt

@@ -1,0 +1,30 @@
+#pragma once
+// The contributions of BDPT's strategies, each with its MIS weight (docs/bdpt-mis.md §3).
+#include <vector>
+
+#include "core/scene.h"
+#include "core/sensor_sampling.h"
+#include "integrators/bdpt/mis.h"
+#include "integrators/bdpt/path_vertex.h"
+
+namespace kasha::bdpt {
+
+struct Context {
+  const Scene& scene;
+  WavelengthMode mode;
+  float lambdaCamera;   // the sensor's wavelength
+  float sensorPdf;      // its density
+  const SensorWavelengths& sensor;  // the sensor's distribution, for other wavelengths' densities
+  RayCounter& counter;
+};
+
+// s = 0: the camera subpath's vertex C[t−1] lies on an emitter. Radiance, weighted.
+float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t);
+// s = 1: next-event estimation from C[t−1] at the wavelength its spectral event chose.
+float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& rng);
+// s ≥ 2, t ≥ 2: connect L[s−1] and C[t−1] through every exact lobe pair.
+float connect(const Context& c, const std::vector<PathVertex>& L, int s, const std::vector<PathVertex>& C, int t);
+// t = 1: L[s−1] (s ≥ 1) seen by the pinhole; appends a splat (film units) if visible.
+void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, std::vector<Splat>& splats);
+
+}  // namespace kasha::bdpt

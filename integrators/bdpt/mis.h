@@ -1,0 +1,35 @@
+#pragma once
+// MIS weights over all (s, t) strategies for a full path with wavelength-changing vertices
+// (docs/bdpt-mis.md §3–4). The caller lays out the full path x_0 (on a light) … x_k (the camera)
+// with, for each vertex, the density with which the light side and the camera side would sample
+// it; this module decides which strategies could have produced the path and weights by the
+// power heuristic.
+#include <vector>
+
+#include "integrators/bdpt/subpaths.h"
+
+namespace kasha::bdpt {
+
+struct FullVertex {
+  double pdfLight = 0.0;  // light-side density of this vertex (from x_{i-1}; x_0: light and wavelength choice)
+  double pdfCam = 0.0;    // camera-side density (from x_{i+1}; x_{k-1}: camera direction [× sensor])
+  SpectralLobe lobe = SpectralLobe::Elastic;  // interior vertices: the lobe the path uses here
+  bool connectible = true;                    // a connection may end here (no delta lobe)
+};
+
+struct FullPath {
+  std::vector<FullVertex> v;  // x_0 … x_k; v[k] is the camera (pdfCam 1)
+  WavelengthMode mode = WavelengthMode::Independent;
+  double specCam1 = 0.0;    // camera-side spectral density of x_1's event (next-event estimation)
+  double pdfNee = 0.0;      // next-event density of x_0 given λ_0: p(light | λ_0)·p_A (per sr at infinity)
+  bool lightSeenByPinhole = false;  // x_0 may connect to the camera directly (area lights)
+};
+
+// Weight of strategy s (s light vertices; s = 1 is next-event estimation when k ≥ 2, and the
+// light seen by the camera when k = 1). Returns 0 if s itself is not a valid strategy.
+float misWeight(const FullPath& path, int s);
+
+// Whether strategy s can produce the path (exposed for tests).
+bool strategyValid(const FullPath& path, int s);
+
+}  // namespace kasha::bdpt

@@ -1,0 +1,49 @@
+#pragma once
+// A vertex of a BDPT subpath (camera or light). Densities follow docs/bdpt-mis.md: pdfFwd is the
+// density with which the vertex's own subpath produced it, pdfRev the density with which the
+// other subpath would have; both include the spectral event at the neighbour that sampled it
+// (lobe probability, and the per-nm density when that lobe is fluorescent), and are per unit
+// area (per steradian for a light at infinity).
+#include "core/math.h"
+#include "materials/material.h"
+
+namespace kasha::bdpt {
+
+struct PathVertex {
+  enum class Kind : uint8_t { Camera, Light, Surface, Infinite } kind = Kind::Surface;
+  Vec3 p{0.0f};
+  Vec3 n{0.0f};            // geometric normal; zero for the camera and point/spot lights
+  Vec3 dir{0.0f};          // Infinite vertices: the direction light travels
+  const Material* material = nullptr;
+  int light = -1;          // index of the light this vertex lies on (light vertex, or an emitter hit)
+  float beta = 0.0f;       // subpath throughput up to this vertex, its own scattering excluded
+  // The subpath's wavelength at this vertex: arriving from the previous light-subpath vertex, or
+  // leaving towards the previous camera-subpath vertex.
+  float lambda = 0.0f;
+  // The event sampled here to extend the subpath (valid when `extended`).
+  bool extended = false;
+  SpectralLobe lobe = SpectralLobe::Elastic;
+  float lambdaNext = 0.0f;  // wavelength of the segment towards the next subpath vertex
+  float spectralPdf = 0.0f; // density of that spectral event in the subpath's mode
+  bool specular = false;
+  float pdfFwd = 0.0f, pdfRev = 0.0f;
+  bool deltaPosition = false;  // point and spot lights, the pinhole
+
+  bool onSurface() const { return kind == Kind::Surface; }
+  // Whether a connection can end here: surfaces with a non-delta lobe, lights, the camera.
+  bool connectible() const { return kind != Kind::Surface || !material->purelySpecular(); }
+};
+
+// Area density at `to` of a solid-angle density at `from` (|cos| at `to` / d²); a vertex without a
+// normal (point light, camera) or at infinity gets no cosine (and no distance for infinity).
+inline float toAreaDensity(float pdfSolidAngle, const PathVertex& from, const PathVertex& to) {
+  if (to.kind == PathVertex::Kind::Infinite) return pdfSolidAngle;
+  if (from.kind == PathVertex::Kind::Infinite) return pdfSolidAngle;  // handled by the caller
+  const Vec3 d = to.p - from.p;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f)) return 0.0f;
+  const float c = glm::dot(to.n, to.n) > 0.0f ? std::abs(glm::dot(to.n, d)) / std::sqrt(dist2) : 1.0f;
+  return pdfSolidAngle * c / dist2;
+}
+
+}  // namespace kasha::bdpt

@@ -1,0 +1,153 @@
+#include "integrators/bdpt/subpaths.h"
+
+namespace kasha::bdpt {
+namespace {
+
+// Extends `path` from its last vertex along `ray` (Veach's random walk). pdfSA is the density of
+// ray's direction at the last vertex (per steradian; for a light at infinity, per unit area of
+// its disk). Camera walks run in Radiance mode, light walks in Importance mode.
+void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lambda, TransportMode mode,
+                const WalkSettings& ws, Rng& rng, RayCounter& counter, std::vector<PathVertex>& path) {
+  const bool camera = mode == TransportMode::Radiance;
+  const float beta0 = beta;
+  int surfaces = 0;
+  for (;;) {
+    const std::optional<Hit> hit = scene.accel->intersect(ray);
+    ++counter.closest;
+    PathVertex& prev = path.back();
+    if (!hit) {
+      if (camera && scene.environment()) {  // the camera path escapes to the environment
+        PathVertex v;
+        v.kind = PathVertex::Kind::Infinite;
+        v.dir = -ray.d;
+        v.light = scene.environmentLight;
+        v.beta = beta;
+        v.lambda = lambda;
+        v.pdfFwd = pdfSA;
+        path.push_back(v);
+      }
+      return;
+    }
+    PathVertex v;
+    v.kind = PathVertex::Kind::Surface;
+    v.p = hit->p;
+    v.n = hit->ng;
+    v.material = &scene.material(*hit);
+    v.light = scene.shapeLight[hit->shape];
+    v.beta = beta;
+    v.lambda = lambda;
+    v.pdfFwd = prev.kind == PathVertex::Kind::Infinite ? pdfSA * std::abs(glm::dot(v.n, ray.d))  // disk → surface
+                                                        : toAreaDensity(pdfSA, prev, v);
+    path.push_back(v);
+    ++surfaces;
+    // Camera vertices up to maxDepth scatter (their last one may still be an emitter hit at
+    // maxDepth + 1); light vertices scatter while the path can still end within maxDepth.
+    if (camera ? surfaces > ws.maxDepth : surfaces >= ws.maxDepth) return;
+
+    PathVertex& cur = path.back();
+    const Frame frame = Frame::fromNormal(cur.n);
+    const Vec3 wKnown = frame.toLocal(-ray.d);
+    const SpectralChoice sc = cur.material->sampleSpectral(mode, lambda, rng.uniform());
+    if (sc.pdf <= 0.0f) return;
+    cur.lobe = sc.lobe;
+    cur.lambdaNext = sc.lambda;
+    cur.spectralPdf = sc.pdf;
+    cur.extended = true;
+    if (!camera && ws.mode == WavelengthMode::Shared && sc.lobe == SpectralLobe::Fluorescent) return;
+    const float lambdaIn = camera ? sc.lambda : lambda, lambdaOut = camera ? lambda : sc.lambda;
+    const std::optional<DirectionSample> ds =
+        cur.material->sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, Vec2(rng.uniform(), rng.uniform()));
+    if (!ds || ds->pdf <= 0.0f) {
+      cur.extended = camera;  // a camera vertex keeps its spectral event for next-event estimation
+      return;
+    }
+    const Vec3 wi = camera ? ds->w : wKnown, wo = camera ? wKnown : ds->w;
+    const float f = cur.material->eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
+    cur.specular = ds->specular;
+    const float pdfFwd = sc.pdf * ds->pdf;
+    const float pdfRev = cur.material->spectralPdf(flip(mode), sc.lambda, lambda, sc.lobe) *
+                         cur.material->directionPdf(flip(mode), ds->w, wKnown, sc.lobe, lambdaIn, lambdaOut);
+    // The other side's density of the previous vertex. A delta light or the pinhole cannot be
+    // reached by the other side at all.
+    PathVertex& before = path[path.size() - 2];
+    if (before.kind == PathVertex::Kind::Camera || before.deltaPosition ||
+        (before.kind == PathVertex::Kind::Infinite && scene.lights[size_t(before.light)]->isDelta()))
+      before.pdfRev = 0.0f;
+    else
+      before.pdfRev = toAreaDensity(pdfRev, cur, before);
+    beta *= f * std::abs(ds->w.z) / pdfFwd;
+    if (!(beta > 0.0f)) return;
+    lambda = sc.lambda;
+    pdfSA = pdfFwd;
+    const Vec3 w = frame.toWorld(ds->w);
+    ray = Ray{offsetPoint(cur.p, cur.n, w), w};
+    if (surfaces >= ws.rrDepth) {  // Russian roulette against the starting throughput
+      const float q = std::min(1.0f, beta / beta0);
+      if (rng.uniform() >= q) return;
+      beta /= q;
+    }
+  }
+}
+
+}  // namespace
+
+float lightChoicePdf(const Scene& scene, int light, float lambda, WavelengthMode mode) {
+  const float conditional = scene.lightSelector->probability(size_t(light), lambda);
+  return mode == WavelengthMode::Independent ? conditional * scene.lightSelector->wavelengthPdf(lambda) : conditional;
+}
+
+void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float sensorPdf, const WalkSettings& ws,
+                        Rng& rng, RayCounter& counter, std::vector<PathVertex>& out) {
+  out.clear();
+  PathVertex c;
+  c.kind = PathVertex::Kind::Camera;
+  c.p = scene.camera.position();
+  c.beta = 1.0f;
+  c.lambda = lambda;
+  c.pdfFwd = 1.0f;
+  c.deltaPosition = true;
+  out.push_back(c);
+  const Ray ray = scene.camera.generateRay(filmPos);
+  // The sensor samples the last wavelength group; in Shared mode every strategy shares it.
+  const float pdfDir = scene.camera.directionPdf(ray.d) * (ws.mode == WavelengthMode::Independent ? sensorPdf : 1.0f);
+  randomWalk(scene, ray, 1.0f, pdfDir, lambda, TransportMode::Radiance, ws, rng, counter, out);
+}
+
+void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSettings& ws, Rng& rng, RayCounter& counter,
+                       std::vector<PathVertex>& out) {
+  out.clear();
+  size_t light = 0;
+  float lambda = sharedLambda, choice = 0.0f;
+  const float u1 = rng.uniform(), u2 = rng.uniform();
+  if (ws.mode == WavelengthMode::Independent) {
+    const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(u1, u2);
+    light = lw.light, lambda = lw.lambda, choice = lw.pdf;
+  } else {
+    const auto [l, p] = scene.lightSelector->select(sharedLambda, u2);
+    light = l, choice = p;
+  }
+  const Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
+  if (choice <= 0.0f) return;
+  const Light& L = *scene.lights[light];
+  const std::optional<EmissionSample> es = L.sampleEmission(lambda, uPos, uDir);
+  if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f || !(es->Le > 0.0f)) return;
+  PathVertex v;
+  v.kind = L.atInfinity() ? PathVertex::Kind::Infinite : PathVertex::Kind::Light;
+  v.p = es->p;
+  v.n = es->n;
+  v.dir = es->w;
+  v.light = int(light);
+  v.lambda = lambda;
+  v.deltaPosition = es->deltaPos;
+  // At infinity the light vertex is a direction (density per sr) and the disk position is the
+  // density of the first surface point; otherwise the position is the vertex.
+  v.pdfFwd = choice * (L.atInfinity() ? es->pdfDir : es->pdfPos);
+  v.beta = es->Le / v.pdfFwd;
+  out.push_back(v);
+  const float beta = es->Le * es->cosOrigin / (choice * es->pdfPos * es->pdfDir);
+  const Vec3 origin = glm::dot(es->n, es->n) > 0.0f ? offsetPoint(es->p, es->n, es->w) : es->p;
+  randomWalk(scene, Ray{origin, es->w}, beta, L.atInfinity() ? es->pdfPos : es->pdfDir, lambda,
+             TransportMode::Importance, ws, rng, counter, out);
+}
+
+}  // namespace kasha::bdpt
