@@ -54,6 +54,9 @@ class Light {
   // (per area of the disk for lights at infinity) and per steradian.
   virtual void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const = 0;
   virtual bool isDelta() const { return false; }
+  // What a light at a finite position emits from its point p (normal n) along w: radiance for
+  // area lights, intensity for point and spot lights; 0 for lights at infinity.
+  virtual float emittedTowards(float lambda, const Vec3& n, const Vec3& w) const { return 0.0f; }
   // Distant and environment lights: vertices at infinity, densities per steradian.
   virtual bool atInfinity() const { return false; }
 
@@ -78,6 +81,9 @@ class AreaLight final : public Light {
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   // Solid-angle density of sampleEmission's direction w leaving a point with normal n.
   float pdfEmissionDirection(const Vec3& n, const Vec3& w) const;
+  float emittedTowards(float lambda, const Vec3& n, const Vec3& w) const override {
+    return shape_.emission->eval(lambda, n, w);
+  }
   const Shape& shape() const { return shape_; }
 
  private:
@@ -93,6 +99,7 @@ class PointLight final : public Light {
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   float intensity(float lambda) const { return scale_ * spectrum_(lambda); }
+  float emittedTowards(float lambda, const Vec3&, const Vec3&) const override { return intensity(lambda); }
   const Vec3& position() const { return pos_; }
 
  private:
@@ -108,6 +115,9 @@ class SpotLight final : public Light {
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   float falloff(float cosTheta) const;
+  float emittedTowards(float lambda, const Vec3&, const Vec3& w) const override {
+    return scale_ * spectrum_(lambda) * falloff(glm::dot(w, dir_));
+  }
 
  private:
   Vec3 pos_, dir_;

@@ -29,7 +29,10 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& 
     const PathVertex& ct = C[size_t(t - 1)];
     L_pixel += emitterHit(c, C, t);
     if (ct.kind != PathVertex::Kind::Surface) continue;
-    if (t - 1 <= ws_.maxDepth) L_pixel += nextEvent(c, C, t, rng);
+    if (t - 1 <= ws_.maxDepth) {
+      L_pixel += nextEvent(c, C, t, rng);
+      if (ws_.mode == WavelengthMode::Independent && !L.empty()) L_pixel += connectLightVertex(c, L, C, t);
+    }
     for (int s = 2; s <= int(L.size()) && (s - 1) + (t - 1) <= ws_.maxDepth; ++s) L_pixel += connect(c, L, s, C, t);
   }
   // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.

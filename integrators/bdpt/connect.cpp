@@ -53,6 +53,7 @@ void lightEnd(const Context& c, int light, float lambda0, const PathVertex& x0, 
   if (x1.kind != Kind::Camera)
     fp.v[1].pdfLight = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
   fp.pdfNee = double(c.scene.lightSelector->probability(size_t(light), lambda0)) * startDensity;
+  fp.lightVertexConnectible = !L.atInfinity();
 }
 
 // Stored densities of the subpath vertices L[0..s−1], C[0..t−1] laid out as x_0 … x_k.
@@ -145,6 +146,37 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& 
   fp.specCam1 = x1.spectralPdf;
   const float value = x1.beta * fx * std::abs(wi.z) / x1.spectralPdf * ls->Li / (pSel * ls->pdf);
   return value * misWeight(fp, 1);
+}
+
+float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t) {
+  const PathVertex& a = L[0];
+  const PathVertex& b = C[size_t(t - 1)];
+  if (a.kind != Kind::Light || b.kind != Kind::Surface || !b.connectible() || !b.material->fluoresces()) return 0.0f;
+  const PathVertex& bNext = C[size_t(t - 2)];
+  const Vec3 d = b.p - a.p;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f)) return 0.0f;
+  const Vec3 w = d / std::sqrt(dist2);
+  const float Le = c.scene.lights[size_t(a.light)]->emittedTowards(a.lambda, a.n, w);
+  if (!(Le > 0.0f)) return 0.0f;
+  const Frame fb = Frame::fromNormal(b.n);
+  const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
+  // x_1 bridges the light's wavelength to the camera's with its fluorescent lobe.
+  const float f = b.material->eval(TransportMode::Radiance, bWi, bWo, a.lambda, b.lambda, SpectralLobe::Fluorescent);
+  if (!(f > 0.0f)) return 0.0f;
+  const float cosA = glm::dot(a.n, a.n) > 0.0f ? std::abs(glm::dot(a.n, w)) : 1.0f;
+  const float G = cosA * std::abs(bWi.z) / dist2;
+  FullPath fp = layout(c, &L, 1, C, t);
+  fp.v[1].lobe = SpectralLobe::Fluorescent;
+  lightEnd(c, a.light, a.lambda, a, b, fp);
+  fp.v[0].pdfLight = a.pdfFwd;
+  fp.v[0].pdfCam = cameraSide(c.scene, b, bNext, a, SpectralLobe::Fluorescent, a.lambda, b.lambda);
+  if (bNext.kind != Kind::Camera)
+    fp.v[2].pdfLight = lightSide(c.scene, b, a, bNext, SpectralLobe::Fluorescent, a.lambda, b.lambda);
+  fp.specCam1 = specCamera(b, SpectralLobe::Fluorescent, a.lambda, b.lambda);
+  const float weight = misWeight(fp, 1, SOne::kLightVertex);
+  if (!(weight > 0.0f) || !visible(c, b, a)) return 0.0f;
+  return Le * G * f * b.beta / a.pdfFwd * weight;
 }
 
 float connect(const Context& c, const std::vector<PathVertex>& L, int s, const std::vector<PathVertex>& C, int t) {

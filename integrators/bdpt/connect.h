@@ -22,6 +22,9 @@ struct Context {
 float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t);
 // s = 1: next-event estimation from C[t−1] at the wavelength its spectral event chose.
 float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& rng);
+// s = 1 through the light subpath's own vertex L[0] (Independent): its wavelength, drawn from the
+// lights' power spectrum, reaches the camera's through C[t−1]'s fluorescent lobe.
+float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t);
 // s ≥ 2, t ≥ 2: connect L[s−1] and C[t−1] through every exact lobe pair.
 float connect(const Context& c, const std::vector<PathVertex>& L, int s, const std::vector<PathVertex>& C, int t);
 // t = 1: L[s−1] (s ≥ 1) seen by the pinhole; appends a splat (film units) if visible.

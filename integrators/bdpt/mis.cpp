@@ -10,27 +10,30 @@ bool allElastic(const FullPath& p) {
 }
 
 // Density of the full path under strategy s (docs/bdpt-mis.md eq. 3).
-double density(const FullPath& p, int s) {
+double density(const FullPath& p, int s, SOne one) {
   const int k = int(p.v.size()) - 1;
+  const bool nee = s == 1 && k >= 2 && one == SOne::kNee;
   double d = 1.0;
-  if (s == 1 && k >= 2) {
+  if (nee) {
     d = p.specCam1 * p.pdfNee;
   } else {
     for (int i = 0; i < s; ++i) d *= p.v[size_t(i)].pdfLight;
   }
-  for (int i = (s == 1 && k >= 2) ? 1 : s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
+  for (int i = nee ? 1 : s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
   return d;
 }
 
 }  // namespace
 
-bool strategyValid(const FullPath& p, int s) {
+bool strategyValid(const FullPath& p, int s, SOne one) {
   const int k = int(p.v.size()) - 1;
   const bool independent = p.mode == WavelengthMode::Independent;
   if (s < 0 || s > k) return false;
   if (s == 0) return p.v[0].pdfCam > 0.0;  // the camera subpath hits the emitter
-  if (k == 1) return p.lightSeenByPinhole;  // s = 1, t = 1: the light seen directly
-  if (s == 1) return p.v[1].connectible && p.pdfNee > 0.0;  // next-event estimation
+  if (k == 1) return p.lightSeenByPinhole && one == SOne::kNee;  // s = t = 1: the light seen directly
+  if (s == 1 && one == SOne::kNee) return p.v[1].connectible && p.pdfNee > 0.0;
+  if (s == 1)  // the light subpath's vertex, at its own wavelength: x_1 must bridge it (Independent)
+    return independent && p.lightVertexConnectible && p.v[1].connectible && p.v[1].lobe == SpectralLobe::Fluorescent;
   if (s == k) {  // t = 1: light tracing; x_{k-1}'s lobe is evaluated, so it must be elastic
     if (!p.v[size_t(k - 1)].connectible) return false;
     return independent ? p.v[size_t(k - 1)].lobe == SpectralLobe::Elastic : allElastic(p);
@@ -45,17 +48,19 @@ bool strategyValid(const FullPath& p, int s) {
   return (a.lobe == SpectralLobe::Fluorescent) != (b.lobe == SpectralLobe::Fluorescent);
 }
 
-float misWeight(const FullPath& p, int s) {
-  if (!strategyValid(p, s)) return 0.0f;
+float misWeight(const FullPath& p, int s, SOne one) {
+  if (!strategyValid(p, s, one)) return 0.0f;
   const int k = int(p.v.size()) - 1;
-  const double own = density(p, s);
+  const double own = density(p, s, one);
   if (!(own > 0.0)) return 0.0f;
   double sum = 0.0;
-  for (int i = 0; i <= k; ++i) {
-    if (!strategyValid(p, i)) continue;
-    const double r = density(p, i) / own;  // power heuristic, β = 2
+  auto add = [&](int i, SOne o) {
+    if (!strategyValid(p, i, o)) return;
+    const double r = density(p, i, o) / own;  // power heuristic, β = 2
     sum += r * r;
-  }
+  };
+  for (int i = 0; i <= k; ++i) add(i, SOne::kNee);
+  if (k >= 2) add(1, SOne::kLightVertex);
   return float(1.0 / sum);
 }
 

@@ -23,13 +23,20 @@ struct FullPath {
   double specCam1 = 0.0;    // camera-side spectral density of x_1's event (next-event estimation)
   double pdfNee = 0.0;      // next-event density of x_0 given λ_0: p(light | λ_0)·p_A (per sr at infinity)
   bool lightSeenByPinhole = false;  // x_0 may connect to the camera directly (area lights)
+  bool lightVertexConnectible = false;  // x_0 is at a finite position (not a light at infinity)
 };
 
-// Weight of strategy s (s light vertices; s = 1 is next-event estimation when k ≥ 2, and the
-// light seen by the camera when k = 1). Returns 0 if s itself is not a valid strategy.
-float misWeight(const FullPath& path, int s);
+// Strategies are named by s, the number of light-subpath vertices, with two kinds for s = 1
+// when k ≥ 2: next-event estimation (kNee: the camera side samples x_1's spectral event and the
+// light point at that wavelength) and the light subpath's own first vertex (kLightVertex: its
+// wavelength from the lights' power spectrum, x_1's fluorescent lobe evaluated).
+enum class SOne : uint8_t { kNee, kLightVertex };
+
+// Weight of strategy s (for k = 1, s = 1 is the light seen by the camera). Returns 0 if the
+// strategy itself cannot produce the path.
+float misWeight(const FullPath& path, int s, SOne one = SOne::kNee);
 
 // Whether strategy s can produce the path (exposed for tests).
-bool strategyValid(const FullPath& path, int s);
+bool strategyValid(const FullPath& path, int s, SOne one = SOne::kNee);
 
 }  // namespace kasha::bdpt
