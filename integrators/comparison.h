@@ -1,0 +1,32 @@
+#pragma once
+// Equal-time (or equal-sample) comparisons of integrators on one scene against a reference image:
+// the error measures researchers report.
+#include <string>
+#include <vector>
+
+#include "core/film.h"
+#include "core/image_input.h"
+#include "integrators/render_loop.h"
+
+namespace kasha {
+
+struct ImageError {
+  double rmse = 0.0;    // root mean square error over pixels and X, Y, Z
+  double relMse = 0.0;  // mean of (x − ref)² / (ref² + 1e-2), over pixels and channels
+};
+
+ImageError compareToReference(const Film& film, const XyzImage& reference);
+XyzImage filmToXyz(const Film& film);
+
+struct ComparisonRow {
+  std::string integrator;
+  RenderStats stats;
+  ImageError error;
+};
+
+// Renders `scene` with each integrator for the same budget (options.timeBudgetSeconds and/or
+// options.spp) and measures each image against the reference.
+std::vector<ComparisonRow> compareIntegrators(const Scene& scene, const std::vector<std::string>& integrators,
+                                              const RenderOptions& options, const XyzImage& reference);
+
+}  // namespace kasha
