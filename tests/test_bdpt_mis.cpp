@@ -24,6 +24,7 @@ FullPath randomPath(const std::vector<SpectralLobe>& interior, WavelengthMode mo
   p.pdfNee = 0.01 + rng.uniform();
   p.lightSeenByPinhole = true;
   p.lightVertexConnectible = true;
+  p.specLightLast = 0.01 + rng.uniform();
   return p;
 }
 
@@ -57,7 +58,7 @@ TEST(BdptMis, IndependentConnectionsNeedExactlyOneFluorescentEnd) {
   EXPECT_TRUE(strategyValid(q, 1, SOne::kLightVertex));
   EXPECT_TRUE(strategyValid(q, 2));    // x_1 (F) – x_2 (E)
   EXPECT_TRUE(strategyValid(q, 3));    // x_2 (E) – x_3 (F)
-  EXPECT_FALSE(strategyValid(q, 4));   // t = 1 cannot evaluate the fluorescent x_3
+  EXPECT_TRUE(strategyValid(q, 4));    // t = 1 samples x_3's fluorescent event itself
   const FullPath e = randomPath({E, E}, WavelengthMode::Independent, rng);
   EXPECT_FALSE(strategyValid(e, 2));   // elastic–elastic joins two independent wavelengths
   EXPECT_TRUE(strategyValid(e, 3));    // light tracing samples the single group

@@ -80,6 +80,13 @@ double specCamera(const PathVertex& x1, SpectralLobe lobe, float lambda0, float 
   return x1.material->spectralPdf(TransportMode::Radiance, lambda1, lambda0, lobe);
 }
 
+// Light-side spectral density of x_{k−1}'s event, which the t = 1 strategy samples: x_{k−1} is
+// the camera subpath's first hit C[1], with its own sampled event unless it is a connection
+// vertex (then `lobe`/`lambdaIn` give the connection's).
+double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn) {
+  return c1.material->spectralPdf(TransportMode::Importance, lambdaIn, c1.lambda, lobe);
+}
+
 bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
   ++c.counter.shadow;
   if (b.kind == Kind::Infinite) return !c.scene.accel->occluded(offsetPoint(a.p, a.n, -b.dir), -b.dir, kInf);
@@ -105,7 +112,10 @@ float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
   FullPath fp = layout(c, nullptr, 0, C, t);
   lightEnd(c, e.light, e.lambda, e, next, fp);
   const int k = t - 1;
-  if (k >= 2) fp.specCam1 = C[size_t(t - 2)].spectralPdf;
+  if (k >= 2) {
+    fp.specCam1 = C[size_t(t - 2)].spectralPdf;
+    fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+  }
   else fp.lightSeenByPinhole = e.kind == Kind::Surface;
   return e.beta * Le * misWeight(fp, 0);
 }
@@ -114,7 +124,7 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& 
   const PathVertex& x1 = C[size_t(t - 1)];
   const float uSel = rng.uniform();
   const Vec2 uPos(rng.uniform(), rng.uniform());
-  if (!x1.extended || !x1.connectible()) return 0.0f;
+  if (!x1.eventSampled || !x1.connectible()) return 0.0f;
   const float lambda0 = x1.lambdaNext;
   const auto [li, pSel] = c.scene.lightSelector->select(lambda0, uSel);
   if (pSel <= 0.0f) return 0.0f;
@@ -144,6 +154,7 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& 
   fp.v[0].pdfCam = cameraSide(c.scene, x1, x2, x0, x1.lobe, lambda0, x1.lambda);
   if (x2.kind != Kind::Camera) fp.v[2].pdfLight = lightSide(c.scene, x1, x0, x2, x1.lobe, lambda0, x1.lambda);
   fp.specCam1 = x1.spectralPdf;
+  fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
   const float value = x1.beta * fx * std::abs(wi.z) / x1.spectralPdf * ls->Li / (pSel * ls->pdf);
   return value * misWeight(fp, 1);
 }
@@ -174,6 +185,8 @@ float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, con
   if (bNext.kind != Kind::Camera)
     fp.v[2].pdfLight = lightSide(c.scene, b, a, bNext, SpectralLobe::Fluorescent, a.lambda, b.lambda);
   fp.specCam1 = specCamera(b, SpectralLobe::Fluorescent, a.lambda, b.lambda);
+  fp.specLightLast = t == 2 ? specLightLast(b, SpectralLobe::Fluorescent, a.lambda)
+                            : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
   const float weight = misWeight(fp, 1, SOne::kLightVertex);
   if (!(weight > 0.0f) || !visible(c, b, a)) return 0.0f;
   return Le * G * f * b.beta / a.pdfFwd * weight;
@@ -223,6 +236,7 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
     fp.v[size_t(s - 2)].pdfCam = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambda);
     const PathVertex& x1 = L[1];
     fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+    fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambda) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
     lightEnd(c, L[0].light, L[0].lambda, L[0], L[1], fp);
     fp.v[0].pdfLight = L[0].pdfFwd;  // as sampled (same value; avoids recomputation drift)
     const float weight = misWeight(fp, s);
@@ -246,7 +260,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
   cam.kind = Kind::Camera;
   cam.p = c.scene.camera.position();
   cam.deltaPosition = true;
-  const float lambda = a.lambda;  // elastic at a (Independent), or the shared wavelength
+  // The wavelength arriving at the pinhole: the light itself for s = 1, else the one a's sampled
+  // spectral event sends towards the camera.
+  const float lambda = s == 1 ? a.lambda : a.lambdaNext;
   float value = 0.0f;
   const std::vector<PathVertex> camOnly{cam};
   FullPath fp = layout(c, &L, s, camOnly, 1);
@@ -264,17 +280,20 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
     value = Le * std::abs(glm::dot(a.n, conn->wi)) / a.pdfFwd;
     fp.lightSeenByPinhole = true;
   } else {
+    // The light side's own spectral event at a (λ_o from e when fluorescent): the sensor
+    // responds at the wavelength it chose.
+    if (!a.eventSampled) return;
     const PathVertex& aPrev = L[size_t(s - 2)];
     const Frame f = Frame::fromNormal(a.n);
     const Vec3 wi = f.toLocal(towards(a, aPrev)), wo = f.toLocal(conn->wi);
-    const float fa = a.material->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, SpectralLobe::Elastic);
+    const float fa = a.material->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, a.lobe);
     if (!(fa > 0.0f)) return;
-    value = a.beta * fa * std::abs(wo.z);
-    fp.v[size_t(k - 1)].lobe = SpectralLobe::Elastic;
-    fp.v[size_t(k - 2)].pdfCam = cameraSide(c.scene, a, cam, aPrev, SpectralLobe::Elastic, a.lambda, lambda);
+    value = a.beta * fa * std::abs(wo.z) / a.spectralPdf;
+    fp.v[size_t(k - 1)].lobe = a.lobe;
+    fp.v[size_t(k - 2)].pdfCam = cameraSide(c.scene, a, cam, aPrev, a.lobe, a.lambda, lambda);
     const PathVertex& x1 = L[1];
-    fp.specCam1 = s == 2 ? specCamera(x1, SpectralLobe::Elastic, x1.lambda, lambda)
-                         : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+    fp.specCam1 = s == 2 ? specCamera(x1, a.lobe, x1.lambda, lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+    fp.specLightLast = a.spectralPdf;
     lightEnd(c, L[0].light, L[0].lambda, L[0], L[1], fp);
     fp.v[0].pdfLight = L[0].pdfFwd;
   }

@@ -27,7 +27,8 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& 
 float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t);
 // s ≥ 2, t ≥ 2: connect L[s−1] and C[t−1] through every exact lobe pair.
 float connect(const Context& c, const std::vector<PathVertex>& L, int s, const std::vector<PathVertex>& C, int t);
-// t = 1: L[s−1] (s ≥ 1) seen by the pinhole; appends a splat (film units) if visible.
+// t = 1: L[s−1] (s ≥ 1) seen by the pinhole, with the spectral event the light subpath sampled
+// there; appends a splat (film units) if visible.
 void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, std::vector<Splat>& splats);
 
 }  // namespace kasha::bdpt

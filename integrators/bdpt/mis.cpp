@@ -20,6 +20,7 @@ double density(const FullPath& p, int s, SOne one) {
     for (int i = 0; i < s; ++i) d *= p.v[size_t(i)].pdfLight;
   }
   for (int i = nee ? 1 : s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
+  if (s == k && k >= 2) d *= p.specLightLast;  // t = 1 samples x_{k−1}'s event on the light side
   return d;
 }
 
@@ -34,9 +35,9 @@ bool strategyValid(const FullPath& p, int s, SOne one) {
   if (s == 1 && one == SOne::kNee) return p.v[1].connectible && p.pdfNee > 0.0;
   if (s == 1)  // the light subpath's vertex, at its own wavelength: x_1 must bridge it (Independent)
     return independent && p.lightVertexConnectible && p.v[1].connectible && p.v[1].lobe == SpectralLobe::Fluorescent;
-  if (s == k) {  // t = 1: light tracing; x_{k-1}'s lobe is evaluated, so it must be elastic
-    if (!p.v[size_t(k - 1)].connectible) return false;
-    return independent ? p.v[size_t(k - 1)].lobe == SpectralLobe::Elastic : allElastic(p);
+  if (s == k) {  // t = 1: light tracing, x_{k−1}'s event sampled by the light side
+    if (!p.v[size_t(k - 1)].connectible || !(p.specLightLast > 0.0)) return false;
+    return independent || allElastic(p);
   }
   // 2 ≤ s ≤ k − 1: both connection vertices evaluated; the connecting segment's wavelength must be
   // sampled exactly once: by one side through an elastic connection vertex (Independent), or

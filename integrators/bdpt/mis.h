@@ -24,6 +24,7 @@ struct FullPath {
   double pdfNee = 0.0;      // next-event density of x_0 given λ_0: p(light | λ_0)·p_A (per sr at infinity)
   bool lightSeenByPinhole = false;  // x_0 may connect to the camera directly (area lights)
   bool lightVertexConnectible = false;  // x_0 is at a finite position (not a light at infinity)
+  double specLightLast = 0.0;  // light-side spectral density of x_{k−1}'s event (t = 1 samples it)
 };
 
 // Strategies are named by s, the number of light-subpath vertices, with two kinds for s = 1

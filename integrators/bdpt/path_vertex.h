@@ -20,8 +20,9 @@ struct PathVertex {
   // The subpath's wavelength at this vertex: arriving from the previous light-subpath vertex, or
   // leaving towards the previous camera-subpath vertex.
   float lambda = 0.0f;
-  // The event sampled here to extend the subpath (valid when `extended`).
-  bool extended = false;
+  // The spectral event sampled here (valid when `eventSampled`): it extends the subpath, and
+  // next-event estimation (camera side) or the camera connection (light side) reuse it.
+  bool eventSampled = false;
   SpectralLobe lobe = SpectralLobe::Elastic;
   float lambdaNext = 0.0f;  // wavelength of the segment towards the next subpath vertex
   float spectralPdf = 0.0f; // density of that spectral event in the subpath's mode

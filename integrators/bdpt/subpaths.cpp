@@ -40,10 +40,10 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
                                                         : toAreaDensity(pdfSA, prev, v);
     path.push_back(v);
     ++surfaces;
-    // Camera vertices up to maxDepth scatter (their last one may still be an emitter hit at
-    // maxDepth + 1); light vertices scatter while the path can still end within maxDepth.
-    if (camera ? surfaces > ws.maxDepth : surfaces >= ws.maxDepth) return;
-
+    // Vertices up to maxDepth sample their spectral event (used by next-event estimation and
+    // the camera connection); camera vertices then extend up to maxDepth (the next one may be an
+    // emitter hit), light vertices while a path through the next one can end within maxDepth.
+    if (surfaces > ws.maxDepth) return;
     PathVertex& cur = path.back();
     const Frame frame = Frame::fromNormal(cur.n);
     const Vec3 wKnown = frame.toLocal(-ray.d);
@@ -52,15 +52,13 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     cur.lobe = sc.lobe;
     cur.lambdaNext = sc.lambda;
     cur.spectralPdf = sc.pdf;
-    cur.extended = true;
+    cur.eventSampled = true;
+    if (!camera && surfaces == ws.maxDepth) return;
     if (!camera && ws.mode == WavelengthMode::Shared && sc.lobe == SpectralLobe::Fluorescent) return;
     const float lambdaIn = camera ? sc.lambda : lambda, lambdaOut = camera ? lambda : sc.lambda;
     const std::optional<DirectionSample> ds =
         cur.material->sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, Vec2(rng.uniform(), rng.uniform()));
-    if (!ds || ds->pdf <= 0.0f) {
-      cur.extended = camera;  // a camera vertex keeps its spectral event for next-event estimation
-      return;
-    }
+    if (!ds || ds->pdf <= 0.0f) return;
     const Vec3 wi = camera ? ds->w : wKnown, wo = camera ? wKnown : ds->w;
     const float f = cur.material->eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
     cur.specular = ds->specular;
