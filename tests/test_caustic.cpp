@@ -1,0 +1,60 @@
+// The fluorescent caustic (scenes/uv_caustic.json): a UV point light reaches a fluorescent floor
+// only through a glass sphere. Path tracing cannot render it; light tracing and BDPT (independent
+// wavelengths) must agree with each other, region by region.
+#include <gtest/gtest.h>
+
+#include "core/scene_loader.h"
+#include "integrators/integrator_factory.h"
+#include "integrators/render_loop.h"
+#include "tests/support.h"
+
+namespace kasha {
+namespace {
+
+constexpr int kRes = 16, kRegions = 2;
+
+std::unique_ptr<Scene> lowRes() {
+  auto scene = loadScene(test::sourcePath("scenes/uv_caustic.json"));
+  const Camera& c = scene->camera;
+  // Look straight at the caustic so that every region holds some of it.
+  scene->camera = Camera(c.position(), Vec3(0, 0, 0), Vec3(0, 1, 0), 6.0f, kRes, kRes);
+  return scene;
+}
+
+std::vector<test::BatchStats> regions(const Scene& scene, const std::string& name, int spp, int batches) {
+  const std::unique_ptr<Integrator> integrator = makeIntegrator(name, scene, scene.render);
+  std::vector<std::vector<double>> per(kRegions * kRegions);
+  for (int b = 0; b < batches; ++b) {
+    Film film(kRes, kRes);
+    RenderOptions opt;
+    opt.spp = spp;
+    opt.seed = 101 + uint64_t(b);
+    render(scene, *integrator, film, opt);
+    std::vector<double> sum(per.size(), 0.0);
+    for (int y = 0; y < kRes; ++y)
+      for (int x = 0; x < kRes; ++x) sum[size_t((y * kRegions / kRes) * kRegions + x * kRegions / kRes)] += film.xyz(x, y).y;
+    for (size_t i = 0; i < per.size(); ++i) per[i].push_back(sum[i]);
+  }
+  std::vector<test::BatchStats> out;
+  for (const auto& v : per) out.push_back(test::batchStats(v));
+  return out;
+}
+
+TEST(FluorescentCaustic, PathTracingSeesNothing) {
+  auto scene = lowRes();
+  for (const test::BatchStats& r : regions(*scene, "pt", 16, 2)) EXPECT_EQ(r.mean, 0.0);
+}
+
+TEST(FluorescentCaustic, LightTracingAndBdptAgree) {
+  auto scene = lowRes();
+  const auto lt = regions(*scene, "lt", 256, 10), bd = regions(*scene, "bdpt-independent", 64, 10);
+  for (size_t i = 0; i < lt.size(); ++i) {
+    const double sigma = std::hypot(lt[i].stderr_, bd[i].stderr_);
+    EXPECT_GT(lt[i].mean, 0.0);
+    EXPECT_LT(sigma, 0.1 * lt[i].mean) << "region " << i;
+    EXPECT_NEAR(bd[i].mean, lt[i].mean, 4.0 * sigma) << "region " << i;
+  }
+}
+
+}  // namespace
+}  // namespace kasha
