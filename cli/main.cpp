@@ -1,16 +1,29 @@
 // kasha: the command-line program. `kasha render` renders a scene; `kasha matrix` exports the
 // reradiation matrix of a fluorescent material (Jung18 eq. 5).
+//
+// Exit codes: 0 done; 1 bad input (scene, spectrum, mesh, checkpoint) or a memory limit, one line
+// "kasha: error: ..." and nothing written; 2 a bad command line; 128 + signal (130 SIGINT,
+// 143 SIGTERM) when a render was asked to stop: it finishes the current pass and writes the image,
+// the statistics and the checkpoint (if any) before exiting.
 #include <CLI/CLI.hpp>
+#include <signal.h>
+#include <unistd.h>
 
+#include <atomic>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "cli/progress.h"
+#include "core/checkpoint.h"
 #include "core/error.h"
 #include "core/image_output.h"
+#include "core/memory_budget.h"
 #include "core/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
@@ -18,6 +31,34 @@
 
 namespace kasha {
 namespace {
+
+// Set by SIGINT/SIGTERM: the number of the signal. The render loop checks it between passes; the
+// handler does nothing else that is not async-signal-safe.
+std::atomic<int> gStopSignal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs a lock-free flag");
+
+bool gStderrIsTty = false;  // set before the handler is installed: isatty is not async-signal-safe
+
+extern "C" void onStopSignal(int sig) {
+  if (gStopSignal.load() != 0) _exit(128 + sig);  // a second signal: stop at once, writing nothing
+  gStopSignal.store(sig);
+  static const char msg[] =
+      "\nkasha: stopping after the current pass to write the image (signal again to quit at once)\n";
+  // The leading newline ends a progress bar's line; without one it would be an empty line.
+  const size_t skip = gStderrIsTty ? 0 : 1;
+  const ssize_t ignored = write(STDERR_FILENO, msg + skip, sizeof msg - 1 - skip);
+  (void)ignored;
+}
+
+void installStopHandlers() {
+  gStderrIsTty = isatty(STDERR_FILENO) != 0;
+  struct sigaction sa {};
+  sa.sa_handler = onStopSignal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
 
 struct RenderArgs {
   std::string scene, output, png;
@@ -27,11 +68,15 @@ struct RenderArgs {
   int64_t seed = -1;
   std::string integrator = "pt", sensor;
   float exposure = 0.0f;
+  std::string checkpoint, resume;
+  double checkpointInterval = 60.0;
+  std::string memoryLimit = "8G";
 };
 
 struct MatrixArgs {
   std::string scene, material, output;
   float step = 5.0f;
+  std::string memoryLimit = "8G";
 };
 
 std::string withExtension(const std::string& path, const std::string& ext) {
@@ -49,8 +94,31 @@ void checkWritable(const std::string& path) {
   std::filesystem::remove(probe);
 }
 
+std::string readBytes(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "cannot open scene file (it is a directory)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string hex(uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+const char* signalName(int sig) { return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "signal"; }
+
 int runRender(const RenderArgs& a) {
-  std::unique_ptr<Scene> scene = loadScene(a.scene);
+  const uint64_t memoryLimit = parseByteSize(a.memoryLimit);  // validated by the option's check
+  SceneLoadOptions load;
+  load.memoryLimit = memoryLimit;
+  // Read once: the text is both loaded and hashed for checkpoints.
+  const std::string sceneText = readBytes(a.scene);
+  std::unique_ptr<Scene> scene = loadSceneFromString(sceneText, a.scene, load);
   RenderSettings& r = scene->render;
   if (a.spp > 0) r.spp = a.spp;
   if (a.time >= 0.0) r.timeBudgetSeconds = a.time;
@@ -58,6 +126,7 @@ int runRender(const RenderArgs& a) {
   if (a.seed >= 0) r.seed = uint64_t(a.seed);
   if (a.maxDepth >= 0) r.maxDepth = a.maxDepth;
   if (!a.sensor.empty()) r.sensor = parseSensorSampling(a.sensor);
+  r.memoryLimit = memoryLimit;
   std::unique_ptr<Integrator> integrator;
   try {
     integrator = makeIntegrator(a.integrator, *scene, r);
@@ -68,17 +137,64 @@ int runRender(const RenderArgs& a) {
   const std::string exr = a.output.empty() ? std::filesystem::path(a.scene).stem().string() + ".exr" : a.output;
   const std::string png = a.noPng ? "" : (a.png.empty() ? withExtension(exr, ".png") : a.png);
   const std::string stats = withExtension(exr, ".stats.json");
+  // --resume keeps checkpointing into the file it resumes from unless --checkpoint names another.
+  const std::string checkpoint = a.checkpoint.empty() ? a.resume : a.checkpoint;
   checkWritable(exr);
   if (!png.empty()) checkWritable(png);
+  if (!checkpoint.empty()) checkWritable(checkpoint);
 
-  Film film(scene->camera.width(), scene->camera.height());
+  // What a checkpoint must agree on to be resumed; the sample count and time budget may differ
+  // (a finished render can be continued to more samples).
+  const int width = scene->camera.width(), height = scene->camera.height();
+  const nlohmann::json settings = {{"scene_hash", hex(hashBytes(sceneText.data(), sceneText.size()))},
+                                   {"integrator", integrator->name()},
+                                   {"seed", r.seed},
+                                   {"max_depth", r.maxDepth},
+                                   {"rr_depth", r.rrDepth},
+                                   {"sensor_sampling", toString(r.sensor)},
+                                   {"resolution", {width, height}}};
+
+  // Film buffers, plus the same again while a checkpoint is read, plus the EXR's six float channels.
+  const uint64_t filmBytes = Film::bytesFor(width, height);
+  requireMemory(filmBytes * (a.resume.empty() ? 1 : 2) + uint64_t(width) * uint64_t(height) * 6 * sizeof(float),
+                "the film (" + std::to_string(width) + "x" + std::to_string(height) + " pixels)", memoryLimit);
+  Film film(width, height);
   RenderOptions opt;
   opt.spp = r.spp;
   opt.timeBudgetSeconds = r.timeBudgetSeconds;
   opt.seed = r.seed;
   opt.threads = a.threads;
+  nlohmann::json resumed;
+  if (!a.resume.empty()) {
+    CheckpointData d = readCheckpoint(a.resume);
+    requireSameSettings(d.settings, settings, a.resume);
+    try {
+      opt.samplesPerPass = d.run.at("samples_per_pass").get<int>();
+      opt.previousSeconds = d.run.at("seconds").get<double>();
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(a.resume, "", std::string("checkpoint header is corrupted: ") + e.what());
+    }
+    if (opt.samplesPerPass < 1 || !(opt.previousSeconds >= 0.0)) throw InputError(a.resume, "", "checkpoint header is corrupted");
+    opt.startSpp = d.spp;
+    resumed = {{"checkpoint", a.resume}, {"spp", d.spp}, {"seconds", opt.previousSeconds}};
+    restoreFilm(std::move(d), film);
+  }
+  if (!checkpoint.empty()) {
+    opt.checkpointIntervalSeconds = a.checkpointInterval;
+    opt.checkpoint = [&](const RenderStats& s) {
+      const nlohmann::json run = {{"scene", a.scene}, {"samples_per_pass", s.samplesPerPass},
+                                  {"seconds", opt.previousSeconds + s.seconds}};
+      try {
+        writeCheckpoint(checkpoint, settings, run, film);
+      } catch (const std::exception& e) {  // a full disk must not end an overnight render
+        std::fprintf(stderr, "kasha: warning: %s\n", e.what());
+      }
+    };
+  }
+  opt.stop = &gStopSignal;
   ProgressBar bar(std::filesystem::path(a.scene).filename().string());
   if (!a.quiet) opt.progress = [&](int spp, double t, double total) { bar.update(spp, t, total); };
+  installStopHandlers();
   const RenderStats st = render(*scene, *integrator, film, opt);
   bar.finish();
 
@@ -90,24 +206,42 @@ int runRender(const RenderArgs& a) {
   j["sensor_sampling"] = toString(r.sensor);
   j["max_depth"] = r.maxDepth;
   j["resolution"] = {film.width(), film.height()};
-  if (st.nonFiniteSamples) j["first_non_finite_pixel"] = {film.firstNonFinitePixel().first, film.firstNonFinitePixel().second};
+  j["first_non_finite_pixel"] = {film.firstNonFinitePixel().first, film.firstNonFinitePixel().second};
+  if (!st.nonFiniteSamples) j.erase("first_non_finite_pixel");
+  j["total_seconds"] = opt.previousSeconds + st.seconds;
+  if (!resumed.is_null()) j["resumed"] = resumed;
+  if (!checkpoint.empty()) j["checkpoint"] = checkpoint;
+  const int sig = gStopSignal.load();
+  if (sig != 0) j["signal"] = signalName(sig);
   j["outputs"] = {{"exr", exr}, {"png", png}};
   writeTextFile(stats, j.dump(2) + "\n");
   std::printf("%s\nwrote %s%s%s, %s\n", summaryLine(st).c_str(), exr.c_str(), png.empty() ? "" : ", ", png.c_str(),
               stats.c_str());
-  return 0;
+  std::fflush(stdout);
+  return sig != 0 ? 128 + sig : 0;
 }
 
 int runMatrix(const MatrixArgs& a) {
-  std::unique_ptr<Scene> scene = loadScene(a.scene);
+  const uint64_t memoryLimit = parseByteSize(a.memoryLimit);
+  SceneLoadOptions load;
+  load.memoryLimit = memoryLimit;
+  std::unique_ptr<Scene> scene = loadScene(a.scene, load);
   size_t idx = 0;
   while (idx < scene->materialNames.size() && scene->materialNames[idx] != a.material) ++idx;
   if (idx == scene->materialNames.size()) throw InputError(a.scene, "/materials/" + a.material, "no such material");
   const auto* jung = dynamic_cast<const JungBbrrdf*>(scene->materials[idx].get());
   if (!jung) throw InputError(a.scene, "/materials/" + a.material, "not a jung_fluorescent material");
-  if (!(a.step > 0.0f)) throw InputError("--step", "", "must be positive");
+  // Grid points min + i·step up to max (1e-3 nm tolerance); counted in double, so a tiny step is
+  // a clear memory error rather than an endless float loop.
+  const double span = double(scene->range.max) + 1e-3 - double(scene->range.min);
+  const double count = std::floor(span / double(a.step)) + 1.0;
+  const uint64_t n = count < 1e9 ? uint64_t(count) : uint64_t(1e9);
+  // The matrix in floats plus its CSV text (about 12 characters an entry).
+  requireMemory(saturatingMul(saturatingMul(n, n), sizeof(float) + 12),
+                "a " + std::to_string(n) + "x" + std::to_string(n) + " matrix (--step " + std::to_string(a.step) + ")",
+                memoryLimit);
   std::vector<float> grid;
-  for (float l = scene->range.min; l <= scene->range.max + 1e-3f; l += a.step) grid.push_back(l);
+  for (uint64_t i = 0; i < n; ++i) grid.push_back(float(double(scene->range.min) + double(i) * double(a.step)));
   const ReradiationMatrix m = jung->reradiationMatrix(grid);
   std::ostringstream out;
   out << "# Reradiation matrix (Jung18 eq. 5) of material '" << a.material << "' in " << a.scene << "\n";
@@ -132,6 +266,38 @@ int runMatrix(const MatrixArgs& a) {
 }  // namespace
 }  // namespace kasha
 
+namespace {
+
+// Number checks with short messages (CLI11's own print the range up to DBL_MAX, and let NaN and
+// infinity through).
+enum class Sign { Any, NonNegative, Positive };
+CLI::Validator numberCheck(Sign sign, bool integer) {
+  return CLI::Validator(
+      [=](std::string& v) {
+        char* end = nullptr;
+        const double d = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != '\0' || !std::isfinite(d))
+          return "expected a finite " + std::string(integer ? "integer" : "number") + ", got '" + v + "'";
+        if (integer && d != std::floor(d)) return "expected an integer, got '" + v + "'";
+        if (sign == Sign::NonNegative && d < 0.0) return "must not be negative, got '" + v + "'";
+        if (sign == Sign::Positive && !(d > 0.0)) return "must be positive, got '" + v + "'";
+        return std::string();
+      },
+      integer ? (sign == Sign::Positive ? "INT>0" : "INT>=0") : (sign == Sign::Positive ? "NUMBER>0" : sign == Sign::NonNegative ? "NUMBER>=0" : "NUMBER"));
+}
+const CLI::Validator kByteSize(
+    [](std::string& v) {
+      try {
+        kasha::parseByteSize(v);
+        return std::string();
+      } catch (const std::invalid_argument& e) {
+        return std::string(e.what());
+      }
+    },
+    "BYTES");
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace kasha;
   CLI::App app{"kasha: a bispectral renderer for fluorescence research"};
@@ -144,25 +310,48 @@ int main(int argc, char** argv) {
   render->add_option("-o,--output", ra.output, "OpenEXR output (default: <scene name>.exr)");
   render->add_option("--png", ra.png, "PNG output (default: beside the EXR)");
   render->add_flag("--no-png", ra.noPng, "Do not write a PNG");
-  render->add_option("--spp", ra.spp, "Samples per pixel (overrides the scene)")->check(CLI::PositiveNumber);
-  render->add_option("--time", ra.time, "Time budget in seconds (whole passes)")->check(CLI::NonNegativeNumber);
-  render->add_option("--seed", ra.seed, "Random seed")->check(CLI::NonNegativeNumber);
-  render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  render->add_option("--spp", ra.spp, "Samples per pixel (overrides the scene)")->check(numberCheck(Sign::Positive, true));
+  render->add_option("--time", ra.time, "Time budget in seconds (whole passes)")->check(numberCheck(Sign::NonNegative, false));
+  render->add_option("--seed", ra.seed, "Random seed")->check(numberCheck(Sign::NonNegative, true));
+  render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")
+      ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 4096));
   render->add_option("--integrator", ra.integrator, "Integrator: pt (path tracing) | lt (light tracing)");
   render->add_option("--sensor-sampling", ra.sensor, "Camera wavelength sampling: uniform | cmf")
       ->check(CLI::IsMember({"uniform", "cmf"}));
-  render->add_option("--max-depth", ra.maxDepth, "Maximum number of scattering events")->check(CLI::NonNegativeNumber);
-  render->add_option("--exposure", ra.exposure, "PNG exposure in stops");
+  render->add_option("--max-depth", ra.maxDepth, "Maximum number of scattering events")->check(numberCheck(Sign::NonNegative, true));
+  render->add_option("--exposure", ra.exposure, "PNG exposure in stops")
+      ->check(numberCheck(Sign::Any, false) & CLI::Range(-100.0, 100.0));
   render->add_flag("-q,--quiet", ra.quiet, "No progress bar");
+  render->add_option("--checkpoint", ra.checkpoint, "Write the render's state to this file periodically and at the end");
+  render->add_option("--checkpoint-interval", ra.checkpointInterval, "Seconds between checkpoints (default 60; 0: every pass)")
+      ->check(numberCheck(Sign::NonNegative, false));
+  render->add_option("--resume", ra.resume,
+                     "Continue the render saved in this checkpoint (same scene and options); keeps checkpointing to it");
+  render->add_option("--memory-limit", ra.memoryLimit, "Largest buffer kasha may allocate, e.g. 512M, 8G (default 8G)")
+      ->check(kByteSize);
 
   MatrixArgs ma;
   CLI::App* matrix = app.add_subcommand("matrix", "Export a fluorescent material's reradiation matrix (Jung18 eq. 5) as CSV");
   matrix->add_option("scene", ma.scene, "Scene file (JSON)")->required();
   matrix->add_option("--material", ma.material, "Material name")->required();
-  matrix->add_option("--step", ma.step, "Grid step in nm (default 5)");
+  matrix->add_option("--step", ma.step, "Grid step in nm (default 5)")->check(numberCheck(Sign::Positive, false));
   matrix->add_option("-o,--output", ma.output, "CSV output (default: standard output)");
+  matrix->add_option("--memory-limit", ma.memoryLimit, "Largest buffer kasha may allocate (default 8G)")->check(kByteSize);
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // A bad command line: one line, exit code 2.
+    std::string msg = e.what();
+    if (!render->parsed() && !matrix->parsed() && argc > 1 && argv[1][0] != '-')
+      msg = "unknown command '" + std::string(argv[1]) + "' (expected render or matrix)";
+    for (char& c : msg)
+      if (c == '\n') c = ' ';
+    std::fprintf(stderr, "kasha: error: %s (see kasha %s--help)\n", msg.c_str(),
+                 render->parsed() ? "render " : matrix->parsed() ? "matrix " : "");
+    return 2;
+  }
   try {
     if (render->parsed()) return runRender(ra);
     if (matrix->parsed()) return runMatrix(ma);

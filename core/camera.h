@@ -29,6 +29,7 @@ class Camera {
   // 1 / (A·cos³θ), A the whole image-plane area at distance 1.
   float directionPdf(const Vec3& d) const;
   const Vec3& forward() const { return forward_; }
+  const Vec3& up() const { return up_; }  // orthonormal to forward()
   int width() const { return width_; }
   int height() const { return height_; }
   const Vec3& position() const { return pos_; }

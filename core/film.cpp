@@ -1,5 +1,7 @@
 #include "core/film.h"
 
+#include <stdexcept>
+
 namespace kasha {
 
 Vec3 Film::xyz(int x, int y) const {
@@ -16,6 +18,17 @@ DVec3 Film::meanXyz() const {
   for (const DVec3& s : sum_) m.x += s.x / n, m.y += s.y / n, m.z += s.z / n;
   for (const DVec3& s : splat_) m.x += s.x / n, m.y += s.y / n, m.z += s.z / n;
   return m;
+}
+
+void Film::restore(std::vector<DVec3> sums, std::vector<DVec3> splats, int spp, uint64_t nonFinite,
+                   std::pair<int, int> firstNonFinite) {
+  if (sums.size() != sum_.size() || splats.size() != splat_.size())
+    throw std::invalid_argument("Film::restore: buffer size does not match the film");
+  sum_ = std::move(sums);
+  splat_ = std::move(splats);
+  spp_ = spp;
+  nonFinite_.store(nonFinite);
+  firstBad_ = firstNonFinite;
 }
 
 void Film::recordNonFinite(int x, int y) {

@@ -8,11 +8,22 @@
 #include "core/accel.h"
 #include "core/camera.h"
 #include "core/light.h"
+#include "core/memory_budget.h"
 #include "core/sensor_sampling.h"
 #include "core/shape.h"
 #include "materials/material.h"
 
 namespace kasha {
+
+// Progressive photon mapping (integrator "ppm", docs/photon-mapping.md); zeros are derived from
+// the scene.
+struct PhotonMappingSettings {
+  int photonsPerPass = 0;      // light subpaths per pass; 0: one per pixel
+  float radius = 0.0f;         // gather radius r_1 of the first pass, scene units; 0: from the surface area
+  float alpha = 2.0f / 3.0f;   // radius reduction (Knaus & Zwicker 2011 eq. 15), in (1/3, 1)
+  float bandwidth = 0.0f;      // half-width h_1 of the elastic wavelength kernel, nm; 0: 1% of the range
+  bool alwaysKernel = false;   // elastic lobe through the kernel even where the sensor is evaluated exactly
+};
 
 struct RenderSettings {
   int spp = 16;                 // samples per pixel (a stop condition)
@@ -21,6 +32,10 @@ struct RenderSettings {
   int rrDepth = 3;              // Russian roulette from this depth on
   uint64_t seed = 1;
   SensorSampling sensor = SensorSampling::ColorMatching;
+  // Largest buffer an integrator may allocate (photon maps, ...): check with requireMemory()
+  // before allocating. Set by `kasha render --memory-limit`; not a scene-file setting.
+  uint64_t memoryLimit = kDefaultMemoryLimit;
+  PhotonMappingSettings ppm;
 };
 
 struct Scene {

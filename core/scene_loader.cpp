@@ -2,14 +2,18 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include "core/json_fields.h"
+#include "core/memory_budget.h"
 #include "core/spectrum_json.h"
+#include "core/spectrum_presets.h"
 #include "materials/material_json.h"
 
 namespace kasha {
@@ -17,18 +21,46 @@ namespace {
 
 using nlohmann::json;
 
+// Reading an OBJ file takes about this many times its size in memory (tinyobjloader's arrays,
+// kasha's positions, indices and normals, Embree's BVH): measured on meshes of 10⁴–10⁶ triangles.
+constexpr uint64_t kMeshBytesPerFileByte = 6;
+
 struct Loader {
   std::string file;
   SpectrumContext ctx;
   std::map<std::string, Spectrum> named;
   std::map<std::string, uint32_t> materialIndex;
   Scene& scene;
+  SceneLoadOptions options;
+  const json* spectraJson = nullptr;
+  std::vector<std::string> resolving;  // named spectra being parsed, to detect cycles
 
-  Loader(std::string f, Scene& s) : file(std::move(f)), scene(s) {
+  Loader(std::string f, Scene& s, SceneLoadOptions o) : file(std::move(f)), scene(s), options(o) {
     ctx.file = file;
     ctx.baseDir = std::filesystem::path(file).parent_path().string();
     if (ctx.baseDir.empty()) ctx.baseDir = ".";
     ctx.named = &named;
+    ctx.range = &scene.range;
+    ctx.resolveName = [this](const std::string& name, const std::string& ptr) { return namedSpectrum(name, ptr); };
+  }
+
+  // The entry `name` of /spectra, parsed on first use, so entries may refer to each other in any
+  // order; a cycle of references is an error. nullptr if there is no such entry.
+  const Spectrum* namedSpectrum(const std::string& name, const std::string& ptr) {
+    if (auto it = named.find(name); it != named.end()) return &it->second;
+    if (!spectraJson || !spectraJson->contains(name)) return nullptr;
+    const auto loop = std::find(resolving.begin(), resolving.end(), name);
+    if (loop != resolving.end()) {
+      std::string chain;
+      for (auto it = loop; it != resolving.end(); ++it) chain += *it + " -> ";
+      std::string hint;
+      if (presetSpectrum(name)) hint = " (for the preset write {\"type\": \"preset\", \"name\": \"" + name + "\"})";
+      throw InputError(file, ptr, "named spectra refer to each other in a cycle: " + chain + name + hint);
+    }
+    resolving.push_back(name);
+    Spectrum s = parseSpectrum(spectraJson->at(name), ctx, "/spectra/" + name);
+    resolving.pop_back();
+    return &(named[name] = std::move(s));
   }
 
   std::string resolve(const std::string& rel) const { return (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel; }
@@ -36,15 +68,21 @@ struct Loader {
   // A light's spectrum must put some energy into the scene's range.
   Spectrum emitterSpectrum(JsonFields& f, const std::string& key) {
     Spectrum s = parseSpectrum(f.get(key), ctx, f.path(key));
+    if (!std::isfinite(s.integral(scene.range)))
+      f.fail(key, "emission over the wavelength range overflows a 32-bit float");
     if (!(s.integral(scene.range) > 0.0f))
       f.fail(key, "emission integrates to zero over the wavelength range [" + std::to_string(int(scene.range.min)) +
                       ", " + std::to_string(int(scene.range.max)) + "] nm");
     return s;
   }
 
-  float scaleField(JsonFields& f) {
+  // The "scale" of an emitter whose spectrum is `spectrum`: positive, and not so large that the
+  // emitted power overflows.
+  float scaleField(JsonFields& f, const Spectrum& spectrum) {
     const float s = f.number("scale", 1.0f);
     if (!(s > 0.0f)) f.fail("scale", "must be positive");
+    if (!std::isfinite(s * spectrum.integral(scene.range)))
+      f.fail("scale", "the scaled emission overflows a 32-bit float over the wavelength range");
     return s;
   }
 
@@ -81,6 +119,24 @@ struct Loader {
     } catch (const std::exception& e) {
       f.fail("sensor_sampling", e.what());
     }
+    photonMapping(f);
+    f.finish();
+  }
+
+  // /render/ppm (docs/photon-mapping.md).
+  void photonMapping(JsonFields& render) {
+    if (!render.has("ppm")) return;
+    JsonFields f(render.get("ppm"), file, render.path("ppm"));
+    PhotonMappingSettings& p = scene.render.ppm;
+    p.photonsPerPass = f.integer("photons_per_pass", p.photonsPerPass);
+    if (p.photonsPerPass < 0) f.fail("photons_per_pass", "must not be negative (0: one per pixel)");
+    p.radius = f.number("radius", p.radius);
+    if (!(p.radius >= 0.0f)) f.fail("radius", "must not be negative (0: from the scene's surface area)");
+    p.alpha = f.number("alpha", p.alpha);
+    if (!(p.alpha > 1.0f / 3.0f && p.alpha < 1.0f)) f.fail("alpha", "must be in (1/3, 1)");
+    p.bandwidth = f.number("bandwidth", p.bandwidth);
+    if (!(p.bandwidth >= 0.0f)) f.fail("bandwidth", "must not be negative (0: 1% of the wavelength range)");
+    p.alwaysKernel = f.boolean("always_wavelength_kernel", p.alwaysKernel);
     f.finish();
   }
 
@@ -106,7 +162,8 @@ struct Loader {
     if (!root.has("spectra")) return;
     const json& s = root.get("spectra");
     if (!s.is_object()) root.fail("spectra", "expected an object of named spectra");
-    for (auto it = s.begin(); it != s.end(); ++it) named[it.key()] = parseSpectrum(it.value(), ctx, "/spectra/" + it.key());
+    spectraJson = &s;
+    for (auto it = s.begin(); it != s.end(); ++it) namedSpectrum(it.key(), "/spectra/" + it.key());
   }
 
   void materials(JsonFields& root) {
@@ -125,7 +182,16 @@ struct Loader {
     cfg.triangulate = true;
     cfg.vertex_color = false;
     tinyobj::ObjReader reader;
-    if (!std::filesystem::is_regular_file(path)) f.fail("file", "cannot open '" + path + "'");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) f.fail("file", "cannot open '" + path + "'");
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) f.fail("file", "cannot open '" + path + "': " + ec.message());
+    try {
+      requireMemory(saturatingMul(size, kMeshBytesPerFileByte),
+                    "'" + path + "' (" + formatBytes(size) + "): reading it", options.memoryLimit);
+    } catch (const MemoryLimitError& e) {
+      f.fail("file", e.what());
+    }
     if (!reader.ParseFromFile(path, cfg)) f.fail("file", "'" + path + "': " + reader.Error());
     const auto& v = reader.GetAttrib().vertices;
     for (size_t i = 0; i + 2 < v.size(); i += 3) {
@@ -136,6 +202,7 @@ struct Loader {
     }
     for (const auto& shape : reader.GetShapes())
       for (const auto& idx : shape.mesh.indices) {
+        if (s.indices.size() >= size_t(UINT32_MAX)) f.fail("file", "'" + path + "': more than 2^32 vertex indices");
         if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= s.positions.size())
           f.fail("file", "'" + path + "': face refers to a missing vertex");
         s.indices.push_back(uint32_t(idx.vertex_index));
@@ -196,14 +263,19 @@ struct Loader {
         JsonFields e(f.get("emission"), file, ptr + "/emission");
         AreaEmission em;
         em.radiance = emitterSpectrum(e, "radiance");
-        em.scale = scaleField(e);
+        em.scale = scaleField(e, em.radiance);
         em.twoSided = e.boolean("two_sided", false);
         e.finish();
         s.emission = em;
       }
       f.finish();
       s.finalize();
+      // Scales and translations of finite numbers can still overflow a float.
+      for (const Vec3& p : s.positions)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+          throw InputError(file, ptr, type + " has a vertex beyond the range of a 32-bit float");
       if (!(s.area > 0.0f)) throw InputError(file, ptr, "degenerate " + type + ": total area is zero");
+      if (!std::isfinite(s.area)) throw InputError(file, ptr, type + " is too large: its area overflows a 32-bit float");
       scene.shapes.push_back(std::move(s));
     }
   }
@@ -221,7 +293,8 @@ struct Loader {
         if (type == "point") {
           const Vec3 p = f.vec3("position");
           Spectrum I = emitterSpectrum(f, "intensity");
-          l = std::make_unique<PointLight>(p, std::move(I), scaleField(f));
+          const float scale = scaleField(f, I);
+          l = std::make_unique<PointLight>(p, std::move(I), scale);
         } else if (type == "spot") {
           const Vec3 p = f.vec3("position");
           const Vec3 at = f.vec3("look_at");
@@ -231,17 +304,20 @@ struct Loader {
           const float falloff = f.number("falloff_start", cone);
           if (!(falloff > 0.0f && falloff <= cone)) f.fail("falloff_start", "must be in (0, cone_angle] degrees");
           Spectrum I = emitterSpectrum(f, "intensity");
-          l = std::make_unique<SpotLight>(p, at - p, cone, falloff, std::move(I), scaleField(f));
+          const float scale = scaleField(f, I);
+          l = std::make_unique<SpotLight>(p, at - p, cone, falloff, std::move(I), scale);
         } else if (type == "distant") {
           const Vec3 d = f.vec3("direction");
           if (!(glm::length(d) > 0.0f)) f.fail("direction", "must not be zero");
           Spectrum E = emitterSpectrum(f, "irradiance");
-          l = std::make_unique<DistantLight>(d, std::move(E), scaleField(f), bounds);
+          const float scale = scaleField(f, E);
+          l = std::make_unique<DistantLight>(d, std::move(E), scale, bounds);
         } else if (type == "environment") {
           if (scene.environmentLight >= 0) f.fail("type", "only one environment light is allowed");
           Spectrum L = emitterSpectrum(f, "radiance");
+          const float scale = scaleField(f, L);
           scene.environmentLight = int(scene.lights.size());
-          l = std::make_unique<EnvironmentLight>(std::move(L), scaleField(f), bounds);
+          l = std::make_unique<EnvironmentLight>(std::move(L), scale, bounds);
         } else {
           f.fail("type", "unknown light type '" + type + "' (point, spot, distant, environment)");
         }
@@ -256,24 +332,47 @@ struct Loader {
         scene.lights.push_back(std::make_unique<AreaLight>(scene.shapes[i]));
       }
     if (scene.lights.empty()) throw InputError(file, "/lights", "the scene has no light (no light and no emissive shape)");
+    // Power = spectrum · scale · a geometric factor (area, 4π, ...): finite factors can still
+    // overflow, and an infinite power would turn every light choice into NaN.
+    const size_t listed = scene.lights.size() - size_t(std::count_if(scene.shapes.begin(), scene.shapes.end(),
+                                                                      [](const Shape& sh) { return bool(sh.emission); }));
+    float total = 0.0f;
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+      const Light& l = *scene.lights[i];
+      const float power = l.powerFactor() * l.scale() * l.spectrum().integral(scene.range);
+      total += power;
+      if (std::isfinite(power) && std::isfinite(total)) continue;
+      std::string where = "/lights/" + std::to_string(i);
+      if (i >= listed)
+        for (size_t k = 0; k < scene.shapeLight.size(); ++k)
+          if (scene.shapeLight[k] == int(i)) where = "/shapes/" + std::to_string(k) + "/emission";
+      throw InputError(file, where, std::isfinite(power) ? "the lights' total power overflows a 32-bit float"
+                                                         : "the emitted power overflows a 32-bit float");
+    }
     scene.lightSelector = std::make_unique<LightSelector>(scene.lights, scene.range);
   }
 };
 
+// No valid scene nests deeper than a few levels; a limit keeps the recursion below bounded.
+constexpr int kMaxJsonDepth = 64;
+
 // Every number is used as a 32-bit float: one finite as a double but beyond ±3.4e38 would
 // silently become infinite.
-void checkFloatRange(const json& v, const std::string& file, const std::string& ptr) {
+void checkFloatRange(const json& v, const std::string& file, const std::string& ptr, int depth = 0) {
+  if (depth > kMaxJsonDepth)
+    throw InputError(file, ptr, "nested more than " + std::to_string(kMaxJsonDepth) + " levels deep");
   if (v.is_number_float() && !std::isfinite(float(v.get<double>())))
     throw InputError(file, ptr, "number " + v.dump() + " is out of range of a 32-bit float");
   if (v.is_object())
-    for (auto it = v.begin(); it != v.end(); ++it) checkFloatRange(it.value(), file, ptr + "/" + it.key());
+    for (auto it = v.begin(); it != v.end(); ++it) checkFloatRange(it.value(), file, ptr + "/" + it.key(), depth + 1);
   if (v.is_array())
-    for (size_t i = 0; i < v.size(); ++i) checkFloatRange(v[i], file, ptr + "/" + std::to_string(i));
+    for (size_t i = 0; i < v.size(); ++i) checkFloatRange(v[i], file, ptr + "/" + std::to_string(i), depth + 1);
 }
 
 }  // namespace
 
-std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::string& path) {
+std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::string& path,
+                                           const SceneLoadOptions& options) {
   json root;
   try {
     root = json::parse(text);
@@ -283,7 +382,7 @@ std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::s
   checkFloatRange(root, path, "");
   auto scene = std::make_unique<Scene>();
   scene->path = path;
-  Loader L(path, *scene);
+  Loader L(path, *scene, options);
   JsonFields f(root, path, "");
   L.range(f);
   L.render(f);
@@ -298,12 +397,14 @@ std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::s
   return scene;
 }
 
-std::unique_ptr<Scene> loadScene(const std::string& path) {
+std::unique_ptr<Scene> loadScene(const std::string& path, const SceneLoadOptions& options) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "cannot open scene file (it is a directory)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open scene file");
   std::stringstream ss;
   ss << in.rdbuf();
-  return loadSceneFromString(ss.str(), path);
+  return loadSceneFromString(ss.str(), path, options);
 }
 
 }  // namespace kasha

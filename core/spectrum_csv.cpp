@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 
 namespace kasha {
 namespace {
@@ -79,6 +81,17 @@ SpectralTable parseSpectralCsv(const std::string& text, const std::string& sourc
 }
 
 SpectralTable readSpectralCsv(const std::string& path) {
+  // Only regular files: a FIFO or /dev/zero would block or never end. The size limit keeps a
+  // wrong file (an image, a log) from being read into memory: a 1-nm table of 300-2500 nm with
+  // a thousand columns is still under 30 MiB.
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "cannot open file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "cannot open file (not a regular file)");
+  const uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(path, "", "cannot open file: " + ec.message());
+  if (size > kMaxSpectralFileBytes)
+    throw InputError(path, "", "file is " + formatBytes(size) + ", more than the " + formatBytes(kMaxSpectralFileBytes) +
+                                   " allowed for a spectrum or matrix file");
   std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path, "", "cannot open file");
   std::stringstream ss;

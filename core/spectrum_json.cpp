@@ -1,6 +1,7 @@
 #include "core/spectrum_json.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 #include "core/json_fields.h"
@@ -9,6 +10,12 @@
 
 namespace kasha {
 namespace {
+
+std::string formatNm(float nm) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", double(nm));
+  return buf;
+}
 
 std::string presetList() {
   std::string s;
@@ -48,13 +55,28 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
   } else if (type == "file") {
     const std::string rel = f.string("file");
     const std::string path = (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel;
+    const bool explicitOutside = f.has("outside");
     const std::string outside = f.string("outside", "clamp");
     if (outside != "clamp" && outside != "zero") f.fail("outside", "expected \"clamp\" or \"zero\", got \"" + outside + "\"");
     const std::string column = f.string("column", "");
+    SpectralTable table;
     try {
-      s = spectrumFromTable(readSpectralCsv(path), column);
+      table = readSpectralCsv(path);
+      s = spectrumFromTable(table, column);
     } catch (const InputError& e) {
       throw InputError(ctx.file, ptr, e.what());
+    }
+    if (ctx.range) {
+      // Data from elsewhere often stops short of the scene's range: extending it silently would
+      // invent values, so the scene has to say how (or the range has to shrink).
+      const float lo = table.lambdas.front(), hi = table.lambdas.back();
+      const WavelengthRange& r = *ctx.range;
+      const std::string covers = path + " covers " + formatNm(lo) + "-" + formatNm(hi) + " nm";
+      const std::string scene = "the scene's wavelength range " + formatNm(r.min) + "-" + formatNm(r.max) + " nm";
+      if (hi <= r.min || lo >= r.max) throw InputError(ctx.file, ptr, covers + ", outside " + scene);
+      if ((lo > r.min || hi < r.max) && !explicitOutside)
+        throw InputError(ctx.file, ptr, covers + ", less than " + scene +
+                                            ": add \"outside\": \"clamp\" (continue its end values) or \"zero\"");
     }
     if (outside == "zero") s = s.zeroOutside();
   } else if (type == "gaussian") {
@@ -82,7 +104,10 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
   }
   const float scale = nonNegative(f, "scale", 1.0f, false);
   f.finish();
-  return scale == 1.0f ? s : s.scaled(scale);
+  if (scale != 1.0f) s = s.scaled(scale);
+  for (float y : s.values())
+    if (!std::isfinite(y)) f.fail("scale", "the scaled spectrum overflows a 32-bit float");
+  return s;
 }
 
 }  // namespace
@@ -96,6 +121,8 @@ Spectrum parseSpectrum(const nlohmann::json& v, const SpectrumContext& ctx, cons
   }
   if (v.is_string()) {
     const std::string name = v.get<std::string>();
+    if (ctx.resolveName)
+      if (const Spectrum* s = ctx.resolveName(name, ptr)) return *s;
     if (ctx.named) {
       auto it = ctx.named->find(name);
       if (it != ctx.named->end()) return it->second;

@@ -5,11 +5,13 @@
 //   {"type": "constant", "value": v}
 //   {"type": "tabulated", "wavelengths": [...], "values": [...]}
 //   {"type": "file", "file": "x.csv", "column": "name", "outside": "clamp" | "zero"}
+//     (a file that does not cover the scene's wavelength range needs an explicit "outside")
 //   {"type": "gaussian", "center": nm, "fwhm": nm, "peak": v}
 //   {"type": "blackbody", "kelvin": T}
 //   {"type": "box", "min": nm, "max": nm, "value": v}
 //   {"type": "preset", "name": "D65"}
 // and every object form takes an optional "scale". Files are relative to the scene file.
+#include <functional>
 #include <map>
 #include <string>
 
@@ -20,9 +22,20 @@
 namespace kasha {
 
 struct SpectrumContext {
+  SpectrumContext() = default;
+  SpectrumContext(std::string sceneFile, std::string dir, const std::map<std::string, Spectrum>* names = nullptr)
+      : file(std::move(sceneFile)), baseDir(std::move(dir)), named(names) {}
+
   std::string file;     // the scene file, for messages
   std::string baseDir;  // directory that relative paths start from
   const std::map<std::string, Spectrum>* named = nullptr;
+  // If set, resolves a name (before `named` and the presets): the scene loader parses named
+  // spectra on demand with it. Returns nullptr for an unknown name; `pointer` is where the name
+  // is used, for messages.
+  std::function<const Spectrum*(const std::string& name, const std::string& pointer)> resolveName;
+  // If set, the scene's wavelength range: a spectrum file must cover it, or say with "outside"
+  // how to extend it, and must overlap it.
+  const WavelengthRange* range = nullptr;
 };
 
 Spectrum parseSpectrum(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& pointer);

@@ -1,7 +1,11 @@
 #pragma once
 // An integrator estimates the XYZ value of one pixel sample. The render loop (render_loop.h) owns
-// threads, seeds and the film; integrators are stateless and read-only on the scene.
+// threads, seeds and the film; integrators are stateless and read-only on the scene. State built
+// once per pass (photon mapping's photon map) is returned by beginPass and read through the
+// SampleContext, never stored in the integrator.
 #include <cstdint>
+#include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,10 +26,16 @@ struct Splat {
   Vec3 xyz;
 };
 
+// What an integrator prepares before a pass and its samples only read (a photon map).
+struct PassData {
+  virtual ~PassData() = default;
+};
+
 // What a pixel sample may write besides its return value.
 struct SampleContext {
   RayCounter counter;
   std::vector<Splat> splats;  // merged into the film in a fixed order after each pass
+  const PassData* pass = nullptr;  // what beginPass returned for the current pass
 };
 
 class Integrator {
@@ -36,6 +46,16 @@ class Integrator {
   // to other pixels go to ctx.splats, in units where the film divides by samples per pixel.
   virtual Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const = 0;
   virtual std::string name() const = 0;
+
+  // Called by the render loop before each pass, which takes samples [firstSample, firstSample +
+  // count) of every pixel; seed is the render's seed. Rays traced here count in `counter`. The
+  // result stays alive and unchanged while the pass runs (SampleContext::pass).
+  virtual std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
+                                                    RayCounter& counter) const {
+    return nullptr;
+  }
+  // The most samples per pixel one pass may take.
+  virtual int maxSamplesPerPass() const { return std::numeric_limits<int>::max(); }
 };
 
 }  // namespace kasha

@@ -58,7 +58,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Rng& rng, SampleContext&
     if (!mat.purelySpecular()) {
       if (const auto c = scene.camera.connect(hit->p)) {
         const Vec3 wo = frame.toLocal(c->wi);
-        const float f = mat.eval(wi, wo, lambda, lambdaOut, sc.lobe);
+        const float f = mat.eval(TransportMode::Importance, wi, wo, lambda, lambdaOut, sc.lobe);
         if (f > 0.0f && visible(scene, hit->p, hit->ng, *c, ctx))
           splatToCamera(scene, *c, beta * f * std::abs(wo.z) / sc.pdf, lambdaOut, ctx);
       }
@@ -68,7 +68,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Rng& rng, SampleContext&
     const std::optional<DirectionSample> ds =
         mat.sampleDirection(TransportMode::Importance, wi, sc.lobe, lambda, lambdaOut, Vec2(rng.uniform(), rng.uniform()));
     if (!ds || ds->pdf <= 0.0f) break;
-    const float f = mat.eval(wi, ds->w, lambda, lambdaOut, sc.lobe);
+    const float f = mat.eval(TransportMode::Importance, wi, ds->w, lambda, lambdaOut, sc.lobe);
     beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);
     if (!(beta > 0.0f)) break;
     lambda = lambdaOut;

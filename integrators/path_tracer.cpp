@@ -71,7 +71,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
         const std::optional<LightSample> ls = scene.lights[li]->sampleLi(hit->p, lambdaIn, uPos);
         if (ls && ls->Li > 0.0f && ls->pdf > 0.0f) {
           const Vec3 wi = frame.toLocal(ls->wi);
-          const float f = mat.eval(wi, wo, lambdaIn, lambda, sc.lobe);
+          const float f = mat.eval(TransportMode::Radiance, wi, wo, lambdaIn, lambda, sc.lobe);
           if (f > 0.0f) {
             const Vec3 origin = offsetPoint(hit->p, hit->ng, ls->wi);
             const float tMax = std::isinf(ls->dist) ? kInf : ls->dist * (1.0f - 1e-4f) - rayEpsilon(hit->p);
@@ -92,7 +92,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
     const std::optional<DirectionSample> ds =
         mat.sampleDirection(TransportMode::Radiance, wo, sc.lobe, lambdaIn, lambda, Vec2(rng.uniform(), rng.uniform()));
     if (!ds || ds->pdf <= 0.0f) break;
-    const float f = mat.eval(ds->w, wo, lambdaIn, lambda, sc.lobe);
+    const float f = mat.eval(TransportMode::Radiance, ds->w, wo, lambdaIn, lambda, sc.lobe);
     beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);
     if (!(beta > 0.0f)) break;
     prevDirPdf = ds->pdf;

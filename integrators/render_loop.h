@@ -1,7 +1,14 @@
 #pragma once
-// Runs an integrator over the image: passes of one sample per pixel over 16×16 tiles in
+// Runs an integrator over the image: passes of a few samples per pixel over 16×16 tiles in
 // parallel (TBB). Sample s of pixel (x, y) draws from its own PCG32 stream seeded by
 // (seed, x, y, s), so the image does not depend on the number of threads.
+//
+// Bit-identical results. A pixel's camera samples are added to its sum in sample order, whatever
+// the passes and threads. Splats are kept per tile and merged after each pass in tile order, so a
+// pixel's splat sum depends on how samples are grouped into passes: with the same samples per
+// pass (stored in checkpoints) a render resumed at a pass boundary adds exactly the same numbers
+// in exactly the same order as an uninterrupted one.
+#include <atomic>
 #include <functional>
 #include <string>
 
@@ -10,15 +17,8 @@
 
 namespace kasha {
 
-struct RenderOptions {
-  int spp = 16;                  // stop after this many samples per pixel
-  double timeBudgetSeconds = 0;  // > 0: stop after the first pass that ends past this time
-  uint64_t seed = 1;
-  int threads = 0;               // 0: all cores
-  // Called after every pass with (samples per pixel so far, seconds so far, estimated total seconds).
-  std::function<void(int, double, double)> progress;
-};
-
+// Times, sample and ray counts cover this run (not the runs a resumed render continues); spp and
+// nonFiniteSamples are the film's totals.
 struct RenderStats {
   std::string integrator;
   double seconds = 0.0;
@@ -27,6 +27,37 @@ struct RenderStats {
   double samplesPerSecond = 0.0, raysPerSecond = 0.0;
   uint64_t nonFiniteSamples = 0;
   int threads = 0;
+  int samplesPerPass = 0;
+  bool interrupted = false;  // stopped by RenderOptions::stop before reaching spp or the time budget
+};
+
+// At least ~64k samples per pass, so that small images keep every core busy.
+int defaultSamplesPerPass(int width, int height);
+
+struct RenderOptions {
+  int spp = 16;                  // stop after this many samples per pixel (counting startSpp)
+  double timeBudgetSeconds = 0;  // > 0: stop after the first pass that ends past this time
+  uint64_t seed = 1;
+  int threads = 0;               // 0: all cores
+  // Called after every pass with (samples per pixel so far, seconds so far, estimated total seconds).
+  std::function<void(int, double, double)> progress;
+
+  // Resuming (core/checkpoint.h): the film already holds startSpp samples per pixel, and
+  // previousSeconds of rendering count towards the time budget.
+  int startSpp = 0;
+  double previousSeconds = 0.0;
+  // Samples per pixel in one pass; 0: defaultSamplesPerPass(). Passes cover samples
+  // [k·n, (k+1)·n); a resumed render must use the value of the checkpoint to merge splats in
+  // the same order as an uninterrupted render.
+  int samplesPerPass = 0;
+  // Checked between passes: non-zero stops the render after the current pass (a signal handler
+  // sets it; the estimate stays consistent because every pixel has the same sample count).
+  const std::atomic<int>* stop = nullptr;
+  // Called between passes, once checkpointIntervalSeconds have passed since the last call (0:
+  // after every pass), and after the last pass, with the statistics so far. The film is not
+  // being written while it runs.
+  std::function<void(const RenderStats&)> checkpoint;
+  double checkpointIntervalSeconds = 60.0;
 };
 
 RenderStats render(const Scene& scene, const Integrator& integrator, Film& film, const RenderOptions& options);

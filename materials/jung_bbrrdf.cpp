@@ -9,23 +9,28 @@
 namespace kasha {
 namespace {
 
-std::string checkUnitSpectrum(const Spectrum& s, WavelengthRange range, const char* field) {
+std::string checkUnitSpectrum(const Spectrum& s, WavelengthRange range, const char* field, bool allowAboveOne) {
   const float lo = s.minValue(range.min, range.max), hi = s.maxValue(range.min, range.max);
   if (!std::isfinite(lo) || !std::isfinite(hi)) return std::string(field) + ": value is not finite";
   if (lo < 0.0f) return std::string(field) + ": negative value " + std::to_string(lo) + " in the wavelength range";
-  if (hi > 1.0f + 1e-6f) return std::string(field) + ": value " + std::to_string(hi) + " exceeds 1 in the wavelength range";
+  if (hi > 1.0f + 1e-6f && !allowAboveOne)
+    return std::string(field) + ": value " + std::to_string(hi) + " exceeds 1 in the wavelength range";
   return {};
 }
 
 }  // namespace
 
 std::string checkJungParams(const JungParams& p, WavelengthRange range) {
-  if (!(p.concentration >= 0.0f && p.concentration <= 1.0f))
-    return "c: concentration " + std::to_string(p.concentration) + " is outside [0, 1]";
-  if (!(p.energyRatio >= 0.0f && p.energyRatio <= 1.0f))
-    return "Q: energy ratio " + std::to_string(p.energyRatio) + " is outside [0, 1]";
-  if (std::string m = checkUnitSpectrum(p.absorption, range, "absorption"); !m.empty()) return m;
-  if (std::string m = checkUnitSpectrum(p.reflectance, range, "reflectance"); !m.empty()) return m;
+  const bool any = p.allowUnphysical;
+  if (!(p.concentration >= 0.0f && (any ? std::isfinite(p.concentration) : p.concentration <= 1.0f)))
+    return "c: concentration " + std::to_string(p.concentration) + (any ? " is negative" : " is outside [0, 1]");
+  if (!(p.energyRatio >= 0.0f && (any ? std::isfinite(p.energyRatio) : p.energyRatio <= 1.0f)))
+    return "Q: energy ratio " + std::to_string(p.energyRatio) + (any ? " is negative" : " is outside [0, 1]");
+  if (std::string m = checkUnitSpectrum(p.absorption, range, "absorption", any); !m.empty()) return m;
+  if (std::string m = checkUnitSpectrum(p.reflectance, range, "reflectance", any); !m.empty()) return m;
+  if (const float ca = p.concentration * p.absorption.maxValue(range.min, range.max); any && ca > 1.0f + 1e-6f)
+    return "c: c·a reaches " + std::to_string(ca) + ", above 1: the elastic weight 1 - c·a would be negative (not "
+           "allowed even with allow_unphysical)";
   if (p.emission.minValue(range.min, range.max) < 0.0f) return "emission: negative value in the wavelength range";
   if (!(p.emission.integral(range) > 0.0f)) return "emission: integrates to zero over the wavelength range";
   return {};
@@ -36,7 +41,8 @@ JungBbrrdf::JungBbrrdf(JungParams params, WavelengthRange range)
   if (std::string m = checkJungParams(p_, range_); !m.empty()) throw std::invalid_argument(m);
 }
 
-float JungBbrrdf::eval(const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut, SpectralLobe lobe) const {
+float JungBbrrdf::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+                       SpectralLobe lobe) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
   const float ca = c() * a(lambdaIn);
   if (lobe == SpectralLobe::Elastic) return (1.0f - ca) * r(lambdaIn) * kInvPi;  // Jung18 eq. 3

@@ -18,10 +18,15 @@ struct JungParams {
   Spectrum reflectance;  // r(λ)
   float concentration = 0.0f;  // c
   float energyRatio = 0.0f;    // Q
+  // "allow_unphysical": c, Q, a(λ) and r(λ) may exceed 1 (the material then creates energy). Still
+  // required: no negative value, and c·a(λ) ≤ 1, without which the elastic weight 1 − c·a would
+  // be negative.
+  bool allowUnphysical = false;
 };
 
 // Eq. 8's conditions for energy conservation: c, Q, a(λ), r(λ) in [0, 1] and e ≥ 0 with a positive
-// integral over the range. Returns an empty string if they hold, else "field: reason".
+// integral over the range (relaxed by allowUnphysical). Returns an empty string if they hold, else
+// "field: reason".
 std::string checkJungParams(const JungParams& p, WavelengthRange range);
 
 // Reradiation matrix on a wavelength grid (eq. 5): M = R + c·a·Q·eᵀ with R = diag((1 − c·a_i)·r_i).
@@ -38,7 +43,8 @@ class JungBbrrdf final : public Material {
   // Throws std::invalid_argument with checkJungParams' message if eq. 8's conditions fail.
   JungBbrrdf(JungParams params, WavelengthRange range);
 
-  float eval(const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut, SpectralLobe lobe) const override;
+  float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+             SpectralLobe lobe) const override;
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,

@@ -4,7 +4,7 @@
 
 namespace kasha {
 
-float Lambertian::eval(const Vec3& wi, const Vec3& wo, float lambdaIn, float, SpectralLobe lobe) const {
+float Lambertian::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float, SpectralLobe lobe) const {
   if (lobe != SpectralLobe::Elastic || !diffuse::sameSide(wi, wo)) return 0.0f;
   return r_(lambdaIn) * kInvPi;
 }

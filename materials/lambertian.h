@@ -9,7 +9,8 @@ class Lambertian final : public Material {
  public:
   explicit Lambertian(Spectrum reflectance) : r_(std::move(reflectance)) {}
 
-  float eval(const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut, SpectralLobe lobe) const override;
+  float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+             SpectralLobe lobe) const override;
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,

@@ -19,7 +19,7 @@ std::optional<ScatterSample> Material::sample(TransportMode mode, const Vec3& wK
   s.lambda = sc.lambda;
   s.lobe = sc.lobe;
   s.specular = ds->specular;
-  s.f = eval(wi, wo, lambdaIn, lambdaOut, sc.lobe);
+  s.f = eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
   s.pdf = sc.pdf * ds->pdf;
   s.pdfRev = spectralPdf(flip(mode), sc.lambda, lambdaKnown, sc.lobe) *
              directionPdf(flip(mode), ds->w, wKnown, sc.lobe, lambdaIn, lambdaOut);

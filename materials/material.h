@@ -69,7 +69,13 @@ class Material {
 
   // f(λ_i, ω_i, ω_o, λ_o) of one spectral lobe: for Elastic, λ_i = λ_o is implied and lambdaIn is
   // used; for Fluorescent, the density per nm of leaving at λ_o. Local directions.
-  virtual float eval(const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut, SpectralLobe lobe) const = 0;
+  // `mode` names the direction that was sampled (ω_i in Radiance mode, ω_o in Importance mode).
+  // It matters only for a specular lobe, whose value is the coefficient of the Dirac delta in the
+  // solid angle of that sampled direction, so that f·|cos θ_sampled|/pdf is the path weight in
+  // both modes. Refraction maps solid angles with dω_o/dω_i = η_i²|cos θ_i| / (η_o²|cos θ_o|), so
+  // there the two coefficients differ (Veach97 §5.2); every non-specular f is the same in both.
+  virtual float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+                     SpectralLobe lobe) const = 0;
 
   // Spectral stage: chooses the lobe and the unknown wavelength given the known one (λ_o in
   // Radiance mode, λ_i in Importance mode). Returns pdf 0 when nothing is scattered.

@@ -3,8 +3,10 @@
 #include <stdexcept>
 
 #include "core/json_fields.h"
+#include "materials/dielectric.h"
 #include "materials/jung_bbrrdf.h"
 #include "materials/lambertian.h"
+#include "materials/mirror.h"
 
 namespace kasha {
 namespace {
@@ -14,9 +16,44 @@ Spectrum spectrumField(JsonFields& f, const std::string& key, const SpectrumCont
 }
 
 // Reflectances above 1 create energy; reject them (issue: physical-parameter violations are errors).
-void requireAlbedo(JsonFields& f, const std::string& key, const Spectrum& s, WavelengthRange range) {
+// allowUnphysical: the material's "allow_unphysical": true.
+void requireAlbedo(JsonFields& f, const std::string& key, const Spectrum& s, WavelengthRange range, bool allowUnphysical) {
   const float hi = s.maxValue(range.min, range.max);
-  if (hi > 1.0f + 1e-6f) f.fail(key, "reflectance " + std::to_string(hi) + " exceeds 1 in the wavelength range");
+  if (hi > 1.0f + 1e-6f && !allowUnphysical)
+    f.fail(key, "reflectance " + std::to_string(hi) + " exceeds 1 in the wavelength range");
+}
+
+std::string presetList() {
+  std::string s;
+  for (const std::string& n : Ior::presetNames()) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// "ior": 1.5 | "BK7" | {"type": "cauchy", "A": .., "B": .., "C": ..} | {"type": "sellmeier", "B": [3], "C": [3]}
+Ior parseIor(JsonFields& parent, const std::string& key, const SpectrumContext& ctx) {
+  const nlohmann::json& v = parent.get(key);
+  if (v.is_number()) return Ior::constant(parent.number(key));
+  if (v.is_string()) {
+    const std::string name = v.get<std::string>();
+    const std::optional<Ior> p = Ior::preset(name);
+    if (!p) parent.fail(key, "unknown index of refraction preset '" + name + "' (" + presetList() + ")");
+    return *p;
+  }
+  if (!v.is_object()) parent.fail(key, "expected a number, a preset name or an object, got " + jsonTypeName(v));
+  JsonFields f(v, ctx.file, parent.path(key));
+  const std::string type = f.string("type");
+  std::optional<Ior> ior;
+  if (type == "cauchy") {
+    const float a = f.number("A"), b = f.number("B"), c = f.number("C", 0.0f);
+    ior = Ior::cauchy(a, b, c);
+  } else if (type == "sellmeier") {
+    const Vec3 b = f.vec3("B"), c = f.vec3("C");
+    ior = Ior::sellmeier({b.x, b.y, b.z}, {c.x, c.y, c.z});
+  } else {
+    f.fail("type", "unknown index of refraction type '" + type + "' (cauchy, sellmeier)");
+  }
+  f.finish();
+  return *ior;
 }
 
 }  // namespace
@@ -25,10 +62,12 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
                                         WavelengthRange range) {
   JsonFields f(v, ctx.file, ptr);
   const std::string type = f.string("type");
+  // Physically invalid parameters (creating energy) are errors unless the scene asks for them.
+  const bool unphysical = f.boolean("allow_unphysical", false);
   std::unique_ptr<Material> m;
   if (type == "lambertian") {
     Spectrum r = spectrumField(f, "reflectance", ctx);
-    requireAlbedo(f, "reflectance", r, range);
+    requireAlbedo(f, "reflectance", r, range, unphysical);
     m = std::make_unique<Lambertian>(std::move(r));
   } else if (type == "jung_fluorescent") {
     JungParams p;
@@ -37,14 +76,23 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     p.reflectance = spectrumField(f, "reflectance", ctx);
     p.concentration = f.number("c");
     p.energyRatio = f.number("Q");
+    p.allowUnphysical = unphysical;
     const std::string problem = checkJungParams(p, range);
     if (!problem.empty()) {
       const size_t colon = problem.find(": ");
       f.fail(problem.substr(0, colon), problem.substr(colon + 2));
     }
     m = std::make_unique<JungBbrrdf>(std::move(p), range);
+  } else if (type == "mirror") {
+    Spectrum r = spectrumField(f, "reflectance", ctx);
+    requireAlbedo(f, "reflectance", r, range, unphysical);
+    m = std::make_unique<Mirror>(std::move(r));
+  } else if (type == "dielectric") {
+    Ior ior = parseIor(f, "ior", ctx);
+    if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
+    m = std::make_unique<Dielectric>(std::move(ior), range);
   } else {
-    f.fail("type", "unknown material type '" + type + "' (lambertian, jung_fluorescent)");
+    f.fail("type", "unknown material type '" + type + "' (lambertian, jung_fluorescent, mirror, dielectric)");
   }
   f.finish();
   return m;

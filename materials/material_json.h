@@ -3,6 +3,10 @@
 //   {"type": "lambertian", "reflectance": <spectrum>}
 //   {"type": "jung_fluorescent", "absorption": <spectrum>, "emission": <spectrum>,
 //    "reflectance": <spectrum>, "c": 0..1, "Q": 0..1}
+//   {"type": "mirror", "reflectance": <spectrum>}
+//   {"type": "dielectric", "ior": <index of refraction>}, the index being a number ≥ 1, a preset
+//    ("BK7", "fused_silica"), {"type": "cauchy", "A": a, "B": b, "C": c} (λ in µm, C optional)
+//    or {"type": "sellmeier", "B": [3 numbers], "C": [3 numbers in µm²]} (ior.h)
 #include <memory>
 
 #include <nlohmann/json.hpp>

@@ -108,7 +108,7 @@ TEST(LambertianSampling, SampleMatchesPdfAndEval) {
     // cosine-weighted both ways: pdf = |cos θ_sampled|/π, pdfRev = |cos θ_known|/π
     EXPECT_TRUE(close(s->pdf, std::abs(s->w.z) / kPi, 1e-5));
     EXPECT_TRUE(close(s->pdfRev, std::abs(wKnown.z) / kPi, 1e-5));
-    EXPECT_TRUE(close(s->f, m.eval(ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, SpectralLobe::Elastic), 1e-6));
+    EXPECT_TRUE(close(s->f, m.eval(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, SpectralLobe::Elastic), 1e-6));
     EXPECT_TRUE(close(s->f, r / kPi, 1e-6));
     // weight f·|cos|/pdf = r(λ) exactly (perfect importance sampling)
     EXPECT_TRUE(close(s->f * std::abs(s->w.z) / s->pdf, r, 1e-5));
@@ -146,19 +146,20 @@ TEST(LambertianEval, ValueIsReflectanceOverPiAndNoTransmission) {
   // r(600) = 0.4 + 0.2·(100/200) = 0.5; r(800) = 0.
   const Vec3 up1 = glm::normalize(Vec3(0.1f, 0.2f, 0.9f)), up2 = glm::normalize(Vec3(-0.6f, 0.3f, 0.2f));
   const Vec3 down1 = glm::normalize(Vec3(0.4f, -0.1f, -0.8f)), down2 = glm::normalize(Vec3(-0.3f, -0.3f, -0.4f));
-  EXPECT_NEAR(m.eval(up1, up2, 450.0f, 450.0f, SpectralLobe::Elastic), 0.5 / kPi, 1e-7);
-  EXPECT_NEAR(m.eval(up1, up2, 500.0f, 500.0f, SpectralLobe::Elastic), 0.4 / kPi, 1e-7);
-  EXPECT_NEAR(m.eval(down1, down2, 600.0f, 600.0f, SpectralLobe::Elastic), 0.5 / kPi, 1e-7);  // two-sided
-  EXPECT_EQ(m.eval(up1, up2, 800.0f, 800.0f, SpectralLobe::Elastic), 0.0f);
+  EXPECT_NEAR(m.eval(TransportMode::Radiance, up1, up2, 450.0f, 450.0f, SpectralLobe::Elastic), 0.5 / kPi, 1e-7);
+  EXPECT_NEAR(m.eval(TransportMode::Radiance, up1, up2, 500.0f, 500.0f, SpectralLobe::Elastic), 0.4 / kPi, 1e-7);
+  // two-sided
+  EXPECT_NEAR(m.eval(TransportMode::Radiance, down1, down2, 600.0f, 600.0f, SpectralLobe::Elastic), 0.5 / kPi, 1e-7);
+  EXPECT_EQ(m.eval(TransportMode::Radiance, up1, up2, 800.0f, 800.0f, SpectralLobe::Elastic), 0.0f);
   // Opposite hemispheres: no transmission, and no density for it.
   for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
-    EXPECT_EQ(m.eval(up1, down1, 450.0f, 450.0f, SpectralLobe::Elastic), 0.0f);
-    EXPECT_EQ(m.eval(down2, up2, 450.0f, 450.0f, SpectralLobe::Elastic), 0.0f);
+    EXPECT_EQ(m.eval(mode, up1, down1, 450.0f, 450.0f, SpectralLobe::Elastic), 0.0f);
+    EXPECT_EQ(m.eval(mode, down2, up2, 450.0f, 450.0f, SpectralLobe::Elastic), 0.0f);
     const ScatterDensity d = m.pdf(mode, up1, down1, 450.0f, 450.0f, SpectralLobe::Elastic);
     EXPECT_EQ(d.pdf, 0.0f);
     EXPECT_EQ(d.pdfRev, 0.0f);
     // No fluorescent lobe.
-    EXPECT_EQ(m.eval(up1, up2, 450.0f, 600.0f, SpectralLobe::Fluorescent), 0.0f);
+    EXPECT_EQ(m.eval(mode, up1, up2, 450.0f, 600.0f, SpectralLobe::Fluorescent), 0.0f);
     EXPECT_EQ(m.spectralPdf(mode, 450.0f, 600.0f, SpectralLobe::Fluorescent), 0.0f);
     EXPECT_EQ(m.spectralPdf(mode, 450.0f, 450.0f, SpectralLobe::Elastic), 1.0f);
     EXPECT_EQ(m.spectralPdf(mode, 800.0f, 800.0f, SpectralLobe::Elastic), 0.0f);
@@ -168,7 +169,8 @@ TEST(LambertianEval, ValueIsReflectanceOverPiAndNoTransmission) {
   for (int i = 0; i < 1000; ++i) {
     const Vec3 a = randomDirection(rng), b = randomDirection(rng);
     const float l = kRange.min + rng.uniform() * kRange.width();
-    EXPECT_EQ(m.eval(a, b, l, l, SpectralLobe::Elastic), m.eval(b, a, l, l, SpectralLobe::Elastic));
+    EXPECT_EQ(m.eval(TransportMode::Radiance, a, b, l, l, SpectralLobe::Elastic),
+              m.eval(TransportMode::Radiance, b, a, l, l, SpectralLobe::Elastic));
   }
 }
 

@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/scene_loader.h"
+#include "materials/lambertian.h"
 #include "tests/support.h"
 
 namespace kasha {
@@ -635,6 +636,146 @@ TEST_F(SceneLoader, SceneWithoutLight) {
   const auto scene = loadSceneFromString(j.dump(), path);
   EXPECT_EQ(scene->lights.size(), 1u);
   EXPECT_EQ(scene->shapeLight, (std::vector<int>{-1}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reliability (issue 6): coverage of the scene's range, file sizes and kinds, named-spectrum
+// references, nesting depth, and the explicit opt-in for physically invalid parameters.
+
+TEST_F(SceneLoader, SpectrumFileMustCoverTheScenesRange) {
+  const std::string part = write("part.csv", "wavelength,v\n400,0.5\n700,0.6\n");
+  auto refl = [](json spec) { return [spec](json& j) { j["materials"]["white"]["reflectance"] = spec; }; };
+  // Covering 400-700 nm of 360-830: an error unless "outside" says how to extend it.
+  expectError(refl({{"type", "file"}, {"file", "part.csv"}}), "/materials/white/reflectance",
+              part + " covers 400-700 nm, less than the scene's wavelength range 360-830 nm: add \"outside\": "
+                     "\"clamp\" (continue its end values) or \"zero\"");
+  for (const char* outside : {"clamp", "zero"}) {
+    json j = base;
+    refl({{"type", "file"}, {"file", "part.csv"}, {"outside", outside}})(j);
+    EXPECT_NO_THROW(loadSceneFromString(j.dump(), path)) << outside;
+  }
+  // The same file in a scene whose range it covers needs nothing.
+  {
+    json j = base;
+    j["wavelength_range"] = {400, 700};
+    refl({{"type", "file"}, {"file", "part.csv"}})(j);
+    EXPECT_NO_THROW(loadSceneFromString(j.dump(), path));
+  }
+  // No overlap at all is an error even with "outside".
+  const std::string ir = write("ir.csv", "wavelength,v\n900,0.5\n1000,0.5\n");
+  expectError(refl({{"type", "file"}, {"file", "ir.csv"}, {"outside", "clamp"}}), "/materials/white/reflectance",
+              ir + " covers 900-1000 nm, outside the scene's wavelength range 360-830 nm");
+  // The message names the named spectrum, and emitters are checked too.
+  expectError([&](json& j) {
+    j["spectra"] = {{"lamp", {{"type", "file"}, {"file", "part.csv"}}}};
+    j["shapes"][0]["emission"]["radiance"] = "lamp";
+  }, "/spectra/lamp", "covers 400-700 nm");
+  // Inline tabulated spectra are written on purpose: their documented constant extrapolation stays.
+  json j = base;
+  refl({{"type", "tabulated"}, {"wavelengths", {400, 700}}, {"values", {0.5, 0.6}}})(j);
+  EXPECT_NO_THROW(loadSceneFromString(j.dump(), path));
+}
+
+TEST_F(SceneLoader, SpectrumFileThatIsNotARegularFileOrTooLarge) {
+  auto refl = [](const std::string& file) {
+    return [file](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "file"}, {"file", file}, {"outside", "clamp"}}; };
+  };
+  fs::create_directories(dir + "/folder.csv");
+  expectError(refl("folder.csv"), "/materials/white/reflectance", dir + "/folder.csv: cannot open file (not a regular file)");
+  expectError(refl("/dev/zero"), "/materials/white/reflectance", "/dev/zero: cannot open file (not a regular file)");
+  // A sparse file: large on paper, no disk used.
+  const std::string big = write("big.csv", "wavelength,v\n");
+  fs::resize_file(big, (uint64_t(256) << 20) + 1);
+  expectError(refl("big.csv"), "/materials/white/reflectance",
+              big + ": file is 256 MiB, more than the 256 MiB allowed for a spectrum or matrix file");
+}
+
+TEST_F(SceneLoader, NamedSpectraMayReferToEachOtherButNotInACycle) {
+  // "a" refers to "b", which sorts later: references do not depend on the order of the names.
+  json j = base;
+  j["spectra"] = {{"a", "b"}, {"b", {{"type", "constant"}, {"value", 0.25}}}, {"c", "a"}};
+  j["materials"]["white"]["reflectance"] = "c";
+  const auto scene = loadSceneFromString(j.dump(), path);
+  EXPECT_EQ(static_cast<const Lambertian*>(scene->materials[0].get())->reflectance()(500.0f), 0.25f);
+  // Cycles.
+  expectError([](json& j) { j["spectra"] = {{"loop", "loop"}}; }, "/spectra/loop",
+              "named spectra refer to each other in a cycle: loop -> loop");
+  expectError([](json& j) { j["spectra"] = {{"a", "b"}, {"b", {{"type", "constant"}, {"value", 1}, {"scale", 1}}}, {"c", "d"}, {"d", "e"}, {"e", "c"}}; },
+              "/spectra/e", "named spectra refer to each other in a cycle: c -> d -> e -> c");
+  // A name that shadows a preset cannot refer to the preset by that name.
+  expectError([](json& j) { j["spectra"] = {{"D65", "D65"}}; }, "/spectra/D65",
+              "cycle: D65 -> D65 (for the preset write {\"type\": \"preset\", \"name\": \"D65\"})");
+  json k = base;
+  k["spectra"] = {{"D65", {{"type", "preset"}, {"name", "D65"}, {"scale", 0.01}}}};
+  k["shapes"][0]["emission"]["radiance"] = "D65";
+  EXPECT_NO_THROW(loadSceneFromString(k.dump(), path));
+}
+
+TEST_F(SceneLoader, DeeplyNestedJson) {
+  std::string text = "{\"camera\": ";
+  for (int i = 0; i < 100; ++i) text += "[";
+  for (int i = 0; i < 100; ++i) text += "]";
+  text += "}";
+  const std::string msg = errorOfText(text);
+  EXPECT_EQ(msg.rfind(path + ": /camera/0/0/", 0), 0u) << msg;
+  EXPECT_CONTAINS(msg, "nested more than 64 levels deep");
+}
+
+TEST_F(SceneLoader, UnphysicalParametersNeedAnExplicitOptIn) {
+  auto jung = [](json changes) {
+    return [changes](json& j) {
+      j["materials"]["fluo"] = json::parse(kJungMaterial);
+      j["materials"]["fluo"].update(changes);
+    };
+  };
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = 1.2; }, "/materials/white/reflectance",
+              "exceeds 1 in the wavelength range");
+  expectError(jung({{"Q", 1.5}}), "/materials/fluo/Q", "outside [0, 1]");
+  expectError(jung({{"reflectance", 1.5}}), "/materials/fluo/reflectance", "exceeds 1 in the wavelength range");
+  // With the opt-in they load ...
+  for (const json& changes : {json{{"Q", 1.5}}, json{{"reflectance", 1.5}}, json{{"c", 1.0}, {"absorption", 1.0}}}) {
+    SCOPED_TRACE(changes.dump());
+    json j = base;
+    json c = changes;
+    c["allow_unphysical"] = true;
+    jung(c)(j);
+    EXPECT_NO_THROW(loadSceneFromString(j.dump(), path));
+  }
+  {
+    json j = base;
+    j["materials"]["white"]["reflectance"] = 1.2;
+    j["materials"]["white"]["allow_unphysical"] = true;
+    const auto scene = loadSceneFromString(j.dump(), path);
+    EXPECT_NEAR(static_cast<const Lambertian*>(scene->materials[0].get())->reflectance()(500.0f), 1.2f, 1e-6f);
+  }
+  // ... but negative values, and c·a > 1 (a negative elastic weight), stay errors.
+  expectError(jung({{"Q", -0.5}, {"allow_unphysical", true}}), "/materials/fluo/Q", "is negative");
+  expectError(jung({{"c", 2.0}, {"allow_unphysical", true}}), "/materials/fluo/c", "c·a reaches 2");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = -0.1; j["materials"]["white"]["allow_unphysical"] = true; },
+              "/materials/white/reflectance", "must not be negative");
+  expectError([](json& j) { j["materials"]["white"]["allow_unphysical"] = "yes"; }, "/materials/white/allow_unphysical",
+              "expected true or false, got string");
+}
+
+TEST_F(SceneLoader, NumbersThatOverflowOnceCombined) {
+  // Each number fits a float; their product or sum does not.
+  expectError([](json& j) { j["shapes"][0]["emission"]["radiance"] = {{"type", "constant"}, {"value", 3e38}, {"scale", 10}}; },
+              "/shapes/0/emission/radiance/scale", "the scaled spectrum overflows a 32-bit float");
+  expectError([](json& j) { j["shapes"][0]["emission"]["radiance"] = 3e38; }, "/shapes/0/emission/radiance",
+              "emission over the wavelength range overflows a 32-bit float");
+  expectError([](json& j) { j["shapes"][0]["emission"]["scale"] = 1e37; }, "/shapes/0/emission/scale",
+              "the scaled emission overflows a 32-bit float");
+  expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "point", "position": [0, 1, 0], "intensity": 1e30, "scale": 1e36}])"); },
+              "/lights/0/scale", "overflows");
+  expectError([](json& j) { j["shapes"][0]["center"] = {3e38, 0, 0}; j["shapes"][0]["u"] = {3e38, 0, 0}; }, "/shapes/0",
+              "rectangle has a vertex beyond the range of a 32-bit float");
+  expectError([](json& j) { j["shapes"].push_back({{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1e20}, {"material", "white"}}); },
+              "/shapes/1", "sphere is too large: its area overflows a 32-bit float");
+  expectError([](json& j) { j["shapes"][0]["u"] = {1e9, 0, 0}; j["shapes"][0]["v"] = {0, 1e9, 0}; j["shapes"][0]["emission"]["radiance"] = 1e17; },
+              "/shapes/0/emission", "the emitted power overflows a 32-bit float");
+  write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  expectError([](json& j) { j["shapes"].push_back({{"type", "mesh"}, {"file", "tri.obj"}, {"scale", 1e38}, {"translate", {3e38, 0, 0}}, {"material", "white"}}); },
+              "/shapes/1", "mesh has a vertex beyond the range of a 32-bit float");
 }
 
 }  // namespace

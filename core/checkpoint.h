@@ -1,0 +1,51 @@
+#pragma once
+// Render checkpoints: the film's sums and sample count plus a JSON header, written atomically
+// (temporary file, fsync, rename), so that a render killed at any moment (even by SIGKILL) can be
+// resumed from its last checkpoint. Together with the render loop's fixed sample streams and
+// pass grouping (integrators/render_loop.h), a resumed render gives the same bits as an
+// uninterrupted one.
+//
+// File layout (native byte order, recorded in the header; little-endian on every supported machine):
+//   8 bytes   magic "KASHACKP"
+//   u32       format version (1)
+//   u32       0 (reserved)
+//   u64       header length n, then n bytes of JSON: {"settings": {...}, "film": {...}, "run": {...}}
+//   u64       pixel count w·h, then w·h·3 doubles of camera-sample sums, w·h·3 doubles of splat sums
+//   u64       checksum of every byte before it
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/film.h"
+
+namespace kasha {
+
+struct CheckpointData {
+  nlohmann::json settings;  // what must match to resume (scene hash, integrator, seed, ...)
+  nlohmann::json run;       // free-form progress information (samples per pass, seconds, ...)
+  int width = 0, height = 0, spp = 0;
+  uint64_t nonFiniteSamples = 0;
+  std::pair<int, int> firstNonFinitePixel{-1, -1};
+  std::vector<DVec3> sums, splats;
+};
+
+// Writes the film's state with `settings` and `run` to `path` atomically. Throws
+// std::runtime_error naming the file if it cannot be written (the previous checkpoint stays).
+void writeCheckpoint(const std::string& path, const nlohmann::json& settings, const nlohmann::json& run, const Film& film);
+
+// Reads a checkpoint. A missing, truncated, corrupted or foreign file is an InputError naming it.
+CheckpointData readCheckpoint(const std::string& path);
+
+// Throws an InputError naming `path` for the first entry of `saved` that differs from `current`
+// ("was made with seed 1, this render has seed 2"); entries missing from either count as different.
+void requireSameSettings(const nlohmann::json& saved, const nlohmann::json& current, const std::string& path);
+
+// Puts a checkpoint's state into the film (which must have its resolution).
+void restoreFilm(CheckpointData&& data, Film& film);
+
+// A 64-bit hash of bytes (word-wise FNV-1a with a SplitMix64 finaliser): checksums and scene hashes.
+uint64_t hashBytes(const void* data, size_t size, uint64_t seed = 0);
+
+}  // namespace kasha

@@ -1,0 +1,92 @@
+#include "integrators/photon_mapping/photon_tracer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include "core/memory_budget.h"
+
+namespace kasha {
+namespace {
+
+constexpr size_t kPathsPerChunk = 1024;
+
+// One light subpath, as the light tracer starts and continues it (without camera connections).
+void tracePath(const Scene& scene, const PhotonTracing& s, Rng& rng, std::vector<Photon>& out, RayCounter& counter) {
+  const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(rng.uniform(), rng.uniform());
+  if (lw.pdf <= 0.0f) return;
+  const Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
+  const std::optional<EmissionSample> es = scene.lights[lw.light]->sampleEmission(lw.lambda, uPos, uDir);
+  if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return;
+  // Flux per subpath: Le·cos/(p_pos·p_dir·p(light, λ)).
+  float beta = es->Le * es->cosOrigin / (es->pdfPos * es->pdfDir * lw.pdf);
+  if (!(beta > 0.0f)) return;
+  const float beta0 = beta;  // Russian roulette compares the throughput with the emitted weight
+  float lambda = lw.lambda;
+  Ray ray{glm::dot(es->n, es->n) > 0.0f ? offsetPoint(es->p, es->n, es->w) : es->p, es->w};
+  for (int depth = 1; depth <= s.maxDepth; ++depth) {
+    const std::optional<Hit> hit = scene.accel->intersect(ray);
+    ++counter.closest;
+    if (!hit) break;
+    const Material& mat = scene.material(*hit);
+    const Frame frame = Frame::fromNormal(hit->ng);
+    const Vec3 wi = frame.toLocal(-ray.d);
+    if (!mat.purelySpecular()) out.push_back({{hit->p.x, hit->p.y, hit->p.z}, {wi.x, wi.y, wi.z}, lambda, beta, uint32_t(depth)});
+    if (depth == s.maxDepth) break;
+    // Both stages in Importance mode: lobe and λ_o (Jung18 eq. 6), then the direction.
+    const std::optional<ScatterSample> ss =
+        mat.sample(TransportMode::Importance, wi, lambda, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+    if (!ss) break;
+    beta *= ss->f * std::abs(ss->w.z) / ss->pdf;
+    if (!(beta > 0.0f)) break;
+    lambda = ss->lambda;
+    const Vec3 w = frame.toWorld(ss->w);
+    ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
+    if (depth >= s.rrDepth) {
+      const float q = std::min(1.0f, beta / beta0);
+      if (rng.uniform() >= q) break;
+      beta /= q;
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<Photon> tracePhotons(const Scene& scene, const PhotonTracing& s, uint64_t seed, RayCounter& counter) {
+  const size_t chunks = (s.paths + kPathsPerChunk - 1) / kPathsPerChunk;
+  std::vector<std::vector<Photon>> parts(chunks);
+  std::vector<RayCounter> counters(chunks);
+  const size_t maxStored = size_t(s.memoryLimit / kBytesPerPhoton);
+  std::atomic<size_t> stored{0};
+  std::atomic<bool> overflow{false};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t c = range.begin(); c < range.end() && !overflow.load(std::memory_order_relaxed); ++c) {
+      const size_t end = std::min(s.paths, (c + 1) * kPathsPerChunk);
+      for (size_t j = c * kPathsPerChunk; j < end; ++j) {
+        Rng rng(seed, uint64_t(j));
+        tracePath(scene, s, rng, parts[c], counters[c]);
+      }
+      if (stored.fetch_add(parts[c].size()) + parts[c].size() > maxStored) overflow = true;
+    }
+  });
+  for (const RayCounter& c : counters) counter.closest += c.closest;
+  const size_t total = stored.load();
+  if (overflow)
+    requireMemory(saturatingMul(total, kBytesPerPhoton),
+                  "the photon map of one pass (at least " + std::to_string(total) + " photons × " +
+                      std::to_string(kBytesPerPhoton) + " bytes from " + std::to_string(s.paths) +
+                      " light subpaths; lower render/ppm/photons_per_pass)",
+                  s.memoryLimit);
+  std::vector<Photon> photons;
+  photons.reserve(total);
+  for (std::vector<Photon>& part : parts) {
+    photons.insert(photons.end(), part.begin(), part.end());
+    std::vector<Photon>().swap(part);
+  }
+  return photons;
+}
+
+}  // namespace kasha

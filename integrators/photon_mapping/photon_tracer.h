@@ -1,0 +1,26 @@
+#pragma once
+// The photon pass: light subpaths in Importance mode, started with the joint (light, wavelength)
+// density of LightSelector, each photon keeping its own wavelength, which the material's spectral
+// stage changes at fluorescent events (Jung18 eq. 6: P_l, then λ_o ∝ e).
+#include <cstdint>
+#include <vector>
+
+#include "integrators/integrator.h"
+#include "integrators/photon_mapping/photon.h"
+
+namespace kasha {
+
+struct PhotonTracing {
+  size_t paths = 0;      // light subpaths to trace (the photons "emitted" in the estimate)
+  int maxDepth = 0;      // photons are stored at vertices 1..maxDepth
+  int rrDepth = 3;       // Russian roulette from this vertex on
+  uint64_t memoryLimit = 0;  // bytes: stored photons × kBytesPerPhoton must stay within it
+};
+
+// Traces the subpaths and returns a photon for every vertex that has a non-specular lobe. Path j
+// draws from its own stream of `seed`, and the photons come in path order, so the result does not
+// depend on the number of threads. Throws MemoryLimitError as soon as the photons stored so far
+// exceed the memory limit.
+std::vector<Photon> tracePhotons(const Scene& scene, const PhotonTracing& settings, uint64_t seed, RayCounter& counter);
+
+}  // namespace kasha

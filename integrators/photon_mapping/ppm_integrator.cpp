@@ -1,0 +1,139 @@
+#include "integrators/photon_mapping/ppm_integrator.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/color.h"
+#include "core/memory_budget.h"
+#include "integrators/photon_mapping/photon_map.h"
+#include "integrators/photon_mapping/photon_tracer.h"
+
+namespace kasha {
+namespace {
+
+// The default r_1 puts this many photons in a disc if a pass's photons spread evenly over all
+// surfaces (docs/photon-mapping.md).
+constexpr float kPhotonsPerDisc = 16.0f;
+
+struct PhotonPass final : PassData {
+  PhotonPass(std::vector<Photon> photons, float r, float h, size_t paths)
+      : map(std::move(photons)), radius(r), bandwidth(h), density(1.0f / (kPi * r * r * float(paths))) {}
+  PhotonMap map;
+  float radius, bandwidth;
+  float density;  // 1/(π r² N): turns a sum of f·Φ_p into reflected radiance
+};
+
+// The reflected radiance at a camera vertex from the photons of the pass, as XYZ: `sensor` is the
+// camera sample's W(λ)/p(λ) times the camera path's throughput, λ the wavelength leaving this
+// vertex towards the camera, `bounces` the specular vertices before it.
+Vec3 gather(const PhotonPass& pass, const Material& mat, const Vec3& p, const Vec3& wo, float lambda, const Vec3& sensor,
+            int bounces, int maxDepth, bool exactElastic) {
+  const Observer& obs = Observer::cie1931();
+  Vec3 sum(0.0f);
+  for (const size_t i : pass.map.within(p, pass.radius)) {
+    const Photon& ph = pass.map[i];
+    if (int(ph.depth) + bounces > maxDepth) continue;
+    const Vec3 wi(ph.wi[0], ph.wi[1], ph.wi[2]);  // the photon's direction in its own surface frame
+    // Fluorescent lobe: exact for any pair of wavelengths (transport.md §4).
+    if (mat.fluoresces())
+      sum += sensor * (mat.eval(TransportMode::Radiance, wi, wo, ph.lambda, lambda, SpectralLobe::Fluorescent) * ph.power);
+    const float fe = mat.eval(TransportMode::Radiance, wi, wo, ph.lambda, ph.lambda, SpectralLobe::Elastic) * ph.power;
+    if (fe <= 0.0f) continue;
+    if (exactElastic)
+      sum += obs.weight(ph.lambda) * fe;  // the sensor at the photon's own wavelength (β = 1 here)
+    else
+      sum += sensor * (fe * ppmWavelengthKernel(ph.lambda - lambda, pass.bandwidth));
+  }
+  return sum * pass.density;
+}
+
+}  // namespace
+
+float ppmRadiusSquared(float r1, float alpha, int iteration) {
+  const double i = iteration;
+  return float(double(r1) * r1 * std::exp(std::lgamma(i + alpha) - std::lgamma(1.0 + alpha) - std::lgamma(i + 1.0)));
+}
+
+float ppmWavelengthKernel(float x, float h) {
+  const float t = x / h;
+  return t * t < 1.0f ? 0.75f * (1.0f - t * t) / h : 0.0f;
+}
+
+PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
+    : sensor_(s.sensor, scene.range), maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
+      alwaysKernel_(s.ppm.alwaysKernel), memoryLimit_(s.memoryLimit) {
+  const PhotonMappingSettings& p = s.ppm;
+  if (p.photonsPerPass < 0 || !(p.radius >= 0.0f) || !(p.bandwidth >= 0.0f))
+    throw std::invalid_argument("ppm: photons per pass, radius and bandwidth must not be negative");
+  // Consistency of the elastic kernel (three dimensions: two in space, one in wavelength) needs α > 1/3.
+  if (!(p.alpha > 1.0f / 3.0f && p.alpha < 1.0f)) throw std::invalid_argument("ppm: alpha must be in (1/3, 1)");
+  // SmallVCM's choice: as many light subpaths per iteration as pixels.
+  photonsPerPass_ = p.photonsPerPass > 0 ? size_t(p.photonsPerPass)
+                                         : size_t(scene.camera.width()) * size_t(scene.camera.height());
+  requireMemory(saturatingMul(photonsPerPass_, kBytesPerPhoton),
+                "the photon map of one pass (" + std::to_string(photonsPerPass_) + " photons × " +
+                    std::to_string(kBytesPerPhoton) + " bytes; lower render/ppm/photons_per_pass)",
+                memoryLimit_);
+  double area = 0.0;
+  for (const Shape& shape : scene.shapes) area += shape.area;
+  radius1_ = p.radius > 0.0f ? p.radius : float(std::sqrt(kPhotonsPerDisc * area / (kPi * double(photonsPerPass_))));
+  bandwidth1_ = p.bandwidth > 0.0f ? p.bandwidth : 0.01f * (scene.range.max - scene.range.min);
+}
+
+float PpmIntegrator::radius(int sample) const { return std::sqrt(ppmRadiusSquared(radius1_, alpha_, sample + 1)); }
+
+float PpmIntegrator::bandwidth(int sample) const { return bandwidth1_ * radius(sample) / radius1_; }
+
+std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int firstSample, int, uint64_t seed,
+                                                         RayCounter& counter) const {
+  std::vector<Photon> photons;
+  if (maxDepth_ > 0) {
+    PhotonTracing t;
+    t.paths = photonsPerPass_;
+    t.maxDepth = maxDepth_;
+    t.rrDepth = rrDepth_;
+    t.memoryLimit = memoryLimit_;
+    // A stream family per iteration, apart from the camera samples' (render_loop.cpp).
+    const uint64_t passSeed = mixBits(mixBits(seed ^ 0x5851f42d4c957f2dULL) + uint64_t(firstSample));
+    photons = tracePhotons(scene, t, passSeed, counter);
+  }
+  return std::make_unique<PhotonPass>(std::move(photons), radius(firstSample), bandwidth(firstSample), photonsPerPass_);
+}
+
+Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
+  const auto& pass = static_cast<const PhotonPass&>(*ctx.pass);
+  const WavelengthSample ws = sensor_.sample(rng.uniform());
+  if (ws.pdf <= 0.0f) return Vec3(0.0f);
+  Ray ray = scene.camera.generateRay(pixel + Vec2(rng.uniform(), rng.uniform()));
+  const Vec3 sensor = Observer::cie1931().weight(ws.lambda) / ws.pdf;  // W(λ)/p(λ)
+  float lambda = ws.lambda, beta = 1.0f;  // beta: throughput of the specular vertices so far
+  Vec3 xyz(0.0f);
+  for (int bounces = 0;; ++bounces) {
+    const std::optional<Hit> hit = scene.accel->intersect(ray);
+    ++ctx.counter.closest;
+    if (!hit) {
+      if (const EnvironmentLight* env = scene.environment()) xyz += sensor * (beta * env->Le(lambda));
+      break;
+    }
+    const Shape& shape = scene.shapes[hit->shape];
+    if (shape.emission) xyz += sensor * (beta * shape.emission->eval(lambda, hit->ng, -ray.d));
+    if (bounces >= maxDepth_) break;
+    const Material& mat = scene.material(*hit);
+    const Frame frame = Frame::fromNormal(hit->ng);
+    const Vec3 wo = frame.toLocal(-ray.d);
+    if (!mat.purelySpecular())
+      xyz += gather(pass, mat, hit->p, wo, lambda, sensor * beta, bounces, maxDepth_, bounces == 0 && !alwaysKernel_);
+    // The gather covers every non-specular lobe; a sampled specular lobe continues the path.
+    const std::optional<ScatterSample> ss =
+        mat.sample(TransportMode::Radiance, wo, lambda, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+    if (!ss || !ss->specular) break;
+    beta *= ss->f * std::abs(ss->w.z) / ss->pdf;
+    if (!(beta > 0.0f)) break;
+    lambda = ss->lambda;
+    const Vec3 w = frame.toWorld(ss->w);
+    ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
+  }
+  return xyz;
+}
+
+}  // namespace kasha

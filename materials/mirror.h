@@ -1,0 +1,38 @@
+#pragma once
+// Smooth mirror (a polished conductor) with spectral reflectance R(λ): elastic, specular, both
+// sides of the surface.
+//
+// Convention for the Dirac delta (material.h, specular_lobe.h): the only direction scattered
+// into is the mirror direction ω' = (−x, −y, z) of the known one, chosen with discrete
+// probability 1, and there f is the delta's coefficient R(λ)/|cos θ|, so the path weight
+// f·|cos θ|/pdf is R(λ) (pbrt-v4's convention for specular BxDFs). Reflection maps solid angle
+// onto itself, so the value is the same in both transport modes and reciprocal. Every other
+// direction gets f = 0 and density 0.
+#include "core/spectrum.h"
+#include "materials/material.h"
+
+namespace kasha {
+
+class Mirror final : public Material {
+ public:
+  explicit Mirror(Spectrum reflectance) : r_(std::move(reflectance)) {}
+
+  float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+             SpectralLobe lobe) const override;
+  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
+  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
+  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
+                                                 float lambdaIn, float lambdaOut, Vec2 u) const override;
+  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
+                     float lambdaOut) const override;
+  bool fluoresces() const override { return false; }
+  bool purelySpecular() const override { return true; }
+  std::string describe() const override { return "mirror"; }
+
+  const Spectrum& reflectance() const { return r_; }
+
+ private:
+  Spectrum r_;
+};
+
+}  // namespace kasha

@@ -1,0 +1,54 @@
+// libFuzzer target: the scene loader (core/scene_loader.h) on arbitrary text. A scene is either
+// loaded or rejected with an InputError (a message naming the file and the place); anything else
+// (a crash, a sanitizer report, another exception, a hang, running out of memory) is a finding.
+// A scene that loads is also rendered, 4×4 pixels at 1 sample with the path and light tracers:
+// whatever a valid scene holds, rendering it must not crash or reach undefined behaviour, and
+// no non-finite value may reach the film.
+// Relative file names resolve in tests/fuzz/data/, which holds a spectrum, a matrix and a mesh.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "core/error.h"
+#include "core/film.h"
+#include "core/scene_loader.h"
+#include "integrators/integrator_factory.h"
+#include "integrators/render_loop.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace kasha;
+  static const std::string path = std::string(KASHA_FUZZ_DATA_DIR) + "/fuzz.json";
+  SceneLoadOptions options;
+  options.memoryLimit = uint64_t(64) << 20;  // any file of the machine can be named: refuse large ones
+  std::unique_ptr<Scene> scene;
+  try {
+    scene = loadSceneFromString(std::string(reinterpret_cast<const char*>(data), size), path, options);
+  } catch (const InputError&) {
+    return 0;
+  }
+  const Camera& c = scene->camera;
+  scene->camera = Camera(c.position(), c.position() + c.forward(), c.up(), c.fovYDegrees(), 4, 4);
+  RenderSettings settings = scene->render;
+  settings.maxDepth = std::min(settings.maxDepth, 6);
+  for (const char* name : {"pt", "lt"}) {
+    const auto integrator = makeIntegrator(name, *scene, settings);
+    Film film(4, 4);
+    RenderOptions opt;
+    opt.spp = 1;
+    opt.threads = 1;
+    opt.seed = settings.seed;
+    render(*scene, *integrator, film, opt);
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) {
+        const Vec3 v = film.xyz(x, y);
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+          std::fprintf(stderr, "fuzz_scene: non-finite pixel (%d, %d) from %s\n", x, y, name);
+          std::abort();
+        }
+      }
+  }
+  return 0;
+}

@@ -1,0 +1,294 @@
+// Interrupted renders lose nothing. The kasha binary, run as a child process:
+// - a checkpointing render killed with SIGKILL and resumed gives the image of an uninterrupted
+//   render with the same seed, bit for bit (the film's double sums and the EXR's floats), for the
+//   path tracer (camera samples only) and the light tracer (splats);
+// - SIGINT and SIGTERM stop a render after the current pass: the image, PNG, statistics
+//   ("interrupted": true) and checkpoint are written, and the exit code is 130 or 143;
+// - a checkpoint that does not match the render, or is truncated or corrupted, is refused with
+//   one line naming it.
+//
+// Why bit-identical and not merely close: sample s of pixel p draws from the PCG32 stream
+// (seed, p, s) whatever the pass or thread; a pixel's camera samples are added to its double sum in
+// sample order; splats are merged after each pass in tile order, and the resumed render groups
+// samples into the same passes (the checkpoint stores the samples per pass and is written only at
+// pass boundaries). So the resumed render performs the same floating-point additions in the same
+// order as the uninterrupted one, and the checkpoint stores the sums' exact bits.
+#include <gtest/gtest.h>
+
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfChannelList.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "core/checkpoint.h"
+#include "tests/process.h"
+
+namespace kasha {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::runKasha;
+
+#define EXPECT_CONTAINS(haystack, needle) \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "text: " << (haystack)
+
+// 32×32 pixels: 64 samples per pixel in a pass (at least 65536 samples per pass), so `kSpp` makes
+// kSpp / 64 passes. A fluorescent sphere on a floor under an area light: camera paths and light
+// paths (splats) both contribute.
+constexpr int kSpp = 64 * 24;
+const char* kScene = R"({
+  "render": {"spp": 1536, "max_depth": 6},
+  "camera": {"position": [0, 1, -4], "look_at": [0, 1, 0], "fov": 50, "resolution": [32, 32]},
+  "materials": {"white": {"type": "lambertian", "reflectance": 0.7},
+                "dye": {"type": "jung_fluorescent",
+                        "absorption": {"type": "gaussian", "center": 450, "fwhm": 40, "peak": 0.9},
+                        "emission": {"type": "gaussian", "center": 520, "fwhm": 30},
+                        "reflectance": 0.4, "c": 0.8, "Q": 0.9}},
+  "shapes": [
+    {"name": "floor", "type": "rectangle", "center": [0, 0, 0], "u": [0, 0, 2], "v": [2, 0, 0], "material": "white"},
+    {"name": "ball", "type": "sphere", "center": [0, 1, 0], "radius": 0.7, "material": "dye"},
+    {"name": "lamp", "type": "rectangle", "center": [0, 2.5, 0], "u": [0.5, 0, 0], "v": [0, 0, 0.5], "material": "white",
+     "emission": {"radiance": "D65", "scale": 0.05, "two_sided": true}}
+  ]
+})";
+
+// The channels of an EXR as written by kasha, by name.
+std::map<std::string, std::vector<float>> readExr(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i dw = file.header().dataWindow();
+  const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+  std::map<std::string, std::vector<float>> channels;
+  Imf::FrameBuffer fb;
+  for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+    std::vector<float>& c = channels[it.name()];
+    c.resize(size_t(w) * h);
+    fb.insert(it.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(c.data() - dw.min.x - size_t(dw.min.y) * w),
+                                    sizeof(float), sizeof(float) * w));
+  }
+  file.setFrameBuffer(fb);
+  file.readPixels(dw.min.y, dw.max.y);
+  return channels;
+}
+
+// Number of values whose bits differ.
+size_t differingBits(const std::vector<float>& a, const std::vector<float>& b) {
+  if (a.size() != b.size()) return std::max(a.size(), b.size());
+  size_t n = 0;
+  for (size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(float)) != 0;
+  return n;
+}
+
+size_t differingBits(const std::vector<DVec3>& a, const std::vector<DVec3>& b) {
+  if (a.size() != b.size()) return std::max(a.size(), b.size());
+  size_t n = 0;
+  for (size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(DVec3)) != 0;
+  return n;
+}
+
+class Checkpoint : public ::testing::TestWithParam<std::string> {
+ protected:
+  static std::string suiteDir() {
+    return (fs::path(::testing::TempDir()) / ("kasha_checkpoint." + std::to_string(getpid()))).string();
+  }
+  void SetUp() override {
+    ASSERT_TRUE(fs::is_regular_file(test::kKashaBinary)) << "build the kasha target first";
+    std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    for (char& c : name)
+      if (c == '/') c = '_';
+    dir = suiteDir() + "/" + name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    scene = dir + "/scene.json";
+    std::ofstream(scene) << kScene;
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir);  // kept for inspection on failure
+  }
+  static void TearDownTestSuite() { fs::remove_all(suiteDir()); }
+
+  // `kasha render scene` with the test's integrator, 2 threads, into dir/<name>.exr.
+  std::vector<std::string> renderArgs(const std::string& name, std::vector<std::string> extra = {},
+                                      const std::string& seed = "7") const {
+    std::vector<std::string> a = {"render", scene, "-q", "--threads", "2", "--seed", seed, "--integrator", GetParam(),
+                                  "-o", dir + "/" + name + ".exr"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  }
+
+  json stats(const std::string& name) const { return json::parse(test::readTextFile(dir + "/" + name + ".stats.json")); }
+
+  // An uninterrupted render with a final checkpoint: the reference.
+  void renderReference() {
+    const auto r = runKasha(renderArgs("reference", {"--checkpoint", dir + "/reference.ckpt"}), dir + "/reference");
+    ASSERT_EQ(r.code, 0) << r.err;
+    ASSERT_EQ(stats("reference")["spp"], kSpp);
+  }
+
+  // The resumed render equals the reference: film sums bit for bit, EXR floats bit for bit.
+  void expectSameAsReference(const std::string& name) const {
+    const CheckpointData ref = readCheckpoint(dir + "/reference.ckpt");
+    const CheckpointData got = readCheckpoint(dir + "/" + name + ".ckpt");
+    EXPECT_EQ(got.spp, kSpp);
+    EXPECT_EQ(differingBits(got.sums, ref.sums), 0u) << "camera-sample sums differ";
+    EXPECT_EQ(differingBits(got.splats, ref.splats), 0u) << "splat sums differ";
+    const auto a = readExr(dir + "/reference.exr"), b = readExr(dir + "/" + name + ".exr");
+    ASSERT_EQ(a.size(), 6u);
+    for (const auto& [channel, values] : a) {
+      ASSERT_TRUE(b.count(channel)) << channel;
+      EXPECT_EQ(differingBits(values, b.at(channel)), 0u) << "EXR channel " << channel << " differs";
+    }
+    double sum = 0.0;
+    for (float v : a.at("XYZ.Y")) sum += v;
+    EXPECT_GT(sum, 0.0) << "the reference image is black: the comparison would prove little";
+  }
+
+  // Polls the checkpoint (replaced atomically, so every read sees a whole file) until it holds at
+  // least `spp` samples per pixel.
+  static void waitForCheckpoint(const std::string& ckpt, int spp) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
+    int saved = 0;
+    while (saved < spp && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      if (fs::exists(ckpt)) saved = readCheckpoint(ckpt).spp;
+    }
+  }
+
+  std::string dir, scene;
+};
+
+// Kill -9 a checkpointing render a third of the way through, resume it, compare.
+TEST_P(Checkpoint, ResumeAfterSigkillIsBitIdentical) {
+  renderReference();
+  const std::string ckpt = dir + "/killed.ckpt";
+  const test::Child c = test::spawnKasha(renderArgs("killed", {"--checkpoint", ckpt, "--checkpoint-interval", "0"}),
+                                         dir + "/killed");
+  ASSERT_GT(c.pid, 0);
+  // A third of the samples in, kill.
+  waitForCheckpoint(ckpt, kSpp / 3);
+  ASSERT_EQ(kill(c.pid, SIGKILL), 0);
+  const int status = test::waitChild(c, 60);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL)
+      << "the render finished before it could be killed; make the test scene slower";
+  const int killedAt = readCheckpoint(ckpt).spp;
+  EXPECT_GE(killedAt, kSpp / 3);
+  EXPECT_LT(killedAt, kSpp) << "nothing left to resume";
+  EXPECT_FALSE(fs::exists(dir + "/killed.exr"));
+
+  const auto r = runKasha(renderArgs("killed", {"--resume", ckpt}), dir + "/resumed");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json st = stats("killed");
+  EXPECT_EQ(st["spp"], kSpp);
+  EXPECT_EQ(st["resumed"]["spp"], killedAt);
+  EXPECT_EQ(st["samples"], uint64_t(kSpp - killedAt) * 32 * 32);  // only the samples of this run
+  expectSameAsReference("killed");
+}
+
+// SIGINT: the image so far, its statistics and a checkpoint are written; exit code 130. Resuming
+// that checkpoint completes the render to the reference's bits.
+TEST_P(Checkpoint, SigintWritesImageStatsAndCheckpoint) {
+  renderReference();
+  const std::string ckpt = dir + "/stopped.ckpt";
+  const test::Child c =
+      test::spawnKasha(renderArgs("stopped", {"--checkpoint", ckpt, "--checkpoint-interval", "0"}), dir + "/stopped");
+  ASSERT_GT(c.pid, 0);
+  waitForCheckpoint(ckpt, 1);  // rendering has started
+  ASSERT_EQ(kill(c.pid, SIGINT), 0);
+  const int status = test::waitChild(c, 120);
+  ASSERT_TRUE(WIFEXITED(status)) << "status " << status;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << test::readTextFile(c.err);
+  EXPECT_CONTAINS(test::readTextFile(c.err), "stopping after the current pass");
+  for (const char* ext : {".exr", ".png", ".stats.json"}) EXPECT_TRUE(fs::is_regular_file(dir + "/stopped" + ext)) << ext;
+  const json st = stats("stopped");
+  EXPECT_EQ(st["interrupted"], true);
+  EXPECT_EQ(st["signal"], "SIGINT");
+  const int spp = st["spp"];
+  EXPECT_LT(spp, kSpp);
+  EXPECT_EQ(spp % st["samples_per_pass"].get<int>(), 0) << "whole passes only";
+  EXPECT_EQ(st["samples"], uint64_t(spp) * 32 * 32);
+  ASSERT_TRUE(fs::is_regular_file(ckpt));
+  EXPECT_EQ(readCheckpoint(ckpt).spp, spp);  // the last checkpoint is written on the way out
+  EXPECT_FALSE(fs::exists(ckpt + ".tmp"));
+
+  const auto r = runKasha(renderArgs("stopped", {"--resume", ckpt}), dir + "/resumed");
+  ASSERT_EQ(r.code, 0) << r.err;
+  expectSameAsReference("stopped");
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, Checkpoint, ::testing::Values("pt", "lt"));
+
+// The tests below do not depend on the integrator.
+class CheckpointCli : public Checkpoint {};
+
+TEST_P(CheckpointCli, SigtermExitsWith143) {
+  const std::string ckpt = dir + "/term.ckpt";
+  const test::Child c =
+      test::spawnKasha(renderArgs("term", {"--checkpoint", ckpt, "--checkpoint-interval", "0"}), dir + "/term");
+  ASSERT_GT(c.pid, 0);
+  waitForCheckpoint(ckpt, 1);
+  ASSERT_EQ(kill(c.pid, SIGTERM), 0);
+  const int status = test::waitChild(c, 120);
+  ASSERT_TRUE(WIFEXITED(status)) << "status " << status;
+  EXPECT_EQ(WEXITSTATUS(status), 143);
+  const json st = stats("term");
+  EXPECT_EQ(st["interrupted"], true);
+  EXPECT_EQ(st["signal"], "SIGTERM");
+  EXPECT_TRUE(fs::is_regular_file(dir + "/term.exr"));
+}
+
+TEST_P(CheckpointCli, MismatchedOrDamagedCheckpointsAreRefused) {
+  const std::string ckpt = dir + "/small.ckpt";
+  auto r = runKasha(renderArgs("small", {"--spp", "64", "--checkpoint", ckpt}), dir + "/small");
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(readCheckpoint(ckpt).spp, 64);
+
+  auto expectRefused = [&](const std::vector<std::string>& extra, const std::string& reason, const std::string& seed = "7") {
+    SCOPED_TRACE(reason);
+    const auto f = runKasha(renderArgs("resumed", extra, seed), dir + "/resumed");
+    EXPECT_EQ(f.code, 1) << f.err;
+    const auto lines = test::textLines(f.err);
+    ASSERT_EQ(lines.size(), 1u) << f.err;
+    EXPECT_EQ(lines[0].rfind("kasha: error: ", 0), 0u) << lines[0];
+    EXPECT_CONTAINS(lines[0], reason);
+    EXPECT_FALSE(fs::exists(dir + "/resumed.exr"));
+  };
+  // Other settings than the checkpoint's.
+  expectRefused({"--resume", ckpt}, ckpt + ": checkpoint was made with seed 7, this render has seed 8", "8");
+  expectRefused({"--resume", ckpt, "--max-depth", "3"}, "max_depth");
+  expectRefused({"--resume", ckpt, "--sensor-sampling", "uniform"}, "sensor_sampling");
+  {
+    std::ofstream(scene, std::ios::app) << "\n";  // the scene file changed
+    expectRefused({"--resume", ckpt}, "scene_hash");
+    std::ofstream(scene) << kScene;
+  }
+  // Missing, not a checkpoint, truncated, corrupted.
+  expectRefused({"--resume", dir + "/none.ckpt"}, dir + "/none.ckpt: cannot open checkpoint file");
+  expectRefused({"--resume", scene}, "not a kasha checkpoint");
+  const std::string bytes = test::readTextFile(ckpt);
+  std::ofstream(dir + "/truncated.ckpt", std::ios::binary) << bytes.substr(0, bytes.size() - 100);
+  expectRefused({"--resume", dir + "/truncated.ckpt"}, "truncated");
+  std::string flipped = bytes;
+  flipped[bytes.size() / 2] ^= 0x10;
+  std::ofstream(dir + "/corrupted.ckpt", std::ios::binary) << flipped;
+  expectRefused({"--resume", dir + "/corrupted.ckpt"}, "corrupted");
+  // A checkpoint directory that does not exist is an error before rendering.
+  expectRefused({"--checkpoint", dir + "/no/such/dir.ckpt"}, "output directory does not exist");
+
+  // The same settings resume; a finished render can be continued to more samples.
+  r = runKasha(renderArgs("more", {"--resume", ckpt, "--spp", "128"}), dir + "/more");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(stats("more")["spp"], 128);
+  EXPECT_EQ(readCheckpoint(ckpt).spp, 128);  // --resume keeps checkpointing into its file
+}
+
+INSTANTIATE_TEST_SUITE_P(Cli, CheckpointCli, ::testing::Values("pt"));
+
+}  // namespace
+}  // namespace kasha
