@@ -19,6 +19,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/compare_command.h"
 #include "cli/progress.h"
 #include "core/checkpoint.h"
 #include "core/error.h"
@@ -315,7 +316,8 @@ int main(int argc, char** argv) {
   render->add_option("--seed", ra.seed, "Random seed")->check(numberCheck(Sign::NonNegative, true));
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")
       ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 4096));
-  render->add_option("--integrator", ra.integrator, "Integrator: pt (path tracing) | lt (light tracing)");
+  render->add_option("--integrator", ra.integrator,
+                     "Integrator: pt | lt | bdpt (= bdpt-independent) | bdpt-shared | bdpt-independent | ppm");
   render->add_option("--sensor-sampling", ra.sensor, "Camera wavelength sampling: uniform | cmf")
       ->check(CLI::IsMember({"uniform", "cmf"}));
   render->add_option("--max-depth", ra.maxDepth, "Maximum number of scattering events")->check(numberCheck(Sign::NonNegative, true));
@@ -338,23 +340,39 @@ int main(int argc, char** argv) {
   matrix->add_option("-o,--output", ma.output, "CSV output (default: standard output)");
   matrix->add_option("--memory-limit", ma.memoryLimit, "Largest buffer kasha may allocate (default 8G)")->check(kByteSize);
 
+  CompareArgs ca;
+  CLI::App* compare = app.add_subcommand("compare", "Render with several integrators for equal time and report RMSE vs a reference");
+  compare->add_option("scene", ca.scene, "Scene file (JSON)")->required();
+  compare->add_option("--reference", ca.reference, "Reference OpenEXR (rendered first if it does not exist)")->required();
+  compare->add_option("--integrators", ca.integrators, "Comma-separated integrators")->delimiter(',');
+  compare->add_option("--time", ca.time, "Seconds per integrator")->check(numberCheck(Sign::NonNegative, false));
+  compare->add_option("--spp", ca.spp, "Samples per pixel per integrator")->check(numberCheck(Sign::Positive, true));
+  compare->add_option("--reference-time", ca.referenceTime, "Seconds for the reference (default 60)")
+      ->check(numberCheck(Sign::Positive, false));
+  compare->add_option("--reference-integrator", ca.referenceIntegrator, "Integrator for the reference (default pt)");
+  compare->add_option("--csv", ca.csv, "Write the table as CSV");
+  compare->add_option("--seed", ca.seed, "Random seed")->check(numberCheck(Sign::NonNegative, true));
+  compare->add_option("--threads", ca.threads, "Worker threads (default: all cores)")
+      ->check(numberCheck(Sign::NonNegative, true));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // A bad command line: one line, exit code 2.
     std::string msg = e.what();
-    if (!render->parsed() && !matrix->parsed() && argc > 1 && argv[1][0] != '-')
-      msg = "unknown command '" + std::string(argv[1]) + "' (expected render or matrix)";
+    if (!render->parsed() && !matrix->parsed() && !compare->parsed() && argc > 1 && argv[1][0] != '-')
+      msg = "unknown command '" + std::string(argv[1]) + "' (expected render, compare or matrix)";
     for (char& c : msg)
       if (c == '\n') c = ' ';
     std::fprintf(stderr, "kasha: error: %s (see kasha %s--help)\n", msg.c_str(),
-                 render->parsed() ? "render " : matrix->parsed() ? "matrix " : "");
+                 render->parsed() ? "render " : matrix->parsed() ? "matrix " : compare->parsed() ? "compare " : "");
     return 2;
   }
   try {
     if (render->parsed()) return runRender(ra);
     if (matrix->parsed()) return runMatrix(ma);
+    if (compare->parsed()) return runCompare(ca);
   } catch (const InputError& e) {
     std::fprintf(stderr, "kasha: error: %s\n", e.what());
     return 1;
