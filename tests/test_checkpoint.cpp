@@ -43,9 +43,9 @@ using test::runKasha;
 // 32×32 pixels: 64 samples per pixel in a pass (at least 65536 samples per pass), so `kSpp` makes
 // kSpp / 64 passes. A fluorescent sphere on a floor under an area light: camera paths and light
 // paths (splats) both contribute.
-constexpr int kSpp = 64 * 24;
+constexpr int kSpp = 64 * 15;
 const char* kScene = R"({
-  "render": {"spp": 1536, "max_depth": 6},
+  "render": {"spp": 960, "max_depth": 6},
   "camera": {"position": [0, 1, -4], "look_at": [0, 1, 0], "fov": 50, "resolution": [32, 32]},
   "materials": {"white": {"type": "lambertian", "reflectance": 0.7},
                 "dye": {"type": "jung_fluorescent",
@@ -125,21 +125,28 @@ class Checkpoint : public ::testing::TestWithParam<std::string> {
 
   json stats(const std::string& name) const { return json::parse(test::readTextFile(dir + "/" + name + ".stats.json")); }
 
-  // An uninterrupted render with a final checkpoint: the reference.
+  // An uninterrupted render with a final checkpoint: the reference, rendered once per integrator
+  // and shared by the tests.
+  std::string referenceDir() const { return suiteDir() + "/reference_" + GetParam(); }
   void renderReference() {
-    const auto r = runKasha(renderArgs("reference", {"--checkpoint", dir + "/reference.ckpt"}), dir + "/reference");
+    const std::string ref = referenceDir();
+    if (fs::exists(ref + "/reference.ckpt")) return;
+    fs::create_directories(ref);
+    std::vector<std::string> args = renderArgs("reference", {"--checkpoint", ref + "/reference.ckpt"});
+    args[args.size() - 3] = ref + "/reference.exr";  // the -o argument
+    const auto r = runKasha(args, ref + "/reference");
     ASSERT_EQ(r.code, 0) << r.err;
-    ASSERT_EQ(stats("reference")["spp"], kSpp);
+    ASSERT_EQ(json::parse(test::readTextFile(ref + "/reference.stats.json"))["spp"], kSpp);
   }
 
   // The resumed render equals the reference: film sums bit for bit, EXR floats bit for bit.
   void expectSameAsReference(const std::string& name) const {
-    const CheckpointData ref = readCheckpoint(dir + "/reference.ckpt");
+    const CheckpointData ref = readCheckpoint(referenceDir() + "/reference.ckpt");
     const CheckpointData got = readCheckpoint(dir + "/" + name + ".ckpt");
     EXPECT_EQ(got.spp, kSpp);
     EXPECT_EQ(differingBits(got.sums, ref.sums), 0u) << "camera-sample sums differ";
     EXPECT_EQ(differingBits(got.splats, ref.splats), 0u) << "splat sums differ";
-    const auto a = readExr(dir + "/reference.exr"), b = readExr(dir + "/" + name + ".exr");
+    const auto a = readExr(referenceDir() + "/reference.exr"), b = readExr(dir + "/" + name + ".exr");
     ASSERT_EQ(a.size(), 6u);
     for (const auto& [channel, values] : a) {
       ASSERT_TRUE(b.count(channel)) << channel;

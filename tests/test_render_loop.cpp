@@ -20,11 +20,25 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// What ScriptedIntegrator prepares before a pass: depends on the pass's first sample and the
+// seed only (as a photon map does), so a resumed render prepares the same.
+struct ScriptedPass : PassData {
+  float offset = 0.0f;
+};
+
 // Returns a random value, and a NaN or an infinity at chosen (pixel, sample)s.
 class ScriptedIntegrator : public Integrator {
  public:
+  std::unique_ptr<const PassData> beginPass(const Scene&, int firstSample, int count, uint64_t seed,
+                                            RayCounter& counter) const override {
+    auto p = std::make_unique<ScriptedPass>();
+    p->offset = 0.001f * float(firstSample) + 0.01f * float(count) + float(seed % 7);
+    ++counter.closest;
+    return p;
+  }
   Vec3 samplePixel(const Scene&, Vec2 pixel, Rng& rng, SampleContext& ctx) const override {
     ++ctx.counter.closest;
+    const float offset = static_cast<const ScriptedPass*>(ctx.pass)->offset;
     const int x = int(pixel.x), y = int(pixel.y);
     if (x == 5 && y == 3) return Vec3(std::numeric_limits<float>::quiet_NaN(), 1.0f, 1.0f);
     if (x == 6 && y == 3) return Vec3(0.0f, std::numeric_limits<float>::infinity(), 0.0f);
@@ -35,7 +49,7 @@ class ScriptedIntegrator : public Integrator {
       if (x == 1 && y == 1) ctx.splats.push_back({Vec2(2.0f, 2.0f), Vec3(std::numeric_limits<float>::infinity())});
       if (x == 2 && y == 1) ctx.splats.push_back({Vec2(std::numeric_limits<float>::quiet_NaN(), 2.0f), Vec3(1.0f)});
     }
-    return Vec3(rng.uniform(), rng.uniform(), rng.uniform());
+    return Vec3(rng.uniform() + offset, rng.uniform(), rng.uniform());
   }
   std::string name() const override { return "scripted"; }
   bool splats = false;
@@ -161,12 +175,13 @@ TEST(RenderLoop, ResumedRenderIsBitIdentical) {
   EXPECT_TRUE(sameBits(resumed.sampleSums(), full.sampleSums()));
   EXPECT_TRUE(sameBits(resumed.splatSums(), full.splatSums()));
   EXPECT_EQ(resumed.nonFiniteCount(), full.nonFiniteCount());
-  // Camera-sample sums do not even depend on the grouping into passes.
+  // With another grouping into passes the splat sums (and here the pass data) differ: why the
+  // checkpoint records the samples per pass.
   Film regrouped(40, 20);
   RenderOptions other = opt;
   other.samplesPerPass = 7;
   render(scene, integrator, regrouped, other);
-  EXPECT_TRUE(sameBits(regrouped.sampleSums(), full.sampleSums()));
+  EXPECT_FALSE(sameBits(regrouped.sampleSums(), full.sampleSums()));
 }
 
 TEST(RenderLoop, TimeBudgetCountsPreviousRuns) {
