@@ -205,12 +205,12 @@ void EnvironmentLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float
 LightSelector::LightSelector(const std::vector<std::unique_ptr<Light>>& lights, WavelengthRange range) : lights_(lights) {
   std::vector<std::pair<float, const Spectrum*>> terms;
   for (const auto& l : lights) terms.emplace_back(l->powerFactor() * l->scale(), &l->spectrum());
-  totalPower_ = SpectralDistribution(Spectrum::weightedSum(terms), range);
+  totalPower_ = Spectrum::weightedSum(terms);
+  totalPowerDistribution_ = SpectralDistribution(totalPower_, range);
 }
 
 std::pair<size_t, float> LightSelector::select(float lambda, float u) const {
-  float total = 0.0f;
-  for (const auto& l : lights_) total += l->power(lambda);
+  const float total = totalPower_(lambda);
   if (!(total > 0.0f)) return {0, 0.0f};
   float acc = 0.0f;
   const float target = u * total;
@@ -226,13 +226,12 @@ std::pair<size_t, float> LightSelector::select(float lambda, float u) const {
 }
 
 float LightSelector::probability(size_t light, float lambda) const {
-  float total = 0.0f;
-  for (const auto& l : lights_) total += l->power(lambda);
+  const float total = totalPower_(lambda);
   return total > 0.0f ? lights_[light]->power(lambda) / total : 0.0f;
 }
 
 LightSelector::LightWavelength LightSelector::sampleLightAndWavelength(float uLambda, float uLight) const {
-  const WavelengthSample ws = totalPower_.sample(uLambda);
+  const WavelengthSample ws = totalPowerDistribution_.sample(uLambda);
   if (ws.pdf <= 0.0f) return {};
   const auto [light, p] = select(ws.lambda, uLight);
   if (p <= 0.0f) return {};

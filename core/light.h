@@ -176,11 +176,12 @@ class LightSelector {
   };
   LightWavelength sampleLightAndWavelength(float uLambda, float uLight) const;
   // Density of λ under the total emitted power spectrum (per nm).
-  float wavelengthPdf(float lambda) const { return totalPower_.pdf(lambda); }
+  float wavelengthPdf(float lambda) const { return totalPowerDistribution_.pdf(lambda); }
 
  private:
   const std::vector<std::unique_ptr<Light>>& lights_;
-  SpectralDistribution totalPower_;
+  Spectrum totalPower_;                    // Σ_l Φ_l(λ), summed once at load
+  SpectralDistribution totalPowerDistribution_;  // λ ∝ totalPower_ over the scene's range
 };
 
 }  // namespace kasha
