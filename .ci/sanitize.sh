@@ -15,6 +15,6 @@ export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_stri
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 exclude=()
 if [ "${SANITIZE_ALL:-0}" != "1" ]; then
-  exclude=(-E '^Cornell/|Scenes/Furnace\.|PointLightInsideFluorescentSphere|UniformSensorSampling')
+  exclude=(-E '^Cornell/|Scenes/Furnace\.|PointLightInsideFluorescentSphere|UniformSensorSampling|Slow')
 fi
 ctest --test-dir build-asan --output-on-failure -j2 "${exclude[@]}"
