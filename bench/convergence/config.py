@@ -58,6 +58,18 @@ def _crop(path, pointer, crop):
     return crop
 
 
+def _scene_reference(path, pointer, r, default):
+    """A scene's reference: the report's, with the scene's own integrator and arguments if given."""
+    _only(path, pointer, r, ("integrator", "args"))
+    out = dict(default)
+    if "integrator" in r:
+        out["integrator"] = _string(path, pointer + "/integrator", r["integrator"])
+        out["args"] = []
+    if "args" in r:
+        out["args"] = _args(path, pointer + "/args", r["args"])
+    return out
+
+
 def load(path, quick=False):
     """The configuration as a dict; with quick=True, the `quick` block's reductions applied."""
     try:
@@ -111,7 +123,8 @@ def load(path, quick=False):
     out["scenes"] = []
     for i, s in enumerate(cfg["scenes"]):
         p = f"/scenes/{i}"
-        _only(path, p, s, ("scene", "name", "note", "crop", "resolution_scale", "configurations"), ("scene", "crop"))
+        _only(path, p, s, ("scene", "name", "note", "crop", "resolution_scale", "configurations", "reference"),
+              ("scene", "crop"))
         scene = os.path.normpath(os.path.join(base, _string(path, p + "/scene", s["scene"])))
         if not os.path.isfile(scene):
             _fail(path, p + "/scene", f"no such file: {scene}")
@@ -124,6 +137,8 @@ def load(path, quick=False):
                               "note": s.get("note", ""),
                               "crop": _crop(path, p + "/crop", s["crop"]),
                               "resolution_scale": _number(path, p + "/resolution_scale", s.get("resolution_scale", 1.0)),
+                              "reference": _scene_reference(path, p + "/reference", s.get("reference", {}),
+                                                            out["reference"]),
                               "configurations": [c for c in out["configurations"] if c["label"] in only]})
 
     q = cfg.get("quick", {})
@@ -133,10 +148,12 @@ def load(path, quick=False):
         bs = _number(path, "/quick/budget_scale", q.get("budget_scale", 1.0))
         kind = out["budget"]["kind"]
         out["budget"]["values"] = [max(1, round(v * bs)) if kind == "spp" else v * bs for v in out["budget"]["values"]]
-        out["reference"]["time"] *= _number(path, "/quick/reference_scale", q.get("reference_scale", 1.0))
+        ref_scale = _number(path, "/quick/reference_scale", q.get("reference_scale", 1.0))
+        out["reference"]["time"] *= ref_scale
         rs = _number(path, "/quick/resolution_scale", q.get("resolution_scale", 1.0))
         for s in out["scenes"]:
             s["resolution_scale"] *= rs
+            s["reference"]["time"] *= ref_scale
         n = q.get("seeds", len(seeds))
         if not isinstance(n, int) or n < 2:
             _fail(path, "/quick/seeds", "expected an integer >= 2")

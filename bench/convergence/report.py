@@ -88,8 +88,8 @@ def markdown(cfg, scenes, summary, command, runtime, machine, date):
            f"    {command}", "",
            f"Budgets: {'equal time, --time' if b['kind'] == 'time' else 'equal samples, --spp'} "
            f"{', '.join(f'{v:g}' for v in b['values'])}; seeds {', '.join(str(s) for s in cfg['seeds'])}; "
-           f"reference: `{cfg['reference']['integrator']} {' '.join(cfg['reference']['args'])}` for "
-           f"{cfg['reference']['time']:g} s. Errors are over X, Y, Z of every pixel against the reference "
+           f"reference: {cfg['reference']['time']:g} s of `{' '.join([cfg['reference']['integrator']] + cfg['reference']['args'])}` "
+           "unless a scene says otherwise. Errors are over X, Y, Z of every pixel against the reference "
            "(`kasha metrics`: relMSE = mean (x − ref)² / (ref² + 0.01)); the reference's own noise is part of them, "
            "so they level off where it dominates. Times are the renders' own (statistics JSON), on a machine that may "
            "be shared, so equal-time points scatter in time.", "",
@@ -107,7 +107,8 @@ def markdown(cfg, scenes, summary, command, runtime, machine, date):
         rs = s["reference_stats"]
         out += [f"## {s['name']}", "", f"`{os.path.relpath(s['scene'], cfg['repo'])}` at {s['resolution'][0]}×"
                 f"{s['resolution'][1]}. {s['note']}", "",
-                f"Reference: {rs.get('spp', '?')} spp in {rs.get('seconds', 0):.0f} s.", "",
+                f"Reference: `{' '.join([s['reference']['integrator']] + s['reference']['args'])}`, "
+                f"{rs.get('spp', '?')} spp in {rs.get('seconds', 0):.0f} s.", "",
                 _table(summary[s["name"]], b["kind"]), "",
                 f"![convergence]({s['plot']})", "", f"![crops]({s['crops']})", ""]
     return "\n".join(out) + "\n"

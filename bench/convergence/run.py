@@ -50,7 +50,7 @@ def _machine():
 def run_scene(binary, cfg, sc, runs, log):
     work = os.path.join(cfg["work"], sc["name"])
     scene = kasha.prepare_scene(sc["scene"], sc["resolution_scale"], os.path.join(work, "scene"))
-    ref, ref_stats = kasha.reference(binary, scene, os.path.join(cfg["work"], "references"), cfg["reference"],
+    ref, ref_stats = kasha.reference(binary, scene, os.path.join(cfg["work"], "references"), sc["reference"],
                                      cfg["threads"], log)
     largest = cfg["budget"]["values"][-1]
     crops = []
@@ -71,7 +71,8 @@ def run_scene(binary, cfg, sc, runs, log):
                     crops.append((c["label"], os.path.splitext(exr)[0] + ".png", err_map, m["relmse"]))
                 log(f"  {c['label']:<28} budget {budget:<6g} seed {seed}: {stats['seconds']:.2f} s, "
                     f"{stats['spp']} spp, relMSE {m['relmse']:.4g}")
-    return {"name": sc["name"], "note": sc["note"], "scene": sc["scene"], "reference_stats": ref_stats,
+    return {"name": sc["name"], "note": sc["note"], "scene": sc["scene"], "reference": sc["reference"],
+            "reference_stats": ref_stats,
             "resolution": ref_stats.get("resolution", [0, 0]), "reference_png": os.path.splitext(ref)[0] + ".png",
             "crops_columns": crops, "crop": sc["crop"]}
 
