@@ -49,6 +49,7 @@ def _machine():
 
 def run_scene(binary, cfg, sc, runs, log):
     work = os.path.join(cfg["work"], sc["name"])
+    os.makedirs(work, exist_ok=True)
     scene = kasha.prepare_scene(sc["scene"], sc["resolution_scale"], os.path.join(work, "scene"))
     ref, ref_stats = kasha.reference(binary, scene, os.path.join(cfg["work"], "references"), sc["reference"],
                                      cfg["threads"], log)
