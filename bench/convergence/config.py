@@ -145,7 +145,7 @@ def load(path, quick=False):
     _only(path, "/quick", q, ("budget_scale", "reference_scale", "resolution_scale", "seeds"))
     out["quick"] = quick
     if quick:
-        bs = _number(path, "/quick/budget_scale", q.get("budget_scale", 1.0))
+        bs = out["quick_budget_scale"] = _number(path, "/quick/budget_scale", q.get("budget_scale", 1.0))
         kind = out["budget"]["kind"]
         out["budget"]["values"] = [max(1, round(v * bs)) if kind == "spp" else v * bs for v in out["budget"]["values"]]
         ref_scale = _number(path, "/quick/reference_scale", q.get("reference_scale", 1.0))

@@ -82,10 +82,12 @@ def markdown(cfg, scenes, summary, command, runtime, machine, date):
     """The report page; `scenes` is a list of dicts with name, note, scene, reference stats and figure names."""
     b = cfg["budget"]
     mode = "**preliminary (quick) budgets**" if cfg["quick"] else "full budgets"
+    full = (f"The full report is the same command without `--quick` (budgets ×{1 / cfg['quick_budget_scale']:g}, "
+            "full resolution, all seeds, longer references)." if cfg["quick"] else "")
     out = [f"# Convergence report", "",
            cfg["description"], "",
            f"Generated {date} on {machine} in {runtime / 60:.1f} min with {mode}:", "",
-           f"    {command}", "",
+           f"    {command}", "", full, "",
            f"Budgets: {'equal time, --time' if b['kind'] == 'time' else 'equal samples, --spp'} "
            f"{', '.join(f'{v:g}' for v in b['values'])}; seeds {', '.join(str(s) for s in cfg['seeds'])}; "
            f"reference: {cfg['reference']['time']:g} s of `{' '.join([cfg['reference']['integrator']] + cfg['reference']['args'])}` "
