@@ -9,6 +9,7 @@ See bench/convergence/README.md for the configuration format.
 """
 import argparse
 import datetime
+import importlib.util
 import os
 import platform
 import re
@@ -16,10 +17,7 @@ import shlex
 import sys
 import time
 
-try:
-    import matplotlib  # noqa: F401
-    import numpy  # noqa: F401
-except ImportError:
+if importlib.util.find_spec("matplotlib") is None or importlib.util.find_spec("numpy") is None:
     # A Python without them first on PATH (pyenv, a venv): use Debian's, which has python3-numpy and
     # python3-matplotlib (.ci/install-deps.sh).
     if os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3") and os.path.exists("/usr/bin/python3"):
@@ -28,7 +26,6 @@ except ImportError:
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import config as config_file  # noqa: E402
-import figures  # noqa: E402
 import kasha  # noqa: E402
 import report  # noqa: E402
 
@@ -107,6 +104,8 @@ def main():
     except kasha.KashaError as e:
         print(f"run.py: error: {e}", file=sys.stderr)
         return 1
+    import figures  # matplotlib takes a while to import: only once there is something to draw
+
     summary = report.summarise(runs)
     for s in done:
         s["plot"], s["crops"] = s["name"] + "_convergence.png", s["name"] + "_crops.png"
