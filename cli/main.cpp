@@ -1,5 +1,6 @@
 // kasha: the command-line program. `kasha render` renders a scene; `kasha matrix` exports the
-// reradiation matrix of a fluorescent material (Jung18 eq. 5).
+// reradiation matrix of a fluorescent material (Jung18 eq. 5); `kasha compare` and `kasha metrics`
+// measure renders against a reference.
 //
 // Exit codes: 0 done; 1 bad input (scene, spectrum, mesh, checkpoint) or a memory limit, one line
 // "kasha: error: ..." and nothing written; 2 a bad command line; 128 + signal (130 SIGINT,
@@ -20,6 +21,7 @@
 #include <sstream>
 
 #include "cli/compare_command.h"
+#include "cli/metrics_command.h"
 #include "cli/progress.h"
 #include "core/checkpoint.h"
 #include "core/error.h"
@@ -355,24 +357,36 @@ int main(int argc, char** argv) {
   compare->add_option("--threads", ca.threads, "Worker threads (default: all cores)")
       ->check(numberCheck(Sign::NonNegative, true));
 
+  MetricsArgs mt;
+  CLI::App* metrics = app.add_subcommand("metrics", "Print the RMSE and relMSE (XYZ) of a render against a reference as JSON");
+  metrics->add_option("image", mt.image, "Rendered OpenEXR")->required();
+  metrics->add_option("reference", mt.reference, "Reference OpenEXR of the same size")->required();
+  metrics->add_option("--error-map", mt.errorMap, "Write the per-pixel relative squared error as a greyscale PFM");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // A bad command line: one line, exit code 2.
     std::string msg = e.what();
-    if (!render->parsed() && !matrix->parsed() && !compare->parsed() && argc > 1 && argv[1][0] != '-')
-      msg = "unknown command '" + std::string(argv[1]) + "' (expected render, compare or matrix)";
+    if (!render->parsed() && !matrix->parsed() && !compare->parsed() && !metrics->parsed() && argc > 1 &&
+        argv[1][0] != '-')
+      msg = "unknown command '" + std::string(argv[1]) + "' (expected render, compare, metrics or matrix)";
     for (char& c : msg)
       if (c == '\n') c = ' ';
     std::fprintf(stderr, "kasha: error: %s (see kasha %s--help)\n", msg.c_str(),
-                 render->parsed() ? "render " : matrix->parsed() ? "matrix " : compare->parsed() ? "compare " : "");
+                 render->parsed()    ? "render "
+                 : matrix->parsed()  ? "matrix "
+                 : compare->parsed() ? "compare "
+                 : metrics->parsed() ? "metrics "
+                                     : "");
     return 2;
   }
   try {
     if (render->parsed()) return runRender(ra);
     if (matrix->parsed()) return runMatrix(ma);
     if (compare->parsed()) return runCompare(ca);
+    if (metrics->parsed()) return runMetrics(mt);
   } catch (const InputError& e) {
     std::fprintf(stderr, "kasha: error: %s\n", e.what());
     return 1;

@@ -16,23 +16,50 @@ XyzImage filmToXyz(const Film& film) {
   return img;
 }
 
-ImageError compareToReference(const Film& film, const XyzImage& ref) {
-  if (film.width() != ref.width || film.height() != ref.height)
+namespace {
+
+struct PixelError {
+  double squared = 0.0;   // Σ over X, Y, Z of (x − ref)²
+  double relative = 0.0;  // Σ over X, Y, Z of (x − ref)² / (ref² + 1e-2)
+};
+
+PixelError pixelError(const Vec3& v, const Vec3& r) {
+  PixelError e;
+  for (int c = 0; c < 3; ++c) {
+    const double d = double(v[c]) - double(r[c]);
+    e.squared += d * d;
+    e.relative += d * d / (double(r[c]) * r[c] + 1e-2);
+  }
+  return e;
+}
+
+void requireSameSize(const XyzImage& image, const XyzImage& ref) {
+  if (image.width != ref.width || image.height != ref.height)
     throw std::invalid_argument("the reference is " + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
-                                ", the render " + std::to_string(film.width()) + "x" + std::to_string(film.height()));
+                                ", the image " + std::to_string(image.width) + "x" + std::to_string(image.height));
+}
+
+}  // namespace
+
+ImageError compareImages(const XyzImage& image, const XyzImage& ref) {
+  requireSameSize(image, ref);
   double se = 0.0, rel = 0.0;
-  size_t i = 0;
-  for (int y = 0; y < film.height(); ++y)
-    for (int x = 0; x < film.width(); ++x, ++i) {
-      const Vec3 v = film.xyz(x, y), r = ref.pixels[i];
-      for (int c = 0; c < 3; ++c) {
-        const double d = double(v[c]) - double(r[c]);
-        se += d * d;
-        rel += d * d / (double(r[c]) * r[c] + 1e-2);
-      }
-    }
+  for (size_t i = 0; i < ref.pixels.size(); ++i) {
+    const PixelError e = pixelError(image.pixels[i], ref.pixels[i]);
+    se += e.squared;
+    rel += e.relative;
+  }
   const double n = 3.0 * double(ref.pixels.size());
   return {std::sqrt(se / n), rel / n};
+}
+
+ImageError compareToReference(const Film& film, const XyzImage& ref) { return compareImages(filmToXyz(film), ref); }
+
+std::vector<float> relativeErrorMap(const XyzImage& image, const XyzImage& ref) {
+  requireSameSize(image, ref);
+  std::vector<float> map(ref.pixels.size());
+  for (size_t i = 0; i < map.size(); ++i) map[i] = float(pixelError(image.pixels[i], ref.pixels[i]).relative / 3.0);
+  return map;
 }
 
 std::vector<ComparisonRow> compareIntegrators(const Scene& scene, const std::vector<std::string>& integrators,

@@ -15,7 +15,12 @@ struct ImageError {
   double relMse = 0.0;  // mean of (x − ref)² / (ref² + 1e-2), over pixels and channels
 };
 
+// Both measures of `image` against `reference` (XYZ); throws std::invalid_argument if their sizes differ.
+ImageError compareImages(const XyzImage& image, const XyzImage& reference);
 ImageError compareToReference(const Film& film, const XyzImage& reference);
+// Per pixel, row-major: the relative squared error (x − ref)² / (ref² + 1e-2) averaged over
+// X, Y, Z, so that the mean of the map is ImageError::relMse.
+std::vector<float> relativeErrorMap(const XyzImage& image, const XyzImage& reference);
 XyzImage filmToXyz(const Film& film);
 
 struct ComparisonRow {
