@@ -50,9 +50,10 @@ std::vector<std::string> StrategyImages::write(const std::string& dir, bool unwe
 }
 
 uint64_t StrategyImages::bytesFor(int width, int height, int maxDepth) {
-  // Paths of k = 1 … maxDepth + 1 segments, k + 1 strategies each plus two variants, and "deeper".
-  const uint64_t k = uint64_t(std::max(0, maxDepth)) + 1;
-  const uint64_t strategies = k * (k + 3) / 2 + 2 * k + 1;
+  // Paths of k = 1 … K segments (K = maxDepth + 1): k + 1 strategies each, one light-vertex
+  // variant and k − 2 mollified ones (s = 2 … k − 1); and "deeper".
+  const uint64_t K = uint64_t(std::max(0, maxDepth)) + 1;
+  const uint64_t strategies = K * (K + 3) / 2 + K + (K - 1) * (K - 2) / 2 + 1;
   return saturatingMul(saturatingMul(strategies, 2), Film::bytesFor(width, height));
 }
 
