@@ -12,4 +12,7 @@ float progressiveRadiusSquared(float r1, float alpha, int iteration);
 // The Epanechnikov kernel of half-width h in wavelength, per nm: 3/(4h)·(1 − (x/h)²) for |x| < h.
 float wavelengthKernel(float x, float h);
 
+// Its mass ∫_lo^hi K_h(x) dx, for the part of the kernel inside the wavelength range.
+float wavelengthKernelMass(float lo, float hi, float h);
+
 }  // namespace kasha

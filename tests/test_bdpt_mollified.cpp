@@ -1,7 +1,7 @@
 // BDPT with spectral mollification (integrator "bdpt-mollified", docs/bdpt-mis.md §6): the
-// bandwidth schedule, convergence to the white furnace's closed form (validation.md §1 with
-// c = 0) within k·SE plus a bias bound derived below, and that the mollified strategies carry a
-// real share of the image where the exact Independent family has no s ≥ 2 connection at all.
+// bandwidth schedule and the range-renormalised kernel, convergence to the white furnace's
+// closed form (validation.md §1 with c = 0) within 4σ (the bias bound derived below is zero),
+// and a scene the exact Independent family cannot render at all, where it agrees with Shared.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +11,7 @@
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/strategy_images.h"
 #include "integrators/integrator_factory.h"
+#include "integrators/progressive_schedule.h"
 #include "integrators/render_loop.h"
 #include "materials/jung_bbrrdf.h"
 #include "tests/support.h"
@@ -50,6 +51,13 @@ TEST(BdptMollified, BandwidthShrinksLikeThePhotonMappingRadius) {
   const auto byName = makeIntegrator("bdpt-mollified", *scene, scene->render);
   EXPECT_NEAR(static_cast<const Bdpt&>(*byName).bandwidth(0), 0.02f * (scene->range.max - scene->range.min), 1e-4f);
   EXPECT_FALSE(static_cast<const Bdpt&>(*makeIntegrator("bdpt-independent", *scene, scene->render)).mollifies());
+  // The kernel's mass inside a range: the whole kernel, half at an end, none outside.
+  EXPECT_NEAR(wavelengthKernelMass(-30.0f, 30.0f, 12.0f), 1.0f, 1e-6f);
+  EXPECT_NEAR(wavelengthKernelMass(0.0f, 30.0f, 12.0f), 0.5f, 1e-6f);
+  EXPECT_EQ(wavelengthKernelMass(13.0f, 30.0f, 12.0f), 0.0f);
+  double mass = 0.0;
+  for (double x = -5.0 + 0.0005; x < 7.0; x += 0.001) mass += wavelengthKernel(float(x), 12.0f) * 0.001;
+  EXPECT_NEAR(wavelengthKernelMass(-5.0f, 7.0f, 12.0f), mass, 1e-5);
   MollificationSettings bad = m;
   bad.alpha = 1.0f;
   EXPECT_THROW(Bdpt(*scene, SensorSampling::Uniform, bdpt::WalkSettings{}, &bad), std::invalid_argument);
@@ -64,12 +72,13 @@ struct Batches {
 };
 
 // Renders the scene in independent batches, with every strategy's share recorded.
-Batches renderBatches(Scene& scene, const std::string& integrator, int maxDepth, int batches, int spp) {
+Batches renderBatches(Scene& scene, const std::string& integrator, int maxDepth, int batches, int spp,
+                      float bandwidth = 20.0f) {
   RenderSettings s = scene.render;
   s.maxDepth = maxDepth;
   s.rrDepth = 3;
   s.sensor = SensorSampling::Uniform;
-  s.mollify.bandwidth = 20.0f;
+  s.mollify.bandwidth = bandwidth;
   const auto bdpt = makeIntegrator(integrator, scene, s);
   std::vector<double> b[3];
   double mollified = 0.0, total = 0.0;
@@ -98,12 +107,10 @@ Batches renderBatches(Scene& scene, const std::string& integrator, int maxDepth,
 }
 
 // White furnace (c = 0, r and L_e constant, uniform sensor sampling): every spectral quantity,
-// density and MIS weight is the same at every wavelength, so a mollified connection's expected
-// value equals the exact one except where the kernel K_h(λ_L − λ_C) reaches past the ends of the
-// wavelength range and loses mass 1 − ∫K_h dλ_L ≤ 1, i.e. for λ_C within h_1 of either end. The
-// mollified strategies' weighted share at λ_C is at most the whole radiance L there, so
-//   |bias| ≤ L · ∫_{ends within h_1} (x̄, ȳ, z̄) dλ / ∫ȳ dλ,
-// largest for the first pass (h_i decreases).
+// density and MIS weight is the same at every wavelength, and the kernel is renormalised to its
+// mass inside the wavelength range, so a mollified connection's expectation equals the exact
+// one for any h (docs/bdpt-mis.md eq. 7): the bias bound is zero and the test is 4σ. A wide
+// kernel (h_1 = 150 nm) gives the mollified strategies as much weight as they can get here.
 void expectWhiteFurnace(int maxDepth, int batches, int spp) {
   auto scene = load("furnace_white.json");
   const auto& m = dynamic_cast<const JungBbrrdf&>(*scene->materials.at(0));
@@ -111,18 +118,18 @@ void expectWhiteFurnace(int maxDepth, int batches, int spp) {
   const double r = m.r(500.0f), Le = scene->shapes.at(0).emission->scale * scene->shapes.at(0).emission->radiance(500.0f);
   double L = 0.0;  // Σ_{j ≤ d} r^j L_e (the Neumann series, validation.md §1)
   for (int j = 0; j <= std::min(maxDepth, 2000); ++j) L += std::pow(r, j) * Le;
-  const float h1 = 20.0f;
-  const WavelengthRange range = scene->range;
-  const Vec3 exact = cmfIntegral(range.min, range.max) * float(L);
-  const Vec3 bias = (cmfIntegral(range.min, range.min + h1) + cmfIntegral(range.max - h1, range.max)) * float(L);
-  const Batches run = renderBatches(*scene, "bdpt-mollified", maxDepth, batches, spp);
+  const Vec3 exact = cmfIntegral(scene->range.min, scene->range.max) * float(L);
+  const Batches run = renderBatches(*scene, "bdpt-mollified", maxDepth, batches, spp, 150.0f);
   for (int c = 0; c < 3; ++c) {
     SCOPED_TRACE("channel " + std::string(1, "XYZ"[c]) + " depth " + std::to_string(maxDepth));
     EXPECT_LT(run.xyz[c].stderr_, 0.03 * exact[c]);  // the test has power
-    EXPECT_NEAR(run.xyz[c].mean, exact[c], 4.0 * run.xyz[c].stderr_ + bias[c])
-        << "mean " << run.xyz[c].mean << " ± " << run.xyz[c].stderr_ << ", bias bound " << bias[c];
+    EXPECT_NEAR(run.xyz[c].mean, exact[c], 4.0 * run.xyz[c].stderr_)
+        << "mean " << run.xyz[c].mean << " ± " << run.xyz[c].stderr_;
   }
-  // Paths with two scattering vertices or more have mollified strategies, with non-zero weights.
+  // Paths with two scattering vertices or more have mollified strategies. Their weighted share
+  // stays near 1% here: next-event estimation and the camera path hitting the emitting walls are
+  // far better strategies in a furnace, and a mollified connection's density carries the factor
+  // ε_h·p(λ) ≤ 4h/(3·470 nm) (docs/bdpt-mis.md eq. 6).
   EXPECT_EQ(run.connections, maxDepth >= 2);
   EXPECT_EQ(run.mollifiedShareY > 0.0, maxDepth >= 2);
 }
@@ -140,26 +147,25 @@ TEST(BdptMollified, MollifiedConnectionsRenderWhatTheExactIndependentFamilyCanno
   // subpaths start with specular vertices, the light is a delta and nothing fluoresces, so the
   // exact Independent family has no strategy for any path (its image is black). The Shared family
   // joins the floor and the back wall exactly; mollified connections join them across
-  // independently chosen wavelengths. Constant spectra and uniform sensor sampling: the bias is
-  // bounded as in the white furnace, by the colour matching functions' share within h_1 of the ends.
+  // independently chosen wavelengths. Constant spectra and uniform sensor sampling: no bias, as in
+  // the white furnace.
   auto scene = load("mollify_mirror.json");
   const Batches exact = renderBatches(*scene, "bdpt-independent", 8, 1, 16);
   EXPECT_FALSE(exact.connections);
   for (int c = 0; c < 3; ++c) EXPECT_EQ(exact.xyz[c].mean, 0.0);
   const Batches shared = renderBatches(*scene, "bdpt-shared", 8, 16, 128);
-  const Batches moll = renderBatches(*scene, "bdpt-mollified", 8, 16, 128);
+  const Batches moll = renderBatches(*scene, "bdpt-mollified", 8, 16, 128, 150.0f);
   EXPECT_TRUE(moll.connections);
   EXPECT_NEAR(moll.mollifiedShareY, 1.0, 1e-4) << "all the light comes through mollified connections";
-  const WavelengthRange r = scene->range;
-  const Vec3 all = cmfIntegral(r.min, r.max), ends = cmfIntegral(r.min, r.min + 20.0f) + cmfIntegral(r.max - 20.0f, r.max);
   for (int c = 0; c < 3; ++c) {
     SCOPED_TRACE("channel " + std::string(1, "XYZ"[c]));
-    EXPECT_LT(moll.xyz[c].stderr_, 0.1 * moll.xyz[c].mean);  // the test has power (a kernel off by 20% would show)
+    // The test has power: with both errors below 6% a 25% error in the mollified estimate shows.
+    EXPECT_LT(moll.xyz[c].stderr_, 0.06 * moll.xyz[c].mean);
+    EXPECT_LT(shared.xyz[c].stderr_, 0.06 * shared.xyz[c].mean);
     const double se = std::hypot(shared.xyz[c].stderr_, moll.xyz[c].stderr_);
-    const double bias = (moll.xyz[c].mean + 4.0 * moll.xyz[c].stderr_) * ends[c] / all[c];
-    EXPECT_NEAR(moll.xyz[c].mean, shared.xyz[c].mean, 4.0 * se + bias)
+    EXPECT_NEAR(moll.xyz[c].mean, shared.xyz[c].mean, 4.0 * se)
         << "mollified " << moll.xyz[c].mean << " ± " << moll.xyz[c].stderr_ << ", shared " << shared.xyz[c].mean
-        << " ± " << shared.xyz[c].stderr_ << ", bias bound " << bias;
+        << " ± " << shared.xyz[c].stderr_;
   }
 }
 

@@ -267,8 +267,13 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
       unoccluded = visible(c, a, b);
     }
     if (!unoccluded) return 0.0f;
-    // Mollified: the delta δ(λ_a − λ_b) of the elastic pair widened to K_h (Jung et al. 2020).
-    const float kernel = p.variant == Variant::kMollified ? wavelengthKernel(a.lambda - b.lambda, c.bandwidth) : 1.0f;
+    // Mollified: the delta δ(λ_a − λ_b) of the elastic pair widened to K_h (Jung et al. 2020),
+    // renormalised to its mass inside the wavelength range (docs/bdpt-mis.md eq. 5).
+    const WavelengthRange& r = c.scene.range;
+    const float kernel = p.variant == Variant::kMollified
+                             ? wavelengthKernel(a.lambda - b.lambda, c.bandwidth) /
+                                   wavelengthKernelMass(r.min - b.lambda, r.max - b.lambda, c.bandwidth)
+                             : 1.0f;
     const float value = a.beta * fA * G * fB * b.beta * kernel;
     record(c, s, t, p.variant, value, weight);
     sum += value * weight;
