@@ -28,6 +28,8 @@
 #include "core/image_output.h"
 #include "core/memory_budget.h"
 #include "core/scene_loader.h"
+#include "integrators/bdpt/bdpt_integrator.h"
+#include "integrators/bdpt/strategy_images.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "materials/jung_bbrrdf.h"
@@ -74,6 +76,10 @@ struct RenderArgs {
   std::string checkpoint, resume;
   double checkpointInterval = 60.0;
   std::string memoryLimit = "8G";
+  float mollifyBandwidth = -1.0f, mollifyAlpha = -1.0f;  // negative: the scene's
+  std::string strategyImages;  // directory for one image per BDPT strategy
+  bool strategyUnweighted = false;
+  int strategyDepth = 4;
 };
 
 struct MatrixArgs {
@@ -130,6 +136,11 @@ int runRender(const RenderArgs& a) {
   if (a.maxDepth >= 0) r.maxDepth = a.maxDepth;
   if (!a.sensor.empty()) r.sensor = parseSensorSampling(a.sensor);
   r.memoryLimit = memoryLimit;
+  if ((a.mollifyBandwidth >= 0.0f || a.mollifyAlpha >= 0.0f) && a.integrator != "bdpt-mollified")
+    throw InputError(a.mollifyBandwidth >= 0.0f ? "--mollify-bandwidth" : "--mollify-alpha", "",
+                     "only for --integrator bdpt-mollified");
+  if (a.mollifyBandwidth >= 0.0f) r.mollify.bandwidth = a.mollifyBandwidth;
+  if (a.mollifyAlpha >= 0.0f) r.mollify.alpha = a.mollifyAlpha;
   std::unique_ptr<Integrator> integrator;
   try {
     integrator = makeIntegrator(a.integrator, *scene, r);
@@ -145,17 +156,33 @@ int runRender(const RenderArgs& a) {
   checkWritable(exr);
   if (!png.empty()) checkWritable(png);
   if (!checkpoint.empty()) checkWritable(checkpoint);
+  const int width = scene->camera.width(), height = scene->camera.height();
+  std::unique_ptr<bdpt::StrategyImages> strategies;
+  if (!a.strategyImages.empty()) {
+    if (!dynamic_cast<const Bdpt*>(integrator.get()))
+      throw InputError("--strategy-images", "",
+                       "only the BDPT integrators have (s, t) strategies (bdpt, bdpt-shared, bdpt-independent, bdpt-mollified), "
+                       "not '" + a.integrator + "'");
+    if (!checkpoint.empty()) throw InputError("--strategy-images", "", "cannot be combined with --checkpoint or --resume");
+    std::error_code ec;
+    std::filesystem::create_directories(a.strategyImages, ec);
+    if (ec) throw InputError(a.strategyImages, "", "cannot create the strategy image directory: " + ec.message());
+    checkWritable((std::filesystem::path(a.strategyImages) / "s0_t2.exr").string());
+    requireMemory(bdpt::StrategyImages::bytesFor(width, height, a.strategyDepth),
+                  "the strategy images (--strategy-depth " + std::to_string(a.strategyDepth) + ")", memoryLimit);
+    strategies = std::make_unique<bdpt::StrategyImages>(width, height, a.strategyDepth);
+  }
 
   // What a checkpoint must agree on to be resumed; the sample count and time budget may differ
   // (a finished render can be continued to more samples).
-  const int width = scene->camera.width(), height = scene->camera.height();
-  const nlohmann::json settings = {{"scene_hash", hex(hashBytes(sceneText.data(), sceneText.size()))},
+  nlohmann::json settings = {{"scene_hash", hex(hashBytes(sceneText.data(), sceneText.size()))},
                                    {"integrator", integrator->name()},
                                    {"seed", r.seed},
                                    {"max_depth", r.maxDepth},
                                    {"rr_depth", r.rrDepth},
                                    {"sensor_sampling", toString(r.sensor)},
                                    {"resolution", {width, height}}};
+  if (a.integrator == "bdpt-mollified") settings["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
 
   // Film buffers, plus the same again while a checkpoint is read, plus the EXR's six float channels.
   const uint64_t filmBytes = Film::bytesFor(width, height);
@@ -194,6 +221,7 @@ int runRender(const RenderArgs& a) {
       }
     };
   }
+  if (strategies) opt.strategies = [&](const StrategySample& rec) { strategies->add(rec); };
   opt.stop = &gStopSignal;
   ProgressBar bar(std::filesystem::path(a.scene).filename().string());
   if (!a.quiet) opt.progress = [&](int spp, double t, double total) { bar.update(spp, t, total); };
@@ -217,6 +245,11 @@ int runRender(const RenderArgs& a) {
   const int sig = gStopSignal.load();
   if (sig != 0) j["signal"] = signalName(sig);
   j["outputs"] = {{"exr", exr}, {"png", png}};
+  if (strategies) {
+    strategies->setSamplesPerPixel(film.samplesPerPixel());
+    j["outputs"]["strategy_images"] = strategies->write(a.strategyImages, a.strategyUnweighted, !png.empty(), a.exposure);
+  }
+  if (a.integrator == "bdpt-mollified") j["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
   writeTextFile(stats, j.dump(2) + "\n");
   std::printf("%s\nwrote %s%s%s, %s\n", summaryLine(st).c_str(), exr.c_str(), png.empty() ? "" : ", ", png.c_str(),
               stats.c_str());
@@ -319,7 +352,18 @@ int main(int argc, char** argv) {
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")
       ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 4096));
   render->add_option("--integrator", ra.integrator,
-                     "Integrator: pt | lt | bdpt (= bdpt-independent) | bdpt-shared | bdpt-independent | ppm");
+                     "Integrator: pt | lt | bdpt (= bdpt-independent) | bdpt-shared | bdpt-independent | bdpt-mollified | ppm");
+  render->add_option("--mollify-bandwidth", ra.mollifyBandwidth,
+                     "bdpt-mollified: wavelength kernel half-width of the first pass in nm (0: 2% of the range)")
+      ->check(numberCheck(Sign::NonNegative, false));
+  render->add_option("--mollify-alpha", ra.mollifyAlpha, "bdpt-mollified: bandwidth reduction alpha in (0, 1)")
+      ->check(numberCheck(Sign::Positive, false) & CLI::Range(0.0, 0.999999));
+  render->add_option("--strategy-images", ra.strategyImages,
+                     "BDPT: also write one image per (s, t) strategy (MIS-weighted) into this directory");
+  render->add_flag("--strategy-unweighted", ra.strategyUnweighted, "With --strategy-images: also the unweighted images");
+  render->add_option("--strategy-depth", ra.strategyDepth,
+                     "With --strategy-images: longest path (scattering events) with its own images; longer ones go to deeper.exr (default 4)")
+      ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 64));
   render->add_option("--sensor-sampling", ra.sensor, "Camera wavelength sampling: uniform | cmf")
       ->check(CLI::IsMember({"uniform", "cmf"}));
   render->add_option("--max-depth", ra.maxDepth, "Maximum number of scattering events")->check(numberCheck(Sign::NonNegative, true));

@@ -25,6 +25,13 @@ struct PhotonMappingSettings {
   bool alwaysKernel = false;   // elastic lobe through the kernel even where the sensor is evaluated exactly
 };
 
+// Spectral mollification of BDPT's elastic connections (integrator "bdpt-mollified",
+// docs/bdpt-mis.md §6); a zero bandwidth is derived from the scene.
+struct MollificationSettings {
+  float bandwidth = 0.0f;     // half-width h_1 of the wavelength kernel in the first pass, nm; 0: 2% of the range
+  float alpha = 2.0f / 3.0f;  // h_i² = h_{i−1}²·(i − 1 + α)/i (the PPM radius schedule), in (0, 1)
+};
+
 struct RenderSettings {
   int spp = 16;                 // samples per pixel (a stop condition)
   double timeBudgetSeconds = 0; // > 0: also stop after this long (whole passes only)
@@ -36,6 +43,7 @@ struct RenderSettings {
   // before allocating. Set by `kasha render --memory-limit`; not a scene-file setting.
   uint64_t memoryLimit = kDefaultMemoryLimit;
   PhotonMappingSettings ppm;
+  MollificationSettings mollify;
 };
 
 struct Scene {

@@ -120,6 +120,7 @@ struct Loader {
       f.fail("sensor_sampling", e.what());
     }
     photonMapping(f);
+    mollification(f);
     f.finish();
   }
 
@@ -137,6 +138,18 @@ struct Loader {
     p.bandwidth = f.number("bandwidth", p.bandwidth);
     if (!(p.bandwidth >= 0.0f)) f.fail("bandwidth", "must not be negative (0: 1% of the wavelength range)");
     p.alwaysKernel = f.boolean("always_wavelength_kernel", p.alwaysKernel);
+    f.finish();
+  }
+
+  // /render/mollify (docs/bdpt-mis.md §6).
+  void mollification(JsonFields& render) {
+    if (!render.has("mollify")) return;
+    JsonFields f(render.get("mollify"), file, render.path("mollify"));
+    MollificationSettings& m = scene.render.mollify;
+    m.bandwidth = f.number("bandwidth", m.bandwidth);
+    if (!(m.bandwidth >= 0.0f)) f.fail("bandwidth", "must not be negative (0: 2% of the wavelength range)");
+    m.alpha = f.number("alpha", m.alpha);
+    if (!(m.alpha > 0.0f && m.alpha < 1.0f)) f.fail("alpha", "must be in (0, 1)");
     f.finish();
   }
 

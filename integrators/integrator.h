@@ -26,6 +26,15 @@ struct Splat {
   Vec3 xyz;
 };
 
+// One strategy's share of a sample, recorded when SampleContext::recordStrategies is set (BDPT's
+// per-strategy images): XYZ in the units of a splat, with and without its MIS weight.
+struct StrategySample {
+  Vec2 pixel;
+  Vec3 weighted, unweighted;
+  int s = 0, t = 0;
+  uint8_t variant = 0;  // the integrator's own strategy variant (BDPT: bdpt::Variant)
+};
+
 // What an integrator prepares before a pass and its samples only read (a photon map).
 struct PassData {
   virtual ~PassData() = default;
@@ -36,6 +45,8 @@ struct SampleContext {
   RayCounter counter;
   std::vector<Splat> splats;  // merged into the film in a fixed order after each pass
   const PassData* pass = nullptr;  // what beginPass returned for the current pass
+  bool recordStrategies = false;   // integrators that can, append to `strategies`
+  std::vector<StrategySample> strategies;  // merged in a fixed order after each pass, like splats
 };
 
 class Integrator {

@@ -9,7 +9,7 @@
 
 namespace kasha {
 
-std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent", "ppm"}; }
+std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent", "bdpt-mollified", "ppm"}; }
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& s) {
   if (name == "pt") return std::make_unique<PathTracer>(scene, s.sensor, s.maxDepth, s.rrDepth);
@@ -19,6 +19,9 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
         name == "bdpt-shared" ? bdpt::WavelengthMode::Shared : bdpt::WavelengthMode::Independent;
     return std::make_unique<Bdpt>(scene, s.sensor, bdpt::WalkSettings{s.maxDepth, s.rrDepth, mode});
   }
+  if (name == "bdpt-mollified")
+    return std::make_unique<Bdpt>(scene, s.sensor, bdpt::WalkSettings{s.maxDepth, s.rrDepth, bdpt::WavelengthMode::Independent},
+                                  &s.mollify);
   if (name == "ppm") return std::make_unique<PpmIntegrator>(scene, s);
   std::string known;
   for (const std::string& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;

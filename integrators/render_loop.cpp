@@ -68,6 +68,8 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
       for (int tile = range.begin(); tile < range.end(); ++tile) {
         SampleContext& ctx = contexts[size_t(tile)];
         ctx.splats.clear();
+        ctx.strategies.clear();
+        ctx.recordStrategies = bool(opt.strategies);
         ctx.pass = passData.get();
         const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
         for (int y = y0; y < std::min(y0 + kTile, h); ++y)
@@ -91,6 +93,9 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
         const int x = int(std::clamp(sp.pixel.x, 0.0f, float(w - 1))), y = int(std::clamp(sp.pixel.y, 0.0f, float(h - 1)));
         film.addSplat(x, y, sp.xyz);
       }
+    if (opt.strategies)
+      for (const SampleContext& ctx : contexts)
+        for (const StrategySample& r : ctx.strategies) opt.strategies(r);
     pass += count;
     film.setSamplesPerPixel(pass);
     unsaved = true;

@@ -58,6 +58,9 @@ struct RenderOptions {
   // being written while it runs.
   std::function<void(const RenderStats&)> checkpoint;
   double checkpointIntervalSeconds = 60.0;
+  // If set, integrators that can record each strategy's share of their samples
+  // (SampleContext::recordStrategies), and this receives the records after each pass, in tile order.
+  std::function<void(const StrategySample&)> strategies;
 };
 
 RenderStats render(const Scene& scene, const Integrator& integrator, Film& film, const RenderOptions& options);

@@ -31,8 +31,9 @@ FullPath randomPath(const std::vector<SpectralLobe>& interior, WavelengthMode mo
 double weightSum(const FullPath& p) {
   const int k = int(p.v.size()) - 1;
   double sum = 0.0;
-  for (int s = 0; s <= k; ++s) sum += misWeight(p, s, SOne::kNee);
-  if (k >= 2) sum += misWeight(p, 1, SOne::kLightVertex);
+  for (int s = 0; s <= k; ++s) sum += misWeight(p, s, Variant::kStandard);
+  if (k >= 2) sum += misWeight(p, 1, Variant::kLightVertex);
+  for (int s = 2; s < k; ++s) sum += misWeight(p, s, Variant::kMollified);
   return sum;
 }
 
@@ -41,7 +42,35 @@ TEST(BdptMis, WeightsArePartitionOfUnity) {
   const std::vector<std::vector<SpectralLobe>> lobes = {{}, {E}, {F}, {E, E}, {E, F}, {F, E}, {F, F, E}, {E, F, E, F}};
   for (const auto& l : lobes)
     for (WavelengthMode m : {WavelengthMode::Shared, WavelengthMode::Independent})
-      for (int trial = 0; trial < 20; ++trial) EXPECT_NEAR(weightSum(randomPath(l, m, rng)), 1.0, 1e-6);
+      for (int trial = 0; trial < 20; ++trial) {
+        FullPath p = randomPath(l, m, rng);
+        EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
+        p.mollifyWidth = 0.1 + 10.0 * rng.uniform();  // with the mollified strategies (§6)
+        EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
+      }
+}
+
+TEST(BdptMis, MollifiedStrategiesJoinTwoElasticVerticesInTheIndependentFamily) {
+  Rng rng(4);
+  FullPath p = randomPath({E, E, F, E}, WavelengthMode::Independent, rng);  // x_0 … x_5 (camera)
+  for (int s = 0; s <= 5; ++s) EXPECT_FALSE(strategyValid(p, s, Variant::kMollified)) << "off without a kernel";
+  p.mollifyWidth = 2.0;
+  EXPECT_TRUE(strategyValid(p, 2, Variant::kMollified));   // x_1 (E) – x_2 (E)
+  EXPECT_FALSE(strategyValid(p, 3, Variant::kMollified));  // x_2 (E) – x_3 (F): exact, not mollified
+  EXPECT_FALSE(strategyValid(p, 4, Variant::kMollified));  // x_3 (F) – x_4 (E)
+  EXPECT_FALSE(strategyValid(p, 1, Variant::kMollified));  // only between two surface vertices
+  EXPECT_FALSE(strategyValid(p, 5, Variant::kMollified));
+  // Its density is the connection's (both sides' wavelength densities) times ε_h (eq. 6): the
+  // weight ratio to strategy 3 follows from the layout alone.
+  const double d2 = p.v[0].pdfLight * p.v[1].pdfLight * p.v[2].pdfCam * p.v[3].pdfCam * p.v[4].pdfCam * p.v[5].pdfCam;
+  const double d3 = p.v[0].pdfLight * p.v[1].pdfLight * p.v[2].pdfLight * p.v[3].pdfCam * p.v[4].pdfCam * p.v[5].pdfCam;
+  const double ratio = misWeight(p, 2, Variant::kMollified) / misWeight(p, 3);
+  EXPECT_NEAR(ratio, (2.0 * d2 / d3) * (2.0 * d2 / d3), 1e-5 * ratio);
+  FullPath shared = p;
+  shared.mode = WavelengthMode::Shared;
+  EXPECT_FALSE(strategyValid(shared, 2, Variant::kMollified));  // Shared joins elastic vertices exactly
+  p.v[1].connectible = false;
+  EXPECT_FALSE(strategyValid(p, 2, Variant::kMollified));
 }
 
 TEST(BdptMis, IndependentConnectionsNeedExactlyOneFluorescentEnd) {
@@ -49,13 +78,13 @@ TEST(BdptMis, IndependentConnectionsNeedExactlyOneFluorescentEnd) {
   // x_0 x_1 x_2 x_3 x_4(camera): lobes at x_1..x_3 = E, F, E
   const FullPath p = randomPath({E, F, E}, WavelengthMode::Independent, rng);
   EXPECT_TRUE(strategyValid(p, 0));
-  EXPECT_TRUE(strategyValid(p, 1, SOne::kNee));
-  EXPECT_FALSE(strategyValid(p, 1, SOne::kLightVertex));  // x_1 is elastic
+  EXPECT_TRUE(strategyValid(p, 1, Variant::kStandard));
+  EXPECT_FALSE(strategyValid(p, 1, Variant::kLightVertex));  // x_1 is elastic
   EXPECT_TRUE(strategyValid(p, 2));                       // x_1 (E) – x_2 (F)
   EXPECT_TRUE(strategyValid(p, 3));                       // x_2 (F) – x_3 (E)
   EXPECT_TRUE(strategyValid(p, 4));                       // t = 1, x_3 elastic
   const FullPath q = randomPath({F, E, F}, WavelengthMode::Independent, rng);
-  EXPECT_TRUE(strategyValid(q, 1, SOne::kLightVertex));
+  EXPECT_TRUE(strategyValid(q, 1, Variant::kLightVertex));
   EXPECT_TRUE(strategyValid(q, 2));    // x_1 (F) – x_2 (E)
   EXPECT_TRUE(strategyValid(q, 3));    // x_2 (E) – x_3 (F)
   EXPECT_TRUE(strategyValid(q, 4));    // t = 1 samples x_3's fluorescent event itself
@@ -68,10 +97,10 @@ TEST(BdptMis, SharedBidirectionalStrategiesOnlyForElasticPaths) {
   Rng rng(2);
   const FullPath el = randomPath({E, E}, WavelengthMode::Shared, rng);
   for (int s = 0; s <= 3; ++s) EXPECT_TRUE(strategyValid(el, s)) << s;
-  EXPECT_FALSE(strategyValid(el, 1, SOne::kLightVertex));
+  EXPECT_FALSE(strategyValid(el, 1, Variant::kLightVertex));
   const FullPath fl = randomPath({E, F}, WavelengthMode::Shared, rng);
   EXPECT_TRUE(strategyValid(fl, 0));
-  EXPECT_TRUE(strategyValid(fl, 1, SOne::kNee));
+  EXPECT_TRUE(strategyValid(fl, 1, Variant::kStandard));
   EXPECT_FALSE(strategyValid(fl, 2));
   EXPECT_FALSE(strategyValid(fl, 3));
 }
@@ -80,7 +109,7 @@ TEST(BdptMis, DeltaVerticesCannotBeConnected) {
   Rng rng(3);
   FullPath p = randomPath({E, E}, WavelengthMode::Shared, rng);
   p.v[1].connectible = false;  // a mirror at x_1
-  EXPECT_FALSE(strategyValid(p, 1, SOne::kNee));
+  EXPECT_FALSE(strategyValid(p, 1, Variant::kStandard));
   EXPECT_FALSE(strategyValid(p, 2));
   EXPECT_TRUE(strategyValid(p, 3));
   EXPECT_NEAR(weightSum(p), 1.0, 1e-6);

@@ -16,6 +16,7 @@
 #include "integrators/integrator_factory.h"
 #include "integrators/photon_mapping/photon.h"
 #include "integrators/photon_mapping/ppm_integrator.h"
+#include "integrators/progressive_schedule.h"
 #include "integrators/render_loop.h"
 #include "materials/jung_bbrrdf.h"
 #include "materials/lambertian.h"
@@ -33,10 +34,10 @@ TEST(Ppm, RadiusFollowsKnausZwickerRecurrence) {
     double r2 = 4.0;  // r_1 = 2
     for (int i = 1; i <= 5000; ++i) {
       if (i > 1) r2 *= (i - 1 + double(alpha)) / i;  // Knaus & Zwicker 2011 eq. 15
-      ASSERT_NEAR(ppmRadiusSquared(2.0f, alpha, i), r2, 1e-5 * r2) << "alpha " << alpha << " iteration " << i;
+      ASSERT_NEAR(progressiveRadiusSquared(2.0f, alpha, i), r2, 1e-5 * r2) << "alpha " << alpha << " iteration " << i;
     }
     // r_i² ~ r_1²·i^(α−1)/Γ(1 + α) for large i.
-    EXPECT_NEAR(ppmRadiusSquared(2.0f, alpha, 5000) * std::tgamma(1.0 + alpha) / std::pow(5000.0, alpha - 1.0), 4.0, 4e-3);
+    EXPECT_NEAR(progressiveRadiusSquared(2.0f, alpha, 5000) * std::tgamma(1.0 + alpha) / std::pow(5000.0, alpha - 1.0), 4.0, 4e-3);
   }
 }
 
@@ -44,10 +45,10 @@ TEST(Ppm, WavelengthKernelIsNormalised) {
   for (const float h : {0.5f, 4.7f, 40.0f}) {
     double sum = 0.0;
     const double dx = h / 2000.0;
-    for (double x = -1.5 * h + 0.5 * dx; x < 1.5 * h; x += dx) sum += ppmWavelengthKernel(float(x), h) * dx;
+    for (double x = -1.5 * h + 0.5 * dx; x < 1.5 * h; x += dx) sum += wavelengthKernel(float(x), h) * dx;
     EXPECT_NEAR(sum, 1.0, 1e-5);
-    EXPECT_EQ(ppmWavelengthKernel(1.001f * h, h), 0.0f);
-    EXPECT_FLOAT_EQ(ppmWavelengthKernel(0.0f, h), 0.75f / h);
+    EXPECT_EQ(wavelengthKernel(1.001f * h, h), 0.0f);
+    EXPECT_FLOAT_EQ(wavelengthKernel(0.0f, h), 0.75f / h);
   }
 }
 
@@ -140,7 +141,7 @@ Vec3 kernelBias(const PpmIntegrator& ppm, int passes, const std::vector<double>&
   std::vector<double> mix(size_t(2 * reach + 1), 0.0);
   for (int s = 0; s < passes; ++s)
     for (int k = -reach; k <= reach; ++k)
-      mix[size_t(k + reach)] += ppmWavelengthKernel(float(k * kStep), ppm.bandwidth(s)) / passes;
+      mix[size_t(k + reach)] += wavelengthKernel(float(k * kStep), ppm.bandwidth(s)) / passes;
   std::vector<double> smoothed(x.size(), 0.0);
   for (size_t i = 0; i < x.size(); ++i)
     for (int k = -reach; k <= reach; ++k) {

@@ -109,6 +109,8 @@ TEST_F(SceneLoader, BaseSceneLoadsWithDefaults) {
   EXPECT_EQ(scene->render.rrDepth, 3);
   EXPECT_EQ(scene->render.seed, 1u);
   EXPECT_EQ(scene->render.sensor, SensorSampling::ColorMatching);
+  EXPECT_EQ(scene->render.mollify.bandwidth, 0.0f);
+  EXPECT_EQ(scene->render.mollify.alpha, 2.0f / 3.0f);
   EXPECT_EQ(scene->camera.width(), 8);
   EXPECT_EQ(scene->camera.height(), 8);
   ASSERT_EQ(scene->shapes.size(), 1u);
@@ -384,6 +386,10 @@ TEST_F(SceneLoader, UnknownTypes) {
               "/materials/white/reflectance/type", "unknown spectrum type 'rgb'");
   expectError([](json& j) { j["render"] = {{"sensor_sampling", "random"}}; }, "/render/sensor_sampling",
               "unknown sensor wavelength sampling 'random'");
+  expectError([](json& j) { j["render"] = {{"mollify", {{"alpha", 1.0}}}}; }, "/render/mollify/alpha", "must be in (0, 1)");
+  expectError([](json& j) { j["render"] = {{"mollify", {{"bandwidth", -2}}}}; }, "/render/mollify/bandwidth",
+              "must not be negative");
+  expectError([](json& j) { j["render"] = {{"mollify", {{"h", 2}}}}; }, "/render/mollify/h", "unknown field");
 }
 
 TEST_F(SceneLoader, MissingMaterial) {

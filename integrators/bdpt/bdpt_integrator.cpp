@@ -1,16 +1,48 @@
 #include "integrators/bdpt/bdpt_integrator.h"
 
+#include <cmath>
+#include <stdexcept>
+
 #include "core/color.h"
 #include "integrators/bdpt/connect.h"
+#include "integrators/progressive_schedule.h"
 
 namespace kasha {
+namespace {
 
-Bdpt::Bdpt(const Scene& scene, SensorSampling sensor, bdpt::WalkSettings settings)
-    : sensor_(sensor, scene.range), ws_(settings) {}
+struct MollifyPass final : PassData {
+  explicit MollifyPass(float h) : bandwidth(h) {}
+  float bandwidth;
+};
+
+}  // namespace
+
+Bdpt::Bdpt(const Scene& scene, SensorSampling sensor, bdpt::WalkSettings settings, const MollificationSettings* m)
+    : sensor_(sensor, scene.range), ws_(settings) {
+  if (!m) return;
+  if (ws_.mode != bdpt::WavelengthMode::Independent)
+    throw std::invalid_argument("bdpt: mollification needs the independent wavelength family");
+  if (!(m->bandwidth >= 0.0f)) throw std::invalid_argument("bdpt: the mollification bandwidth must not be negative");
+  if (!(m->alpha > 0.0f && m->alpha < 1.0f)) throw std::invalid_argument("bdpt: the mollification alpha must be in (0, 1)");
+  bandwidth1_ = m->bandwidth > 0.0f ? m->bandwidth : 0.02f * (scene.range.max - scene.range.min);
+  alpha_ = m->alpha;
+}
 
 std::string Bdpt::name() const {
+  if (mollifies()) return "bdpt-mollified";
   return ws_.mode == bdpt::WavelengthMode::Shared ? "bdpt-shared" : "bdpt-independent";
 }
+
+float Bdpt::bandwidth(int sample) const {
+  return bandwidth1_ * std::sqrt(progressiveRadiusSquared(1.0f, alpha_, sample + 1));
+}
+
+std::unique_ptr<const PassData> Bdpt::beginPass(const Scene&, int firstSample, int, uint64_t, RayCounter&) const {
+  if (!mollifies()) return nullptr;
+  return std::make_unique<MollifyPass>(bandwidth(firstSample));
+}
+
+int Bdpt::maxSamplesPerPass() const { return mollifies() ? 1 : Integrator::maxSamplesPerPass(); }
 
 Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
   using namespace bdpt;
@@ -21,7 +53,14 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& 
   const Vec2 film = pixel + Vec2(rng.uniform(), rng.uniform());
   traceCameraSubpath(scene, film, ws.lambda, ws.pdf, ws_, rng, ctx.counter, C);
   traceLightSubpath(scene, ws.lambda, ws_, rng, ctx.counter, L);
-  const Context c{scene, ws_.mode, ws.lambda, ws.pdf, sensor_, ctx.counter};
+  Context c{scene, ws_.mode, ws.lambda, ws.pdf, sensor_, ctx.counter};
+  if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;
+  const Vec3 pixelScale = Observer::cie1931().weight(ws.lambda) / ws.pdf;  // W(λ)/p(λ)
+  if (ctx.recordStrategies) {
+    c.log = &ctx.strategies;
+    c.pixel = pixel;
+    c.pixelScale = pixelScale;
+  }
 
   // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelength.
   float L_pixel = 0.0f;

@@ -3,7 +3,9 @@
 // densities both ways, every wavelength density in the MIS weights, and the two exact wavelength
 // families of transport.md §3 — light subpaths sharing the camera sample's wavelength (Shared) or
 // drawing their own from the lights' power spectrum (Independent), the latter joined through a
-// connection vertex that evaluates its fluorescent lobe.
+// connection vertex that evaluates its fluorescent lobe. Optionally (Independent only) spectral
+// mollification joins elastic connection vertices through a wavelength kernel whose half-width
+// shrinks pass by pass (docs/bdpt-mis.md §6); each pass then takes one sample per pixel.
 #include "core/sensor_sampling.h"
 #include "integrators/bdpt/subpaths.h"
 #include "integrators/integrator.h"
@@ -12,13 +14,25 @@ namespace kasha {
 
 class Bdpt final : public Integrator {
  public:
-  Bdpt(const Scene& scene, SensorSampling sensor, bdpt::WalkSettings settings);
+  // `mollify` is used only if given (Independent mode); a zero bandwidth becomes 2% of the
+  // scene's wavelength range. Throws std::invalid_argument for settings out of range.
+  Bdpt(const Scene& scene, SensorSampling sensor, bdpt::WalkSettings settings,
+       const MollificationSettings* mollify = nullptr);
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const override;
   std::string name() const override;
+  std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
+                                            RayCounter& counter) const override;
+  int maxSamplesPerPass() const override;
+
+  bool mollifies() const { return bandwidth1_ > 0.0f; }
+  // The kernel half-width h_i of the pass that takes sample `sample` (iteration sample + 1):
+  // h_i = h_1·r_i/r_1 with the radius schedule of progressive photon mapping.
+  float bandwidth(int sample) const;
 
  private:
   SensorWavelengths sensor_;
   bdpt::WalkSettings ws_;
+  float bandwidth1_ = 0.0f, alpha_ = 0.0f;
 };
 
 }  // namespace kasha

@@ -1,6 +1,7 @@
 #include "integrators/bdpt/connect.h"
 
 #include "core/color.h"
+#include "integrators/progressive_schedule.h"
 
 namespace kasha::bdpt {
 namespace {
@@ -72,6 +73,7 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   }
   fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
   fp.v[size_t(k)].pdfLight = 0.0;
+  if (c.mode == WavelengthMode::Independent && c.bandwidth > 0.0f) fp.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
   return fp;
 }
 
@@ -85,6 +87,12 @@ double specCamera(const PathVertex& x1, SpectralLobe lobe, float lambda0, float 
 // vertex (then `lobe`/`lambdaIn` give the connection's).
 double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn) {
   return c1.material->spectralPdf(TransportMode::Importance, lambdaIn, c1.lambda, lobe);
+}
+
+// Records a strategy's share of the sample at the camera sample's pixel (strategies with t ≥ 2).
+void record(const Context& c, int s, int t, Variant v, float value, float weight) {
+  if (c.log && value != 0.0f)
+    c.log->push_back({c.pixel, c.pixelScale * (value * weight), c.pixelScale * value, s, t, uint8_t(v)});
 }
 
 bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
@@ -117,7 +125,9 @@ float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
     fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
   }
   else fp.lightSeenByPinhole = e.kind == Kind::Surface;
-  return e.beta * Le * misWeight(fp, 0);
+  const float weight = misWeight(fp, 0);
+  record(c, 0, t, Variant::kStandard, e.beta * Le, weight);
+  return e.beta * Le * weight;
 }
 
 float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& rng) {
@@ -156,7 +166,9 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& 
   fp.specCam1 = x1.spectralPdf;
   fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
   const float value = x1.beta * fx * std::abs(wi.z) / x1.spectralPdf * ls->Li / (pSel * ls->pdf);
-  return value * misWeight(fp, 1);
+  const float weight = misWeight(fp, 1);
+  record(c, 1, t, Variant::kStandard, value, weight);
+  return value * weight;
 }
 
 float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t) {
@@ -187,9 +199,11 @@ float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, con
   fp.specCam1 = specCamera(b, SpectralLobe::Fluorescent, a.lambda, b.lambda);
   fp.specLightLast = t == 2 ? specLightLast(b, SpectralLobe::Fluorescent, a.lambda)
                             : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-  const float weight = misWeight(fp, 1, SOne::kLightVertex);
+  const float weight = misWeight(fp, 1, Variant::kLightVertex);
   if (!(weight > 0.0f) || !visible(c, b, a)) return 0.0f;
-  return Le * G * f * b.beta / a.pdfFwd * weight;
+  const float value = Le * G * f * b.beta / a.pdfFwd;
+  record(c, 1, t, Variant::kLightVertex, value, weight);
+  return value * weight;
 }
 
 float connect(const Context& c, const std::vector<PathVertex>& L, int s, const std::vector<PathVertex>& C, int t) {
@@ -207,46 +221,62 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
   const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
   const float G = std::abs(aWo.z) * std::abs(bWi.z) / dist2;
 
-  // The exact lobe pairs (docs/bdpt-mis.md §4) and the connecting segment's wavelength.
+  // The exact lobe pairs (docs/bdpt-mis.md §4), each with the connecting segment's wavelength as
+  // a and b see it; the same for both except in the mollified elastic pair (§6), where a keeps the
+  // light side's wavelength, b the camera side's, and a kernel joins them.
   struct Pair {
     SpectralLobe la, lb;
-    float lambda;
+    float lambdaA, lambdaB;
+    Variant variant;
   };
-  Pair pairs[2];
+  Pair pairs[3];
   int n = 0;
   if (c.mode == WavelengthMode::Shared) {
-    pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, c.lambdaCamera};
+    pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, c.lambdaCamera, c.lambdaCamera, Variant::kStandard};
   } else {
-    if (a.material->fluoresces()) pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, b.lambda};
-    if (b.material->fluoresces()) pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda};
+    if (a.material->fluoresces())
+      pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, b.lambda, b.lambda, Variant::kStandard};
+    if (b.material->fluoresces())
+      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda, a.lambda, Variant::kStandard};
+    if (c.bandwidth > 0.0f && std::abs(a.lambda - b.lambda) < c.bandwidth)
+      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kMollified};
   }
   float sum = 0.0f;
   bool checked = false, unoccluded = false;
   for (int i = 0; i < n; ++i) {
     const Pair& p = pairs[i];
-    const float fA = a.material->eval(TransportMode::Importance, aWi, aWo, a.lambda, p.lambda, p.la);
-    const float fB = b.material->eval(TransportMode::Radiance, bWi, bWo, p.lambda, b.lambda, p.lb);
+    const float fA = a.material->eval(TransportMode::Importance, aWi, aWo, a.lambda, p.lambdaA, p.la);
+    const float fB = b.material->eval(TransportMode::Radiance, bWi, bWo, p.lambdaB, b.lambda, p.lb);
     if (!(fA > 0.0f && fB > 0.0f)) continue;
     FullPath fp = layout(c, &L, s, C, t);
     fp.v[size_t(s - 1)].lobe = p.la;
     fp.v[size_t(s)].lobe = p.lb;
-    fp.v[size_t(s)].pdfLight = lightSide(c.scene, a, aPrev, b, p.la, a.lambda, p.lambda);
-    fp.v[size_t(s + 1)].pdfLight = lightSide(c.scene, b, a, bNext, p.lb, p.lambda, b.lambda);
-    fp.v[size_t(s - 1)].pdfCam = cameraSide(c.scene, b, bNext, a, p.lb, p.lambda, b.lambda);
-    fp.v[size_t(s - 2)].pdfCam = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambda);
+    fp.v[size_t(s)].pdfLight = lightSide(c.scene, a, aPrev, b, p.la, a.lambda, p.lambdaA);
+    fp.v[size_t(s + 1)].pdfLight = lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, b.lambda);
+    fp.v[size_t(s - 1)].pdfCam = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, b.lambda);
+    fp.v[size_t(s - 2)].pdfCam = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
     const PathVertex& x1 = L[1];
-    fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
-    fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambda) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+    fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+    fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambdaB) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
     lightEnd(c, L[0].light, L[0].lambda, L[0], L[1], fp);
     fp.v[0].pdfLight = L[0].pdfFwd;  // as sampled (same value; avoids recomputation drift)
-    const float weight = misWeight(fp, s);
+    const float weight = misWeight(fp, s, p.variant);
     if (!(weight > 0.0f)) continue;
     if (!checked) {
       checked = true;
       unoccluded = visible(c, a, b);
     }
     if (!unoccluded) return 0.0f;
-    sum += a.beta * fA * G * fB * b.beta * weight;
+    // Mollified: the delta δ(λ_a − λ_b) of the elastic pair widened to K_h (Jung et al. 2020),
+    // renormalised to its mass inside the wavelength range (docs/bdpt-mis.md eq. 5).
+    const WavelengthRange& r = c.scene.range;
+    const float kernel = p.variant == Variant::kMollified
+                             ? wavelengthKernel(a.lambda - b.lambda, c.bandwidth) /
+                                   wavelengthKernelMass(r.min - b.lambda, r.max - b.lambda, c.bandwidth)
+                             : 1.0f;
+    const float value = a.beta * fA * G * fB * b.beta * kernel;
+    record(c, s, t, p.variant, value, weight);
+    sum += value * weight;
   }
   return sum;
 }
@@ -303,7 +333,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
   float sensorWeight = perPath;
   if (c.mode == WavelengthMode::Shared) sensorWeight /= c.sensorPdf;  // λ was the sensor's sample
-  splats.push_back({conn->pixel, Observer::cie1931().weight(lambda) * (value * weight * conn->importance * sensorWeight)});
+  const Vec3 xyz = Observer::cie1931().weight(lambda) * (value * conn->importance * sensorWeight);
+  splats.push_back({conn->pixel, xyz * weight});
+  if (c.log) c.log->push_back({conn->pixel, xyz * weight, xyz, s, 1, uint8_t(Variant::kStandard)});
 }
 
 }  // namespace kasha::bdpt

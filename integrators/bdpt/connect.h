@@ -16,6 +16,14 @@ struct Context {
   float sensorPdf;      // its density
   const SensorWavelengths& sensor;  // the sensor's distribution, for other wavelengths' densities
   RayCounter& counter;
+  // Spectral mollification (Independent only): the wavelength kernel's half-width h of this
+  // pass in nm; 0 for none (docs/bdpt-mis.md §6).
+  float bandwidth = 0.0f;
+  // Per-strategy records (null unless asked): strategies with t ≥ 2 record at `pixel`, their
+  // radiance turned into XYZ by `pixelScale` = W(λ)/p(λ).
+  std::vector<StrategySample>* log = nullptr;
+  Vec2 pixel{0.0f};
+  Vec3 pixelScale{0.0f};
 };
 
 // s = 0: the camera subpath's vertex C[t−1] lies on an emitter. Radiance, weighted.
@@ -25,7 +33,8 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& 
 // s = 1 through the light subpath's own vertex L[0] (Independent): its wavelength, drawn from the
 // lights' power spectrum, reaches the camera's through C[t−1]'s fluorescent lobe.
 float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t);
-// s ≥ 2, t ≥ 2: connect L[s−1] and C[t−1] through every exact lobe pair.
+// s ≥ 2, t ≥ 2: connect L[s−1] and C[t−1] through every exact lobe pair, and through two elastic
+// lobes with the wavelength kernel when mollifying.
 float connect(const Context& c, const std::vector<PathVertex>& L, int s, const std::vector<PathVertex>& C, int t);
 // t = 1: L[s−1] (s ≥ 1) seen by the pinhole, with the spectral event the light subpath sampled
 // there; appends a splat (film units) if visible.

@@ -9,10 +9,10 @@ bool allElastic(const FullPath& p) {
   return true;
 }
 
-// Density of the full path under strategy s (docs/bdpt-mis.md eq. 3).
-double density(const FullPath& p, int s, SOne one) {
+// Density of the full path under strategy s (docs/bdpt-mis.md eqs. 2, 3 and 6).
+double density(const FullPath& p, int s, Variant variant) {
   const int k = int(p.v.size()) - 1;
-  const bool nee = s == 1 && k >= 2 && one == SOne::kNee;
+  const bool nee = s == 1 && k >= 2 && variant == Variant::kStandard;
   double d = 1.0;
   if (nee) {
     d = p.specCam1 * p.pdfNee;
@@ -21,18 +21,27 @@ double density(const FullPath& p, int s, SOne one) {
   }
   for (int i = nee ? 1 : s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
   if (s == k && k >= 2) d *= p.specLightLast;  // t = 1 samples x_{k−1}'s event on the light side
+  // Both sides sampled the connecting group's wavelength; the kernel accepts a window ε_h of the
+  // camera side's (docs/bdpt-mis.md eq. 6).
+  if (variant == Variant::kMollified) d *= p.mollifyWidth;
   return d;
 }
 
 }  // namespace
 
-bool strategyValid(const FullPath& p, int s, SOne one) {
+bool strategyValid(const FullPath& p, int s, Variant variant) {
   const int k = int(p.v.size()) - 1;
   const bool independent = p.mode == WavelengthMode::Independent;
   if (s < 0 || s > k) return false;
+  if (variant == Variant::kMollified) {  // two elastic connection vertices, wavelengths chosen apart
+    if (!independent || !(p.mollifyWidth > 0.0) || s < 2 || s > k - 1) return false;
+    const FullVertex& a = p.v[size_t(s - 1)];
+    const FullVertex& b = p.v[size_t(s)];
+    return a.connectible && b.connectible && a.lobe == SpectralLobe::Elastic && b.lobe == SpectralLobe::Elastic;
+  }
   if (s == 0) return p.v[0].pdfCam > 0.0;  // the camera subpath hits the emitter
-  if (k == 1) return p.lightSeenByPinhole && one == SOne::kNee;  // s = t = 1: the light seen directly
-  if (s == 1 && one == SOne::kNee) return p.v[1].connectible && p.pdfNee > 0.0;
+  if (k == 1) return p.lightSeenByPinhole && variant == Variant::kStandard;  // s = t = 1: the light seen directly
+  if (s == 1 && variant == Variant::kStandard) return p.v[1].connectible && p.pdfNee > 0.0;
   if (s == 1)  // the light subpath's vertex, at its own wavelength: x_1 must bridge it (Independent)
     return independent && p.lightVertexConnectible && p.v[1].connectible && p.v[1].lobe == SpectralLobe::Fluorescent;
   if (s == k) {  // t = 1: light tracing, x_{k−1}'s event sampled by the light side
@@ -49,19 +58,20 @@ bool strategyValid(const FullPath& p, int s, SOne one) {
   return (a.lobe == SpectralLobe::Fluorescent) != (b.lobe == SpectralLobe::Fluorescent);
 }
 
-float misWeight(const FullPath& p, int s, SOne one) {
-  if (!strategyValid(p, s, one)) return 0.0f;
+float misWeight(const FullPath& p, int s, Variant variant) {
+  if (!strategyValid(p, s, variant)) return 0.0f;
   const int k = int(p.v.size()) - 1;
-  const double own = density(p, s, one);
+  const double own = density(p, s, variant);
   if (!(own > 0.0)) return 0.0f;
   double sum = 0.0;
-  auto add = [&](int i, SOne o) {
+  auto add = [&](int i, Variant o) {
     if (!strategyValid(p, i, o)) return;
     const double r = density(p, i, o) / own;  // power heuristic, β = 2
     sum += r * r;
   };
-  for (int i = 0; i <= k; ++i) add(i, SOne::kNee);
-  if (k >= 2) add(1, SOne::kLightVertex);
+  for (int i = 0; i <= k; ++i) add(i, Variant::kStandard);
+  if (k >= 2) add(1, Variant::kLightVertex);
+  for (int i = 2; i < k; ++i) add(i, Variant::kMollified);
   return float(1.0 / sum);
 }
 

@@ -25,19 +25,25 @@ struct FullPath {
   bool lightSeenByPinhole = false;  // x_0 may connect to the camera directly (area lights)
   bool lightVertexConnectible = false;  // x_0 is at a finite position (not a light at infinity)
   double specLightLast = 0.0;  // light-side spectral density of x_{k−1}'s event (t = 1 samples it)
+  // Spectral mollification (Independent only, docs/bdpt-mis.md §6): the kernel's effective width
+  // ε_h = 1/K_h(0) in nm, which turns a mollified connection's density into one over the path
+  // measure; 0: no mollified strategies.
+  double mollifyWidth = 0.0;
 };
 
-// Strategies are named by s, the number of light-subpath vertices, with two kinds for s = 1
-// when k ≥ 2: next-event estimation (kNee: the camera side samples x_1's spectral event and the
-// light point at that wavelength) and the light subpath's own first vertex (kLightVertex: its
-// wavelength from the lights' power spectrum, x_1's fluorescent lobe evaluated).
-enum class SOne : uint8_t { kNee, kLightVertex };
+// Strategies are named by s, the number of light-subpath vertices, and a variant. For s = 1 when
+// k ≥ 2 there are two: next-event estimation (kStandard: the camera side samples x_1's spectral
+// event and the light point at that wavelength) and the light subpath's own first vertex
+// (kLightVertex: its wavelength from the lights' power spectrum, x_1's fluorescent lobe
+// evaluated). For 2 ≤ s ≤ k − 1, kMollified joins two elastic connection vertices whose
+// wavelengths were chosen independently through a wavelength kernel (docs/bdpt-mis.md §6).
+enum class Variant : uint8_t { kStandard, kLightVertex, kMollified };
 
 // Weight of strategy s (for k = 1, s = 1 is the light seen by the camera). Returns 0 if the
 // strategy itself cannot produce the path.
-float misWeight(const FullPath& path, int s, SOne one = SOne::kNee);
+float misWeight(const FullPath& path, int s, Variant variant = Variant::kStandard);
 
 // Whether strategy s can produce the path (exposed for tests).
-bool strategyValid(const FullPath& path, int s, SOne one = SOne::kNee);
+bool strategyValid(const FullPath& path, int s, Variant variant = Variant::kStandard);
 
 }  // namespace kasha::bdpt

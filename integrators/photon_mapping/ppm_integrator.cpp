@@ -7,6 +7,7 @@
 #include "core/memory_budget.h"
 #include "integrators/photon_mapping/photon_map.h"
 #include "integrators/photon_mapping/photon_tracer.h"
+#include "integrators/progressive_schedule.h"
 
 namespace kasha {
 namespace {
@@ -42,22 +43,12 @@ Vec3 gather(const PhotonPass& pass, const Material& mat, const Vec3& p, const Ve
     if (exactElastic)
       sum += obs.weight(ph.lambda) * fe;  // the sensor at the photon's own wavelength (β = 1 here)
     else
-      sum += sensor * (fe * ppmWavelengthKernel(ph.lambda - lambda, pass.bandwidth));
+      sum += sensor * (fe * wavelengthKernel(ph.lambda - lambda, pass.bandwidth));
   }
   return sum * pass.density;
 }
 
 }  // namespace
-
-float ppmRadiusSquared(float r1, float alpha, int iteration) {
-  const double i = iteration;
-  return float(double(r1) * r1 * std::exp(std::lgamma(i + alpha) - std::lgamma(1.0 + alpha) - std::lgamma(i + 1.0)));
-}
-
-float ppmWavelengthKernel(float x, float h) {
-  const float t = x / h;
-  return t * t < 1.0f ? 0.75f * (1.0f - t * t) / h : 0.0f;
-}
 
 PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
     : sensor_(s.sensor, scene.range), maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
@@ -80,7 +71,7 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
   bandwidth1_ = p.bandwidth > 0.0f ? p.bandwidth : 0.01f * (scene.range.max - scene.range.min);
 }
 
-float PpmIntegrator::radius(int sample) const { return std::sqrt(ppmRadiusSquared(radius1_, alpha_, sample + 1)); }
+float PpmIntegrator::radius(int sample) const { return std::sqrt(progressiveRadiusSquared(radius1_, alpha_, sample + 1)); }
 
 float PpmIntegrator::bandwidth(int sample) const { return bandwidth1_ * radius(sample) / radius1_; }
 

@@ -18,13 +18,6 @@
 
 namespace kasha {
 
-// r_i² for iteration i ≥ 1 from Knaus & Zwicker 2011 eq. 15, r_i² = r_{i−1}²·(i − 1 + α)/i, in
-// closed form r_i² = r_1²·Γ(i + α)/(Γ(1 + α)·Γ(i + 1)), so a resumed render needs no history.
-float ppmRadiusSquared(float r1, float alpha, int iteration);
-
-// The Epanechnikov kernel of half-width h in wavelength, per nm: 3/(4h)·(1 − (x/h)²) for |x| < h.
-float ppmWavelengthKernel(float x, float h);
-
 class PpmIntegrator final : public Integrator {
  public:
   // Resolves the derived settings (PhotonMappingSettings). Throws std::invalid_argument for

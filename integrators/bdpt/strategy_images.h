@@ -1,0 +1,42 @@
+#pragma once
+// One image per BDPT strategy (`kasha render --strategy-images`, docs/bdpt-mis.md §7): the
+// contributions of each (s, t) strategy, with their MIS weights and without, accumulated from
+// the samples' StrategySample records. Paths with more scattering vertices than a chosen depth go
+// into one image, "deeper", so that the weighted images always sum to the render.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/film.h"
+#include "integrators/integrator.h"
+
+namespace kasha::bdpt {
+
+// File stem of a strategy's image: "s2_t3", "s1_t2_light_vertex", "s2_t2_mollified".
+std::string strategyName(int s, int t, uint8_t variant);
+
+class StrategyImages {
+ public:
+  StrategyImages(int width, int height, int maxDepth) : w_(width), h_(height), maxDepth_(maxDepth) {}
+  // Not thread-safe: the render loop merges records after each pass.
+  void add(const StrategySample& r);
+  void setSamplesPerPixel(int spp);
+  // Writes <dir>/<name>.exr (and .png if asked) for every strategy that contributed; with
+  // `unweighted` also <name>_unweighted.exr/.png. Returns the files written.
+  std::vector<std::string> write(const std::string& dir, bool unweighted, bool png, float exposureStops) const;
+
+  struct Images {
+    Film weighted, unweighted;
+    Images(int w, int h) : weighted(w, h), unweighted(w, h) {}
+  };
+  const std::map<std::string, std::unique_ptr<Images>>& images() const { return images_; }
+  // An upper bound on the bytes the films may take (every strategy of every length up to the depth).
+  static uint64_t bytesFor(int width, int height, int maxDepth);
+
+ private:
+  int w_, h_, maxDepth_;
+  std::map<std::string, std::unique_ptr<Images>> images_;
+};
+
+}  // namespace kasha::bdpt
