@@ -6,6 +6,7 @@
 #include "materials/dielectric.h"
 #include "materials/jung_bbrrdf.h"
 #include "materials/lambertian.h"
+#include "materials/measured_material_json.h"
 #include "materials/mirror.h"
 
 namespace kasha {
@@ -91,8 +92,13 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
     m = std::make_unique<Dielectric>(std::move(ior), range);
+  } else if (type == "zhdanov") {
+    m = parseZhdanov(f, ctx, range, unphysical);
+  } else if (type == "measured_reradiation") {
+    m = parseMeasuredReradiation(f, ctx, range, unphysical);
   } else {
-    f.fail("type", "unknown material type '" + type + "' (lambertian, jung_fluorescent, mirror, dielectric)");
+    f.fail("type", "unknown material type '" + type +
+                       "' (lambertian, jung_fluorescent, mirror, dielectric, zhdanov, measured_reradiation)");
   }
   f.finish();
   return m;

@@ -1,0 +1,144 @@
+#include "core/bispectral_exr.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <regex>
+#include <set>
+
+#include "core/error.h"
+
+namespace kasha {
+namespace {
+
+constexpr double kSpeedOfLight = 299792458.0;  // m/s
+
+// Wavelength in nm of "<value><prefix><m|Hz>" (value with a decimal comma).
+std::optional<float> toNanometres(std::string value, const std::string& prefix, const std::string& unit) {
+  static const std::map<std::string, double> kPrefix = {
+      {"", 1.0},    {"Y", 1e24}, {"Z", 1e21}, {"E", 1e18},  {"P", 1e15}, {"T", 1e12}, {"G", 1e9}, {"M", 1e6},
+      {"k", 1e3},   {"h", 1e2},  {"da", 1e1}, {"d", 1e-1},  {"c", 1e-2}, {"m", 1e-3}, {"u", 1e-6}, {"n", 1e-9},
+      {"p", 1e-12}};
+  std::replace(value.begin(), value.end(), ',', '.');
+  if (value.empty() || value == ".") return std::nullopt;
+  double v = 0.0;
+  try {
+    v = std::stod(value) * kPrefix.at(prefix);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  const double metres = unit == "m" ? v : kSpeedOfLight / v;
+  if (!(metres > 0.0) || !std::isfinite(metres)) return std::nullopt;
+  return float(metres * 1e9);
+}
+
+std::string wavelengthName(float nm) {
+  std::string s = std::to_string(double(nm));
+  std::replace(s.begin(), s.end(), '.', ',');
+  return s + "nm";
+}
+
+}  // namespace
+
+std::optional<BispectralChannel> parseBispectralChannel(const std::string& name) {
+  static const std::string num = R"((\d*,?\d*(?:[Ee][+-]?\d+)?))";
+  static const std::string unit = "(Y|Z|E|P|T|G|M|k|h|da|d|c|m|u|n|p)?(m|Hz)";
+  static const std::regex diagonal("^T\\." + num + unit + "$");
+  static const std::regex rerad("^T\\." + num + unit + "\\." + num + unit + "$");
+  std::smatch m;
+  BispectralChannel c;
+  if (std::regex_match(name, m, diagonal)) {
+    const std::optional<float> l = toNanometres(m[1], m[2], m[3]);
+    if (!l) return std::nullopt;
+    c.lambdaIn = *l;
+    return c;
+  }
+  if (std::regex_match(name, m, rerad)) {
+    const std::optional<float> li = toNanometres(m[1], m[2], m[3]), lo = toNanometres(m[4], m[5], m[6]);
+    if (!li || !lo) return std::nullopt;
+    c.lambdaIn = *li;
+    c.lambdaOut = *lo;
+    return c;
+  }
+  return std::nullopt;
+}
+
+BispectralData readBispectralExr(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i dw = file.header().dataWindow();
+    std::vector<std::pair<std::string, BispectralChannel>> channels;
+    std::set<float> in, out;
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+      const std::optional<BispectralChannel> c = parseBispectralChannel(it.name());
+      if (!c) continue;
+      channels.emplace_back(it.name(), *c);
+      in.insert(c->lambdaIn);
+      out.insert(c->lambdaOut.value_or(c->lambdaIn));
+    }
+    if (channels.empty())
+      throw InputError(path, "", "no reflective channel T.<wavelength> or T.<wavelength>.<wavelength> (Fichet et "
+                                 "al. 2021 bispectral layout)");
+    // The first scanline of every channel; the measurement is its first pixel.
+    const size_t width = size_t(dw.max.x - dw.min.x + 1);
+    std::vector<float> line(channels.size() * width, 0.0f), values(channels.size());
+    Imf::FrameBuffer fb;
+    for (size_t k = 0; k < channels.size(); ++k) {
+      char* base = reinterpret_cast<char*>(&line[k * width] - dw.min.x);
+      fb.insert(channels[k].first, Imf::Slice(Imf::FLOAT, base, sizeof(float), 0));
+    }
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.min.y);
+    for (size_t k = 0; k < channels.size(); ++k) values[k] = line[k * width];
+    BispectralData d;
+    d.source = path;
+    d.in.assign(in.begin(), in.end());
+    d.out.assign(out.begin(), out.end());
+    d.value.assign(d.in.size() * d.out.size(), 0.0f);
+    const auto index = [](const std::vector<float>& g, float l) {
+      return size_t(std::lower_bound(g.begin(), g.end(), l) - g.begin());
+    };
+    for (size_t k = 0; k < channels.size(); ++k) {
+      const BispectralChannel& c = channels[k].second;
+      if (!std::isfinite(values[k])) throw InputError(path, channels[k].first, "value is not finite");
+      d.at(index(d.out, c.lambdaOut.value_or(c.lambdaIn)), index(d.in, c.lambdaIn)) = values[k];
+    }
+    return d;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path, "", std::string("cannot read OpenEXR: ") + e.what());
+  }
+}
+
+void writeBispectralExr(const std::string& path, const BispectralData& d) {
+  Imf::Header header(1, 1);
+  std::vector<std::pair<std::string, float>> cells;
+  for (size_t o = 0; o < d.out.size(); ++o)
+    for (size_t i = 0; i < d.in.size(); ++i) {
+      const bool diagonal = d.out[o] == d.in[i];
+      cells.emplace_back(diagonal ? "T." + wavelengthName(d.in[i])
+                                  : "T." + wavelengthName(d.in[i]) + "." + wavelengthName(d.out[o]),
+                         d.at(o, i));
+    }
+  Imf::FrameBuffer fb;
+  for (auto& [name, v] : cells) {
+    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    fb.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(&v), 0, 0));
+  }
+  try {
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(1);
+  } catch (const std::exception& e) {
+    throw InputError(path, "", std::string("cannot write OpenEXR: ") + e.what());
+  }
+}
+
+}  // namespace kasha
