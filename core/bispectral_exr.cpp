@@ -130,7 +130,7 @@ void writeBispectralExr(const std::string& path, const BispectralData& d) {
   Imf::FrameBuffer fb;
   for (auto& [name, v] : cells) {
     header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    fb.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(&v), 0, 0));
+    fb.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(&v), sizeof(float), sizeof(float)));
   }
   try {
     Imf::OutputFile file(path.c_str(), header);

@@ -38,8 +38,7 @@ MeasuredReradiation::MeasuredReradiation(const BispectralData& data, MeasuredRer
   if (data.value.size() != in_.size() * out_.size())
     throw InputError(data.source, "", "matrix size does not match its wavelength grids");
   // Clean the noise and convert band values to densities per nm (header comment).
-  std::vector<float> f(data.value.size(), 0.0f);  // f[o * nIn + i]
-  std::vector<float> diagL, diagV;
+  f_.assign(data.value.size(), 0.0f);
   for (size_t i = 0; i < in_.size(); ++i)
     for (size_t o = 0; o < out_.size(); ++o) {
       const float v = data.at(o, i);
@@ -47,24 +46,23 @@ MeasuredReradiation::MeasuredReradiation(const BispectralData& data, MeasuredRer
         throw InputError(data.source, "", "value at λ_i = " + std::to_string(in_[i]) + ", λ_o = " +
                                               std::to_string(out_[o]) + " nm is not finite");
       if (out_[o] == in_[i]) {
-        diagL.push_back(in_[i]);
-        diagV.push_back(std::max(v, 0.0f));
+        diagL_.push_back(in_[i]);
+        diagV_.push_back(std::max(v, 0.0f));
       } else if (out_[o] > in_[i] && v > options.noiseFloor) {
-        f[o * in_.size() + i] = v / bandWidth(out_, o);
+        f_[o * in_.size() + i] = v / bandWidth(out_, o);
       }
     }
-  diagonal_ = diagL.empty() ? Spectrum::constant(0.0f) : Spectrum::piecewiseLinear(diagL, diagV).zeroOutside();
   std::vector<float> line;
   for (size_t i = 0; i < in_.size(); ++i) {
     line.clear();
-    for (size_t o = 0; o < out_.size(); ++o) line.push_back(f[o * in_.size() + i]);
+    for (size_t o = 0; o < out_.size(); ++o) line.push_back(f_[o * in_.size() + i]);
     Spectrum s = Spectrum::piecewiseLinear(out_, line).zeroOutside();
-    columns_.push_back({s, SpectralDistribution(s, range)});
+    columns_.push_back({SpectralDistribution(s, range)});
   }
   for (size_t o = 0; o < out_.size(); ++o) {
-    line.assign(f.begin() + o * in_.size(), f.begin() + (o + 1) * in_.size());
+    line.assign(f_.begin() + o * in_.size(), f_.begin() + (o + 1) * in_.size());
     Spectrum s = Spectrum::piecewiseLinear(in_, line).zeroOutside();
-    rows_.push_back({s, SpectralDistribution(s, range)});
+    rows_.push_back({SpectralDistribution(s, range)});
   }
   for (size_t i = 0; i < in_.size(); ++i) {
     fluoresces_ = fluoresces_ || columns_[i].dist.integral() > 0.0f;
@@ -87,9 +85,18 @@ MeasuredReradiation::Bracket MeasuredReradiation::bracket(const std::vector<floa
   return {k1 - 1, k1, 1.0f - t, t};
 }
 
+float MeasuredReradiation::diagonal(float l) const {
+  if (diagL_.empty()) return 0.0f;
+  const Bracket b = bracket(diagL_, l);
+  return b.w0 * diagV_[b.k0] + b.w1 * diagV_[b.k1];
+}
+
 float MeasuredReradiation::F(float lambdaOut, float lambdaIn) const {
-  const Bracket b = bracket(in_, lambdaIn);
-  return b.w0 * columns_[b.k0].s(lambdaOut) + b.w1 * columns_[b.k1].s(lambdaOut);
+  // Bilinear between the four surrounding knots (zero outside the measured grid).
+  const Bracket bi = bracket(in_, lambdaIn), bo = bracket(out_, lambdaOut);
+  const auto at = [&](size_t o, size_t i) { return f_[o * in_.size() + i]; };
+  return bo.w0 * (bi.w0 * at(bo.k0, bi.k0) + bi.w1 * at(bo.k0, bi.k1)) +
+         bo.w1 * (bi.w0 * at(bo.k1, bi.k0) + bi.w1 * at(bo.k1, bi.k1));
 }
 
 float MeasuredReradiation::A(float lambdaIn) const {

@@ -47,7 +47,7 @@ class MeasuredReradiation final : public Material {
   bool fluoresces() const override { return fluoresces_; }
   std::string describe() const override { return "measured_reradiation"; }
 
-  float diagonal(float l) const { return diagonal_(l); }
+  float diagonal(float l) const;
   float F(float lambdaOut, float lambdaIn) const;  // reradiation density per nm
   float A(float lambdaIn) const;                   // ∫F(λ_o; λ_i) dλ_o over the range
   float B(float lambdaOut) const;                  // ∫F(λ_o; λ_i) dλ_i over the range
@@ -56,7 +56,6 @@ class MeasuredReradiation final : public Material {
  private:
   // One measured line (a column: F(·; λ_i) at an input knot, or a row: F(λ_o; ·) at an output knot).
   struct Line {
-    Spectrum s;
     SpectralDistribution dist;
   };
   // The two lines around l and their interpolation weights (zero outside the grid).
@@ -68,7 +67,8 @@ class MeasuredReradiation final : public Material {
   float fluorescentWeight(TransportMode mode, float lambdaKnown) const;
 
   std::vector<float> in_, out_;
-  Spectrum diagonal_;
+  std::vector<float> diagL_, diagV_;  // the measured diagonal d(λ)
+  std::vector<float> f_;              // F at the knots, f_[o * in_.size() + i], per nm
   std::vector<Line> columns_;  // per input knot: F(·; λ_i) over λ_o
   std::vector<Line> rows_;     // per output knot: F(λ_o; ·) over λ_i
   bool fluoresces_ = false;
