@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "core/bispectral_exr.h"
 #include "core/error.h"
@@ -180,6 +182,21 @@ TEST(BispectralFiles, SceneMaterialErrorsNameTheField) {
   EXPECT_NO_THROW(parse({{"type", "measured_reradiation"}, {"file", ok}}));
   EXPECT_THROW(parse({{"type", "measured_reradiation"}, {"file", ok}, {"noise_floor", -1}}), InputError);
   EXPECT_THROW(parse({{"type", "measured_reradiation"}, {"file", ok}, {"nois_floor", 0.1}}), InputError);
+  // A material in its own file: missing, not JSON, or with a bad field (named inside that file).
+  for (const auto& [name, text, expected] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"kasha_no_such_material.json", "", "/materials/m/file"},
+           {"kasha_bad_material.json", "{\"type\": ", "not valid JSON"},
+           {"kasha_bad_field.json", "{\"type\": \"zhdanov\", \"passive\": 0.5, \"excitation\": 0, \"emission\": 1, "
+                                    "\"gloss\": 2}", "gloss"}}) {
+    const std::string path = text.empty() ? name : writeTemp(name, text);
+    try {
+      parse({{"type", "file"}, {"file", path}});
+      FAIL() << name;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(BispectralFiles, FichetChannelNames) {
