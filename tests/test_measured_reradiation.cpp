@@ -109,6 +109,21 @@ TEST(MeasuredReradiation, SampleMatchesPdfAndDensitiesIntegrateToOne) {
     }
 }
 
+// f is reciprocal in directions, not in wavelengths (fluorescence only shifts to longer ones).
+TEST(MeasuredReradiation, DirectionallyReciprocalNotSpectrally) {
+  const MeasuredReradiation m(synthetic(), {}, kRange);
+  Rng rng(4);
+  for (int k = 0; k < 1000; ++k) {
+    const Vec3 a = test::randomDirection(rng), b = test::randomDirection(rng);
+    const float li = 350.0f + 150.0f * rng.uniform(), lo = 500.0f + 200.0f * rng.uniform();
+    for (const SpectralLobe lobe : {SpectralLobe::Elastic, SpectralLobe::Fluorescent})
+      EXPECT_EQ(m.eval(TransportMode::Radiance, a, b, li, lo, lobe), m.eval(TransportMode::Importance, b, a, li, lo, lobe));
+  }
+  const Vec3 n(0, 0, 1);
+  EXPECT_GT(m.eval(TransportMode::Radiance, n, n, 425.0f, 550.0f, SpectralLobe::Fluorescent), 0.0f);
+  EXPECT_EQ(m.eval(TransportMode::Radiance, n, n, 550.0f, 425.0f, SpectralLobe::Fluorescent), 0.0f);
+}
+
 TEST(MeasuredReradiation, EnergyAboveOneIsAnError) {
   BispectralData d = synthetic();
   d.at(2, 4) = 0.99f;  // diagonal at 450 nm plus its fluorescence exceeds 1

@@ -106,6 +106,34 @@ TEST(ZhdanovSampling, SampleMatchesPdfAndEval) {
   }
 }
 
+// Spectral stage: the elastic probability plus ∫ fluorescent density dλ is 1 in both modes wherever
+// anything scatters, 0 elsewhere; the directional stage integrates to 1 for the Lambert lobes and
+// to 1 minus the rejected part of the gloss peak (checked against the χ² rejection cell above).
+TEST(ZhdanovSampling, SpectralDensityIntegratesToOne) {
+  for (const auto& [name, params] : allParams()) {
+    SCOPED_TRACE(name);
+    const ZhdanovBdf m(params, kRange);
+    for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance})
+      for (const float l : {365.0f, 400.0f, 430.0f, 479.0f, 560.0f, 700.0f, 829.0f}) {
+        double total = m.spectralPdf(mode, l, l, SpectralLobe::Elastic);
+        for (int k = 0; k < 4700; ++k)
+          total += 0.1 * m.spectralPdf(mode, l, float(kRange.min + (k + 0.5) * 0.1), SpectralLobe::Fluorescent);
+        const bool scatters = m.gloss() + m.passive(l) + (mode == TransportMode::Importance ? m.A(l) : m.E(l)) > 0.0f;
+        EXPECT_TRUE(close(total, scatters ? 1.0 : 0.0, 2e-4)) << toString(mode) << " λ = " << l;
+      }
+    const Vec3 wKnown = glm::normalize(Vec3(0.2f, 0.3f, 0.9f));
+    const double fl = test::sphereIntegral(64, 32, [&](const Vec3& w) {
+      return m.directionPdf(TransportMode::Radiance, wKnown, w, SpectralLobe::Fluorescent, 420.0f, 560.0f);
+    });
+    EXPECT_TRUE(close(fl, 1.0, 1e-4));
+    const double el = test::sphereIntegral(800, 128, [&](const Vec3& w) {
+      return m.directionPdf(TransportMode::Importance, wKnown, w, SpectralLobe::Elastic, 560.0f, 560.0f);
+    });
+    EXPECT_LE(el, 1.0 + 1e-3);
+    if (m.gloss() == 0.0f) EXPECT_TRUE(close(el, 1.0, 1e-4));
+  }
+}
+
 // Directional reciprocity: f(λ_i, ω_i, ω_o, λ_o) = f(λ_i, ω_o, ω_i, λ_o) for both lobes; the
 // wavelengths are not exchangeable (fluorescence is not reciprocal in λ).
 TEST(ZhdanovEnergy, DirectionallyReciprocalNotSpectrally) {
