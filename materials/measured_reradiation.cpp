@@ -2,12 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/error.h"
 #include "materials/diffuse_lobe.h"
 
 namespace kasha {
 namespace {
+
+// A wavelength for messages: 450, 452.5.
+std::string nm(float l) {
+  std::ostringstream s;
+  s << l;
+  return s.str();
+}
 
 // Width of band k: from the midpoint with the previous knot to the midpoint with the next one;
 // the end bands are as wide as their one neighbour spacing.
@@ -23,8 +31,8 @@ void requireIncreasing(const std::vector<float>& g, const std::string& source, c
   for (size_t k = 0; k < g.size(); ++k) {
     if (!(std::isfinite(g[k]) && g[k] > 0.0f)) throw InputError(source, what, "wavelength is not a positive number");
     if (k > 0 && !(g[k] > g[k - 1]))
-      throw InputError(source, what, "wavelengths must be strictly increasing (" + std::to_string(g[k - 1]) +
-                                         " then " + std::to_string(g[k]) + ")");
+      throw InputError(source, what, "wavelengths must be strictly increasing (" + nm(g[k - 1]) +
+                                         " then " + nm(g[k]) + ")");
   }
 }
 
@@ -43,8 +51,7 @@ MeasuredReradiation::MeasuredReradiation(const BispectralData& data, MeasuredRer
     for (size_t o = 0; o < out_.size(); ++o) {
       const float v = data.at(o, i);
       if (!std::isfinite(v))
-        throw InputError(data.source, "", "value at λ_i = " + std::to_string(in_[i]) + ", λ_o = " +
-                                              std::to_string(out_[o]) + " nm is not finite");
+        throw InputError(data.source, "", "value at λ_i = " + nm(in_[i]) + ", λ_o = " + nm(out_[o]) + " nm is not finite");
       if (out_[o] == in_[i]) {
         diagL_.push_back(in_[i]);
         diagV_.push_back(std::max(v, 0.0f));
@@ -56,20 +63,20 @@ MeasuredReradiation::MeasuredReradiation(const BispectralData& data, MeasuredRer
   for (size_t i = 0; i < in_.size(); ++i) {
     line.clear();
     for (size_t o = 0; o < out_.size(); ++o) line.push_back(f_[o * in_.size() + i]);
-    Spectrum s = Spectrum::piecewiseLinear(out_, line).zeroOutside();
-    columns_.push_back({SpectralDistribution(s, range)});
+    const Spectrum s = Spectrum::piecewiseLinear(out_, line).zeroOutside();
+    columns_.emplace_back(s, range);
   }
   for (size_t o = 0; o < out_.size(); ++o) {
     line.assign(f_.begin() + o * in_.size(), f_.begin() + (o + 1) * in_.size());
-    Spectrum s = Spectrum::piecewiseLinear(in_, line).zeroOutside();
-    rows_.push_back({SpectralDistribution(s, range)});
+    const Spectrum s = Spectrum::piecewiseLinear(in_, line).zeroOutside();
+    rows_.emplace_back(s, range);
   }
   for (size_t i = 0; i < in_.size(); ++i) {
-    fluoresces_ = fluoresces_ || columns_[i].dist.integral() > 0.0f;
+    fluoresces_ = fluoresces_ || columns_[i].integral() > 0.0f;
     // Energy per input wavelength: d(λ_i) + ∫F dλ_o ≤ 1 (transport.md §6: row sums of M ≤ 1).
-    const float energy = diagonal(in_[i]) + columns_[i].dist.integral();
+    const float energy = diagonal(in_[i]) + columns_[i].integral();
     if (range.contains(in_[i]) && energy > 1.0f + kEnergyTolerance && !options.allowUnphysical)
-      throw InputError(data.source, "ex_" + std::to_string(in_[i]),
+      throw InputError(data.source, "ex_" + nm(in_[i]),
                        "reflects " + std::to_string(energy) + " of the light arriving at this wavelength, more than 1 + " +
                            std::to_string(kEnergyTolerance) + " (noise tolerance): the material would create energy "
                            "(set \"allow_unphysical\": true to render it anyway)");
@@ -101,12 +108,12 @@ float MeasuredReradiation::F(float lambdaOut, float lambdaIn) const {
 
 float MeasuredReradiation::A(float lambdaIn) const {
   const Bracket b = bracket(in_, lambdaIn);
-  return b.w0 * columns_[b.k0].dist.integral() + b.w1 * columns_[b.k1].dist.integral();
+  return b.w0 * columns_[b.k0].integral() + b.w1 * columns_[b.k1].integral();
 }
 
 float MeasuredReradiation::B(float lambdaOut) const {
   const Bracket b = bracket(out_, lambdaOut);
-  return b.w0 * rows_[b.k0].dist.integral() + b.w1 * rows_[b.k1].dist.integral();
+  return b.w0 * rows_[b.k0].integral() + b.w1 * rows_[b.k1].integral();
 }
 
 float MeasuredReradiation::fluorescentWeight(TransportMode mode, float lambdaKnown) const {
@@ -131,13 +138,13 @@ SpectralChoice MeasuredReradiation::sampleSpectral(TransportMode mode, float lam
   if (!(u < pFluor)) return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
   // Pick one of the two neighbouring lines in proportion to its weighted mass, then sample it.
   const bool radiance = mode == TransportMode::Radiance;
-  const std::vector<Line>& lines = radiance ? rows_ : columns_;
+  const std::vector<SpectralDistribution>& lines = radiance ? rows_ : columns_;
   const Bracket b = bracket(radiance ? out_ : in_, lambdaKnown);
-  const float m0 = b.w0 * lines[b.k0].dist.integral(), m1 = b.w1 * lines[b.k1].dist.integral();
+  const float m0 = b.w0 * lines[b.k0].integral(), m1 = b.w1 * lines[b.k1].integral();
   float v = u / pFluor * (m0 + m1);
   const bool first = v < m0 || !(m1 > 0.0f);
   v = first ? v / m0 : (v - m0) / m1;
-  const WavelengthSample ws = lines[first ? b.k0 : b.k1].dist.sample(std::min(v, 0x1.fffffep-1f));
+  const WavelengthSample ws = lines[first ? b.k0 : b.k1].sample(std::min(v, 0x1.fffffep-1f));
   if (ws.pdf <= 0.0f) return {};
   return {SpectralLobe::Fluorescent, ws.lambda, spectralPdf(mode, lambdaKnown, ws.lambda, SpectralLobe::Fluorescent)};
 }
@@ -149,10 +156,10 @@ float MeasuredReradiation::spectralPdf(TransportMode mode, float lambdaKnown, fl
   if (lobe == SpectralLobe::Elastic) return el / (fl + el);
   // P(fluorescent)·F/∫F, where the mixture density of the two lines is exactly F/∫F.
   const bool radiance = mode == TransportMode::Radiance;
-  const std::vector<Line>& lines = radiance ? rows_ : columns_;
+  const std::vector<SpectralDistribution>& lines = radiance ? rows_ : columns_;
   const Bracket b = bracket(radiance ? out_ : in_, lambdaKnown);
-  const float mass = b.w0 * lines[b.k0].dist.integral() * lines[b.k0].dist.pdf(lambdaOther) +
-                     b.w1 * lines[b.k1].dist.integral() * lines[b.k1].dist.pdf(lambdaOther);
+  const float mass = b.w0 * lines[b.k0].integral() * lines[b.k0].pdf(lambdaOther) +
+                     b.w1 * lines[b.k1].integral() * lines[b.k1].pdf(lambdaOther);
   return mass / (fl + el);
 }
 

@@ -54,10 +54,6 @@ class MeasuredReradiation final : public Material {
   float probFluorescence(TransportMode mode, float lambdaKnown) const;
 
  private:
-  // One measured line (a column: F(·; λ_i) at an input knot, or a row: F(λ_o; ·) at an output knot).
-  struct Line {
-    SpectralDistribution dist;
-  };
   // The two lines around l and their interpolation weights (zero outside the grid).
   struct Bracket {
     size_t k0 = 0, k1 = 0;
@@ -69,8 +65,9 @@ class MeasuredReradiation final : public Material {
   std::vector<float> in_, out_;
   std::vector<float> diagL_, diagV_;  // the measured diagonal d(λ)
   std::vector<float> f_;              // F at the knots, f_[o * in_.size() + i], per nm
-  std::vector<Line> columns_;  // per input knot: F(·; λ_i) over λ_o
-  std::vector<Line> rows_;     // per output knot: F(λ_o; ·) over λ_i
+  // The measured lines as wavelength samplers (their integrals are A and B at the knots):
+  std::vector<SpectralDistribution> columns_;  // per input knot: F(·; λ_i) over λ_o
+  std::vector<SpectralDistribution> rows_;     // per output knot: F(λ_o; ·) over λ_i
   bool fluoresces_ = false;
 };
 

@@ -1,11 +1,19 @@
 #include "materials/zhdanov_extraction.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "core/error.h"
 
 namespace kasha {
 namespace {
+
+// A wavelength for messages: 450, 452.5.
+std::string nm(float l) {
+  std::ostringstream s;
+  s << l;
+  return s.str();
+}
 
 // Output band widths: midpoints between neighbours, the end bands as wide as their one spacing.
 std::vector<float> bandWidths(const std::vector<float>& g) {
@@ -61,7 +69,7 @@ ZhdanovFit extractZhdanov(const ExtractionInput& input) {
     }
     if (!(cal > 0.0)) {
       if (anything > 0.0)
-        throw InputError(input.etalon->source, "ex_" + std::to_string(s.in[i]),
+        throw InputError(input.etalon->source, "ex_" + nm(s.in[i]),
                          "the etalon gives no signal within ±" + std::to_string(input.epsilon) +
                              " nm of the diagonal (or its reflectance is 0), so the sample cannot be calibrated there");
       continue;
