@@ -38,6 +38,8 @@ float linear(const std::vector<float>& grid, const std::vector<float>& values, f
 }  // namespace
 
 int runExtract(const ExtractArgs& a) {
+  const std::filesystem::path out(a.output);
+  if (out.extension() != ".json") throw InputError(a.output, "-o", "the material file must end in .json");
   ExtractionInput in;
   in.sample = readMatrix(a.sample, "--sample");
   in.epsilon = a.epsilon;
@@ -79,10 +81,10 @@ int runExtract(const ExtractArgs& a) {
   params.emission = Spectrum::piecewiseLinear(lambdas, E).zeroOutside();
   const WavelengthRange range{lambdas.front(), lambdas.back()};
   if (const std::string problem = checkZhdanovParams(params, range); !problem.empty())
-    throw InputError(a.sample, "", "the extracted material is not valid (" + problem + "); lower --gloss");
+    throw InputError(a.sample, "", "the extracted material is not valid (" + problem +
+                                       "): lower --gloss, or check the calibration (is the sample etalon-normalised, "
+                                       "or does it need --etalon?)");
 
-  std::filesystem::path out(a.output);
-  if (out.extension() != ".json") throw InputError(a.output, "-o", "the material file must end in .json");
   const std::string csvName = out.stem().string() + "_spectra.csv";
   const std::filesystem::path csvPath = out.parent_path() / csvName;
   {
