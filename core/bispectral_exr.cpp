@@ -7,10 +7,12 @@
 #include <ImfOutputFile.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cstdlib>
 #include <cmath>
 #include <map>
-#include <regex>
 #include <set>
+#include <vector>
 
 #include "core/error.h"
 
@@ -19,23 +21,37 @@ namespace {
 
 constexpr double kSpeedOfLight = 299792458.0;  // m/s
 
-// Wavelength in nm of "<value><prefix><m|Hz>" (value with a decimal comma).
-std::optional<float> toNanometres(std::string value, const std::string& prefix, const std::string& unit) {
+// Wavelength in nm of one part of a channel name, "<value><prefix><m|Hz>", the value written with
+// a decimal comma and an optional exponent ("550,000000nm", "0,45um", "5,5e2nm", "600THz").
+std::optional<float> toNanometres(const std::string& part) {
   static const std::map<std::string, double> kPrefix = {
       {"", 1.0},    {"Y", 1e24}, {"Z", 1e21}, {"E", 1e18},  {"P", 1e15}, {"T", 1e12}, {"G", 1e9}, {"M", 1e6},
       {"k", 1e3},   {"h", 1e2},  {"da", 1e1}, {"d", 1e-1},  {"c", 1e-2}, {"m", 1e-3}, {"u", 1e-6}, {"n", 1e-9},
       {"p", 1e-12}};
-  std::replace(value.begin(), value.end(), ',', '.');
-  if (value.empty() || value == ".") return std::nullopt;
-  double v = 0.0;
-  try {
-    v = std::stod(value) * kPrefix.at(prefix);
-  } catch (const std::exception&) {
-    return std::nullopt;
+  const auto digit = [&](size_t k) { return k < part.size() && std::isdigit(static_cast<unsigned char>(part[k])); };
+  size_t k = 0, digits = 0;
+  for (; digit(k); ++k) ++digits;
+  if (k < part.size() && part[k] == ',')
+    for (++k; digit(k); ++k) ++digits;
+  if (digits == 0) return std::nullopt;
+  if (k < part.size() && (part[k] == 'e' || part[k] == 'E')) {
+    const size_t sign = k + 1 < part.size() && (part[k + 1] == '+' || part[k + 1] == '-') ? 1 : 0;
+    if (digit(k + 1 + sign)) {  // otherwise E is the exa prefix
+      k += 1 + sign;
+      while (digit(k)) ++k;
+    }
   }
-  const double metres = unit == "m" ? v : kSpeedOfLight / v;
-  if (!(metres > 0.0) || !std::isfinite(metres)) return std::nullopt;
-  return float(metres * 1e9);
+  std::string value = part.substr(0, k), unit = part.substr(k);
+  std::replace(value.begin(), value.end(), ',', '.');
+  const bool hertz = unit.size() >= 2 && unit.compare(unit.size() - 2, 2, "Hz") == 0;
+  const bool metres = !hertz && !unit.empty() && unit.back() == 'm';
+  if (!hertz && !metres) return std::nullopt;
+  const auto prefix = kPrefix.find(unit.substr(0, unit.size() - (hertz ? 2 : 1)));
+  if (prefix == kPrefix.end()) return std::nullopt;
+  const double v = std::strtod(value.c_str(), nullptr) * prefix->second;
+  const double m = metres ? v : kSpeedOfLight / v;
+  if (!(m > 0.0) || !std::isfinite(m)) return std::nullopt;
+  return float(m * 1e9);
 }
 
 std::string wavelengthName(float nm) {
@@ -47,26 +63,25 @@ std::string wavelengthName(float nm) {
 }  // namespace
 
 std::optional<BispectralChannel> parseBispectralChannel(const std::string& name) {
-  static const std::string num = R"((\d*,?\d*(?:[Ee][+-]?\d+)?))";
-  static const std::string unit = "(Y|Z|E|P|T|G|M|k|h|da|d|c|m|u|n|p)?(m|Hz)";
-  static const std::regex diagonal("^T\\." + num + unit + "$");
-  static const std::regex rerad("^T\\." + num + unit + "\\." + num + unit + "$");
-  std::smatch m;
+  // "T.<λ>" or "T.<λ_i>.<λ_o>": the decimal comma keeps '.' a separator.
+  std::vector<std::string> parts;
+  for (size_t begin = 0;;) {
+    const size_t dot = name.find('.', begin);
+    parts.push_back(name.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin));
+    if (dot == std::string::npos) break;
+    begin = dot + 1;
+  }
+  if (parts[0] != "T" || parts.size() < 2 || parts.size() > 3) return std::nullopt;
   BispectralChannel c;
-  if (std::regex_match(name, m, diagonal)) {
-    const std::optional<float> l = toNanometres(m[1], m[2], m[3]);
-    if (!l) return std::nullopt;
-    c.lambdaIn = *l;
-    return c;
-  }
-  if (std::regex_match(name, m, rerad)) {
-    const std::optional<float> li = toNanometres(m[1], m[2], m[3]), lo = toNanometres(m[4], m[5], m[6]);
-    if (!li || !lo) return std::nullopt;
-    c.lambdaIn = *li;
+  const std::optional<float> li = toNanometres(parts[1]);
+  if (!li) return std::nullopt;
+  c.lambdaIn = *li;
+  if (parts.size() == 3) {
+    const std::optional<float> lo = toNanometres(parts[2]);
+    if (!lo) return std::nullopt;
     c.lambdaOut = *lo;
-    return c;
   }
-  return std::nullopt;
+  return c;
 }
 
 BispectralData readBispectralExr(const std::string& path) {

@@ -226,7 +226,11 @@ TEST(BispectralFiles, FichetChannelNames) {
   const auto hz = parseBispectralChannel("T.599,584916THz");  // c / 599.584916 THz = 500 nm
   ASSERT_TRUE(hz);
   EXPECT_NEAR(hz->lambdaIn, 500.0f, 1e-3f);
-  for (const char* other : {"R", "S0.550nm", "T.550", "T.nm", "T.550nm.", "XYZ.X"})
+  const auto e = parseBispectralChannel("T.5,5e2nm.6e+2nm");  // exponents
+  ASSERT_TRUE(e && e->lambdaOut);
+  EXPECT_FLOAT_EQ(e->lambdaIn, 550.0f);
+  EXPECT_FLOAT_EQ(*e->lambdaOut, 600.0f);
+  for (const char* other : {"R", "S0.550nm", "T.550", "T.nm", "T.550nm.", "T.550xm", "T.550nm.600nm.700nm", "XYZ.X"})
     EXPECT_FALSE(parseBispectralChannel(other)) << other;
 }
 
