@@ -39,7 +39,7 @@ float ZhdanovBdf::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lamb
                        SpectralLobe lobe) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
   if (lobe == SpectralLobe::Elastic)  // Zhdanov eq. 2, passive part: gloss peak + Lambert
-    return p_.gloss * gloss::value(wi, wo, p_.glossExponent) + passive(lambdaIn) * kInvPi;
+    return (p_.gloss > 0.0f ? p_.gloss * gloss::value(wi, wo, p_.glossExponent) : 0.0f) + passive(lambdaIn) * kInvPi;
   return E(lambdaOut) * A(lambdaIn) * kInvPi;  // Zhdanov eq. 3
 }
 
@@ -96,7 +96,8 @@ float ZhdanovBdf::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wS
                                float lambdaIn, float) const {
   if (lobe == SpectralLobe::Fluorescent) return diffuse::pdf(wKnown, wSampled);
   const float pg = glossChoice(p_.gloss, passive(lambdaIn));
-  return pg * gloss::pdf(wKnown, wSampled, p_.glossExponent) + (1.0f - pg) * diffuse::pdf(wKnown, wSampled);
+  const float lambert = (1.0f - pg) * diffuse::pdf(wKnown, wSampled);
+  return pg > 0.0f ? pg * gloss::pdf(wKnown, wSampled, p_.glossExponent) + lambert : lambert;
 }
 
 }  // namespace kasha
