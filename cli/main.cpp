@@ -22,6 +22,7 @@
 
 #include "cli/compare_command.h"
 #include "cli/metrics_command.h"
+#include "cli/extract_command.h"
 #include "cli/progress.h"
 #include "core/checkpoint.h"
 #include "core/error.h"
@@ -407,15 +408,34 @@ int main(int argc, char** argv) {
   metrics->add_option("reference", mt.reference, "Reference OpenEXR of the same size")->required();
   metrics->add_option("--error-map", mt.errorMap, "Write the per-pixel relative squared error as a greyscale PFM");
 
+  ExtractArgs xa;
+  CLI::App* extract = app.add_subcommand(
+      "extract", "Fit Zhdanov et al.'s three-part BDF to a bispectral measurement (passive, excitation, emission)");
+  extract->add_option("--sample", xa.sample, "The sample's bispectral matrix (.csv or .exr)")->required();
+  extract->add_option("--etalon", xa.etalon, "The non-fluorescent etalon's matrix (same grid; default: none, the "
+                                             "sample is taken as etalon-normalised)");
+  extract->add_option("--etalon-reflectance", xa.etalonReflectance, "The etalon's reflectance: a number or a CSV spectrum");
+  extract->add_option("--epsilon", xa.epsilon, "Half-width of the near-diagonal (passive) window in nm (default 5)")
+      ->check(numberCheck(Sign::NonNegative, false));
+  extract->add_option("--noise-floor", xa.noiseFloor, "Fluorescent values at or below this count as 0 (default 0.002)")
+      ->check(numberCheck(Sign::NonNegative, false));
+  extract->add_option("--gloss", xa.gloss, "Albedo of the white gloss peak, measured separately (default 0)")
+      ->check(CLI::Range(0.0, 1.0));
+  extract->add_option("--gloss-exponent", xa.glossExponent, "Phong exponent of the gloss peak (default 100)")
+      ->check(numberCheck(Sign::NonNegative, false));
+  extract->add_option("-o,--output", xa.output, "Material file to write (.json); spectra go to <stem>_spectra.csv")
+      ->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // A bad command line: one line, exit code 2.
     std::string msg = e.what();
-    if (!render->parsed() && !matrix->parsed() && !compare->parsed() && !metrics->parsed() && argc > 1 &&
+    if (!render->parsed() && !matrix->parsed() && !compare->parsed() && !metrics->parsed() &&
+        !extract->parsed() && argc > 1 &&
         argv[1][0] != '-')
-      msg = "unknown command '" + std::string(argv[1]) + "' (expected render, compare, metrics or matrix)";
+      msg = "unknown command '" + std::string(argv[1]) + "' (expected render, compare, metrics, matrix or extract)";
     for (char& c : msg)
       if (c == '\n') c = ' ';
     std::fprintf(stderr, "kasha: error: %s (see kasha %s--help)\n", msg.c_str(),
@@ -423,6 +443,7 @@ int main(int argc, char** argv) {
                  : matrix->parsed()  ? "matrix "
                  : compare->parsed() ? "compare "
                  : metrics->parsed() ? "metrics "
+                 : extract->parsed() ? "extract "
                                      : "");
     return 2;
   }
@@ -431,6 +452,7 @@ int main(int argc, char** argv) {
     if (matrix->parsed()) return runMatrix(ma);
     if (compare->parsed()) return runCompare(ca);
     if (metrics->parsed()) return runMetrics(mt);
+    if (extract->parsed()) return runExtract(xa);
   } catch (const InputError& e) {
     std::fprintf(stderr, "kasha: error: %s\n", e.what());
     return 1;

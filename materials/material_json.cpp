@@ -1,11 +1,14 @@
 #include "materials/material_json.h"
 
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "core/json_fields.h"
 #include "materials/dielectric.h"
 #include "materials/jung_bbrrdf.h"
 #include "materials/lambertian.h"
+#include "materials/measured_material_json.h"
 #include "materials/mirror.h"
 
 namespace kasha {
@@ -56,6 +59,26 @@ Ior parseIor(JsonFields& parent, const std::string& key, const SpectrumContext& 
   return *ior;
 }
 
+// {"type": "file", "file": "m.json"}: a material object kept in its own file (what `kasha extract`
+// writes); paths inside it are relative to that file.
+std::unique_ptr<Material> parseMaterialFile(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range) {
+  const std::string rel = f.string("file");
+  const std::string path = (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel;
+  std::ifstream in(path);
+  if (!in) f.fail("file", "cannot open '" + path + "'");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    f.fail("file", "'" + path + "' is not valid JSON: " + e.what());
+  }
+  SpectrumContext inner = ctx;
+  inner.file = path;
+  inner.baseDir = std::filesystem::path(path).parent_path().string();
+  if (inner.baseDir.empty()) inner.baseDir = ".";
+  return parseMaterial(j, inner, "", range);
+}
+
 }  // namespace
 
 std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr,
@@ -91,8 +114,15 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
     m = std::make_unique<Dielectric>(std::move(ior), range);
+  } else if (type == "file") {
+    m = parseMaterialFile(f, ctx, range);
+  } else if (type == "zhdanov") {
+    m = parseZhdanov(f, ctx, range, unphysical);
+  } else if (type == "measured_reradiation") {
+    m = parseMeasuredReradiation(f, ctx, range, unphysical);
   } else {
-    f.fail("type", "unknown material type '" + type + "' (lambertian, jung_fluorescent, mirror, dielectric)");
+    f.fail("type", "unknown material type '" + type +
+                       "' (lambertian, jung_fluorescent, mirror, dielectric, zhdanov, measured_reradiation, file)");
   }
   f.finish();
   return m;

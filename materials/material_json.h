@@ -7,6 +7,8 @@
 //   {"type": "dielectric", "ior": <index of refraction>}, the index being a number ≥ 1, a preset
 //    ("BK7", "fused_silica"), {"type": "cauchy", "A": a, "B": b, "C": c} (λ in µm, C optional)
 //    or {"type": "sellmeier", "B": [3 numbers], "C": [3 numbers in µm²]} (ior.h)
+//   {"type": "zhdanov", ...}, {"type": "measured_reradiation", ...}  (measured_material_json.h)
+//   {"type": "file", "file": "m.json"}: a material object in its own file (paths relative to it)
 #include <memory>
 
 #include <nlohmann/json.hpp>

@@ -3,12 +3,14 @@
 // resolution; and the standard error of each falls as 1/√N with the sample count N.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <map>
 
 #include "core/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
+#include "tests/region_batches.h"
 #include "tests/support.h"
 
 namespace kasha {
@@ -32,24 +34,11 @@ Estimate estimate(const Scene& scene, const std::string& integratorName, int spp
   RenderSettings settings = scene.render;
   settings.maxDepth = 8;
   const std::unique_ptr<Integrator> integrator = makeIntegrator(integratorName, scene, settings);
-  std::vector<std::vector<double>> samples(kRegions * kRegions * 3);
-  for (int b = 0; b < batches; ++b) {
-    Film film(kRes, kRes);
-    RenderOptions opt;
-    opt.spp = spp;
-    opt.seed = 7919 * uint64_t(b + 1);
-    render(scene, *integrator, film, opt);
-    std::vector<double> sum(samples.size(), 0.0);
-    for (int y = 0; y < kRes; ++y)
-      for (int x = 0; x < kRes; ++x) {
-        const int region = (y * kRegions / kRes) * kRegions + x * kRegions / kRes;
-        const Vec3 v = film.xyz(x, y);
-        for (int ch = 0; ch < 3; ++ch) sum[size_t(region * 3 + ch)] += v[ch];
-      }
-    for (size_t i = 0; i < sum.size(); ++i) samples[i].push_back(sum[i]);
-  }
+  const std::vector<test::BatchStats> v = test::regionBatches(
+      scene, *integrator, kRes, kRes, kRegions * kRegions,
+      [](int x, int y) { return (y * kRegions / kRes) * kRegions + x * kRegions / kRes; }, spp, batches, 7919);
   Estimate e;
-  for (size_t i = 0; i < samples.size(); ++i) e.stats[i] = test::batchStats(samples[i]);
+  std::copy(v.begin(), v.end(), e.stats.begin());
   return e;
 }
 

@@ -1,0 +1,176 @@
+#include "materials/measured_reradiation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+#include "materials/diffuse_lobe.h"
+
+namespace kasha {
+namespace {
+
+// A wavelength for messages: 450, 452.5.
+std::string nm(float l) {
+  std::ostringstream s;
+  s << l;
+  return s.str();
+}
+
+// Width of band k: from the midpoint with the previous knot to the midpoint with the next one;
+// the end bands are as wide as their one neighbour spacing.
+float bandWidth(const std::vector<float>& g, size_t k) {
+  if (g.size() == 1) return 1.0f;
+  if (k == 0) return g[1] - g[0];
+  if (k + 1 == g.size()) return g[k] - g[k - 1];
+  return 0.5f * (g[k + 1] - g[k - 1]);
+}
+
+void requireIncreasing(const std::vector<float>& g, const std::string& source, const char* what) {
+  if (g.empty()) throw InputError(source, what, "no wavelengths");
+  for (size_t k = 0; k < g.size(); ++k) {
+    if (!(std::isfinite(g[k]) && g[k] > 0.0f)) throw InputError(source, what, "wavelength is not a positive number");
+    if (k > 0 && !(g[k] > g[k - 1]))
+      throw InputError(source, what, "wavelengths must be strictly increasing (" + nm(g[k - 1]) +
+                                         " then " + nm(g[k]) + ")");
+  }
+}
+
+}  // namespace
+
+MeasuredReradiation::MeasuredReradiation(const BispectralData& data, MeasuredReradiationOptions options,
+                                         WavelengthRange range)
+    : in_(data.in), out_(data.out) {
+  requireIncreasing(in_, data.source, "input wavelengths");
+  requireIncreasing(out_, data.source, "output wavelengths");
+  if (data.value.size() != in_.size() * out_.size())
+    throw InputError(data.source, "", "matrix size does not match its wavelength grids");
+  // Clean the noise and convert band values to densities per nm (header comment).
+  f_.assign(data.value.size(), 0.0f);
+  for (size_t i = 0; i < in_.size(); ++i)
+    for (size_t o = 0; o < out_.size(); ++o) {
+      const float v = data.at(o, i);
+      if (!std::isfinite(v))
+        throw InputError(data.source, "", "value at λ_i = " + nm(in_[i]) + ", λ_o = " + nm(out_[o]) + " nm is not finite");
+      if (out_[o] == in_[i]) {
+        diagL_.push_back(in_[i]);
+        diagV_.push_back(std::max(v, 0.0f));
+      } else if (out_[o] > in_[i] && v > options.noiseFloor) {
+        f_[o * in_.size() + i] = v / bandWidth(out_, o);
+      }
+    }
+  std::vector<float> line;
+  for (size_t i = 0; i < in_.size(); ++i) {
+    line.clear();
+    for (size_t o = 0; o < out_.size(); ++o) line.push_back(f_[o * in_.size() + i]);
+    const Spectrum s = Spectrum::piecewiseLinear(out_, line).zeroOutside();
+    columns_.emplace_back(s, range);
+  }
+  for (size_t o = 0; o < out_.size(); ++o) {
+    line.assign(f_.begin() + o * in_.size(), f_.begin() + (o + 1) * in_.size());
+    const Spectrum s = Spectrum::piecewiseLinear(in_, line).zeroOutside();
+    rows_.emplace_back(s, range);
+  }
+  for (size_t i = 0; i < in_.size(); ++i) {
+    fluoresces_ = fluoresces_ || columns_[i].integral() > 0.0f;
+    // Energy per input wavelength: d(λ_i) + ∫F dλ_o ≤ 1 (transport.md §6: row sums of M ≤ 1).
+    const float energy = diagonal(in_[i]) + columns_[i].integral();
+    if (range.contains(in_[i]) && energy > 1.0f + kEnergyTolerance && !options.allowUnphysical)
+      throw InputError(data.source, "ex_" + nm(in_[i]),
+                       "reflects " + std::to_string(energy) + " of the light arriving at this wavelength, more than 1 + " +
+                           std::to_string(kEnergyTolerance) + " (noise tolerance): the material would create energy "
+                           "(set \"allow_unphysical\": true to render it anyway)");
+  }
+}
+
+MeasuredReradiation::Bracket MeasuredReradiation::bracket(const std::vector<float>& g, float l) {
+  Bracket b;
+  if (!(l >= g.front() && l <= g.back())) return b;
+  if (g.size() == 1) return {0, 0, 1.0f, 0.0f};
+  const size_t k1 = std::clamp(size_t(std::upper_bound(g.begin(), g.end(), l) - g.begin()), size_t(1), g.size() - 1);
+  const float t = (l - g[k1 - 1]) / (g[k1] - g[k1 - 1]);
+  return {k1 - 1, k1, 1.0f - t, t};
+}
+
+float MeasuredReradiation::diagonal(float l) const {
+  if (diagL_.empty()) return 0.0f;
+  const Bracket b = bracket(diagL_, l);
+  return b.w0 * diagV_[b.k0] + b.w1 * diagV_[b.k1];
+}
+
+float MeasuredReradiation::F(float lambdaOut, float lambdaIn) const {
+  // Bilinear between the four surrounding knots (zero outside the measured grid).
+  const Bracket bi = bracket(in_, lambdaIn), bo = bracket(out_, lambdaOut);
+  const auto at = [&](size_t o, size_t i) { return f_[o * in_.size() + i]; };
+  return bo.w0 * (bi.w0 * at(bo.k0, bi.k0) + bi.w1 * at(bo.k0, bi.k1)) +
+         bo.w1 * (bi.w0 * at(bo.k1, bi.k0) + bi.w1 * at(bo.k1, bi.k1));
+}
+
+float MeasuredReradiation::A(float lambdaIn) const {
+  const Bracket b = bracket(in_, lambdaIn);
+  return b.w0 * columns_[b.k0].integral() + b.w1 * columns_[b.k1].integral();
+}
+
+float MeasuredReradiation::B(float lambdaOut) const {
+  const Bracket b = bracket(out_, lambdaOut);
+  return b.w0 * rows_[b.k0].integral() + b.w1 * rows_[b.k1].integral();
+}
+
+float MeasuredReradiation::fluorescentWeight(TransportMode mode, float lambdaKnown) const {
+  return mode == TransportMode::Importance ? A(lambdaKnown) : B(lambdaKnown);
+}
+
+float MeasuredReradiation::probFluorescence(TransportMode mode, float lambdaKnown) const {
+  const float fl = fluorescentWeight(mode, lambdaKnown), el = diagonal(lambdaKnown);
+  return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
+}
+
+float MeasuredReradiation::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+                                SpectralLobe lobe) const {
+  if (!diffuse::sameSide(wi, wo)) return 0.0f;
+  return (lobe == SpectralLobe::Elastic ? diagonal(lambdaIn) : F(lambdaOut, lambdaIn)) * kInvPi;
+}
+
+SpectralChoice MeasuredReradiation::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
+  const float fl = fluorescentWeight(mode, lambdaKnown), el = diagonal(lambdaKnown);
+  if (!(fl + el > 0.0f)) return {};
+  const float pFluor = fl / (fl + el);
+  if (!(u < pFluor)) return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
+  // Pick one of the two neighbouring lines in proportion to its weighted mass, then sample it.
+  const bool radiance = mode == TransportMode::Radiance;
+  const std::vector<SpectralDistribution>& lines = radiance ? rows_ : columns_;
+  const Bracket b = bracket(radiance ? out_ : in_, lambdaKnown);
+  const float m0 = b.w0 * lines[b.k0].integral(), m1 = b.w1 * lines[b.k1].integral();
+  float v = u / pFluor * (m0 + m1);
+  const bool first = v < m0 || !(m1 > 0.0f);
+  v = first ? v / m0 : (v - m0) / m1;
+  const WavelengthSample ws = lines[first ? b.k0 : b.k1].sample(std::min(v, 0x1.fffffep-1f));
+  if (ws.pdf <= 0.0f) return {};
+  return {SpectralLobe::Fluorescent, ws.lambda, spectralPdf(mode, lambdaKnown, ws.lambda, SpectralLobe::Fluorescent)};
+}
+
+float MeasuredReradiation::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther,
+                                       SpectralLobe lobe) const {
+  const float fl = fluorescentWeight(mode, lambdaKnown), el = diagonal(lambdaKnown);
+  if (!(fl + el > 0.0f)) return 0.0f;
+  if (lobe == SpectralLobe::Elastic) return el / (fl + el);
+  // P(fluorescent)·F/∫F, where the mixture density of the two lines is exactly F/∫F.
+  const bool radiance = mode == TransportMode::Radiance;
+  const std::vector<SpectralDistribution>& lines = radiance ? rows_ : columns_;
+  const Bracket b = bracket(radiance ? out_ : in_, lambdaKnown);
+  const float mass = b.w0 * lines[b.k0].integral() * lines[b.k0].pdf(lambdaOther) +
+                     b.w1 * lines[b.k1].integral() * lines[b.k1].pdf(lambdaOther);
+  return mass / (fl + el);
+}
+
+std::optional<DirectionSample> MeasuredReradiation::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe,
+                                                                     float, float, Vec2 u) const {
+  return diffuse::sample(wKnown, u);
+}
+
+float MeasuredReradiation::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
+                                        float) const {
+  return diffuse::pdf(wKnown, wSampled);
+}
+
+}  // namespace kasha

@@ -1,0 +1,103 @@
+#include "materials/zhdanov_bdf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "materials/diffuse_lobe.h"
+#include "materials/gloss_lobe.h"
+
+namespace kasha {
+
+std::string checkZhdanovParams(const ZhdanovParams& p, WavelengthRange range) {
+  if (!(p.gloss >= 0.0f && p.gloss <= 1.0f)) return "gloss: " + std::to_string(p.gloss) + " is outside [0, 1]";
+  if (!(p.glossExponent >= 0.0f && p.glossExponent <= 1e6f))
+    return "gloss_exponent: " + std::to_string(p.glossExponent) + " is outside [0, 1e6]";
+  const auto negative = [&](const Spectrum& s) { return !(s.minValue(range.min, range.max) >= 0.0f); };
+  if (negative(p.passive)) return "passive: negative or non-finite value in the wavelength range";
+  if (negative(p.excitation)) return "excitation: negative or non-finite value in the wavelength range";
+  if (negative(p.emission)) return "emission: negative or non-finite value in the wavelength range";
+  if (p.excitation.integral(range) > 0.0f && !(p.emission.integral(range) > 0.0f))
+    return "emission: integrates to zero over the wavelength range, but the excitation does not";
+  if (!p.allowUnphysical) {
+    // Energy conservation: ρ_g + p(λ) + A(λ) ≤ 1 (the factorised part re-emits A(λ_i) in all, eq. 4).
+    const Spectrum sum = Spectrum::weightedSum({{1.0f, &p.passive}, {1.0f, &p.excitation}});
+    const float hi = p.gloss + sum.maxValue(range.min, range.max);
+    if (hi > 1.0f + 1e-6f)
+      return "passive: gloss + passive + excitation reaches " + std::to_string(hi) +
+             " in the wavelength range, above 1 (the material would create energy)";
+  }
+  return {};
+}
+
+ZhdanovBdf::ZhdanovBdf(ZhdanovParams params, WavelengthRange range)
+    : p_(std::move(params)), excitation_(p_.excitation, range), emission_(p_.emission, range) {
+  if (std::string m = checkZhdanovParams(p_, range); !m.empty()) throw std::invalid_argument(m);
+}
+
+float ZhdanovBdf::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+                       SpectralLobe lobe) const {
+  if (!diffuse::sameSide(wi, wo)) return 0.0f;
+  if (lobe == SpectralLobe::Elastic)  // Zhdanov eq. 2, passive part: gloss peak + Lambert
+    return (p_.gloss > 0.0f ? p_.gloss * gloss::value(wi, wo, p_.glossExponent) : 0.0f) + passive(lambdaIn) * kInvPi;
+  return E(lambdaOut) * A(lambdaIn) * kInvPi;  // Zhdanov eq. 3
+}
+
+float ZhdanovBdf::fluorescentWeight(TransportMode mode, float lambdaKnown) const {
+  // Light paths: the fluorescent albedo A(λ_i). Camera paths: ∫ A(λ_i) E(λ_o) dλ_i = E(λ_o)·∫A.
+  return mode == TransportMode::Importance ? A(lambdaKnown) : E(lambdaKnown) * excitation_.integral();
+}
+
+float ZhdanovBdf::probFluorescence(TransportMode mode, float lambdaKnown) const {
+  const float fl = fluorescentWeight(mode, lambdaKnown), el = elasticWeight(lambdaKnown);
+  return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
+}
+
+SpectralChoice ZhdanovBdf::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
+  if (!(fluorescentWeight(mode, lambdaKnown) + elasticWeight(lambdaKnown) > 0.0f)) return {};
+  const float pFluor = probFluorescence(mode, lambdaKnown);
+  if (u < pFluor) {
+    const bool radiance = mode == TransportMode::Radiance;
+    const WavelengthSample ws = (radiance ? excitation_ : emission_).sample(std::min(u / pFluor, 0x1.fffffep-1f));
+    if (ws.pdf <= 0.0f) return {};
+    return {SpectralLobe::Fluorescent, ws.lambda, pFluor * ws.pdf};
+  }
+  return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
+}
+
+float ZhdanovBdf::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
+  if (!(fluorescentWeight(mode, lambdaKnown) + elasticWeight(lambdaKnown) > 0.0f)) return 0.0f;
+  const float pFluor = probFluorescence(mode, lambdaKnown);
+  if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
+  return pFluor * (mode == TransportMode::Radiance ? excitation_.pdf(lambdaOther) : emission_.pdf(lambdaOther));
+}
+
+namespace {
+// Probability that an elastic event samples the gloss peak rather than the Lambert part.
+float glossChoice(float gloss, float passive) { return gloss + passive > 0.0f ? gloss / (gloss + passive) : 0.0f; }
+}  // namespace
+
+std::optional<DirectionSample> ZhdanovBdf::sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
+                                                            float lambdaIn, float lambdaOut, Vec2 u) const {
+  if (lobe == SpectralLobe::Fluorescent) return diffuse::sample(wKnown, u);
+  const float pg = glossChoice(p_.gloss, passive(lambdaIn));
+  std::optional<DirectionSample> s;
+  if (u.x < pg) {
+    s = gloss::sample(wKnown, Vec2(std::min(u.x / pg, 0x1.fffffep-1f), u.y), p_.glossExponent);
+  } else {
+    s = diffuse::sample(wKnown, Vec2(std::min((u.x - pg) / (1.0f - pg), 0x1.fffffep-1f), u.y));
+  }
+  if (!s) return std::nullopt;
+  s->pdf = directionPdf(mode, wKnown, s->w, lobe, lambdaIn, lambdaOut);
+  return s;
+}
+
+float ZhdanovBdf::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
+                               float lambdaIn, float) const {
+  if (lobe == SpectralLobe::Fluorescent) return diffuse::pdf(wKnown, wSampled);
+  const float pg = glossChoice(p_.gloss, passive(lambdaIn));
+  const float lambert = (1.0f - pg) * diffuse::pdf(wKnown, wSampled);
+  return pg > 0.0f ? pg * gloss::pdf(wKnown, wSampled, p_.glossExponent) + lambert : lambert;
+}
+
+}  // namespace kasha

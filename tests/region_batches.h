@@ -1,0 +1,38 @@
+#pragma once
+// Independent batch renders of a scene, summed over image regions: the mean and standard error of
+// each region's X, Y and Z (validation.md §4's integrator agreement tests).
+#include <functional>
+#include <vector>
+
+#include "core/scene.h"
+#include "integrators/integrator.h"
+#include "integrators/render_loop.h"
+#include "tests/support.h"
+
+namespace kasha::test {
+
+// Stats of region r, channel c at index r·3 + c. Batch b uses seed seedStep·(b + 1).
+inline std::vector<BatchStats> regionBatches(const Scene& scene, const Integrator& integrator, int width, int height,
+                                             int regions, const std::function<int(int x, int y)>& regionOf, int spp,
+                                             int batches, uint64_t seedStep) {
+  std::vector<std::vector<double>> samples(size_t(regions) * 3);
+  for (int b = 0; b < batches; ++b) {
+    Film film(width, height);
+    RenderOptions opt;
+    opt.spp = spp;
+    opt.seed = seedStep * uint64_t(b + 1);
+    render(scene, integrator, film, opt);
+    std::vector<double> sum(samples.size(), 0.0);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const Vec3 v = film.xyz(x, y);
+        for (int ch = 0; ch < 3; ++ch) sum[size_t(regionOf(x, y) * 3 + ch)] += v[ch];
+      }
+    for (size_t i = 0; i < sum.size(); ++i) samples[i].push_back(sum[i]);
+  }
+  std::vector<BatchStats> stats;
+  for (const std::vector<double>& s : samples) stats.push_back(batchStats(s));
+  return stats;
+}
+
+}  // namespace kasha::test
