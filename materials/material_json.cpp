@@ -7,6 +7,8 @@
 #include "materials/jung_bbrrdf.h"
 #include "materials/lambertian.h"
 #include "materials/mirror.h"
+#include "materials/rough_conductor.h"
+#include "materials/rough_dielectric.h"
 
 namespace kasha {
 namespace {
@@ -56,6 +58,22 @@ Ior parseIor(JsonFields& parent, const std::string& key, const SpectrumContext& 
   return *ior;
 }
 
+// "alpha": α (isotropic) | [α_x, α_y] (ggx.h)
+Vec2 parseAlpha(JsonFields& f) {
+  const nlohmann::json& v = f.get("alpha");
+  Vec2 a;
+  if (v.is_number()) {
+    a = Vec2(f.number("alpha"));
+  } else if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number()) {
+    a = Vec2(v[0].get<float>(), v[1].get<float>());
+  } else {
+    f.fail("alpha", "expected a roughness or an array [alpha_x, alpha_y], got " + jsonTypeName(v));
+  }
+  if (!(a.x >= kMinAlpha && a.x <= kMaxAlpha && a.y >= kMinAlpha && a.y <= kMaxAlpha))
+    f.fail("alpha", "roughness must lie in [0.001, 1]");
+  return a;
+}
+
 }  // namespace
 
 std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr,
@@ -91,8 +109,23 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
     m = std::make_unique<Dielectric>(std::move(ior), range);
+  } else if (type == "rough_conductor") {
+    Spectrum r = spectrumField(f, "reflectance", ctx);
+    requireAlbedo(f, "reflectance", r, range, unphysical);
+    const Vec2 a = parseAlpha(f);
+    m = std::make_unique<RoughConductor>(std::move(r), a.x, a.y);
+  } else if (type == "rough_dielectric") {
+    Ior ior = parseIor(f, "ior", ctx);
+    if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
+    const Vec2 a = parseAlpha(f);
+    try {
+      m = std::make_unique<RoughDielectric>(std::move(ior), a.x, a.y, range);
+    } catch (const std::invalid_argument& e) {
+      f.fail("ior", std::string(e.what()).substr(5));  // only the index can still be rejected
+    }
   } else {
-    f.fail("type", "unknown material type '" + type + "' (lambertian, jung_fluorescent, mirror, dielectric)");
+    f.fail("type", "unknown material type '" + type +
+                       "' (lambertian, jung_fluorescent, mirror, dielectric, rough_conductor, rough_dielectric)");
   }
   f.finish();
   return m;
