@@ -48,7 +48,10 @@ float RoughDielectric::eval(TransportMode, const Vec3& wi, const Vec3& wo, float
   const Vec3 h = refractionHalfVector(wi, etaI, wo, etaO);
   if (!facetSides(wi, wo, h)) return 0.0f;
   const float ih = glm::dot(wi, h), oh = glm::dot(wo, h);
-  const float F = fresnelDielectric(std::abs(ih), etaO / etaI);
+  // F is the same from both sides of the facet (fresnel.h); taken from the outside direction, so
+  // that f(ω_i→ω_o) and f(ω_o→ω_i) use the same rounded value.
+  const bool iOutside = wi.z > 0.0f;
+  const float F = fresnelDielectric(std::abs(iOutside ? ih : oh), iOutside ? etaO / etaI : etaI / etaO);
   const float denom = sqr(etaI * ih + etaO * oh);
   // Walter07 eq. 21
   return std::abs(ih * oh) / std::abs(wi.z * wo.z) * sqr(etaO) * (1.0f - F) * ggx_.d(h) * ggx_.g1(wi) *

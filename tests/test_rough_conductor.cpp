@@ -13,7 +13,7 @@
 #include "materials/mirror.h"
 #include "materials/rough_conductor.h"
 #include "materials/specular_lobe.h"
-#include "tests/direction_chi2.h"
+#include "tests/glossy_support.h"
 #include "tests/material_support.h"
 #include "tests/support.h"
 
@@ -127,19 +127,12 @@ TEST(RoughConductorSampling, SampleMatchesPdfEvalAndWeight) {
     const std::optional<ScatterSample> s = m.sample(mode, w, l, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
     if (!s) continue;
     ++checked;
-    EXPECT_FALSE(s->specular);
-    EXPECT_EQ(s->lobe, SpectralLobe::Elastic);
-    EXPECT_EQ(s->lambda, l);
     EXPECT_GT(s->w.z * w.z, 0.0f);
+    const double weight = test::expectConsistentSample(m, mode, w, l, *s, 1e-4);
     const auto [wi, wo] = test::physicalOrder(mode, w, s->w);
-    const ScatterDensity d = m.pdf(mode, wi, wo, l, l, SpectralLobe::Elastic);
-    EXPECT_TRUE(close(s->pdf, d.pdf, 1e-4));
-    EXPECT_TRUE(close(s->pdfRev, d.pdfRev, 1e-4));
-    EXPECT_EQ(d.pdfRev, m.pdf(flip(mode), wi, wo, l, l, SpectralLobe::Elastic).pdf);
-    EXPECT_TRUE(close(s->f, m.eval(mode, wi, wo, l, l, SpectralLobe::Elastic), 1e-6));
     // Weight = F(|ω·h|)·G1(ω_sampled) (rough_conductor.h).
     const Vec3 h = reflectionHalfVector(wi, wo);
-    EXPECT_TRUE(close(s->f * std::abs(s->w.z) / s->pdf, m.fresnel(std::abs(glm::dot(w, h)), l) * m.ggx().g1(s->w), 2e-4));
+    EXPECT_TRUE(close(weight, m.fresnel(std::abs(glm::dot(w, h)), l) * m.ggx().g1(s->w), 2e-4));
   }
   EXPECT_GT(checked, 15000);
 }
@@ -175,17 +168,7 @@ TEST(RoughConductorEnergy, WhiteFurnaceAlbedo) {
         return double(m.eval(TransportMode::Radiance, w, o, 500.0f, 500.0f, SpectralLobe::Elastic)) * std::abs(o.z);
       });
       for (const TransportMode mode : kModes) {
-        Rng rng(seed++);
-        std::vector<double> batches;
-        for (int b = 0; b < 20; ++b) {
-          double sum = 0.0;
-          const int n = 5000;
-          for (int k = 0; k < n; ++k)
-            if (auto s = m.sample(mode, w, 500.0f, Vec3(rng.uniform(), rng.uniform(), rng.uniform())))
-              sum += s->f * std::abs(s->w.z) / s->pdf;
-          batches.push_back(sum / n);
-        }
-        const test::BatchStats st = test::batchStats(batches);
+        const test::BatchStats st = test::sampledAlbedo(m, mode, w, 500.0f, seed++);
         EXPECT_LE(quad, 1.0 + 1e-3);
         EXPECT_NEAR(st.mean, quad, 4.0 * st.stderr_ + 2e-3 * quad)
             << toString(mode) << " α = " << a.x << ", " << a.y << ", w.z = " << w.z;

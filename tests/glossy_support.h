@@ -1,6 +1,6 @@
 #pragma once
-// χ² goodness of fit of an elastic material's direction sampling (validation.md §3), and sphere
-// quadrature of its densities, for materials whose lobes are not Dirac deltas.
+// Test helpers for glossy (non-delta) elastic materials: χ² goodness of fit of direction sampling
+// (validation.md §3), sphere quadrature, and the consistency of one sample with pdf() and eval().
 //
 // Cells: (cos θ over [−1, 1], φ), both hemispheres, so samples on the wrong side are caught
 // where the density is zero. Expected counts integrate Material::pdf over each cell with a
@@ -76,6 +76,39 @@ inline DirectionChi2Result directionChi2(const Material& m, TransportMode mode, 
         }
   res.p = chi2PValue(observed, expected);
   return res;
+}
+
+// Mean sampled weight f·|cos θ_sampled|/pdf from (wKnown, λ) (failed samples count 0), with its
+// standard error over 20 batches of 5000: a Monte Carlo estimate of the directional albedo.
+inline BatchStats sampledAlbedo(const Material& m, TransportMode mode, const Vec3& wKnown, float lambda, uint64_t seed) {
+  Rng rng(seed);
+  std::vector<double> batches;
+  for (int b = 0; b < 20; ++b) {
+    double sum = 0.0;
+    const int n = 5000;
+    for (int k = 0; k < n; ++k)
+      if (auto s = m.sample(mode, wKnown, lambda, Vec3(rng.uniform(), rng.uniform(), rng.uniform())))
+        sum += s->f * std::abs(s->w.z) / s->pdf;
+    batches.push_back(sum / n);
+  }
+  return batchStats(batches);
+}
+
+// Checks one elastic sample from (wKnown, λ) against pdf() both ways and eval(); returns its
+// weight f·|cos θ_sampled|/pdf. relRev: tolerance of the reverse density, recomputed from the
+// sampled side (rounding of the half vector).
+inline double expectConsistentSample(const Material& m, TransportMode mode, const Vec3& wKnown, float lambda,
+                                     const ScatterSample& s, double relRev) {
+  EXPECT_FALSE(s.specular);
+  EXPECT_EQ(s.lobe, SpectralLobe::Elastic);
+  EXPECT_EQ(s.lambda, lambda);
+  const auto [wi, wo] = physicalOrder(mode, wKnown, s.w);
+  const ScatterDensity d = m.pdf(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic);
+  EXPECT_TRUE(close(s.pdf, d.pdf, 1e-4));
+  EXPECT_TRUE(close(s.pdfRev, d.pdfRev, relRev));
+  EXPECT_EQ(d.pdfRev, m.pdf(flip(mode), wi, wo, lambda, lambda, SpectralLobe::Elastic).pdf);
+  EXPECT_TRUE(close(s.f, m.eval(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic), 1e-6));
+  return s.f * std::abs(s.w.z) / s.pdf;
 }
 
 }  // namespace kasha::test
