@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/json_fields.h"
+#include "materials/coated_fluorescent.h"
 #include "materials/dielectric.h"
 #include "materials/jung_bbrrdf.h"
 #include "materials/lambertian.h"
@@ -58,19 +59,36 @@ Ior parseIor(JsonFields& parent, const std::string& key, const SpectrumContext& 
   return *ior;
 }
 
+// The fields of Jung18's BBRRDF, checked against eq. 8's conditions.
+JungParams parseJungParams(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range, bool unphysical) {
+  JungParams p;
+  p.absorption = spectrumField(f, "absorption", ctx);
+  p.emission = spectrumField(f, "emission", ctx);
+  p.reflectance = spectrumField(f, "reflectance", ctx);
+  p.concentration = f.number("c");
+  p.energyRatio = f.number("Q");
+  p.allowUnphysical = unphysical;
+  const std::string problem = checkJungParams(p, range);
+  if (!problem.empty()) {
+    const size_t colon = problem.find(": ");
+    f.fail(problem.substr(0, colon), problem.substr(colon + 2));
+  }
+  return p;
+}
+
 // "alpha": α (isotropic) | [α_x, α_y] (ggx.h)
-Vec2 parseAlpha(JsonFields& f) {
-  const nlohmann::json& v = f.get("alpha");
+Vec2 parseAlpha(JsonFields& f, const std::string& key) {
+  const nlohmann::json& v = f.get(key);
   Vec2 a;
   if (v.is_number()) {
-    a = Vec2(f.number("alpha"));
+    a = Vec2(f.number(key));
   } else if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number()) {
     a = Vec2(v[0].get<float>(), v[1].get<float>());
   } else {
-    f.fail("alpha", "expected a roughness or an array [alpha_x, alpha_y], got " + jsonTypeName(v));
+    f.fail(key, "expected a roughness or an array [alpha_x, alpha_y], got " + jsonTypeName(v));
   }
   if (!(a.x >= kMinAlpha && a.x <= kMaxAlpha && a.y >= kMinAlpha && a.y <= kMaxAlpha))
-    f.fail("alpha", "roughness must lie in [0.001, 1]");
+    f.fail(key, "roughness must lie in [0.001, 1]");
   return a;
 }
 
@@ -88,19 +106,7 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     requireAlbedo(f, "reflectance", r, range, unphysical);
     m = std::make_unique<Lambertian>(std::move(r));
   } else if (type == "jung_fluorescent") {
-    JungParams p;
-    p.absorption = spectrumField(f, "absorption", ctx);
-    p.emission = spectrumField(f, "emission", ctx);
-    p.reflectance = spectrumField(f, "reflectance", ctx);
-    p.concentration = f.number("c");
-    p.energyRatio = f.number("Q");
-    p.allowUnphysical = unphysical;
-    const std::string problem = checkJungParams(p, range);
-    if (!problem.empty()) {
-      const size_t colon = problem.find(": ");
-      f.fail(problem.substr(0, colon), problem.substr(colon + 2));
-    }
-    m = std::make_unique<JungBbrrdf>(std::move(p), range);
+    m = std::make_unique<JungBbrrdf>(parseJungParams(f, ctx, range, unphysical), range);
   } else if (type == "mirror") {
     Spectrum r = spectrumField(f, "reflectance", ctx);
     requireAlbedo(f, "reflectance", r, range, unphysical);
@@ -112,20 +118,27 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
   } else if (type == "rough_conductor") {
     Spectrum r = spectrumField(f, "reflectance", ctx);
     requireAlbedo(f, "reflectance", r, range, unphysical);
-    const Vec2 a = parseAlpha(f);
+    const Vec2 a = parseAlpha(f, "alpha");
     m = std::make_unique<RoughConductor>(std::move(r), a.x, a.y);
   } else if (type == "rough_dielectric") {
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
-    const Vec2 a = parseAlpha(f);
+    const Vec2 a = parseAlpha(f, "alpha");
     try {
       m = std::make_unique<RoughDielectric>(std::move(ior), a.x, a.y, range);
     } catch (const std::invalid_argument& e) {
       f.fail("ior", std::string(e.what()).substr(5));  // only the index can still be rejected
     }
+  } else if (type == "coated_fluorescent") {
+    JungParams p = parseJungParams(f, ctx, range, unphysical);
+    Ior ior = parseIor(f, "coat_ior", ctx);
+    if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("coat_ior", problem);
+    const Vec2 a = parseAlpha(f, "coat_alpha");
+    m = std::make_unique<CoatedFluorescent>(std::move(p), std::move(ior), a.x, a.y, range);
   } else {
     f.fail("type", "unknown material type '" + type +
-                       "' (lambertian, jung_fluorescent, mirror, dielectric, rough_conductor, rough_dielectric)");
+                       "' (lambertian, jung_fluorescent, mirror, dielectric, rough_conductor, rough_dielectric, "
+                       "coated_fluorescent)");
   }
   f.finish();
   return m;

@@ -7,6 +7,10 @@
 //   {"type": "dielectric", "ior": <index of refraction>}, the index being a number ≥ 1, a preset
 //    ("BK7", "fused_silica"), {"type": "cauchy", "A": a, "B": b, "C": c} (λ in µm, C optional)
 //    or {"type": "sellmeier", "B": [3 numbers], "C": [3 numbers in µm²]} (ior.h)
+//   {"type": "rough_conductor", "reflectance": <spectrum F0>, "alpha": α | [α_x, α_y]}
+//   {"type": "rough_dielectric", "ior": <index>, "alpha": α | [α_x, α_y]}
+//   {"type": "coated_fluorescent", <the jung_fluorescent fields>, "coat_ior": <index>,
+//    "coat_alpha": α | [α_x, α_y]} (docs/layered.md)
 #include <memory>
 
 #include <nlohmann/json.hpp>

@@ -16,6 +16,7 @@
 #include "core/sampling.h"
 #include "core/spectral_distribution.h"
 #include "materials/jung_bbrrdf.h"
+#include "tests/joint_chi2.h"
 #include "tests/material_support.h"
 #include "tests/support.h"
 
@@ -110,99 +111,11 @@ double sphereIntegral(int nCos, int nPhi, const std::function<double(const Vec3&
   return sum;
 }
 
-// Physical order of an event sampled in `mode` from the known side.
-struct Event {
-  Vec3 wi, wo;
-  float lambdaIn, lambdaOut;
-};
-Event physical(TransportMode mode, const Vec3& wKnown, float lKnown, const Vec3& wOther, float lOther) {
-  if (mode == TransportMode::Radiance) return {wOther, wKnown, lOther, lKnown};
-  return {wKnown, wOther, lKnown, lOther};
-}
-
-// ---------------------------------------------------------------------------------------------
-// χ² goodness of fit of Material::sample over (lobe, direction, wavelength) jointly.
-//
-// Cells: directions by (cos θ over [−1, 1], φ) — the wrong hemisphere is included and expects
-// nothing — times, for the fluorescent lobe, 10 nm wavelength bins; the elastic lobe is one
-// categorical value per direction cell (its wavelength is the known one, a Dirac mass). Expected
-// counts integrate Material::pdf over each cell with a sub-grid (1 nm in wavelength, 2×2 in
-// direction).
-
-struct Chi2Config {
-  int nCos = 10, nPhi = 12;
-  float binNm = 10.0f;
-  int subDir = 2, subNm = 10;
-  int samples = 400000;
-};
-
-struct Chi2Result {
-  double p = 0.0;
-  int failed = 0;  // samples that returned nothing
-};
-
-int dirCell(const Chi2Config& c, const Vec3& w) {
-  const int ic = std::clamp(int((w.z + 1.0f) * 0.5f * float(c.nCos)), 0, c.nCos - 1);
-  float phi = std::atan2(w.y, w.x);
-  if (phi < 0.0f) phi += 2.0f * kPi;
-  const int ip = std::clamp(int(phi / (2.0f * kPi) * float(c.nPhi)), 0, c.nPhi - 1);
-  return ic * c.nPhi + ip;
-}
-
-Chi2Result jointChi2(const Material& m, TransportMode mode, const Vec3& wKnown, float lKnown, uint64_t seed,
-                     const Chi2Config& c = {}) {
-  const int nL = int(std::lround(kRange.width() / c.binNm));
-  const int nDir = c.nCos * c.nPhi;
-  // Layout: [fluorescent: dir * nL + l] [elastic: dir] [outside the range: 1]
-  const size_t elasticBase = size_t(nDir) * nL, outside = elasticBase + nDir;
-  std::vector<double> observed(outside + 1, 0.0), expected(outside + 1, 0.0);
-
-  Chi2Result res;
-  Rng rng(seed, 7);
-  for (int s = 0; s < c.samples; ++s) {
-    const Vec3 u(rng.uniform(), rng.uniform(), rng.uniform());
-    const std::optional<ScatterSample> smp = m.sample(mode, wKnown, lKnown, u);
-    if (!smp) {
-      ++res.failed;
-      continue;
-    }
-    const int d = dirCell(c, smp->w);
-    if (smp->lobe == SpectralLobe::Elastic) {
-      EXPECT_EQ(smp->lambda, lKnown) << "elastic events keep the known wavelength exactly";
-      observed[elasticBase + d] += 1.0;
-    } else if (!(smp->lambda >= kRange.min && smp->lambda < kRange.max)) {
-      observed[outside] += 1.0;
-    } else {
-      const int l = std::clamp(int((smp->lambda - kRange.min) / c.binNm), 0, nL - 1);
-      observed[size_t(d) * nL + l] += 1.0;
-    }
-  }
-
-  const double dc = 2.0 / c.nCos, dp = 2.0 * kPi / c.nPhi;
-  const double subDc = dc / c.subDir, subDp = dp / c.subDir, subNm = double(c.binNm) / c.subNm;
-  const double n = c.samples;
-  for (int ic = 0; ic < c.nCos; ++ic)
-    for (int ip = 0; ip < c.nPhi; ++ip) {
-      const int d = ic * c.nPhi + ip;
-      for (int a = 0; a < c.subDir; ++a)
-        for (int b = 0; b < c.subDir; ++b) {
-          const Vec3 w = dirFromCosPhi(float(-1.0 + ic * dc + (a + 0.5) * subDc), float(ip * dp + (b + 0.5) * subDp));
-          const double dw = subDc * subDp;
-          const Event ee = physical(mode, wKnown, lKnown, w, lKnown);
-          expected[elasticBase + d] +=
-              n * dw * m.pdf(mode, ee.wi, ee.wo, ee.lambdaIn, ee.lambdaOut, SpectralLobe::Elastic).pdf;
-          for (int l = 0; l < nL; ++l)
-            for (int k = 0; k < c.subNm; ++k) {
-              const float lambda = float(kRange.min + l * double(c.binNm) + (k + 0.5) * subNm);
-              const Event ev = physical(mode, wKnown, lKnown, w, lambda);
-              expected[size_t(d) * nL + l] +=
-                  n * dw * subNm * m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, SpectralLobe::Fluorescent).pdf;
-            }
-        }
-    }
-  res.p = test::chi2PValue(observed, expected);
-  return res;
-}
+using test::Chi2Config;
+using test::Chi2Result;
+using test::Event;
+using test::jointChi2;
+using test::physical;
 
 void runChi2(const JungParams& params, const std::vector<float>& knownLambdas, const std::vector<Vec3>& wKnowns) {
   const JungBbrrdf m(params, kRange);
@@ -213,7 +126,7 @@ void runChi2(const JungParams& params, const std::vector<float>& knownLambdas, c
         SCOPED_TRACE(std::string(toString(mode)) + " known λ = " + std::to_string(l) + " nm, ω_known.z = " +
                      std::to_string(wk.z));
         const Chi2Config cfg;
-        const Chi2Result r = jointChi2(m, mode, glm::normalize(wk), l, seed++, cfg);
+        const Chi2Result r = jointChi2(m, mode, glm::normalize(wk), l, kRange, seed++, cfg);
         EXPECT_GT(r.p, 1e-3);
         // A sample can only fail when a direction coordinate u is exactly 0 (probability 2⁻²⁴ each):
         // the concentric map then lands on the disk's rim, at cos θ = 0.
