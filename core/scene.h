@@ -52,7 +52,8 @@ struct Scene {
   std::unique_ptr<Accel> accel;
   std::unique_ptr<LightSelector> lightSelector;
 
-  const Material& material(const Hit& h) const { return *materials[shapes[h.shape].material]; }
+  // The material at a hit, resolved at its texture coordinates (Material::at).
+  const Material& material(const Hit& h) const { return materials[shapes[h.shape].material]->at(h.uv); }
   const EnvironmentLight* environment() const {
     return environmentLight < 0 ? nullptr : static_cast<const EnvironmentLight*>(lights[size_t(environmentLight)].get());
   }

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/json_fields.h"
+#include "core/texture.h"
 #include "materials/coated_fluorescent.h"
 #include "materials/dielectric.h"
 #include "materials/jung_bbrrdf.h"
@@ -10,6 +11,7 @@
 #include "materials/mirror.h"
 #include "materials/rough_conductor.h"
 #include "materials/rough_dielectric.h"
+#include "materials/textured_jung.h"
 
 namespace kasha {
 namespace {
@@ -76,6 +78,34 @@ JungParams parseJungParams(JsonFields& f, const SpectrumContext& ctx, Wavelength
   return p;
 }
 
+// "<key>": "image.png" | {"file": "image.exr", "channel": "mean" | "r" | "g" | "b" | "a"} (texture.h);
+// nullopt when absent.
+std::optional<ScalarTexture> parseTexture(JsonFields& parent, const std::string& key, const SpectrumContext& ctx) {
+  if (!parent.has(key)) return std::nullopt;
+  const nlohmann::json& v = parent.get(key);
+  std::string file;
+  TextureChannel channel = TextureChannel::Mean;
+  if (v.is_string()) {
+    file = v.get<std::string>();
+  } else if (v.is_object()) {
+    JsonFields f(v, ctx.file, parent.path(key));
+    file = f.string("file");
+    const std::string name = f.string("channel", "mean");
+    const std::optional<TextureChannel> c = parseTextureChannel(name);
+    if (!c) f.fail("channel", "unknown channel '" + name + "' (mean, r, g, b, a)");
+    channel = *c;
+    f.finish();
+  } else {
+    parent.fail(key, "expected an image file name or {\"file\": ..., \"channel\": ...}, got " + jsonTypeName(v));
+  }
+  const std::string path = (!file.empty() && file[0] == '/') ? file : ctx.baseDir + "/" + file;
+  try {
+    return ScalarTexture::load(path, channel);
+  } catch (const std::runtime_error& e) {
+    parent.fail(key, "'" + path + "': " + e.what());
+  }
+}
+
 // "alpha": α (isotropic) | [α_x, α_y] (ggx.h)
 Vec2 parseAlpha(JsonFields& f, const std::string& key) {
   const nlohmann::json& v = f.get(key);
@@ -106,7 +136,22 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     requireAlbedo(f, "reflectance", r, range, unphysical);
     m = std::make_unique<Lambertian>(std::move(r));
   } else if (type == "jung_fluorescent") {
-    m = std::make_unique<JungBbrrdf>(parseJungParams(f, ctx, range, unphysical), range);
+    JungParams p = parseJungParams(f, ctx, range, unphysical);
+    JungTextures tex;
+    tex.reflectance = parseTexture(f, "reflectance_texture", ctx);
+    tex.c = parseTexture(f, "c_texture", ctx);
+    tex.q = parseTexture(f, "Q_texture", ctx);
+    if (tex.reflectance || tex.c || tex.q) {
+      try {
+        m = std::make_unique<TexturedJung>(std::move(p), std::move(tex), range);
+      } catch (const std::invalid_argument& e) {
+        const std::string problem = e.what();
+        const size_t colon = problem.find(": ");
+        f.fail(problem.substr(0, colon), problem.substr(colon + 2));
+      }
+    } else {
+      m = std::make_unique<JungBbrrdf>(std::move(p), range);
+    }
   } else if (type == "mirror") {
     Spectrum r = spectrumField(f, "reflectance", ctx);
     requireAlbedo(f, "reflectance", r, range, unphysical);
