@@ -245,5 +245,28 @@ TEST_F(TextureFiles, ConstantTextureRendersAsTheUntexturedMaterial) {
   }
 }
 
+// The shipped ink scene: two palette entries per sheet (ink, paper), resolved at hits.
+TEST(FluorescentInkScene, InkAndPaperResolveAtHits) {
+  const auto scene = loadScene(std::string(KASHA_SOURCE_DIR) + "/scenes/fluorescent_ink.json");
+  ASSERT_EQ(scene->materials.size(), 2u);
+  for (const auto& m : scene->materials) {
+    ASSERT_TRUE(m->textured());
+    EXPECT_EQ(static_cast<const TexturedJung&>(*m).paletteSize(), 2u);
+  }
+  // Left sheet: the red channel's ring is centred on pixel (32, 32) of 128×64, radii 14–22, so
+  // pixel (32 + 18, 32) is ink and the centre is paper. uv of a pixel centre: ((x + ½)/128, 1 − (y + ½)/64).
+  const auto cAt = [&](float px, float py) {
+    const float u = (px + 0.5f) / 128.0f, v = 1.0f - (py + 0.5f) / 64.0f;
+    const Vec3 p(-0.45f + 0.4f * u, -0.1f + 0.2f * v, 1.0f);  // the left sheet spans 0.4 × 0.2
+    const std::optional<Hit> h = scene->accel->intersect(Ray{p, Vec3(0, 0, -1)});
+    EXPECT_TRUE(h);
+    const auto* j = dynamic_cast<const JungBbrrdf*>(&scene->material(*h));
+    EXPECT_NE(j, nullptr);
+    return j ? j->c() : -1.0f;
+  };
+  EXPECT_FLOAT_EQ(cAt(50.0f, 32.0f), 0.9f);
+  EXPECT_FLOAT_EQ(cAt(32.0f, 32.0f), 0.0f);
+}
+
 }  // namespace
 }  // namespace kasha
