@@ -72,7 +72,7 @@ std::optional<Hit> Accel::intersect(const Ray& ray) const {
   } else {
     h.ng = s.triangleNormal(h.prim);
   }
-  h.uv = s.surfaceUv(h.prim, Vec2(rh.hit.u, rh.hit.v), h.ng);
+  h.bary = Vec2(rh.hit.u, rh.hit.v);
   return h;
 }
 

@@ -4,7 +4,7 @@
 // (core/texture.h) in [0, 1], so that fluorescent ink printed on paper is a c texture.
 //
 // The material interface takes no position, so a textured material is resolved before any
-// integrator sees it: Scene::material(hit) calls at(hit.uv), which returns an ordinary
+// integrator sees it: Scene::material(hit) calls at(uv) at the hit, which returns an ordinary
 // JungBbrrdf. Every distinct combination of texel values becomes one JungBbrrdf, built at load
 // time (a palette: 8-bit images of ink give a handful), and each texel points to its entry. So
 // every integrator keeps its one code path, and a resolved material lives as long as the scene.
