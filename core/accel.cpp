@@ -72,6 +72,7 @@ std::optional<Hit> Accel::intersect(const Ray& ray) const {
   } else {
     h.ng = s.triangleNormal(h.prim);
   }
+  h.bary = Vec2(rh.hit.u, rh.hit.v);
   return h;
 }
 

@@ -15,6 +15,7 @@ struct Hit {
   Vec3 ng;  // unit geometric normal (outward for spheres, right-handed winding for triangles)
   uint32_t shape = 0;
   uint32_t prim = 0;
+  Vec2 bary{0.0f};  // barycentrics of triangle corners 1 and 2 (for Shape::surfaceUv)
 };
 
 // Offset for rays leaving a surface: relative to the magnitude of the position.

@@ -60,7 +60,13 @@ struct Scene {
   std::unique_ptr<Accel> accel;
   std::unique_ptr<LightSelector> lightSelector;
 
-  const Material& material(const Hit& h) const { return *materials[shapes[h.shape].material]; }
+  // Texture coordinates of a hit (Shape::surfaceUv).
+  Vec2 uv(const Hit& h) const { return shapes[h.shape].surfaceUv(h.prim, h.bary, h.ng); }
+  // The material at a hit, resolved at its texture coordinates if it is textured (Material::at).
+  const Material& material(const Hit& h) const {
+    const Material& m = *materials[shapes[h.shape].material];
+    return m.textured() ? m.at(uv(h)) : m;
+  }
   const EnvironmentLight* environment() const {
     return environmentLight < 0 ? nullptr : static_cast<const EnvironmentLight*>(lights[size_t(environmentLight)].get());
   }

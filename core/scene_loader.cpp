@@ -219,7 +219,13 @@ struct Loader {
         if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= s.positions.size())
           f.fail("file", "'" + path + "': face refers to a missing vertex");
         s.indices.push_back(uint32_t(idx.vertex_index));
+        if (idx.texcoord_index >= 0 && 2 * size_t(idx.texcoord_index) + 1 < reader.GetAttrib().texcoords.size()) {
+          const float* t = &reader.GetAttrib().texcoords[2 * size_t(idx.texcoord_index)];
+          s.cornerUvs.emplace_back(t[0], t[1]);
+        }
       }
+    if (!s.cornerUvs.empty() && s.cornerUvs.size() != s.indices.size())
+      f.fail("file", "'" + path + "': some faces have texture coordinates (vt) and some do not");
     const float scale = f.number("scale", 1.0f);
     if (!(scale > 0.0f)) f.fail("scale", "must be positive");
     const Vec3 translate = f.vec3("translate", Vec3(0.0f));
@@ -245,6 +251,8 @@ struct Loader {
       s.positions = {c - u - v, c + u - v, c + u + v, c - u + v};
     }
     s.indices = {0, 1, 2, 0, 2, 3};
+    // Corners in order get (0,0), (1,0), (1,1), (0,1).
+    s.cornerUvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 0), Vec2(1, 1), Vec2(0, 1)};
   }
 
   void shapes(JsonFields& root) {
@@ -272,6 +280,8 @@ struct Loader {
       auto it = materialIndex.find(mat);
       if (it == materialIndex.end()) f.fail("material", "no material named '" + mat + "' in /materials");
       s.material = it->second;
+      if (scene.materials[s.material]->textured() && !s.hasUv())
+        f.fail("material", "material '" + mat + "' is textured, but this mesh has no texture coordinates (vt)");
       if (f.has("emission")) {
         JsonFields e(f.get("emission"), file, ptr + "/emission");
         AreaEmission em;

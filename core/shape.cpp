@@ -1,6 +1,7 @@
 #include "core/shape.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/sampling.h"
 
@@ -12,6 +13,7 @@ size_t Shape::finalize() {
     return 0;
   }
   std::vector<uint32_t> kept;
+  std::vector<Vec2> keptUvs;
   size_t removed = 0;
   triangleCdf.clear();
   normals.clear();
@@ -24,13 +26,26 @@ size_t Shape::finalize() {
       continue;
     }
     kept.insert(kept.end(), {indices[t], indices[t + 1], indices[t + 2]});
+    if (!cornerUvs.empty()) keptUvs.insert(keptUvs.end(), {cornerUvs[t], cornerUvs[t + 1], cornerUvs[t + 2]});
     normals.push_back(glm::normalize(glm::cross(b - a, c - a)));
     acc += triArea;
     triangleCdf.push_back(float(acc));
   }
   indices = std::move(kept);
+  cornerUvs = std::move(keptUvs);
   area = float(acc);
   return removed;
+}
+
+Vec2 Shape::surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const {
+  if (kind == Kind::Sphere) {
+    float u = 0.5f + std::atan2(n.z, n.x) / (2.0f * kPi);
+    if (u >= 1.0f) u -= 1.0f;
+    return Vec2(u, std::acos(std::clamp(-n.y, -1.0f, 1.0f)) / kPi);
+  }
+  if (cornerUvs.empty()) return Vec2(0.0f);
+  const size_t t = 3 * size_t(prim);
+  return (1.0f - bary.x - bary.y) * cornerUvs[t] + bary.x * cornerUvs[t + 1] + bary.y * cornerUvs[t + 2];
 }
 
 SurfaceSample Shape::sampleUniform(Vec2 u) const {

@@ -35,6 +35,7 @@ struct Shape {
   std::vector<uint32_t> indices;  // three per triangle
   std::vector<float> triangleCdf;  // cumulative area, for sampling
   std::vector<Vec3> normals;       // unit geometric normal per triangle
+  std::vector<Vec2> cornerUvs;     // texture coordinates, three per triangle (parallel to indices); empty: none
   // Sphere
   Vec3 center{0.0f};
   float radius = 0.0f;
@@ -44,6 +45,12 @@ struct Shape {
   // Precomputes areas; returns the number of zero-area triangles removed.
   size_t finalize();
   const Vec3& triangleNormal(uint32_t prim) const { return normals[prim]; }
+  // Whether surfaceUv means anything: spheres always, meshes when they were given coordinates.
+  bool hasUv() const { return kind == Kind::Sphere || !cornerUvs.empty(); }
+  // Texture coordinates at a point. Triangles: the corners' coordinates interpolated with the
+  // barycentrics (b1, b2) of corners 1 and 2. Spheres, from the outward normal n:
+  // u = 1/2 + atan2(n_z, n_x)/(2π) (around +y), v = acos(−n_y)/π (0 at the bottom, 1 at the top).
+  Vec2 surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const;
   SurfaceSample sampleUniform(Vec2 u) const;
 };
 

@@ -70,6 +70,9 @@ class JungBbrrdf final : public Material {
   float c() const { return p_.concentration; }
   float q() const { return p_.energyRatio; }
   float absorptionIntegral() const { return absorption_.integral(); }
+  // The wavelength samplers of the spectral stage: λ_i ∝ a (camera paths), λ_o ∝ e (light paths).
+  const SpectralDistribution& absorptionDistribution() const { return absorption_; }
+  const SpectralDistribution& emissionDistribution() const { return emission_; }
   const WavelengthRange& range() const { return range_; }
 
   ReradiationMatrix reradiationMatrix(const std::vector<float>& grid) const;

@@ -95,6 +95,14 @@ class Material {
   // True if every lobe is a Dirac delta in direction (no next-event estimation possible).
   virtual bool purelySpecular() const { return false; }
   virtual std::string describe() const = 0;
+  // The material at texture coordinates uv: itself unless its parameters vary over the surface
+  // (textured_jung.h). Integrators see only resolved materials, through Scene::material(hit).
+  virtual const Material& at(Vec2 uv) const {
+    (void)uv;
+    return *this;
+  }
+  // True if at() depends on uv (the shapes using it need texture coordinates).
+  virtual bool textured() const { return false; }
 
   // Both stages: u.x for the spectral stage, (u.y, u.z) for the direction.
   std::optional<ScatterSample> sample(TransportMode mode, const Vec3& wKnown, float lambdaKnown, Vec3 u) const;

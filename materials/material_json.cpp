@@ -5,11 +5,16 @@
 #include <stdexcept>
 
 #include "core/json_fields.h"
+#include "core/texture.h"
+#include "materials/coated_fluorescent.h"
 #include "materials/dielectric.h"
 #include "materials/jung_bbrrdf.h"
 #include "materials/lambertian.h"
 #include "materials/measured_material_json.h"
 #include "materials/mirror.h"
+#include "materials/rough_conductor.h"
+#include "materials/rough_dielectric.h"
+#include "materials/textured_jung.h"
 
 namespace kasha {
 namespace {
@@ -79,6 +84,67 @@ std::unique_ptr<Material> parseMaterialFile(JsonFields& f, const SpectrumContext
   return parseMaterial(j, inner, "", range);
 }
 
+// The fields of Jung18's BBRRDF, checked against eq. 8's conditions.
+JungParams parseJungParams(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range, bool unphysical) {
+  JungParams p;
+  p.absorption = spectrumField(f, "absorption", ctx);
+  p.emission = spectrumField(f, "emission", ctx);
+  p.reflectance = spectrumField(f, "reflectance", ctx);
+  p.concentration = f.number("c");
+  p.energyRatio = f.number("Q");
+  p.allowUnphysical = unphysical;
+  const std::string problem = checkJungParams(p, range);
+  if (!problem.empty()) {
+    const size_t colon = problem.find(": ");
+    f.fail(problem.substr(0, colon), problem.substr(colon + 2));
+  }
+  return p;
+}
+
+// "<key>": "image.png" | {"file": "image.exr", "channel": "mean" | "r" | "g" | "b" | "a"} (texture.h);
+// nullopt when absent.
+std::optional<ScalarTexture> parseTexture(JsonFields& parent, const std::string& key, const SpectrumContext& ctx) {
+  if (!parent.has(key)) return std::nullopt;
+  const nlohmann::json& v = parent.get(key);
+  std::string file;
+  TextureChannel channel = TextureChannel::Mean;
+  if (v.is_string()) {
+    file = v.get<std::string>();
+  } else if (v.is_object()) {
+    JsonFields f(v, ctx.file, parent.path(key));
+    file = f.string("file");
+    const std::string name = f.string("channel", "mean");
+    const std::optional<TextureChannel> c = parseTextureChannel(name);
+    if (!c) f.fail("channel", "unknown channel '" + name + "' (mean, r, g, b, a)");
+    channel = *c;
+    f.finish();
+  } else {
+    parent.fail(key, "expected an image file name or {\"file\": ..., \"channel\": ...}, got " + jsonTypeName(v));
+  }
+  const std::string path = (!file.empty() && file[0] == '/') ? file : ctx.baseDir + "/" + file;
+  try {
+    return ScalarTexture::load(path, channel);
+  } catch (const std::runtime_error& e) {
+    parent.fail(key, "'" + path + "': " + e.what());
+  }
+}
+
+// "alpha": α (isotropic) | [α_x, α_y] (ggx.h)
+Vec2 parseAlpha(JsonFields& f, const std::string& key) {
+  const nlohmann::json& v = f.get(key);
+  Vec2 a;
+  if (v.is_number()) {
+    a = Vec2(f.number(key));
+  } else if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number()) {
+    a = Vec2(v[0].get<float>(), v[1].get<float>());
+  } else {
+    f.fail(key, "expected a roughness or an array [alpha_x, alpha_y], got " + jsonTypeName(v));
+  }
+  if (!(a.x >= kMinAlpha && a.x <= kMaxAlpha && a.y >= kMinAlpha && a.y <= kMaxAlpha))
+    f.fail(key, "roughness must lie in [0.001, 1]");
+  return a;
+}
+
 }  // namespace
 
 std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr,
@@ -93,19 +159,22 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     requireAlbedo(f, "reflectance", r, range, unphysical);
     m = std::make_unique<Lambertian>(std::move(r));
   } else if (type == "jung_fluorescent") {
-    JungParams p;
-    p.absorption = spectrumField(f, "absorption", ctx);
-    p.emission = spectrumField(f, "emission", ctx);
-    p.reflectance = spectrumField(f, "reflectance", ctx);
-    p.concentration = f.number("c");
-    p.energyRatio = f.number("Q");
-    p.allowUnphysical = unphysical;
-    const std::string problem = checkJungParams(p, range);
-    if (!problem.empty()) {
-      const size_t colon = problem.find(": ");
-      f.fail(problem.substr(0, colon), problem.substr(colon + 2));
+    JungParams p = parseJungParams(f, ctx, range, unphysical);
+    JungTextures tex;
+    tex.reflectance = parseTexture(f, "reflectance_texture", ctx);
+    tex.c = parseTexture(f, "c_texture", ctx);
+    tex.q = parseTexture(f, "Q_texture", ctx);
+    if (tex.reflectance || tex.c || tex.q) {
+      try {
+        m = std::make_unique<TexturedJung>(std::move(p), std::move(tex), range);
+      } catch (const std::invalid_argument& e) {
+        const std::string problem = e.what();
+        const size_t colon = problem.find(": ");
+        f.fail(problem.substr(0, colon), problem.substr(colon + 2));
+      }
+    } else {
+      m = std::make_unique<JungBbrrdf>(std::move(p), range);
     }
-    m = std::make_unique<JungBbrrdf>(std::move(p), range);
   } else if (type == "mirror") {
     Spectrum r = spectrumField(f, "reflectance", ctx);
     requireAlbedo(f, "reflectance", r, range, unphysical);
@@ -123,6 +192,32 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
   } else {
     f.fail("type", "unknown material type '" + type +
                        "' (lambertian, jung_fluorescent, mirror, dielectric, zhdanov, measured_reradiation, file)");
+}
+
+  } else if (type == "rough_conductor") {
+    Spectrum r = spectrumField(f, "reflectance", ctx);
+    requireAlbedo(f, "reflectance", r, range, unphysical);
+    const Vec2 a = parseAlpha(f, "alpha");
+    m = std::make_unique<RoughConductor>(std::move(r), a.x, a.y);
+  } else if (type == "rough_dielectric") {
+    Ior ior = parseIor(f, "ior", ctx);
+    if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
+    const Vec2 a = parseAlpha(f, "alpha");
+    try {
+      m = std::make_unique<RoughDielectric>(std::move(ior), a.x, a.y, range);
+    } catch (const std::invalid_argument& e) {
+      f.fail("ior", std::string(e.what()).substr(5));  // only the index can still be rejected
+    }
+  } else if (type == "coated_fluorescent") {
+    JungParams p = parseJungParams(f, ctx, range, unphysical);
+    Ior ior = parseIor(f, "coat_ior", ctx);
+    if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("coat_ior", problem);
+    const Vec2 a = parseAlpha(f, "coat_alpha");
+    m = std::make_unique<CoatedFluorescent>(std::move(p), std::move(ior), a.x, a.y, range);
+  } else {
+    f.fail("type", "unknown material type '" + type +
+                       "' (lambertian, jung_fluorescent, mirror, dielectric, rough_conductor, rough_dielectric, "
+                       "coated_fluorescent)");
   }
   f.finish();
   return m;

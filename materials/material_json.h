@@ -9,6 +9,10 @@
 //    or {"type": "sellmeier", "B": [3 numbers], "C": [3 numbers in µm²]} (ior.h)
 //   {"type": "zhdanov", ...}, {"type": "measured_reradiation", ...}  (measured_material_json.h)
 //   {"type": "file", "file": "m.json"}: a material object in its own file (paths relative to it)
+//   {"type": "rough_conductor", "reflectance": <spectrum F0>, "alpha": α | [α_x, α_y]}
+//   {"type": "rough_dielectric", "ior": <index>, "alpha": α | [α_x, α_y]}
+//   {"type": "coated_fluorescent", <the jung_fluorescent fields>, "coat_ior": <index>,
+//    "coat_alpha": α | [α_x, α_y]} (docs/layered.md)
 #include <memory>
 
 #include <nlohmann/json.hpp>

@@ -23,15 +23,12 @@ namespace kasha::test {
 // where dω = dcos θ dφ. Exact (up to rounding) for any g that is linear in cos
 // θ on each hemisphere and independent of φ, which every diffuse density and
 // f·cos is.
-inline double sphereIntegral(int nCos, int nPhi,
-                             const std::function<double(const Vec3 &)> &g) {
+inline double sphereIntegral(int nCos, int nPhi, const std::function<double(const Vec3&)>& g) {
   const double dc = 2.0 / nCos, dp = 2.0 * kPi / nPhi;
   double sum = 0.0;
   for (int i = 0; i < nCos; ++i)
     for (int j = 0; j < nPhi; ++j)
-      sum += g(dirFromCosPhi(float(-1.0 + (i + 0.5) * dc),
-                             float((j + 0.5) * dp))) *
-             dc * dp;
+      sum += g(dirFromCosPhi(float(-1.0 + (i + 0.5) * dc), float((j + 0.5) * dp))) * dc * dp;
   return sum;
 }
 
@@ -40,10 +37,8 @@ struct Event {
   Vec3 wi, wo;
   float lambdaIn, lambdaOut;
 };
-inline Event physical(TransportMode mode, const Vec3 &wKnown, float lKnown,
-                      const Vec3 &wOther, float lOther) {
-  if (mode == TransportMode::Radiance)
-    return {wOther, wKnown, lOther, lKnown};
+inline Event physical(TransportMode mode, const Vec3& wKnown, float lKnown, const Vec3& wOther, float lOther) {
+  if (mode == TransportMode::Radiance) return {wOther, wKnown, lOther, lKnown};
   return {wKnown, wOther, lKnown, lOther};
 }
 
@@ -72,23 +67,20 @@ struct Chi2Config {
 
 struct Chi2Result {
   double p = 0.0;
-  int failed = 0; // samples that returned nothing
+  int failed = 0;             // samples that returned nothing
+  double expectedMass = 0.0;  // ∫ pdf over all cells (1 − the probability of failing)
 };
 
-inline int dirCell(const Chi2Config &c, const Vec3 &w) {
-  const int ic =
-      std::clamp(int((w.z + 1.0f) * 0.5f * float(c.nCos)), 0, c.nCos - 1);
+inline int dirCell(const Chi2Config& c, const Vec3& w) {
+  const int ic = std::clamp(int((w.z + 1.0f) * 0.5f * float(c.nCos)), 0, c.nCos - 1);
   float phi = std::atan2(w.y, w.x);
-  if (phi < 0.0f)
-    phi += 2.0f * kPi;
-  const int ip =
-      std::clamp(int(phi / (2.0f * kPi) * float(c.nPhi)), 0, c.nPhi - 1);
+  if (phi < 0.0f) phi += 2.0f * kPi;
+  const int ip = std::clamp(int(phi / (2.0f * kPi) * float(c.nPhi)), 0, c.nPhi - 1);
   return ic * c.nPhi + ip;
 }
 
-inline Chi2Result jointChi2(const Material &m, TransportMode mode,
-                            const Vec3 &wKnown, float lKnown, uint64_t seed,
-                            const Chi2Config &c = {}) {
+inline Chi2Result jointChi2(const Material& m, TransportMode mode, const Vec3& wKnown, float lKnown, uint64_t seed,
+                            const Chi2Config& c = {}) {
   const int nL = int(std::lround(c.range.width() / c.binNm));
   const int nDir = c.nCos * c.nPhi;
   // Layout: [fluorescent: dir * nL + l] [elastic: dir] [outside the range: 1]
@@ -106,55 +98,44 @@ inline Chi2Result jointChi2(const Material &m, TransportMode mode,
     }
     const int d = dirCell(c, smp->w);
     if (smp->lobe == SpectralLobe::Elastic) {
-      EXPECT_EQ(smp->lambda, lKnown)
-          << "elastic events keep the known wavelength exactly";
+      EXPECT_EQ(smp->lambda, lKnown) << "elastic events keep the known wavelength exactly";
       observed[elasticBase + d] += 1.0;
     } else if (!(smp->lambda >= c.range.min && smp->lambda < c.range.max)) {
       observed[outside] += 1.0;
     } else {
-      const int l =
-          std::clamp(int((smp->lambda - c.range.min) / c.binNm), 0, nL - 1);
+      const int l = std::clamp(int((smp->lambda - c.range.min) / c.binNm), 0, nL - 1);
       observed[size_t(d) * nL + l] += 1.0;
     }
   }
 
   const double dc = 2.0 / c.nCos, dp = 2.0 * kPi / c.nPhi;
-  const double subDc = dc / c.subDir, subDp = dp / c.subDir,
-               subNm = double(c.binNm) / c.subNm;
+  const double subDc = dc / c.subDir, subDp = dp / c.subDir, subNm = double(c.binNm) / c.subNm;
   const double n = c.samples;
   for (int ic = 0; ic < c.nCos; ++ic)
     for (int ip = 0; ip < c.nPhi; ++ip) {
       const int d = ic * c.nPhi + ip;
       for (int a = 0; a < c.subDir; ++a)
         for (int b = 0; b < c.subDir; ++b) {
-          const Vec3 w =
-              dirFromCosPhi(float(-1.0 + ic * dc + (a + 0.5) * subDc),
-                            float(ip * dp + (b + 0.5) * subDp));
+          const Vec3 w = dirFromCosPhi(float(-1.0 + ic * dc + (a + 0.5) * subDc), float(ip * dp + (b + 0.5) * subDp));
           const double dw = subDc * subDp;
           const Event ee = physical(mode, wKnown, lKnown, w, lKnown);
           expected[elasticBase + d] +=
-              n * dw *
-              m.pdf(mode, ee.wi, ee.wo, ee.lambdaIn, ee.lambdaOut,
-                    SpectralLobe::Elastic)
-                  .pdf;
-          if (m.fluoresces()) // otherwise every fluorescent cell expects 0
+              n * dw * m.pdf(mode, ee.wi, ee.wo, ee.lambdaIn, ee.lambdaOut, SpectralLobe::Elastic).pdf;
+          if (m.fluoresces())  // otherwise every fluorescent cell expects 0
             for (int l = 0; l < nL; ++l)
               for (int k = 0; k < c.subNm; ++k) {
-                const float lambda = float(c.range.min + l * double(c.binNm) +
-                                           (k + 0.5) * subNm);
+                const float lambda = float(c.range.min + l * double(c.binNm) + (k + 0.5) * subNm);
                 const Event ev = physical(mode, wKnown, lKnown, w, lambda);
                 expected[size_t(d) * nL + l] +=
                     n * dw * subNm *
-                    m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut,
-                          SpectralLobe::Fluorescent)
-                        .pdf;
+                    m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, SpectralLobe::Fluorescent).pdf;
               }
         }
     }
+  double sum = 0.0;
+  for (const double e : expected) sum += e;
+  res.expectedMass = sum / n;
   if (c.rejectionCell) {
-    double sum = 0.0;
-    for (const double e : expected)
-      sum += e;
     observed.push_back(res.failed);
     expected.push_back(std::max(0.0, n - sum));
   }
@@ -162,4 +143,4 @@ inline Chi2Result jointChi2(const Material &m, TransportMode mode,
   return res;
 }
 
-} // namespace kasha::test
+}  // namespace kasha::test

@@ -1,4 +1,5 @@
-// validation.md §4: on the Cornell fluorescent scenes (white light; UV + white), every integrator
+// validation.md §4: on the Cornell fluorescent scenes (white light; UV + white; glossy materials:
+// coated fluorescent sphere, frosted glass, brushed metal), every integrator
 // agrees with the path tracer within the standard errors of both, region by region, at a low
 // resolution; and the standard error of each falls as 1/√N with the sample count N.
 #include <gtest/gtest.h>
@@ -76,7 +77,8 @@ TEST_P(Convergence, StandardErrorFallsAsOneOverRootN) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cornell, Agreement,
-                         ::testing::Combine(::testing::Values("cornell_fluorescent.json", "cornell_uv.json"),
+                         ::testing::Combine(::testing::Values("cornell_fluorescent.json", "cornell_uv.json",
+                                                              "cornell_glossy.json"),
                                             ::testing::Values("lt", "bdpt-shared", "bdpt-independent")));
 INSTANTIATE_TEST_SUITE_P(Cornell, Convergence, ::testing::Values("pt", "lt", "bdpt-shared", "bdpt-independent"));
 

@@ -1,0 +1,110 @@
+#include "materials/coated_fluorescent.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "materials/diffuse_lobe.h"
+#include "materials/fresnel.h"
+
+namespace kasha {
+namespace {
+
+Ior checkedCoat(Ior ior, WavelengthRange range) {
+  if (std::string m = checkIor(ior, range); !m.empty()) throw std::invalid_argument("coat_ior: " + m);
+  return ior;
+}
+
+}  // namespace
+
+CoatedFluorescent::CoatedFluorescent(JungParams base, Ior coatIor, float alphaX, float alphaY, WavelengthRange range)
+    : base_(std::move(base), range), ior_(checkedCoat(std::move(coatIor), range)), ggx_(checkedGgx(alphaX, alphaY)) {}
+
+float CoatedFluorescent::coatFresnel(float c, float lambda) const {
+  const float eta = ior_(lambda);
+  return eta == 1.0f ? 0.0f : fresnelDielectric(c, eta);  // exactly 0 when index-matched, not rounding residue
+}
+
+float CoatedFluorescent::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+                              SpectralLobe lobe) const {
+  if (!diffuse::sameSide(wi, wo)) return 0.0f;
+  const float ti = 1.0f - coatFresnel(std::abs(wi.z), lambdaIn);
+  if (lobe == SpectralLobe::Fluorescent) {
+    const float to = 1.0f - coatFresnel(std::abs(wo.z), lambdaOut);
+    const float ca = base_.c() * base_.a(lambdaIn);
+    return ti * to / sqr(ior_(lambdaOut)) * ca * base_.q() * base_.e(lambdaOut) * kInvPi;  // Jung18 eq. 2, coated
+  }
+  const float to = 1.0f - coatFresnel(std::abs(wo.z), lambdaIn);
+  const float base = ti * to / sqr(ior_(lambdaIn)) * (1.0f - base_.c() * base_.a(lambdaIn)) * base_.r(lambdaIn) *
+                     kInvPi;  // Jung18 eq. 3, coated
+  const float r = ggx_.reflection(wi, wo);
+  if (r <= 0.0f) return base;
+  const Vec3 h = reflectionHalfVector(wi, wo);
+  return base + coatFresnel(std::abs(glm::dot(wi, h)), lambdaIn) * r;  // Walter07 eq. 20
+}
+
+float CoatedFluorescent::probFluorescence(TransportMode mode, float l) const {
+  // Jung18 eqs. 6 (Importance, λ_i known) and 7 (Radiance, λ_o known), the coat's R0 added to the
+  // elastic weight.
+  const float ca = base_.c() * base_.a(l);
+  const float fl = mode == TransportMode::Radiance ? base_.c() * base_.absorptionIntegral() * base_.q() * base_.e(l)
+                                                   : ca * base_.q();
+  const float el = (1.0f - ca) * base_.r(l) + coatFresnel(1.0f, l);
+  return fl + el > 0.0f ? fl / (fl + el) : -1.0f;  // −1: nothing is scattered
+}
+
+SpectralChoice CoatedFluorescent::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
+  const float pFluor = probFluorescence(mode, lambdaKnown);
+  if (pFluor < 0.0f) return {};
+  if (u < pFluor) {
+    const bool radiance = mode == TransportMode::Radiance;
+    const SpectralDistribution& d = radiance ? base_.absorptionDistribution() : base_.emissionDistribution();
+    const WavelengthSample ws = d.sample(std::min(u / pFluor, 0x1.fffffep-1f));
+    if (ws.pdf <= 0.0f) return {};
+    return {SpectralLobe::Fluorescent, ws.lambda, pFluor * ws.pdf};
+  }
+  return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
+}
+
+float CoatedFluorescent::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
+  const float pFluor = probFluorescence(mode, lambdaKnown);
+  if (pFluor < 0.0f) return 0.0f;
+  if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
+  const bool radiance = mode == TransportMode::Radiance;
+  return pFluor * (radiance ? base_.absorptionDistribution() : base_.emissionDistribution()).pdf(lambdaOther);
+}
+
+float CoatedFluorescent::probCoat(const Vec3& wKnown, float lambda) const {
+  const float F = coatFresnel(std::abs(wKnown.z), lambda);
+  const float base = (1.0f - F) * (1.0f - base_.c() * base_.a(lambda)) * base_.r(lambda);
+  return F + base > 0.0f ? F / (F + base) : 0.0f;  // neither reflects: the base's cosine sampling
+}
+
+std::optional<DirectionSample> CoatedFluorescent::sampleDirection(TransportMode mode, const Vec3& wKnown,
+                                                                   SpectralLobe lobe, float lambdaIn, float lambdaOut,
+                                                                   Vec2 u) const {
+  if (wKnown.z == 0.0f) return std::nullopt;
+  if (lobe == SpectralLobe::Fluorescent) return diffuse::sample(wKnown, u);
+  const float pc = probCoat(wKnown, lambdaIn);
+  Vec3 w;
+  if (u.x < pc) {
+    w = reflectAbout(wKnown, ggx_.sampleVisible(wKnown, Vec2(std::min(u.x / pc, 0x1.fffffep-1f), u.y)));
+  } else {
+    const std::optional<DirectionSample> d = diffuse::sample(wKnown, Vec2((u.x - pc) / (1.0f - pc), u.y));
+    if (!d) return std::nullopt;
+    w = d->w;
+  }
+  const float pdf = directionPdf(mode, wKnown, w, lobe, lambdaIn, lambdaOut);
+  if (!(pdf > 0.0f)) return std::nullopt;  // the coat mirrored the direction below the surface
+  return DirectionSample{w, pdf, false};
+}
+
+float CoatedFluorescent::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
+                                     float lambdaIn, float) const {
+  const float diffusePdf = diffuse::pdf(wKnown, wSampled);
+  if (lobe == SpectralLobe::Fluorescent) return diffusePdf;
+  const float pc = probCoat(wKnown, lambdaIn);
+  return pc * ggx_.reflectionPdf(wKnown, wSampled) + (1.0f - pc) * diffusePdf;
+}
+
+}  // namespace kasha

@@ -1,0 +1,67 @@
+#pragma once
+// Jung18's diffuse fluorescent BBRRDF (jung_bbrrdf.h) under a clear dielectric coat, the layered
+// material Jung18 §8 names as future work. docs/layered.md derives it; in short, with F(θ, λ)
+// the Fresnel reflectance of the coat (fresnel.h, index η(λ) from ior.h over vacuum),
+// T(θ, λ) = 1 − F(θ, λ), and the coat's surface a GGX microfacet interface (ggx.h):
+//
+//   f = f_coat + f_base,
+//   f_coat(ω_i, ω_o, λ)      = F(|ω_i·h|, λ)·D(h)·G1(ω_i)·G1(ω_o) / (4|cos θ_i||cos θ_o|)   elastic  (Walter07 eq. 20)
+//   f_base elastic           = T(θ_i, λ)·T(θ_o, λ)/η(λ)² · (1 − c·a(λ))·r(λ)/π                     (Jung18 eq. 3)
+//   f_base fluorescent       = T(θ_i, λ_i)·T(θ_o, λ_o)/η(λ_o)² · c·a(λ_i)·Q·e(λ_o)/π              (Jung18 eq. 2)
+//
+// Light enters through the coat (losing the Fresnel-reflected part at its own wavelength λ_i),
+// is reflected or re-emitted by the diffuse base, and leaves through the coat at λ_o (losing the
+// part reflected back down, and spreading from the medium into vacuum: radiance ÷ η(λ_o)², Veach97
+// §5.2). Light the coat reflects back down onto the base is dropped (no interreflection), so the
+// material conserves energy (docs/layered.md). Where the base is diffuse, where a refracted ray
+// meets it does not matter, so directions enter only through the two Fresnel factors. f is
+// symmetric in directions and the same in both transport modes; with η = 1 it is the base.
+//
+// Sampling (exactly the densities pdf() returns):
+//   spectral stage  Jung18's eqs. 6/7 with the coat's normal-incidence reflectance R0(λ) added to
+//                   the elastic weight (so the coat's reflection is sampled even where the base
+//                   reflects nothing); the fluorescent wavelength from a (Radiance) or e (Importance).
+//   direction       fluorescent: cosine-weighted on the known side. Elastic: the coat's GGX
+//                   reflection (visible normals, Heitz18) with probability
+//                   P_coat = F(θ_k)/(F(θ_k) + T(θ_k)·(1 − c·a)·r), else cosine-weighted; the density
+//                   is the mixture of both.
+#include "materials/ggx.h"
+#include "materials/ior.h"
+#include "materials/jung_bbrrdf.h"
+
+namespace kasha {
+
+class CoatedFluorescent final : public Material {
+ public:
+  // Throws std::invalid_argument "field: reason" for invalid base parameters (checkJungParams),
+  // coat index (checkIor) or roughness (checkedGgx).
+  CoatedFluorescent(JungParams base, Ior coatIor, float alphaX, float alphaY, WavelengthRange range);
+
+  float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+             SpectralLobe lobe) const override;
+  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
+  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
+  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
+                                                 float lambdaIn, float lambdaOut, Vec2 u) const override;
+  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
+                     float lambdaOut) const override;
+  bool fluoresces() const override { return base_.fluoresces(); }
+  std::string describe() const override { return "coated_fluorescent (" + ior_.describe() + ")"; }
+
+  const JungBbrrdf& base() const { return base_; }
+  const Ior& coatIor() const { return ior_; }
+  const Ggx& ggx() const { return ggx_; }
+  // Coat Fresnel reflectance at |cos θ| = c and λ.
+  float coatFresnel(float c, float lambda) const;
+  // Probability of the fluorescent lobe in the spectral stage, given the known wavelength.
+  float probFluorescence(TransportMode mode, float lambdaKnown) const;
+  // Probability of sampling the coat's reflection in the elastic directional stage.
+  float probCoat(const Vec3& wKnown, float lambda) const;
+
+ private:
+  JungBbrrdf base_;
+  Ior ior_;
+  Ggx ggx_;
+};
+
+}  // namespace kasha

@@ -1,0 +1,49 @@
+#pragma once
+// Rough conductor: GGX microfacet reflection (ggx.h) with spectral Fresnel, elastic, both sides of
+// the surface (like the smooth mirror).
+//
+//   f(ω_i, ω_o, λ) = F(|ω_i·h|, λ)·D(h)·G1(ω_i)·G1(ω_o) / (4|cos θ_i||cos θ_o|)   Walter07 eq. 20
+//
+// Fresnel: Schlick's approximation with the spectral reflectance at normal incidence F0(λ)
+// (the scene's "reflectance"), F(c) = F0 + (1 − F0)(1 − c)⁵ (Schlick 1994, "An inexpensive BRDF
+// model for physically-based rendering", eq. 15). A measured F0(λ) is one spectrum a user can
+// find for any metal, where a complex index would need two; F0 ≤ 1 keeps F ≤ 1.
+//
+// The value is symmetric in ω_i and ω_o and the same in both transport modes (reflection maps
+// solid angle onto itself). Sampling: a visible normal from the known direction (Heitz18), the
+// known direction mirrored about it; density D_known(h)/(4|ω_known·h|). The reverse density is the
+// same construction from the other direction. Weight f·|cos θ_sampled|/pdf = F·G1(ω_sampled) ≤ 1;
+// a mirrored direction that ends up below the surface is a failed sample (energy lost to the
+// single-scattering model, as in Walter07).
+#include "core/spectrum.h"
+#include "materials/ggx.h"
+#include "materials/material.h"
+
+namespace kasha {
+
+class RoughConductor final : public Material {
+ public:
+  // Throws std::invalid_argument for α outside [kMinAlpha, kMaxAlpha] (ggx.h).
+  RoughConductor(Spectrum f0, float alphaX, float alphaY);
+
+  float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+             SpectralLobe lobe) const override;
+  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
+  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
+  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
+                                                 float lambdaIn, float lambdaOut, Vec2 u) const override;
+  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
+                     float lambdaOut) const override;
+  bool fluoresces() const override { return false; }
+  std::string describe() const override { return "rough_conductor"; }
+
+  // Schlick's Fresnel at cos θ = c (relative to the microfacet normal).
+  float fresnel(float c, float lambda) const;
+  const Ggx& ggx() const { return ggx_; }
+
+ private:
+  Spectrum f0_;
+  Ggx ggx_;
+};
+
+}  // namespace kasha
