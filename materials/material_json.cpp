@@ -189,11 +189,6 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     m = parseZhdanov(f, ctx, range, unphysical);
   } else if (type == "measured_reradiation") {
     m = parseMeasuredReradiation(f, ctx, range, unphysical);
-  } else {
-    f.fail("type", "unknown material type '" + type +
-                       "' (lambertian, jung_fluorescent, mirror, dielectric, zhdanov, measured_reradiation, file)");
-}
-
   } else if (type == "rough_conductor") {
     Spectrum r = spectrumField(f, "reflectance", ctx);
     requireAlbedo(f, "reflectance", r, range, unphysical);
@@ -217,7 +212,7 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
   } else {
     f.fail("type", "unknown material type '" + type +
                        "' (lambertian, jung_fluorescent, mirror, dielectric, rough_conductor, rough_dielectric, "
-                       "coated_fluorescent)");
+                       "coated_fluorescent, zhdanov, measured_reradiation, file)");
   }
   f.finish();
   return m;

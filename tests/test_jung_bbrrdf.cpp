@@ -113,7 +113,7 @@ void runChi2(const JungParams& params, const std::vector<float>& knownLambdas, c
         SCOPED_TRACE(std::string(toString(mode)) + " known λ = " + std::to_string(l) + " nm, ω_known.z = " +
                      std::to_string(wk.z));
         const Chi2Config cfg;
-        const Chi2Result r = jointChi2(m, mode, glm::normalize(wk), l, kRange, seed++, cfg);
+        const Chi2Result r = jointChi2(m, mode, glm::normalize(wk), l, seed++, cfg);
         EXPECT_GT(r.p, 1e-3);
         // A sample can only fail when a direction coordinate u is exactly 0 (probability 2⁻²⁴ each):
         // the concentric map then lands on the disk's rim, at cos θ = 0.
