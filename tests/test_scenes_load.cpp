@@ -1,6 +1,7 @@
 // Every scene shipped in scenes/ (the published scenes of docs/report, the Cornell boxes and the
 // validation scenes) loads without error, and each published scene builds an integrator of every
 // kind the convergence harness runs. Loading only: rendering them is bench/convergence/'s job.
+// scenes/materials/ holds material files (`{"type": "file"}`), not scenes.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -17,8 +18,10 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> sceneFiles() {
   std::vector<std::string> files;
+  const fs::path materials = fs::path(KASHA_SOURCE_DIR "/scenes/materials");
   for (const auto& e : fs::recursive_directory_iterator(KASHA_SOURCE_DIR "/scenes"))
-    if (e.is_regular_file() && e.path().extension() == ".json") files.push_back(e.path().string());
+    if (e.is_regular_file() && e.path().extension() == ".json" && e.path().parent_path() != materials)
+      files.push_back(e.path().string());
   return files;
 }
 
