@@ -9,6 +9,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -26,6 +27,7 @@
 #include "core/image_output.h"
 #include "core/memory_budget.h"
 #include "core/scene_loader.h"
+#include "core/wavelength_strategy.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "materials/jung_bbrrdf.h"
@@ -67,7 +69,7 @@ struct RenderArgs {
   int spp = 0, threads = 0, maxDepth = -1;
   double time = -1.0;
   int64_t seed = -1;
-  std::string integrator = "pt", sensor;
+  std::string integrator = "pt", sensor, fluorescence, light;
   float exposure = 0.0f;
   std::string checkpoint, resume;
   double checkpointInterval = 60.0;
@@ -126,11 +128,18 @@ int runRender(const RenderArgs& a) {
   if (a.time > 0.0 && a.spp <= 0) r.spp = 1 << 30;  // a time budget alone decides
   if (a.seed >= 0) r.seed = uint64_t(a.seed);
   if (a.maxDepth >= 0) r.maxDepth = a.maxDepth;
-  if (!a.sensor.empty()) r.sensor = parseSensorSampling(a.sensor);
+  // Validated by the options' checks.
+  if (!a.sensor.empty()) r.wavelengths.sensor = parseWavelengthSpec(a.sensor);
+  if (!a.fluorescence.empty()) r.wavelengths.fluorescence = parseWavelengthSpec(a.fluorescence);
+  if (!a.light.empty()) r.wavelengths.light = parseWavelengthSpec(a.light);
   r.memoryLimit = memoryLimit;
   std::unique_ptr<Integrator> integrator;
   try {
     integrator = makeIntegrator(a.integrator, *scene, r);
+  } catch (const WavelengthStrategyError& e) {
+    std::string option = settingName(e.site());
+    std::replace(option.begin(), option.end(), '_', '-');
+    throw InputError("--" + option + " (or /render/" + settingName(e.site()) + " in " + a.scene + ")", "", e.what());
   } catch (const std::invalid_argument& e) {
     throw InputError("--integrator", "", e.what());
   }
@@ -152,7 +161,9 @@ int runRender(const RenderArgs& a) {
                                    {"seed", r.seed},
                                    {"max_depth", r.maxDepth},
                                    {"rr_depth", r.rrDepth},
-                                   {"sensor_sampling", toString(r.sensor)},
+                                   {"sensor_sampling", r.wavelengths.sensor.text},
+                                   {"fluorescence_sampling", r.wavelengths.fluorescence.text},
+                                   {"light_sampling", r.wavelengths.light.text},
                                    {"resolution", {width, height}}};
 
   // Film buffers, plus the same again while a checkpoint is read, plus the EXR's six float channels.
@@ -204,7 +215,9 @@ int runRender(const RenderArgs& a) {
   nlohmann::json j = toJson(st);
   j["scene"] = a.scene;
   j["seed"] = r.seed;
-  j["sensor_sampling"] = toString(r.sensor);
+  j["sensor_sampling"] = r.wavelengths.sensor.text;
+  j["fluorescence_sampling"] = r.wavelengths.fluorescence.text;
+  j["light_sampling"] = r.wavelengths.light.text;
   j["max_depth"] = r.maxDepth;
   j["resolution"] = {film.width(), film.height()};
   j["first_non_finite_pixel"] = {film.firstNonFinitePixel().first, film.firstNonFinitePixel().second};
@@ -318,8 +331,27 @@ int main(int argc, char** argv) {
       ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 4096));
   render->add_option("--integrator", ra.integrator,
                      "Integrator: pt | lt | bdpt (= bdpt-independent) | bdpt-shared | bdpt-independent | ppm");
-  render->add_option("--sensor-sampling", ra.sensor, "Camera wavelength sampling: uniform | cmf")
-      ->check(CLI::IsMember({"uniform", "cmf"}));
+  const CLI::Validator strategy(
+      [](std::string& s) {
+        try {
+          parseWavelengthSpec(s);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      },
+      "STRATEGY");
+  render->add_option("--sensor-sampling", ra.sensor,
+                     "Camera wavelength strategy (docs/wavelength-sampling.md), e.g. cmf | uniform | light | "
+                     "yamamoto=0.5 | mix:cmf,light | ms-power:cmf,light")
+      ->check(strategy);
+  render->add_option("--fluorescence-sampling", ra.fluorescence,
+                     "Excitation wavelength at a camera path's fluorescent event (pt), e.g. material | uniform | "
+                     "light | absorption | yamamoto | mix:absorption,light")
+      ->check(strategy);
+  render->add_option("--light-sampling", ra.light,
+                     "Light subpath wavelength (lt, bdpt-independent, ppm), e.g. light | uniform | mix:light,absorption")
+      ->check(strategy);
   render->add_option("--max-depth", ra.maxDepth, "Maximum number of scattering events")->check(numberCheck(Sign::NonNegative, true));
   render->add_option("--exposure", ra.exposure, "PNG exposure in stops")
       ->check(numberCheck(Sign::Any, false) & CLI::Range(-100.0, 100.0));

@@ -9,7 +9,7 @@
 #include "core/camera.h"
 #include "core/light.h"
 #include "core/memory_budget.h"
-#include "core/sensor_sampling.h"
+#include "core/wavelength_spec.h"
 #include "core/shape.h"
 #include "materials/material.h"
 
@@ -25,13 +25,20 @@ struct PhotonMappingSettings {
   bool alwaysKernel = false;   // elastic lobe through the kernel even where the sensor is evaluated exactly
 };
 
+// Wavelength sampling strategies per site (docs/wavelength-sampling.md).
+struct WavelengthSettings {
+  WavelengthSpec sensor = parseWavelengthSpec("cmf");                // the camera's wavelength
+  WavelengthSpec fluorescence = parseWavelengthSpec("material");     // λ_i at a camera path's fluorescent event (pt)
+  WavelengthSpec light = parseWavelengthSpec("light");               // a light subpath's wavelength (lt, bdpt, ppm)
+};
+
 struct RenderSettings {
   int spp = 16;                 // samples per pixel (a stop condition)
   double timeBudgetSeconds = 0; // > 0: also stop after this long (whole passes only)
   int maxDepth = 64;            // maximum number of scattering events on a path
   int rrDepth = 3;              // Russian roulette from this depth on
   uint64_t seed = 1;
-  SensorSampling sensor = SensorSampling::ColorMatching;
+  WavelengthSettings wavelengths;
   // Largest buffer an integrator may allocate (photon maps, ...): check with requireMemory()
   // before allocating. Set by `kasha render --memory-limit`; not a scene-file setting.
   uint64_t memoryLimit = kDefaultMemoryLimit;

@@ -5,17 +5,25 @@
 
 namespace kasha {
 
-PathTracer::PathTracer(const Scene& scene, SensorSampling sensor, int maxDepth, int rrDepth)
-    : sensor_(sensor, scene.range), maxDepth_(maxDepth), rrDepth_(rrDepth) {}
+PathTracer::PathTracer(const Scene& scene, const RenderSettings& s)
+    : sources_(scene),
+      sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
+      fluorescence_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
+      maxDepth_(s.maxDepth),
+      rrDepth_(s.rrDepth) {}
 
 Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
-  const WavelengthSample ws = sensor_.sample(rng.uniform());
-  if (ws.pdf <= 0.0f) return Vec3(0.0f);
-  const Vec2 jitter(rng.uniform(), rng.uniform());
-  const Ray ray = scene.camera.generateRay(pixel + jitter);
-  const float L = radiance(scene, ray, ws.lambda, rng, ctx.counter);
-  // W(λ)·L(λ)/p(λ): the sensor responds at the wavelength arriving at it (transport.md §1).
-  return Observer::cie1931().weight(ws.lambda) * (L / ws.pdf);
+  Vec3 xyz(0.0f);
+  for (int i = 0; i < sensor_.samplesPerEstimate(); ++i) {
+    const WavelengthStrategy::Draw d = sensor_.draw(i, rng.uniform());
+    const Vec2 jitter(rng.uniform(), rng.uniform());
+    if (!(d.weight > 0.0f)) continue;
+    const Ray ray = scene.camera.generateRay(pixel + jitter);
+    const float L = radiance(scene, ray, d.lambda, rng, ctx.counter);
+    // W(λ)·L(λ)·(MIS weight)/p(λ): the sensor responds at the wavelength arriving at it (transport.md §1).
+    xyz += Observer::cie1931().weight(d.lambda) * (L * d.weight);
+  }
+  return xyz;
 }
 
 float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, RayCounter& counter) const {
@@ -58,7 +66,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
     const Frame frame = Frame::fromNormal(hit->ng);
     const Vec3 wo = frame.toLocal(-ray.d);
     // Spectral stage: lobe and the wavelength the light had before this vertex.
-    const SpectralChoice sc = mat.sampleSpectral(TransportMode::Radiance, lambda, rng.uniform());
+    const SpectralChoice sc = fluorescence_.sample(mat, shape.material, lambda, rng.uniform());
     if (sc.pdf <= 0.0f) break;
     const float lambdaIn = sc.lambda;
 

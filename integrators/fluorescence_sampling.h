@@ -1,0 +1,28 @@
+#pragma once
+// The spectral event of a camera path (Radiance mode) with the excitation wavelength λ_i of the
+// fluorescent lobe drawn from a wavelength strategy instead of the material's own density
+// (docs/wavelength-sampling.md). The lobe is chosen as the material chooses it (Jung18 eq. 7's P_c,
+// Material::fluorescenceProbability), so the event's density is P_c·p(λ_i) for the fluorescent lobe
+// and the material's elastic probability otherwise; with the strategy "material" the material
+// samples the whole event itself.
+#include <memory>
+#include <vector>
+
+#include "core/wavelength_strategy.h"
+#include "materials/material.h"
+
+namespace kasha {
+
+class FluorescenceSampling {
+ public:
+  // Throws std::invalid_argument if `spec` is not a density or misses a fluorophore's absorption.
+  FluorescenceSampling(const WavelengthSpec& spec, const WavelengthSources& sources, size_t materialCount);
+  SpectralChoice sample(const Material& material, size_t materialIndex, float lambdaOut, float u) const;
+  // Density of sample() choosing (lobe, lambdaIn) given lambdaOut.
+  float pdf(const Material& material, size_t materialIndex, float lambdaOut, float lambdaIn, SpectralLobe lobe) const;
+
+ private:
+  std::vector<std::unique_ptr<WavelengthStrategy>> perMaterial_;  // null: the material's own sampling
+};
+
+}  // namespace kasha
