@@ -70,6 +70,7 @@ struct RenderArgs {
   double time = -1.0;
   int64_t seed = -1;
   std::string integrator = "pt", sensor, fluorescence, light;
+  int hero = 0;
   float exposure = 0.0f;
   std::string checkpoint, resume;
   double checkpointInterval = 60.0;
@@ -132,6 +133,7 @@ int runRender(const RenderArgs& a) {
   if (!a.sensor.empty()) r.wavelengths.sensor = parseWavelengthSpec(a.sensor);
   if (!a.fluorescence.empty()) r.wavelengths.fluorescence = parseWavelengthSpec(a.fluorescence);
   if (!a.light.empty()) r.wavelengths.light = parseWavelengthSpec(a.light);
+  if (a.hero > 0) r.heroWavelengths = a.hero;
   r.memoryLimit = memoryLimit;
   std::unique_ptr<Integrator> integrator;
   try {
@@ -164,6 +166,7 @@ int runRender(const RenderArgs& a) {
                                    {"sensor_sampling", r.wavelengths.sensor.text},
                                    {"fluorescence_sampling", r.wavelengths.fluorescence.text},
                                    {"light_sampling", r.wavelengths.light.text},
+                                   {"hero_wavelengths", r.heroWavelengths},
                                    {"resolution", {width, height}}};
 
   // Film buffers, plus the same again while a checkpoint is read, plus the EXR's six float channels.
@@ -218,6 +221,7 @@ int runRender(const RenderArgs& a) {
   j["sensor_sampling"] = r.wavelengths.sensor.text;
   j["fluorescence_sampling"] = r.wavelengths.fluorescence.text;
   j["light_sampling"] = r.wavelengths.light.text;
+  j["hero_wavelengths"] = r.heroWavelengths;
   j["max_depth"] = r.maxDepth;
   j["resolution"] = {film.width(), film.height()};
   j["first_non_finite_pixel"] = {film.firstNonFinitePixel().first, film.firstNonFinitePixel().second};
@@ -352,6 +356,10 @@ int main(int argc, char** argv) {
   render->add_option("--light-sampling", ra.light,
                      "Light subpath wavelength (lt, bdpt-independent, ppm), e.g. light | uniform | mix:light,absorption")
       ->check(strategy);
+  render->add_option("--hero", ra.hero,
+                     "Hero wavelength sampling (pt): wavelengths per path, 1 (off) to 16; ended at fluorescent "
+                     "and specular events")
+      ->check(CLI::Range(1, 16));
   render->add_option("--max-depth", ra.maxDepth, "Maximum number of scattering events")->check(numberCheck(Sign::NonNegative, true));
   render->add_option("--exposure", ra.exposure, "PNG exposure in stops")
       ->check(numberCheck(Sign::Any, false) & CLI::Range(-100.0, 100.0));

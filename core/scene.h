@@ -39,6 +39,7 @@ struct RenderSettings {
   int rrDepth = 3;              // Russian roulette from this depth on
   uint64_t seed = 1;
   WavelengthSettings wavelengths;
+  int heroWavelengths = 1;      // > 1: hero wavelength sampling with this many wavelengths per path (pt)
   // Largest buffer an integrator may allocate (photon maps, ...): check with requireMemory()
   // before allocating. Set by `kasha render --memory-limit`; not a scene-file setting.
   uint64_t memoryLimit = kDefaultMemoryLimit;

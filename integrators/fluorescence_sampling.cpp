@@ -27,6 +27,10 @@ SpectralChoice FluorescenceSampling::sample(const Material& material, size_t m, 
   return {SpectralLobe::Elastic, lambdaOut, pElastic};
 }
 
+WavelengthSample FluorescenceSampling::sampleExcitation(size_t m, float u) const {
+  return perMaterial_[m] ? perMaterial_[m]->density().sample(u) : WavelengthSample{};
+}
+
 float FluorescenceSampling::pdf(const Material& material, size_t m, float lambdaOut, float lambdaIn,
                                 SpectralLobe lobe) const {
   const WavelengthStrategy* s = perMaterial_[m].get();

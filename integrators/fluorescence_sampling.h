@@ -18,6 +18,9 @@ class FluorescenceSampling {
   // Throws std::invalid_argument if `spec` is not a density or misses a fluorophore's absorption.
   FluorescenceSampling(const WavelengthSpec& spec, const WavelengthSources& sources, size_t materialCount);
   SpectralChoice sample(const Material& material, size_t materialIndex, float lambdaOut, float u) const;
+  // The excitation wavelength alone, once the fluorescent lobe has been chosen: λ_i and its
+  // density p(λ_i). Needs a strategy other than "material".
+  WavelengthSample sampleExcitation(size_t materialIndex, float u) const;
   // Density of sample() choosing (lobe, lambdaIn) given lambdaOut.
   float pdf(const Material& material, size_t materialIndex, float lambdaOut, float lambdaIn, SpectralLobe lobe) const;
 

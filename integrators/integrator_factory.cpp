@@ -4,6 +4,7 @@
 
 #include "core/wavelength_strategy.h"
 #include "integrators/bdpt/bdpt_integrator.h"
+#include "integrators/hero_path_tracer.h"
 #include "integrators/light_tracer.h"
 #include "integrators/path_tracer.h"
 #include "integrators/photon_mapping/ppm_integrator.h"
@@ -30,8 +31,12 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
   const bool bdpt = name == "bdpt" || name == "bdpt-independent" || name == "bdpt-shared";
   if (name == "pt") {
     requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
+    if (s.heroWavelengths > 1) return std::make_unique<HeroPathTracer>(scene, s);
     return std::make_unique<PathTracer>(scene, s);
   }
+  if (s.heroWavelengths != 1)
+    throw std::invalid_argument("hero wavelengths (" + std::to_string(s.heroWavelengths) +
+                                ") are implemented by the path tracer only (--integrator pt)");
   if (name != "lt" && name != "ppm" && !bdpt) {
     std::string known;
     for (const std::string& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;

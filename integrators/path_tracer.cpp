@@ -2,6 +2,7 @@
 
 #include "core/color.h"
 #include "core/sampling.h"
+#include "integrators/shadow_ray.h"
 
 namespace kasha {
 
@@ -81,10 +82,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
           const Vec3 wi = frame.toLocal(ls->wi);
           const float f = mat.eval(TransportMode::Radiance, wi, wo, lambdaIn, lambda, sc.lobe);
           if (f > 0.0f) {
-            const Vec3 origin = offsetPoint(hit->p, hit->ng, ls->wi);
-            const float tMax = std::isinf(ls->dist) ? kInf : ls->dist * (1.0f - 1e-4f) - rayEpsilon(hit->p);
-            ++counter.shadow;
-            if (!scene.accel->occluded(origin, ls->wi, tMax)) {
+            if (lightVisible(scene, *hit, *ls, counter)) {
               const float lightPdf = pSelect * ls->pdf;
               const float w = ls->delta ? 1.0f
                                         : powerHeuristic(lightPdf, mat.directionPdf(TransportMode::Radiance, wo, wi, sc.lobe,

@@ -388,6 +388,8 @@ TEST_F(SceneLoader, UnknownTypes) {
               "a combination needs at least two components");
   expectError([](json& j) { j["render"] = {{"light_sampling", "yamamoto=2"}}; }, "/render/light_sampling",
               "w_F must lie in [0, 1]");
+  expectError([](json& j) { j["render"] = {{"hero_wavelengths", 17}}; }, "/render/hero_wavelengths",
+              "must be in [1, 16]");
 }
 
 TEST_F(SceneLoader, MissingMaterial) {

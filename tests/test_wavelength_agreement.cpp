@@ -46,12 +46,13 @@ const char* kScene = R"({
 std::unique_ptr<Scene> testScene() { return loadSceneFromString(kScene, "two_dyes.json"); }
 
 PixelStats renderBatches(const Scene& scene, const std::string& integratorName, const char* sensor,
-                         const char* fluorescence, const char* light, int spp, uint64_t seed) {
+                         const char* fluorescence, const char* light, int hero, int spp, uint64_t seed) {
   RenderSettings s = scene.render;
   s.maxDepth = 8;
   s.wavelengths.sensor = parseWavelengthSpec(sensor);
   s.wavelengths.fluorescence = parseWavelengthSpec(fluorescence);
   s.wavelengths.light = parseWavelengthSpec(light);
+  s.heroWavelengths = hero;
   const std::unique_ptr<Integrator> integrator = makeIntegrator(integratorName, scene, s);
   std::vector<std::vector<double>> values(kRes * kRes * 3);
   for (int b = 0; b < kBatches; ++b) {
@@ -75,10 +76,11 @@ struct Variant {
   const char* fluorescence;
   const char* light;
   int spp;
+  int hero = 1;
 };
 
 void PrintTo(const Variant& v, std::ostream* os) {
-  *os << v.integrator << " sensor=" << v.sensor << " fluorescence=" << v.fluorescence << " light=" << v.light;
+  *os << v.integrator << " sensor=" << v.sensor << " fluorescence=" << v.fluorescence << " light=" << v.light << " hero=" << v.hero;
 }
 
 class StrategySwitch : public ::testing::TestWithParam<Variant> {};
@@ -90,8 +92,8 @@ class StrategySwitch : public ::testing::TestWithParam<Variant> {};
 TEST_P(StrategySwitch, ImageAgreesWithTheDefaultPerPixel) {
   const Variant& v = GetParam();
   auto scene = testScene();
-  const PixelStats a = renderBatches(*scene, "pt", "cmf", "material", "light", 128, 100);
-  const PixelStats b = renderBatches(*scene, v.integrator, v.sensor, v.fluorescence, v.light, v.spp, 500);
+  const PixelStats a = renderBatches(*scene, "pt", "cmf", "material", "light", 1, 128, 100);
+  const PixelStats b = renderBatches(*scene, v.integrator, v.sensor, v.fluorescence, v.light, v.hero, v.spp, 500);
   double sumZ2 = 0.0, maxZ = 0.0;
   int n = 0;
   for (size_t i = 0; i < a.v.size(); ++i) {
@@ -116,7 +118,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Variant{"pt", "yamamoto", "yamamoto", "light", 128},
                       Variant{"pt", "os-power:uniform,cmf", "mix:absorption,light", "light", 128},
                       Variant{"pt", "uniform", "uniform", "light", 128},
-                      Variant{"bdpt-independent", "mix:cmf,uniform", "material", "mix:light,uniform", 32}),
+                      Variant{"bdpt-independent", "mix:cmf,uniform", "material", "mix:light,uniform", 32},
+                      Variant{"pt", "cmf", "material", "light", 64, 4},
+                      Variant{"pt", "yamamoto", "mix:absorption,light", "light", 64, 8}),
     [](const ::testing::TestParamInfo<Variant>& info) { return "v" + std::to_string(info.index); });
 
 

@@ -22,15 +22,17 @@ struct StrategyCase {
   // uniform densities (on the UV furnace they waste most samples), so that every case keeps the
   // power the standard-error check demands.
   int sppScale = 1;
+  int hero = 1;  // wavelengths per path (path tracer)
 };
 
 void PrintTo(const StrategyCase& c, std::ostream* os) {
-  *os << c.integrator << " sensor=" << c.sensor << " fluorescence=" << c.fluorescence << " light=" << c.light;
+  *os << c.integrator << " sensor=" << c.sensor << " fluorescence=" << c.fluorescence << " light=" << c.light
+      << " hero=" << c.hero;
 }
 
 std::string caseName(const ::testing::TestParamInfo<StrategyCase>& info) {
   std::string n = std::string(info.param.integrator) + "_" + info.param.sensor + "_" + info.param.fluorescence + "_" +
-                  info.param.light;
+                  info.param.light + (info.param.hero > 1 ? "_hero" + std::to_string(info.param.hero) : "");
   for (char& c : n)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return n;
@@ -49,6 +51,7 @@ TEST_P(Strategy, MatchesFurnaceClosedForms) {
     settings.wavelengths.sensor = parseWavelengthSpec(sc.sensor);
     settings.wavelengths.fluorescence = parseWavelengthSpec(sc.fluorescence);
     settings.wavelengths.light = parseWavelengthSpec(sc.light);
+    settings.heroWavelengths = sc.hero;
     if (std::string(sc.rejectedOn) == name) {
       EXPECT_THROW(makeIntegrator(sc.integrator, *scene, settings), WavelengthStrategyError);
       continue;
@@ -78,7 +81,10 @@ INSTANTIATE_TEST_SUITE_P(
                       StrategyCase{"lt", "cmf", "material", "mix:light,absorption", "", 8},
                       StrategyCase{"bdpt-independent", "uniform", "material", "yamamoto"},
                       StrategyCase{"bdpt-independent", "mix:cmf,light", "material", "uniform"},
-                      StrategyCase{"ppm", "mix:cmf,uniform", "material", "mix:light,uniform"}),
+                      StrategyCase{"ppm", "mix:cmf,uniform", "material", "mix:light,uniform"},
+                      StrategyCase{"pt", "cmf", "material", "light", "", 1, 4},
+                      StrategyCase{"pt", "uniform", "material", "light", "", 3, 8},
+                      StrategyCase{"pt", "mix:cmf,light", "mix:absorption,uniform", "light", "", 2, 3}),
     caseName);
 
 }  // namespace
