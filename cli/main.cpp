@@ -69,7 +69,7 @@ struct RenderArgs {
   int spp = 0, threads = 0, maxDepth = -1;
   double time = -1.0;
   int64_t seed = -1;
-  std::string integrator = "pt", sensor, fluorescence, light;
+  std::string integrator = "pt", sensor, fluorescence, light, nee;
   int hero = 0;
   float exposure = 0.0f;
   std::string checkpoint, resume;
@@ -133,6 +133,7 @@ int runRender(const RenderArgs& a) {
   if (!a.sensor.empty()) r.wavelengths.sensor = parseWavelengthSpec(a.sensor);
   if (!a.fluorescence.empty()) r.wavelengths.fluorescence = parseWavelengthSpec(a.fluorescence);
   if (!a.light.empty()) r.wavelengths.light = parseWavelengthSpec(a.light);
+  if (!a.nee.empty()) r.wavelengths.nee = parseWavelengthSpec(a.nee);
   if (a.hero > 0) r.heroWavelengths = a.hero;
   r.memoryLimit = memoryLimit;
   std::unique_ptr<Integrator> integrator;
@@ -166,6 +167,7 @@ int runRender(const RenderArgs& a) {
                                    {"sensor_sampling", r.wavelengths.sensor.text},
                                    {"fluorescence_sampling", r.wavelengths.fluorescence.text},
                                    {"light_sampling", r.wavelengths.light.text},
+                                   {"nee_sampling", r.wavelengths.nee.text},
                                    {"hero_wavelengths", r.heroWavelengths},
                                    {"resolution", {width, height}}};
 
@@ -221,6 +223,7 @@ int runRender(const RenderArgs& a) {
   j["sensor_sampling"] = r.wavelengths.sensor.text;
   j["fluorescence_sampling"] = r.wavelengths.fluorescence.text;
   j["light_sampling"] = r.wavelengths.light.text;
+  j["nee_sampling"] = r.wavelengths.nee.text;
   j["hero_wavelengths"] = r.heroWavelengths;
   j["max_depth"] = r.maxDepth;
   j["resolution"] = {film.width(), film.height()};
@@ -355,6 +358,10 @@ int main(int argc, char** argv) {
       ->check(strategy);
   render->add_option("--light-sampling", ra.light,
                      "Light subpath wavelength (lt, bdpt-independent, ppm), e.g. light | uniform | mix:light,absorption")
+      ->check(strategy);
+  render->add_option("--nee-sampling", ra.nee,
+                     "Excitation wavelength of next-event estimation after a fluorescent event (pt): event (the "
+                     "event's own) | absorption | light | uniform | yamamoto | mix:absorption,light")
       ->check(strategy);
   render->add_option("--hero", ra.hero,
                      "Hero wavelength sampling (pt): wavelengths per path, 1 (off) to 16; ended at fluorescent "

@@ -30,6 +30,7 @@ struct WavelengthSettings {
   WavelengthSpec sensor = parseWavelengthSpec("cmf");                // the camera's wavelength
   WavelengthSpec fluorescence = parseWavelengthSpec("material");     // λ_i at a camera path's fluorescent event (pt)
   WavelengthSpec light = parseWavelengthSpec("light");               // a light subpath's wavelength (lt, bdpt, ppm)
+  WavelengthSpec nee = parseWavelengthSpec("event");                 // λ_i of next-event estimation at a fluorescent event (pt)
 };
 
 struct RenderSettings {

@@ -116,6 +116,7 @@ struct Loader {
     wavelengthSpec(f, "sensor_sampling", r.wavelengths.sensor);
     wavelengthSpec(f, "fluorescence_sampling", r.wavelengths.fluorescence);
     wavelengthSpec(f, "light_sampling", r.wavelengths.light);
+    wavelengthSpec(f, "nee_sampling", r.wavelengths.nee);
     r.heroWavelengths = f.integer("hero_wavelengths", r.heroWavelengths);
     if (r.heroWavelengths < 1 || r.heroWavelengths > 16) f.fail("hero_wavelengths", "must be in [1, 16]");
     photonMapping(f);

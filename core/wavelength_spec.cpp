@@ -6,7 +6,7 @@
 namespace kasha {
 namespace {
 
-const char* const kKinds[] = {"uniform", "cmf", "light", "absorption", "emission", "yamamoto", "material"};
+const char* const kKinds[] = {"uniform", "cmf", "light", "absorption", "emission", "yamamoto", "material", "event"};
 const char* const kCombinations[] = {"mix", "os-power", "ms-balance", "ms-power"};
 
 float parseNumber(const std::string& s, const std::string& what, const std::string& text) {
@@ -38,11 +38,11 @@ WavelengthSpec::Component parseComponent(std::string s, bool inCombination, cons
     s.resize(eq);
   }
   bool found = false;
-  for (int k = 0; k < 7; ++k)
+  for (int k = 0; k < 8; ++k)
     if (s == kKinds[k]) c.kind = WavelengthSpec::Kind(k), found = true;
   if (!found)
     throw std::invalid_argument("wavelength strategy '" + text + "': unknown kind '" + s +
-                                "' (uniform | cmf | light | absorption | emission | yamamoto | material)");
+                                "' (uniform | cmf | light | absorption | emission | yamamoto | material | event)");
   if (eq != std::string::npos) {
     if (c.kind != WavelengthSpec::Kind::Yamamoto)
       throw std::invalid_argument("wavelength strategy '" + text + "': only yamamoto takes a value (yamamoto=w_F)");
@@ -88,8 +88,10 @@ WavelengthSpec parseWavelengthSpec(const std::string& text) {
     if (!combined) throw std::invalid_argument("wavelength strategy '" + text + "': a list needs a combination (mix:…)");
     start = comma + 1;
   }
-  if (spec.uses(WavelengthSpec::Kind::Material) && spec.components.size() > 1)
-    throw std::invalid_argument("wavelength strategy '" + text + "': 'material' cannot be combined with others");
+  for (WavelengthSpec::Kind k : {WavelengthSpec::Kind::Material, WavelengthSpec::Kind::Event})
+    if (spec.uses(k) && spec.components.size() > 1)
+      throw std::invalid_argument("wavelength strategy '" + text + "': '" + toString(k) +
+                                  "' cannot be combined with others");
   if (combined && spec.components.size() < 2)
     throw std::invalid_argument("wavelength strategy '" + text + "': a combination needs at least two components");
   return spec;

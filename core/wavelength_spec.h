@@ -8,14 +8,16 @@
 //                | "ms-balance" multi-sample MIS, one sample per component, balance heuristic
 //                | "ms-power"   multi-sample MIS, one sample per component, power heuristic
 //   component := kind ["=" w_F] ["@" weight]   (w_F only for yamamoto; weight only in a combination)
-//   kind      := uniform | cmf | light | absorption | emission | yamamoto | material
+//   kind      := uniform | cmf | light | absorption | emission | yamamoto | material | event
 #include <string>
 #include <vector>
 
 namespace kasha {
 
 struct WavelengthSpec {
-  enum class Kind { Uniform, ColorMatching, LightPower, Absorption, Emission, Yamamoto, Material };
+  // Material: the material samples the fluorescent event itself (fluorescence_sampling only).
+  // Event: next-event estimation reuses the wavelength the event drew (nee_sampling only).
+  enum class Kind { Uniform, ColorMatching, LightPower, Absorption, Emission, Yamamoto, Material, Event };
   enum class Combination { Single, Mixture, OneSamplePower, MultiBalance, MultiPower };
   struct Component {
     Kind kind = Kind::Uniform;

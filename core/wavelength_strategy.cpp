@@ -27,7 +27,8 @@ WavelengthDensity single(const Spectrum& s, WavelengthRange range, const char* w
 
 WavelengthDensity component(const WavelengthSpec::Component& c, const WavelengthSources& src, WavelengthSite site,
                             size_t material) {
-  const WavelengthSources::Fluorophore* own = site == WavelengthSite::Fluorescence ? src.fluorophoreOf(material) : nullptr;
+  const bool event = site == WavelengthSite::Fluorescence || site == WavelengthSite::Nee;
+  const WavelengthSources::Fluorophore* own = event ? src.fluorophoreOf(material) : nullptr;
   const WavelengthRange range = src.rangeOf(site);
   switch (c.kind) {
     case Kind::Uniform:
@@ -56,20 +57,26 @@ WavelengthDensity component(const WavelengthSpec::Component& c, const Wavelength
       return d;
     }
     case Kind::Material:
+      throw std::invalid_argument("'material' applies only to fluorescent events (fluorescence_sampling)");
+    case Kind::Event:
       break;
   }
-  throw std::invalid_argument("'material' applies only to fluorescent events");
+  throw std::invalid_argument("'event' applies only to next-event estimation (nee_sampling)");
 }
 
 }  // namespace
 
 const char* toString(WavelengthSite s) {
-  return s == WavelengthSite::Sensor ? "sensor" : s == WavelengthSite::Fluorescence ? "fluorescence" : "light";
+  return s == WavelengthSite::Sensor         ? "sensor"
+         : s == WavelengthSite::Fluorescence ? "fluorescence"
+         : s == WavelengthSite::Nee          ? "next-event"
+                                             : "light";
 }
 
 const char* settingName(WavelengthSite s) {
   return s == WavelengthSite::Sensor         ? "sensor_sampling"
          : s == WavelengthSite::Fluorescence ? "fluorescence_sampling"
+         : s == WavelengthSite::Nee          ? "nee_sampling"
                                              : "light_sampling";
 }
 
@@ -158,7 +165,7 @@ WavelengthStrategy::WavelengthStrategy(const WavelengthSpec& spec, const Wavelen
   std::function<float(float)> target;
   if (site == WavelengthSite::Sensor)
     target = [&](float l) { return (o.xbar(l) + o.ybar(l) + o.zbar(l)) * reach(l); };
-  else if (site == WavelengthSite::Fluorescence)
+  else if (site == WavelengthSite::Fluorescence || site == WavelengthSite::Nee)
     target = [&](float l) { return own ? own->spectra.absorbed(l) * reach(l) : 0.0f; };
   else
     target = [&](float l) { return src.lightPower(l); };

@@ -15,10 +15,13 @@
 
 namespace kasha {
 
-enum class WavelengthSite { Sensor, Fluorescence, LightStart };
+// Nee: the excitation wavelength of next-event estimation from a fluorescent vertex, drawn apart
+// from the event's own (path tracer).
+enum class WavelengthSite { Sensor, Fluorescence, LightStart, Nee };
 const char* toString(WavelengthSite s);
 // The render setting that chooses the strategy of a site: "sensor_sampling",
-// "fluorescence_sampling" or "light_sampling" (command-line option: the same with dashes).
+// "fluorescence_sampling", "light_sampling" or "nee_sampling" (command-line option: the same with
+// dashes).
 const char* settingName(WavelengthSite s);
 
 // A strategy that does not apply to the scene, the site or the integrator.
@@ -65,7 +68,7 @@ WavelengthDensity yamamotoFluorophoreDensity(const WavelengthSources& sources, b
 class WavelengthStrategy {
  public:
   // Builds `spec` for a site; `material` names the fluorescent material whose event is sampled
-  // (site Fluorescence). Throws WavelengthStrategyError if the spec does not apply there or its
+  // (sites Fluorescence and Nee). Throws WavelengthStrategyError if the spec does not apply there or its
   // density misses wavelengths the integrand needs (which would bias the estimate).
   WavelengthStrategy(const WavelengthSpec& spec, const WavelengthSources& sources, WavelengthSite site,
                      size_t material = 0);

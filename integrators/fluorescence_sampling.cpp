@@ -5,12 +5,18 @@
 namespace kasha {
 
 FluorescenceSampling::FluorescenceSampling(const WavelengthSpec& spec, const WavelengthSources& sources,
-                                           size_t materialCount)
+                                           size_t materialCount, WavelengthSite site)
     : perMaterial_(materialCount) {
-  if (spec.uses(WavelengthSpec::Kind::Material)) return;
-  requireDensity(spec, WavelengthSite::Fluorescence, "at fluorescent events");
+  const bool nee = site == WavelengthSite::Nee;
+  if (spec.uses(nee ? WavelengthSpec::Kind::Event : WavelengthSpec::Kind::Material)) return;
+  if (spec.uses(nee ? WavelengthSpec::Kind::Material : WavelengthSpec::Kind::Event))
+    throw WavelengthStrategyError(site, std::string("wavelength strategy '") + spec.text + "' applies only to " +
+                                            (nee ? "fluorescence_sampling (here: 'event' or a density, e.g. "
+                                                   "'absorption')"
+                                                 : "nee_sampling"));
+  requireDensity(spec, site, "at fluorescent events");
   for (const WavelengthSources::Fluorophore& f : sources.fluorophores)
-    perMaterial_[f.material] = std::make_unique<WavelengthStrategy>(spec, sources, WavelengthSite::Fluorescence, f.material);
+    perMaterial_[f.material] = std::make_unique<WavelengthStrategy>(spec, sources, site, f.material);
 }
 
 SpectralChoice FluorescenceSampling::sample(const Material& material, size_t m, float lambdaOut, float u) const {

@@ -15,9 +15,15 @@ namespace kasha {
 
 class FluorescenceSampling {
  public:
-  // Throws std::invalid_argument if `spec` is not a density or misses a fluorophore's absorption.
-  FluorescenceSampling(const WavelengthSpec& spec, const WavelengthSources& sources, size_t materialCount);
+  // site: Fluorescence (the event; "material" keeps the material's sampling) or Nee (next-event
+  // estimation; "event" reuses the event's wavelength). Throws WavelengthStrategyError if `spec`
+  // is not a density or misses a fluorophore's absorption.
+  FluorescenceSampling(const WavelengthSpec& spec, const WavelengthSources& sources, size_t materialCount,
+                       WavelengthSite site = WavelengthSite::Fluorescence);
   SpectralChoice sample(const Material& material, size_t materialIndex, float lambdaOut, float u) const;
+  // True if the strategy draws λ_i at this material (not "material" or "event", not a
+  // non-fluorescent material).
+  bool draws(size_t materialIndex) const { return perMaterial_[materialIndex] != nullptr; }
   // The excitation wavelength alone, once the fluorescent lobe has been chosen: λ_i and its
   // density p(λ_i). Needs a strategy other than "material".
   WavelengthSample sampleExcitation(size_t materialIndex, float u) const;

@@ -26,6 +26,9 @@ HeroPathTracer::HeroPathTracer(const Scene& scene, const RenderSettings& s)
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "with hero wavelengths (their rotations need p)");
+  if (!s.wavelengths.nee.uses(WavelengthSpec::Kind::Event))
+    throw WavelengthStrategyError(WavelengthSite::Nee, "nee_sampling '" + s.wavelengths.nee.text +
+                                                           "' is not supported with hero wavelengths (leave it at 'event')");
   if (n_ < 2 || n_ > kMaxWavelengths)
     throw std::invalid_argument("hero wavelengths: " + std::to_string(n_) + " is outside [2, " +
                                 std::to_string(kMaxWavelengths) + "]");

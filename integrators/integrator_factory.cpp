@@ -45,6 +45,7 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
   // Only the path tracer overrides the material's sampling at fluorescent events (BDPT's
   // reverse densities and the photon tracer use the material's own).
   requireUnused(w.fluorescence, defaults.fluorescence, WavelengthSite::Fluorescence, name);
+  requireUnused(w.nee, defaults.nee, WavelengthSite::Nee, name);
   if (name == "lt") {
     requireUnused(w.sensor, defaults.sensor, WavelengthSite::Sensor, name);
     return std::make_unique<LightTracer>(scene, s);

@@ -4,8 +4,9 @@
 // path per draw). At each vertex the spectral event picks the lobe and the incident wavelength
 // (Jung18 eq. 7, then λ_i from the fluorescence strategy: by default the material's a(λ));
 // next-event estimation and direction sampling then share that wavelength and are combined with
-// the power heuristic over directions. The choice of wavelength is common to both strategies, so
-// it cancels from the MIS weights.
+// the power heuristic over directions (the choice of wavelength, common to both, cancels) — unless
+// the nee strategy draws next-event estimation's own λ_i after a fluorescent event, when the
+// weights compare the full densities, wavelength included.
 #include "core/wavelength_strategy.h"
 #include "integrators/fluorescence_sampling.h"
 #include "integrators/integrator.h"
@@ -25,6 +26,7 @@ class PathTracer final : public Integrator {
   WavelengthSources sources_;
   WavelengthStrategy sensor_;
   FluorescenceSampling fluorescence_;
+  FluorescenceSampling nee_;  // λ_i of next-event estimation after a fluorescent event ("event": the event's)
   int maxDepth_, rrDepth_;
 };
 

@@ -46,13 +46,15 @@ const char* kScene = R"({
 std::unique_ptr<Scene> testScene() { return loadSceneFromString(kScene, "two_dyes.json"); }
 
 PixelStats renderBatches(const Scene& scene, const std::string& integratorName, const char* sensor,
-                         const char* fluorescence, const char* light, int hero, int spp, uint64_t seed) {
+                         const char* fluorescence, const char* light, int hero, const char* nee, int spp,
+                         uint64_t seed) {
   RenderSettings s = scene.render;
   s.maxDepth = 8;
   s.wavelengths.sensor = parseWavelengthSpec(sensor);
   s.wavelengths.fluorescence = parseWavelengthSpec(fluorescence);
   s.wavelengths.light = parseWavelengthSpec(light);
   s.heroWavelengths = hero;
+  s.wavelengths.nee = parseWavelengthSpec(nee);
   const std::unique_ptr<Integrator> integrator = makeIntegrator(integratorName, scene, s);
   std::vector<std::vector<double>> values(kRes * kRes * 3);
   for (int b = 0; b < kBatches; ++b) {
@@ -77,10 +79,11 @@ struct Variant {
   const char* light;
   int spp;
   int hero = 1;
+  const char* nee = "event";
 };
 
 void PrintTo(const Variant& v, std::ostream* os) {
-  *os << v.integrator << " sensor=" << v.sensor << " fluorescence=" << v.fluorescence << " light=" << v.light << " hero=" << v.hero;
+  *os << v.integrator << " sensor=" << v.sensor << " fluorescence=" << v.fluorescence << " light=" << v.light << " hero=" << v.hero << " nee=" << v.nee;
 }
 
 class StrategySwitch : public ::testing::TestWithParam<Variant> {};
@@ -92,8 +95,8 @@ class StrategySwitch : public ::testing::TestWithParam<Variant> {};
 TEST_P(StrategySwitch, ImageAgreesWithTheDefaultPerPixel) {
   const Variant& v = GetParam();
   auto scene = testScene();
-  const PixelStats a = renderBatches(*scene, "pt", "cmf", "material", "light", 1, 128, 100);
-  const PixelStats b = renderBatches(*scene, v.integrator, v.sensor, v.fluorescence, v.light, v.hero, v.spp, 500);
+  const PixelStats a = renderBatches(*scene, "pt", "cmf", "material", "light", 1, "event", 128, 100);
+  const PixelStats b = renderBatches(*scene, v.integrator, v.sensor, v.fluorescence, v.light, v.hero, v.nee, v.spp, 500);
   double sumZ2 = 0.0, maxZ = 0.0;
   int n = 0;
   for (size_t i = 0; i < a.v.size(); ++i) {
@@ -120,7 +123,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Variant{"pt", "uniform", "uniform", "light", 128},
                       Variant{"bdpt-independent", "mix:cmf,uniform", "material", "mix:light,uniform", 32},
                       Variant{"pt", "cmf", "material", "light", 64, 4},
-                      Variant{"pt", "yamamoto", "mix:absorption,light", "light", 64, 8}),
+                      Variant{"pt", "yamamoto", "mix:absorption,light", "light", 64, 8},
+                      Variant{"pt", "cmf", "material", "light", 128, 1, "light"},
+                      Variant{"pt", "cmf", "uniform", "light", 128, 1, "mix:absorption,light"}),
     [](const ::testing::TestParamInfo<Variant>& info) { return "v" + std::to_string(info.index); });
 
 

@@ -23,16 +23,18 @@ struct StrategyCase {
   // power the standard-error check demands.
   int sppScale = 1;
   int hero = 1;  // wavelengths per path (path tracer)
+  const char* nee = "event";
 };
 
 void PrintTo(const StrategyCase& c, std::ostream* os) {
   *os << c.integrator << " sensor=" << c.sensor << " fluorescence=" << c.fluorescence << " light=" << c.light
-      << " hero=" << c.hero;
+      << " hero=" << c.hero << " nee=" << c.nee;
 }
 
 std::string caseName(const ::testing::TestParamInfo<StrategyCase>& info) {
   std::string n = std::string(info.param.integrator) + "_" + info.param.sensor + "_" + info.param.fluorescence + "_" +
-                  info.param.light + (info.param.hero > 1 ? "_hero" + std::to_string(info.param.hero) : "");
+                  info.param.light + (info.param.hero > 1 ? "_hero" + std::to_string(info.param.hero) : "") +
+                  (std::string(info.param.nee) != "event" ? std::string("_nee_") + info.param.nee : "");
   for (char& c : n)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return n;
@@ -52,6 +54,7 @@ TEST_P(Strategy, MatchesFurnaceClosedForms) {
     settings.wavelengths.fluorescence = parseWavelengthSpec(sc.fluorescence);
     settings.wavelengths.light = parseWavelengthSpec(sc.light);
     settings.heroWavelengths = sc.hero;
+    settings.wavelengths.nee = parseWavelengthSpec(sc.nee);
     if (std::string(sc.rejectedOn) == name) {
       EXPECT_THROW(makeIntegrator(sc.integrator, *scene, settings), WavelengthStrategyError);
       continue;
@@ -84,7 +87,11 @@ INSTANTIATE_TEST_SUITE_P(
                       StrategyCase{"ppm", "mix:cmf,uniform", "material", "mix:light,uniform"},
                       StrategyCase{"pt", "cmf", "material", "light", "", 1, 4},
                       StrategyCase{"pt", "uniform", "material", "light", "", 3, 8},
-                      StrategyCase{"pt", "mix:cmf,light", "mix:absorption,uniform", "light", "", 2, 3}),
+                      StrategyCase{"pt", "mix:cmf,light", "mix:absorption,uniform", "light", "", 2, 3},
+                      StrategyCase{"pt", "cmf", "material", "light", "", 1, 1, "uniform"},
+                      StrategyCase{"pt", "cmf", "uniform", "light", "", 3, 1, "absorption"},
+                      StrategyCase{"pt", "cmf", "absorption", "light", "furnace_uv.json", 1, 1, "light"},
+                      StrategyCase{"pt", "cmf", "material", "light", "", 1, 1, "mix:light,absorption"}),
     caseName);
 
 }  // namespace

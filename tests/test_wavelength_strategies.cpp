@@ -306,6 +306,20 @@ TEST(WavelengthStrategy, RejectsStrategiesThatWouldBeBiasedOrDoNotApply) {
   EXPECT_THROW(makeIntegrator("bdpt", *scene, hero), std::invalid_argument);
   hero.wavelengths.sensor = parseWavelengthSpec("ms-balance:cmf,light");
   expectStrategyError([&] { makeIntegrator("pt", *scene, hero); }, WavelengthSite::Sensor, "needs one density");
+  // Next-event estimation's own excitation wavelength: the path tracer only, not with hero wavelengths.
+  RenderSettings nee = with("cmf", "material", "light");
+  nee.wavelengths.nee = parseWavelengthSpec("mix:absorption,light");
+  EXPECT_NO_THROW(makeIntegrator("pt", *scene, nee));
+  expectStrategyError([&] { makeIntegrator("bdpt", *scene, nee); }, WavelengthSite::Nee,
+                      "does not apply to the integrator bdpt");
+  nee.heroWavelengths = 4;
+  expectStrategyError([&] { makeIntegrator("pt", *scene, nee); }, WavelengthSite::Nee, "not supported with hero");
+  nee.heroWavelengths = 1;
+  nee.wavelengths.nee = parseWavelengthSpec("material");
+  expectStrategyError([&] { makeIntegrator("pt", *scene, nee); }, WavelengthSite::Nee, "applies only to");
+  nee.wavelengths.nee = parseWavelengthSpec("event");
+  nee.wavelengths.fluorescence = parseWavelengthSpec("event");
+  expectStrategyError([&] { makeIntegrator("pt", *scene, nee); }, WavelengthSite::Fluorescence, "applies only to");
 }
 
 }  // namespace
