@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
     else scenePath = argv[i];
   }
   auto scene = loadScene(scenePath);
-  PathTracer pt(*scene, scene->render.sensor, scene->render.maxDepth, scene->render.rrDepth);
+  PathTracer pt(*scene, scene->render);
   Film film(scene->camera.width(), scene->camera.height());
   RenderOptions opt;
   opt.spp = spp;

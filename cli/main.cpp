@@ -10,6 +10,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -31,6 +32,7 @@
 #include "core/scene_loader.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/strategy_images.h"
+#include "core/wavelength_strategy.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "materials/jung_bbrrdf.h"
@@ -72,7 +74,8 @@ struct RenderArgs {
   int spp = 0, threads = 0, maxDepth = -1;
   double time = -1.0;
   int64_t seed = -1;
-  std::string integrator = "pt", sensor;
+  std::string integrator = "pt", sensor, fluorescence, light, nee;
+  int hero = 0;
   float exposure = 0.0f;
   std::string checkpoint, resume;
   double checkpointInterval = 60.0;
@@ -135,7 +138,12 @@ int runRender(const RenderArgs& a) {
   if (a.time > 0.0 && a.spp <= 0) r.spp = 1 << 30;  // a time budget alone decides
   if (a.seed >= 0) r.seed = uint64_t(a.seed);
   if (a.maxDepth >= 0) r.maxDepth = a.maxDepth;
-  if (!a.sensor.empty()) r.sensor = parseSensorSampling(a.sensor);
+  // Validated by the options' checks.
+  if (!a.sensor.empty()) r.wavelengths.sensor = parseWavelengthSpec(a.sensor);
+  if (!a.fluorescence.empty()) r.wavelengths.fluorescence = parseWavelengthSpec(a.fluorescence);
+  if (!a.light.empty()) r.wavelengths.light = parseWavelengthSpec(a.light);
+  if (!a.nee.empty()) r.wavelengths.nee = parseWavelengthSpec(a.nee);
+  if (a.hero > 0) r.heroWavelengths = a.hero;
   r.memoryLimit = memoryLimit;
   if ((a.mollifyBandwidth >= 0.0f || a.mollifyAlpha >= 0.0f) && a.integrator != "bdpt-mollified")
     throw InputError(a.mollifyBandwidth >= 0.0f ? "--mollify-bandwidth" : "--mollify-alpha", "",
@@ -145,6 +153,10 @@ int runRender(const RenderArgs& a) {
   std::unique_ptr<Integrator> integrator;
   try {
     integrator = makeIntegrator(a.integrator, *scene, r);
+  } catch (const WavelengthStrategyError& e) {
+    std::string option = settingName(e.site());
+    std::replace(option.begin(), option.end(), '_', '-');
+    throw InputError("--" + option + " (or /render/" + settingName(e.site()) + " in " + a.scene + ")", "", e.what());
   } catch (const std::invalid_argument& e) {
     throw InputError("--integrator", "", e.what());
   }
@@ -181,7 +193,11 @@ int runRender(const RenderArgs& a) {
                                    {"seed", r.seed},
                                    {"max_depth", r.maxDepth},
                                    {"rr_depth", r.rrDepth},
-                                   {"sensor_sampling", toString(r.sensor)},
+                                   {"sensor_sampling", r.wavelengths.sensor.text},
+                                   {"fluorescence_sampling", r.wavelengths.fluorescence.text},
+                                   {"light_sampling", r.wavelengths.light.text},
+                                   {"nee_sampling", r.wavelengths.nee.text},
+                                   {"hero_wavelengths", r.heroWavelengths},
                                    {"resolution", {width, height}}};
   if (a.integrator == "bdpt-mollified") settings["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
 
@@ -235,7 +251,11 @@ int runRender(const RenderArgs& a) {
   nlohmann::json j = toJson(st);
   j["scene"] = a.scene;
   j["seed"] = r.seed;
-  j["sensor_sampling"] = toString(r.sensor);
+  j["sensor_sampling"] = r.wavelengths.sensor.text;
+  j["fluorescence_sampling"] = r.wavelengths.fluorescence.text;
+  j["light_sampling"] = r.wavelengths.light.text;
+  j["nee_sampling"] = r.wavelengths.nee.text;
+  j["hero_wavelengths"] = r.heroWavelengths;
   j["max_depth"] = r.maxDepth;
   j["resolution"] = {film.width(), film.height()};
   j["first_non_finite_pixel"] = {film.firstNonFinitePixel().first, film.firstNonFinitePixel().second};
@@ -365,8 +385,35 @@ int main(int argc, char** argv) {
   render->add_option("--strategy-depth", ra.strategyDepth,
                      "With --strategy-images: longest path (scattering events) with its own images; longer ones go to deeper.exr (default 4)")
       ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 64));
-  render->add_option("--sensor-sampling", ra.sensor, "Camera wavelength sampling: uniform | cmf")
-      ->check(CLI::IsMember({"uniform", "cmf"}));
+  const CLI::Validator strategy(
+      [](std::string& s) {
+        try {
+          parseWavelengthSpec(s);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      },
+      "STRATEGY");
+  render->add_option("--sensor-sampling", ra.sensor,
+                     "Camera wavelength strategy (docs/wavelength-sampling.md), e.g. cmf | uniform | light | "
+                     "yamamoto=0.5 | mix:cmf,light | ms-power:cmf,light")
+      ->check(strategy);
+  render->add_option("--fluorescence-sampling", ra.fluorescence,
+                     "Excitation wavelength at a camera path's fluorescent event (pt), e.g. material | uniform | "
+                     "light | absorption | yamamoto | mix:absorption,light")
+      ->check(strategy);
+  render->add_option("--light-sampling", ra.light,
+                     "Light subpath wavelength (lt, bdpt-independent, ppm), e.g. light | uniform | mix:light,absorption")
+      ->check(strategy);
+  render->add_option("--nee-sampling", ra.nee,
+                     "Excitation wavelength of next-event estimation after a fluorescent event (pt): event (the "
+                     "event's own) | absorption | light | uniform | yamamoto | mix:absorption,light")
+      ->check(strategy);
+  render->add_option("--hero", ra.hero,
+                     "Hero wavelength sampling (pt): wavelengths per path, 1 (off) to 16; ended at fluorescent "
+                     "and specular events")
+      ->check(CLI::Range(1, 16));
   render->add_option("--max-depth", ra.maxDepth, "Maximum number of scattering events")->check(numberCheck(Sign::NonNegative, true));
   render->add_option("--exposure", ra.exposure, "PNG exposure in stops")
       ->check(numberCheck(Sign::Any, false) & CLI::Range(-100.0, 100.0));

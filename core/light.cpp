@@ -202,11 +202,10 @@ void EnvironmentLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float
 
 // ---- selection -----------------------------------------------------------------------------
 
-LightSelector::LightSelector(const std::vector<std::unique_ptr<Light>>& lights, WavelengthRange range) : lights_(lights) {
+LightSelector::LightSelector(const std::vector<std::unique_ptr<Light>>& lights) : lights_(lights) {
   std::vector<std::pair<float, const Spectrum*>> terms;
   for (const auto& l : lights) terms.emplace_back(l->powerFactor() * l->scale(), &l->spectrum());
   totalPower_ = Spectrum::weightedSum(terms);
-  totalPowerDistribution_ = SpectralDistribution(totalPower_, range);
 }
 
 std::pair<size_t, float> LightSelector::select(float lambda, float u) const {
@@ -230,8 +229,9 @@ float LightSelector::probability(size_t light, float lambda) const {
   return total > 0.0f ? lights_[light]->power(lambda) / total : 0.0f;
 }
 
-LightSelector::LightWavelength LightSelector::sampleLightAndWavelength(float uLambda, float uLight) const {
-  const WavelengthSample ws = totalPowerDistribution_.sample(uLambda);
+LightSelector::LightWavelength LightSelector::sampleLightAndWavelength(const WavelengthDensity& wavelengths,
+                                                                      float uLambda, float uLight) const {
+  const WavelengthSample ws = wavelengths.sample(uLambda);
   if (ws.pdf <= 0.0f) return {};
   const auto [light, p] = select(ws.lambda, uLight);
   if (p <= 0.0f) return {};

@@ -9,6 +9,7 @@
 
 #include "core/shape.h"
 #include "core/spectral_distribution.h"
+#include "core/wavelength_density.h"
 
 namespace kasha {
 
@@ -160,11 +161,12 @@ class EnvironmentLight final : public Light {
 
 // Chooses lights in proportion to their power at the path's wavelength (next-event estimation:
 // at a UV wavelength only UV sources are picked), and starts light subpaths with the joint
-// density p(light, λ) = Φ_light(λ) / Σ_l ∫Φ_l, i.e. λ from the scene's total emitted power
-// spectrum and then the light in proportion to its power at λ.
+// density p(light, λ) = p(λ)·Φ_light(λ) / Σ_l Φ_l(λ): λ from the light-start wavelength strategy
+// (by default the scene's total emitted power spectrum, so p(light, λ) = Φ_light(λ) / Σ_l ∫Φ_l)
+// and then the light in proportion to its power at λ.
 class LightSelector {
  public:
-  LightSelector(const std::vector<std::unique_ptr<Light>>& lights, WavelengthRange range);
+  explicit LightSelector(const std::vector<std::unique_ptr<Light>>& lights);
   // Returns the index of the chosen light and its probability, or probability 0.
   std::pair<size_t, float> select(float lambda, float u) const;
   float probability(size_t light, float lambda) const;
@@ -174,14 +176,11 @@ class LightSelector {
     float lambda = 0.0f;
     float pdf = 0.0f;  // joint: P(light | λ)·p(λ), per nm
   };
-  LightWavelength sampleLightAndWavelength(float uLambda, float uLight) const;
-  // Density of λ under the total emitted power spectrum (per nm).
-  float wavelengthPdf(float lambda) const { return totalPowerDistribution_.pdf(lambda); }
+  LightWavelength sampleLightAndWavelength(const WavelengthDensity& wavelengths, float uLambda, float uLight) const;
 
  private:
   const std::vector<std::unique_ptr<Light>>& lights_;
-  Spectrum totalPower_;                    // Σ_l Φ_l(λ), summed once at load
-  SpectralDistribution totalPowerDistribution_;  // λ ∝ totalPower_ over the scene's range
+  Spectrum totalPower_;  // Σ_l Φ_l(λ), summed once at load
 };
 
 }  // namespace kasha

@@ -9,7 +9,7 @@
 #include "core/camera.h"
 #include "core/light.h"
 #include "core/memory_budget.h"
-#include "core/sensor_sampling.h"
+#include "core/wavelength_spec.h"
 #include "core/shape.h"
 #include "materials/material.h"
 
@@ -32,13 +32,22 @@ struct MollificationSettings {
   float alpha = 2.0f / 3.0f;  // h_i² = h_{i−1}²·(i − 1 + α)/i (the PPM radius schedule), in (0, 1)
 };
 
+// Wavelength sampling strategies per site (docs/wavelength-sampling.md).
+struct WavelengthSettings {
+  WavelengthSpec sensor = parseWavelengthSpec("cmf");                // the camera's wavelength
+  WavelengthSpec fluorescence = parseWavelengthSpec("material");     // λ_i at a camera path's fluorescent event (pt)
+  WavelengthSpec light = parseWavelengthSpec("light");               // a light subpath's wavelength (lt, bdpt, ppm)
+  WavelengthSpec nee = parseWavelengthSpec("event");                 // λ_i of next-event estimation at a fluorescent event (pt)
+};
+
 struct RenderSettings {
   int spp = 16;                 // samples per pixel (a stop condition)
   double timeBudgetSeconds = 0; // > 0: also stop after this long (whole passes only)
   int maxDepth = 64;            // maximum number of scattering events on a path
   int rrDepth = 3;              // Russian roulette from this depth on
   uint64_t seed = 1;
-  SensorSampling sensor = SensorSampling::ColorMatching;
+  WavelengthSettings wavelengths;
+  int heroWavelengths = 1;      // > 1: hero wavelength sampling with this many wavelengths per path (pt)
   // Largest buffer an integrator may allocate (photon maps, ...): check with requireMemory()
   // before allocating. Set by `kasha render --memory-limit`; not a scene-file setting.
   uint64_t memoryLimit = kDefaultMemoryLimit;

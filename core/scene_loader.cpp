@@ -113,15 +113,26 @@ struct Loader {
     const int seed = f.integer("seed", int(r.seed));
     if (seed < 0) f.fail("seed", "must not be negative");
     r.seed = uint64_t(seed);
-    const std::string ws = f.string("sensor_sampling", toString(r.sensor));
-    try {
-      r.sensor = parseSensorSampling(ws);
-    } catch (const std::exception& e) {
-      f.fail("sensor_sampling", e.what());
-    }
+    wavelengthSpec(f, "sensor_sampling", r.wavelengths.sensor);
+    wavelengthSpec(f, "fluorescence_sampling", r.wavelengths.fluorescence);
+    wavelengthSpec(f, "light_sampling", r.wavelengths.light);
+    wavelengthSpec(f, "nee_sampling", r.wavelengths.nee);
+    r.heroWavelengths = f.integer("hero_wavelengths", r.heroWavelengths);
+    if (r.heroWavelengths < 1 || r.heroWavelengths > 16) f.fail("hero_wavelengths", "must be in [1, 16]");
     photonMapping(f);
     mollification(f);
     f.finish();
+  }
+
+  // A wavelength strategy's text (core/wavelength_spec.h); whether it applies is checked when the
+  // integrator is built.
+  static void wavelengthSpec(JsonFields& f, const char* key, WavelengthSpec& out) {
+    const std::string text = f.string(key, out.text);
+    try {
+      out = parseWavelengthSpec(text);
+    } catch (const std::exception& e) {
+      f.fail(key, e.what());
+    }
   }
 
   // /render/ppm (docs/photon-mapping.md).
@@ -372,7 +383,7 @@ struct Loader {
       throw InputError(file, where, std::isfinite(power) ? "the lights' total power overflows a 32-bit float"
                                                          : "the emitted power overflows a 32-bit float");
     }
-    scene.lightSelector = std::make_unique<LightSelector>(scene.lights, scene.range);
+    scene.lightSelector = std::make_unique<LightSelector>(scene.lights);
   }
 };
 

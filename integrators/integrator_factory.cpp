@@ -2,30 +2,62 @@
 
 #include <stdexcept>
 
+#include "core/wavelength_strategy.h"
 #include "integrators/bdpt/bdpt_integrator.h"
+#include "integrators/hero_path_tracer.h"
 #include "integrators/light_tracer.h"
 #include "integrators/path_tracer.h"
 #include "integrators/photon_mapping/ppm_integrator.h"
 
 namespace kasha {
+namespace {
+
+// A wavelength site the integrator never draws at must keep its default, so that a strategy
+// that was asked for is never silently ignored.
+void requireUnused(const WavelengthSpec& spec, const WavelengthSpec& fallback, WavelengthSite site,
+                   const std::string& integrator) {
+  if (spec.text != fallback.text)
+    throw WavelengthStrategyError(site, std::string(settingName(site)) + " '" + spec.text + "' does not apply to the integrator " +
+                                integrator + ", which draws no such wavelength (leave it at '" + fallback.text + "')");
+}
+
+}  // namespace
 
 std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent", "bdpt-mollified", "ppm"}; }
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& s) {
-  if (name == "pt") return std::make_unique<PathTracer>(scene, s.sensor, s.maxDepth, s.rrDepth);
-  if (name == "lt") return std::make_unique<LightTracer>(s.maxDepth, s.rrDepth);
-  if (name == "bdpt" || name == "bdpt-independent" || name == "bdpt-shared") {
+  const WavelengthSettings& w = s.wavelengths;
+  const WavelengthSettings defaults;
+  const bool mollified = name == "bdpt-mollified";
+  const bool bdpt = name == "bdpt" || name == "bdpt-independent" || name == "bdpt-shared" || mollified;
+  if (name == "pt") {
+    requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
+    if (s.heroWavelengths > 1) return std::make_unique<HeroPathTracer>(scene, s);
+    return std::make_unique<PathTracer>(scene, s);
+  }
+  if (s.heroWavelengths != 1)
+    throw std::invalid_argument("hero wavelengths (" + std::to_string(s.heroWavelengths) +
+                                ") are implemented by the path tracer only (--integrator pt)");
+  if (name != "lt" && name != "ppm" && !bdpt) {
+    std::string known;
+    for (const std::string& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown integrator '" + name + "' (" + known + ")");
+  }
+  // Only the path tracer overrides the material's sampling at fluorescent events (BDPT's
+  // reverse densities and the photon tracer use the material's own).
+  requireUnused(w.fluorescence, defaults.fluorescence, WavelengthSite::Fluorescence, name);
+  requireUnused(w.nee, defaults.nee, WavelengthSite::Nee, name);
+  if (name == "lt") {
+    requireUnused(w.sensor, defaults.sensor, WavelengthSite::Sensor, name);
+    return std::make_unique<LightTracer>(scene, s);
+  }
+  if (bdpt) {
+    if (name == "bdpt-shared") requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
     const bdpt::WavelengthMode mode =
         name == "bdpt-shared" ? bdpt::WavelengthMode::Shared : bdpt::WavelengthMode::Independent;
-    return std::make_unique<Bdpt>(scene, s.sensor, bdpt::WalkSettings{s.maxDepth, s.rrDepth, mode});
+    return std::make_unique<Bdpt>(scene, s, mode, mollified ? &s.mollify : nullptr);
   }
-  if (name == "bdpt-mollified")
-    return std::make_unique<Bdpt>(scene, s.sensor, bdpt::WalkSettings{s.maxDepth, s.rrDepth, bdpt::WavelengthMode::Independent},
-                                  &s.mollify);
-  if (name == "ppm") return std::make_unique<PpmIntegrator>(scene, s);
-  std::string known;
-  for (const std::string& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown integrator '" + name + "' (" + known + ")");
+  return std::make_unique<PpmIntegrator>(scene, s);
 }
 
 }  // namespace kasha

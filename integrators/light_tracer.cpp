@@ -20,8 +20,16 @@ bool visible(const Scene& scene, const Vec3& p, const Vec3& n, const Camera::Con
 
 }  // namespace
 
+LightTracer::LightTracer(const Scene& scene, const RenderSettings& s)
+    : wavelengths_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
+      maxDepth_(s.maxDepth),
+      rrDepth_(s.rrDepth) {
+  requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "for light subpaths");
+}
+
 Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Rng& rng, SampleContext& ctx) const {
-  const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(rng.uniform(), rng.uniform());
+  const LightSelector::LightWavelength lw =
+      scene.lightSelector->sampleLightAndWavelength(wavelengths_.density(), rng.uniform(), rng.uniform());
   if (lw.pdf <= 0.0f) return Vec3(0.0f);
   const Light& light = *scene.lights[lw.light];
   const Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());

@@ -2,26 +2,39 @@
 
 #include "core/color.h"
 #include "core/sampling.h"
+#include "integrators/shadow_ray.h"
 
 namespace kasha {
 
-PathTracer::PathTracer(const Scene& scene, SensorSampling sensor, int maxDepth, int rrDepth)
-    : sensor_(sensor, scene.range), maxDepth_(maxDepth), rrDepth_(rrDepth) {}
+PathTracer::PathTracer(const Scene& scene, const RenderSettings& s)
+    : sources_(scene),
+      sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
+      fluorescence_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
+      nee_(s.wavelengths.nee, sources_, scene.materials.size(), WavelengthSite::Nee),
+      maxDepth_(s.maxDepth),
+      rrDepth_(s.rrDepth) {}
 
 Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
-  const WavelengthSample ws = sensor_.sample(rng.uniform());
-  if (ws.pdf <= 0.0f) return Vec3(0.0f);
-  const Vec2 jitter(rng.uniform(), rng.uniform());
-  const Ray ray = scene.camera.generateRay(pixel + jitter);
-  const float L = radiance(scene, ray, ws.lambda, rng, ctx.counter);
-  // W(λ)·L(λ)/p(λ): the sensor responds at the wavelength arriving at it (transport.md §1).
-  return Observer::cie1931().weight(ws.lambda) * (L / ws.pdf);
+  Vec3 xyz(0.0f);
+  for (int i = 0; i < sensor_.samplesPerEstimate(); ++i) {
+    const WavelengthStrategy::Draw d = sensor_.draw(i, rng.uniform());
+    const Vec2 jitter(rng.uniform(), rng.uniform());
+    if (!(d.weight > 0.0f)) continue;
+    const Ray ray = scene.camera.generateRay(pixel + jitter);
+    const float L = radiance(scene, ray, d.lambda, rng, ctx.counter);
+    // W(λ)·L(λ)·(MIS weight)/p(λ): the sensor responds at the wavelength arriving at it (transport.md §1).
+    xyz += Observer::cie1931().weight(d.lambda) * (L * d.weight);
+  }
+  return xyz;
 }
 
 float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, RayCounter& counter) const {
   const LightSelector& lights = *scene.lightSelector;
   float L = 0.0f, beta = 1.0f;
   float prevDirPdf = 0.0f;     // solid-angle density of the direction that led here
+  // The spectral event's density at the last vertex, and the one next-event estimation had for
+  // the same λ_i (they differ only for a fluorescent event with its own nee_sampling).
+  float prevSpectralPdf = 1.0f, prevNeeSpectralPdf = 1.0f;
   bool prevSpecular = true;    // the camera ray counts as specular: no MIS on direct hits
   Vec3 prevP = ray.o;
   for (int depth = 0;; ++depth) {
@@ -33,7 +46,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
         float w = 1.0f;
         if (!prevSpecular) {
           const float lightPdf = lights.probability(size_t(scene.environmentLight), lambda) * env->pdfDirection();
-          w = powerHeuristic(prevDirPdf, lightPdf);
+          w = powerHeuristic(prevDirPdf * prevSpectralPdf, lightPdf * prevNeeSpectralPdf);
         }
         L += beta * Le * w;
       }
@@ -47,7 +60,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
         if (!prevSpecular) {
           const size_t li = size_t(scene.shapeLight[hit->shape]);
           const float lightPdf = lights.probability(li, lambda) * scene.lights[li]->pdfLi(prevP, hit->p, hit->ng);
-          w = powerHeuristic(prevDirPdf, lightPdf);
+          w = powerHeuristic(prevDirPdf * prevSpectralPdf, lightPdf * prevNeeSpectralPdf);
         }
         L += beta * Le * w;
       }
@@ -58,30 +71,39 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
     const Frame frame = Frame::fromNormal(hit->ng);
     const Vec3 wo = frame.toLocal(-ray.d);
     // Spectral stage: lobe and the wavelength the light had before this vertex.
-    const SpectralChoice sc = mat.sampleSpectral(TransportMode::Radiance, lambda, rng.uniform());
+    const SpectralChoice sc = fluorescence_.sample(mat, shape.material, lambda, rng.uniform());
     if (sc.pdf <= 0.0f) break;
     const float lambdaIn = sc.lambda;
 
-    // Next-event estimation at λ_i.
+    // Next-event estimation at λ_i, or after a fluorescent event at a wavelength of its own
+    // (nee_sampling). Its MIS weight then compares full densities, wavelength included: the light
+    // sample's P_c·p_nee(λ)·p_light against the event's P_c·p_event(λ)·p_dir.
+    prevSpectralPdf = prevNeeSpectralPdf = sc.pdf;
+    float lambdaNee = lambdaIn, neeSpectralPdf = sc.pdf, eventPdfAtNee = sc.pdf;
+    const bool ownNee = sc.lobe == SpectralLobe::Fluorescent && nee_.draws(shape.material);
+    if (ownNee) {
+      const WavelengthSample ws = nee_.sampleExcitation(shape.material, rng.uniform());
+      lambdaNee = ws.lambda;
+      neeSpectralPdf = ws.pdf > 0.0f ? mat.fluorescenceProbability(TransportMode::Radiance, lambda) * ws.pdf : 0.0f;
+      eventPdfAtNee = fluorescence_.pdf(mat, shape.material, lambda, lambdaNee, SpectralLobe::Fluorescent);
+      prevNeeSpectralPdf = nee_.pdf(mat, shape.material, lambda, lambdaIn, SpectralLobe::Fluorescent);
+    }
     const float uLight = rng.uniform();
     const Vec2 uPos(rng.uniform(), rng.uniform());
-    if (!mat.purelySpecular()) {
-      const auto [li, pSelect] = lights.select(lambdaIn, uLight);
+    if (!mat.purelySpecular() && neeSpectralPdf > 0.0f) {
+      const auto [li, pSelect] = lights.select(lambdaNee, uLight);
       if (pSelect > 0.0f) {
-        const std::optional<LightSample> ls = scene.lights[li]->sampleLi(hit->p, lambdaIn, uPos);
+        const std::optional<LightSample> ls = scene.lights[li]->sampleLi(hit->p, lambdaNee, uPos);
         if (ls && ls->Li > 0.0f && ls->pdf > 0.0f) {
           const Vec3 wi = frame.toLocal(ls->wi);
-          const float f = mat.eval(TransportMode::Radiance, wi, wo, lambdaIn, lambda, sc.lobe);
+          const float f = mat.eval(TransportMode::Radiance, wi, wo, lambdaNee, lambda, sc.lobe);
           if (f > 0.0f) {
-            const Vec3 origin = offsetPoint(hit->p, hit->ng, ls->wi);
-            const float tMax = std::isinf(ls->dist) ? kInf : ls->dist * (1.0f - 1e-4f) - rayEpsilon(hit->p);
-            ++counter.shadow;
-            if (!scene.accel->occluded(origin, ls->wi, tMax)) {
+            if (lightVisible(scene, *hit, *ls, counter)) {
               const float lightPdf = pSelect * ls->pdf;
-              const float w = ls->delta ? 1.0f
-                                        : powerHeuristic(lightPdf, mat.directionPdf(TransportMode::Radiance, wo, wi, sc.lobe,
-                                                                                     lambdaIn, lambda));
-              L += beta * (f * std::abs(wi.z) / sc.pdf) * ls->Li * w / lightPdf;
+              const float dirPdf = mat.directionPdf(TransportMode::Radiance, wo, wi, sc.lobe, lambdaNee, lambda);
+              const float w =
+                  ls->delta ? 1.0f : powerHeuristic(lightPdf * neeSpectralPdf, dirPdf * eventPdfAtNee);
+              L += beta * (f * std::abs(wi.z) / neeSpectralPdf) * ls->Li * w / lightPdf;
             }
           }
         }

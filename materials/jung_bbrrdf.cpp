@@ -63,6 +63,16 @@ float JungBbrrdf::probFluorescenceCamera(float lambdaOut) const {
   return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
 }
 
+float JungBbrrdf::fluorescenceProbability(TransportMode mode, float lambdaKnown) const {
+  return mode == TransportMode::Radiance ? probFluorescenceCamera(lambdaKnown) : probFluorescenceLight(lambdaKnown);
+}
+
+std::optional<FluorophoreSpectra> JungBbrrdf::fluorophore() const {
+  if (!fluoresces()) return std::nullopt;
+  return FluorophoreSpectra{p_.absorption.scaled(c()),
+                            p_.emission.scaled(q() * c() * absorptionIntegral() / emission_.integral())};
+}
+
 float JungBbrrdf::albedoIn(float lambdaIn) const {
   const float ca = c() * a(lambdaIn);
   return (1.0f - ca) * r(lambdaIn) + ca * q();
@@ -76,7 +86,7 @@ SpectralChoice JungBbrrdf::sampleSpectral(TransportMode mode, float lambdaKnown,
   const bool radiance = mode == TransportMode::Radiance;
   const bool anything = radiance ? albedoOut(lambdaKnown) > 0.0f : albedoIn(lambdaKnown) > 0.0f;
   if (!anything) return {};
-  const float pFluor = radiance ? probFluorescenceCamera(lambdaKnown) : probFluorescenceLight(lambdaKnown);
+  const float pFluor = fluorescenceProbability(mode, lambdaKnown);
   if (u < pFluor) {
     // Radiance: λ_i ∝ a (camera paths); Importance: λ_o ∝ e (light paths).
     const WavelengthSample ws = (radiance ? absorption_ : emission_).sample(std::min(u / pFluor, 0x1.fffffep-1f));
@@ -90,7 +100,7 @@ float JungBbrrdf::spectralPdf(TransportMode mode, float lambdaKnown, float lambd
   const bool radiance = mode == TransportMode::Radiance;
   const bool anything = radiance ? albedoOut(lambdaKnown) > 0.0f : albedoIn(lambdaKnown) > 0.0f;
   if (!anything) return 0.0f;
-  const float pFluor = radiance ? probFluorescenceCamera(lambdaKnown) : probFluorescenceLight(lambdaKnown);
+  const float pFluor = fluorescenceProbability(mode, lambdaKnown);
   if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
   return pFluor * (radiance ? absorption_.pdf(lambdaOther) : emission_.pdf(lambdaOther));
 }

@@ -53,6 +53,10 @@ class JungBbrrdf final : public Material {
                      float lambdaOut) const override;
   bool fluoresces() const override { return p_.concentration > 0.0f && p_.energyRatio > 0.0f; }
   std::string describe() const override { return "jung_fluorescent"; }
+  // P_c (Radiance) or P_l (Importance).
+  float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override;
+  // absorbed = c·a(λ); reemitted = Q·(∫c·a)·e(λ) (Jung18 eq. 2 integrated over λ_i under unit light).
+  std::optional<FluorophoreSpectra> fluorophore() const override;
 
   // Jung18 eq. 6: probability of the fluorescent lobe on a light path, given λ_i.
   float probFluorescenceLight(float lambdaIn) const;

@@ -21,6 +21,7 @@
 #include <string>
 
 #include "core/math.h"
+#include "core/spectrum.h"
 
 namespace kasha {
 
@@ -58,6 +59,13 @@ struct ScatterSample {
   float pdfRev = 0.0f;  // spectral pdf × direction pdf, the other mode, roles swapped
 };
 
+// What a fluorescent material absorbs and re-emits, for the wavelength strategies that follow the
+// scene's fluorophores (docs/wavelength-sampling.md).
+struct FluorophoreSpectra {
+  Spectrum absorbed;   // fraction of the energy arriving at λ_i that the fluorophore absorbs
+  Spectrum reemitted;  // energy re-emitted per nm at λ_o under unit white irradiance (1 per nm)
+};
+
 struct ScatterDensity {
   float pdf = 0.0f;
   float pdfRev = 0.0f;
@@ -92,6 +100,13 @@ class Material {
 
   // True if any lobe changes wavelength.
   virtual bool fluoresces() const = 0;
+  // The probability with which sampleSpectral chooses the fluorescent lobe given the known
+  // wavelength. An integrator that draws the unknown wavelength of the fluorescent lobe from its
+  // own density p(λ) (a wavelength strategy) samples the event with density P·p(λ) (the value
+  // eval() is per nm), and the elastic lobe with spectralPdf(mode, λ, λ, Elastic).
+  virtual float fluorescenceProbability(TransportMode mode, float lambdaKnown) const { return 0.0f; }
+  // The fluorophore's spectra if the material fluoresces.
+  virtual std::optional<FluorophoreSpectra> fluorophore() const { return std::nullopt; }
   // True if every lobe is a Dirac delta in direction (no next-event estimation possible).
   virtual bool purelySpecular() const { return false; }
   virtual std::string describe() const = 0;

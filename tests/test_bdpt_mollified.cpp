@@ -37,7 +37,9 @@ TEST(BdptMollified, BandwidthShrinksLikeThePhotonMappingRadius) {
   MollificationSettings m;
   m.bandwidth = 12.0f;
   m.alpha = 0.5f;
-  const Bdpt bdpt(*scene, SensorSampling::Uniform, bdpt::WalkSettings{}, &m);
+  RenderSettings rs = scene->render;
+  rs.wavelengths.sensor = parseWavelengthSpec("uniform");
+  const Bdpt bdpt(*scene, rs, bdpt::WavelengthMode::Independent, &m);
   EXPECT_TRUE(bdpt.mollifies());
   EXPECT_EQ(bdpt.name(), "bdpt-mollified");
   EXPECT_EQ(bdpt.maxSamplesPerPass(), 1);  // one iteration per sample index
@@ -60,9 +62,8 @@ TEST(BdptMollified, BandwidthShrinksLikeThePhotonMappingRadius) {
   EXPECT_NEAR(wavelengthKernelMass(-5.0f, 7.0f, 12.0f), mass, 1e-5);
   MollificationSettings bad = m;
   bad.alpha = 1.0f;
-  EXPECT_THROW(Bdpt(*scene, SensorSampling::Uniform, bdpt::WalkSettings{}, &bad), std::invalid_argument);
-  EXPECT_THROW(Bdpt(*scene, SensorSampling::Uniform, bdpt::WalkSettings{64, 3, bdpt::WavelengthMode::Shared}, &m),
-               std::invalid_argument);
+  EXPECT_THROW(Bdpt(*scene, rs, bdpt::WavelengthMode::Independent, &bad), std::invalid_argument);
+  EXPECT_THROW(Bdpt(*scene, rs, bdpt::WavelengthMode::Shared, &m), std::invalid_argument);
 }
 
 struct Batches {
@@ -77,7 +78,7 @@ Batches renderBatches(Scene& scene, const std::string& integrator, int maxDepth,
   RenderSettings s = scene.render;
   s.maxDepth = maxDepth;
   s.rrDepth = 3;
-  s.sensor = SensorSampling::Uniform;
+  s.wavelengths.sensor = parseWavelengthSpec("uniform");
   s.mollify.bandwidth = bandwidth;
   const auto bdpt = makeIntegrator(integrator, scene, s);
   std::vector<double> b[3];

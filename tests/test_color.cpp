@@ -1,14 +1,14 @@
 // Colorimetry (core/color.h): the CIE 1931 observer tables, the film's XYZ normalisation checked
 // against the published chromaticities of the standard illuminants, XYZ → sRGB, and the camera's
-// wavelength densities (core/sensor_sampling.h).
+// wavelength densities (core/wavelength_strategy.h, site Sensor).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
 
 #include "core/color.h"
-#include "core/sensor_sampling.h"
 #include "core/spectrum_presets.h"
+#include "core/wavelength_strategy.h"
 
 namespace kasha {
 namespace {
@@ -133,8 +133,15 @@ TEST(Srgb, EncodeEndpoints) {
   }
 }
 
+// The sensor's density for strategy `name` in an empty scene with the given wavelength range.
+WavelengthDensity sensorDensity(const std::string& name, WavelengthRange range) {
+  Scene scene;
+  scene.range = range;
+  return WavelengthStrategy(parseWavelengthSpec(name), WavelengthSources(scene), WavelengthSite::Sensor).density();
+}
+
 // ∫ pdf over [lo, hi] by the trapezoid rule on a fine grid.
-double pdfIntegral(const SensorWavelengths& s, float lo, float hi) {
+double pdfIntegral(const WavelengthDensity& s, float lo, float hi) {
   const int n = int((hi - lo) * 8.0f);
   double sum = 0.0;
   for (int i = 0; i < n; ++i) {
@@ -145,11 +152,11 @@ double pdfIntegral(const SensorWavelengths& s, float lo, float hi) {
 }
 
 TEST(SensorSampling, DensitiesIntegrateToOneOverTheVisibleRange) {
-  for (SensorSampling mode : {SensorSampling::Uniform, SensorSampling::ColorMatching}) {
+  for (const std::string mode : {"uniform", "cmf"}) {
     for (WavelengthRange range : {WavelengthRange{360.0f, 830.0f}, WavelengthRange{300.0f, 830.0f},
                                   WavelengthRange{300.0f, 1000.0f}}) {
-      SCOPED_TRACE(std::string(toString(mode)) + " " + std::to_string(range.min) + "-" + std::to_string(range.max));
-      const SensorWavelengths s(mode, range);
+      SCOPED_TRACE(mode + " " + std::to_string(range.min) + "-" + std::to_string(range.max));
+      const WavelengthDensity s = sensorDensity(mode, range);
       EXPECT_NEAR(pdfIntegral(s, 360.0f, 830.0f), 1.0, 2e-3);
       for (float l : {250.0f, 300.0f, 340.0f, 359.5f, 830.5f, 900.0f}) EXPECT_EQ(s.pdf(l), 0.0f) << l;
       for (int i = 0; i < 256; ++i) {
@@ -162,25 +169,22 @@ TEST(SensorSampling, DensitiesIntegrateToOneOverTheVisibleRange) {
     }
   }
   // A scene range inside the visible: the density covers only it.
-  const SensorWavelengths narrow(SensorSampling::Uniform, {400.0f, 700.0f});
+  const WavelengthDensity narrow = sensorDensity("uniform", {400.0f, 700.0f});
   EXPECT_NEAR(narrow.pdf(550.0f), 1.0f / 300.0f, 1e-6f);
   EXPECT_EQ(narrow.pdf(380.0f), 0.0f);
   EXPECT_NEAR(pdfIntegral(narrow, 360.0f, 830.0f), 1.0, 1e-3);
-  EXPECT_NEAR(pdfIntegral(SensorWavelengths(SensorSampling::ColorMatching, {400.0f, 700.0f}), 360.0f, 830.0f), 1.0, 2e-3);
+  EXPECT_NEAR(pdfIntegral(sensorDensity("cmf", {400.0f, 700.0f}), 360.0f, 830.0f), 1.0, 2e-3);
 }
 
 TEST(SensorSampling, ShapeOfTheDensities) {
-  const SensorWavelengths u(SensorSampling::Uniform, {300.0f, 830.0f});
+  const WavelengthDensity u = sensorDensity("uniform", {300.0f, 830.0f});
   EXPECT_NEAR(u.pdf(400.0f), 1.0f / 470.0f, 1e-7f);
   EXPECT_NEAR(u.pdf(800.0f), 1.0f / 470.0f, 1e-7f);
-  const SensorWavelengths c(SensorSampling::ColorMatching, {300.0f, 830.0f});
+  const WavelengthDensity c = sensorDensity("cmf", {300.0f, 830.0f});
   const Observer& o = Observer::cie1931();
   auto sum = [&](float l) { return o.xbar(l) + o.ybar(l) + o.zbar(l); };
   EXPECT_NEAR(c.pdf(550.0f) / c.pdf(450.0f), sum(550.0f) / sum(450.0f), 1e-3f);
   EXPECT_NEAR(c.pdf(600.0f) / c.pdf(500.0f), sum(600.0f) / sum(500.0f), 1e-3f);
-  EXPECT_EQ(parseSensorSampling("uniform"), SensorSampling::Uniform);
-  EXPECT_EQ(parseSensorSampling("cmf"), SensorSampling::ColorMatching);
-  EXPECT_THROW(parseSensorSampling("random"), std::invalid_argument);
 }
 
 }  // namespace

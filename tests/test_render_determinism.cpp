@@ -11,7 +11,7 @@ namespace {
 
 std::vector<Vec3> renderCornell(int threads, uint64_t seed) {
   auto scene = loadScene(test::sourcePath("scenes/cornell_fluorescent.json"));
-  PathTracer pt(*scene, scene->render.sensor, scene->render.maxDepth, scene->render.rrDepth);
+  PathTracer pt(*scene, scene->render);
   Film film(scene->camera.width(), scene->camera.height());
   RenderOptions opt;
   opt.spp = 2;

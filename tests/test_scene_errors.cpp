@@ -108,7 +108,7 @@ TEST_F(SceneLoader, BaseSceneLoadsWithDefaults) {
   EXPECT_EQ(scene->render.maxDepth, 64);
   EXPECT_EQ(scene->render.rrDepth, 3);
   EXPECT_EQ(scene->render.seed, 1u);
-  EXPECT_EQ(scene->render.sensor, SensorSampling::ColorMatching);
+  EXPECT_EQ(scene->render.wavelengths.sensor.text, "cmf");
   EXPECT_EQ(scene->render.mollify.bandwidth, 0.0f);
   EXPECT_EQ(scene->render.mollify.alpha, 2.0f / 3.0f);
   EXPECT_EQ(scene->camera.width(), 8);
@@ -185,7 +185,7 @@ TEST_F(SceneLoader, EveryFeatureLoads) {
   EXPECT_EQ(scene->render.maxDepth, 8);
   EXPECT_EQ(scene->render.rrDepth, 2);
   EXPECT_EQ(scene->render.seed, 7u);
-  EXPECT_EQ(scene->render.sensor, SensorSampling::Uniform);
+  EXPECT_EQ(scene->render.wavelengths.sensor.text, "uniform");
   EXPECT_EQ(scene->camera.width(), 32);
   EXPECT_EQ(scene->camera.height(), 24);
   EXPECT_EQ(scene->camera.fovYDegrees(), 45.0f);
@@ -385,11 +385,17 @@ TEST_F(SceneLoader, UnknownTypes) {
   expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "rgb"}}; },
               "/materials/white/reflectance/type", "unknown spectrum type 'rgb'");
   expectError([](json& j) { j["render"] = {{"sensor_sampling", "random"}}; }, "/render/sensor_sampling",
-              "unknown sensor wavelength sampling 'random'");
+              "unknown kind 'random'");
   expectError([](json& j) { j["render"] = {{"mollify", {{"alpha", 1.0}}}}; }, "/render/mollify/alpha", "must be in (0, 1)");
   expectError([](json& j) { j["render"] = {{"mollify", {{"bandwidth", -2}}}}; }, "/render/mollify/bandwidth",
               "must not be negative");
   expectError([](json& j) { j["render"] = {{"mollify", {{"h", 2}}}}; }, "/render/mollify/h", "unknown field");
+  expectError([](json& j) { j["render"] = {{"fluorescence_sampling", "mix:light"}}; }, "/render/fluorescence_sampling",
+              "a combination needs at least two components");
+  expectError([](json& j) { j["render"] = {{"light_sampling", "yamamoto=2"}}; }, "/render/light_sampling",
+              "w_F must lie in [0, 1]");
+  expectError([](json& j) { j["render"] = {{"hero_wavelengths", 17}}; }, "/render/hero_wavelengths",
+              "must be in [1, 16]");
 }
 
 TEST_F(SceneLoader, MissingMaterial) {

@@ -17,8 +17,12 @@ struct MollifyPass final : PassData {
 
 }  // namespace
 
-Bdpt::Bdpt(const Scene& scene, SensorSampling sensor, bdpt::WalkSettings settings, const MollificationSettings* m)
-    : sensor_(sensor, scene.range), ws_(settings) {
+Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bdpt::WavelengthMode mode, const MollificationSettings* m)
+    : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
+      light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
+      ws_{s.maxDepth, s.rrDepth, mode, &light_.density()} {
+  requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by bdpt (its MIS weights need the sensor's density)");
+  requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by bdpt (its MIS weights need the light-start density)");
   if (!m) return;
   if (ws_.mode != bdpt::WavelengthMode::Independent)
     throw std::invalid_argument("bdpt: mollification needs the independent wavelength family");
@@ -48,12 +52,12 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& 
   using namespace bdpt;
   thread_local std::vector<PathVertex> C, L;
   if (C.capacity() < 16) C.reserve(16), L.reserve(16);
-  const WavelengthSample ws = sensor_.sample(rng.uniform());
+  const WavelengthSample ws = sensor_.density().sample(rng.uniform());
   if (ws.pdf <= 0.0f) return Vec3(0.0f);
   const Vec2 film = pixel + Vec2(rng.uniform(), rng.uniform());
   traceCameraSubpath(scene, film, ws.lambda, ws.pdf, ws_, rng, ctx.counter, C);
   traceLightSubpath(scene, ws.lambda, ws_, rng, ctx.counter, L);
-  Context c{scene, ws_.mode, ws.lambda, ws.pdf, sensor_, ctx.counter};
+  Context c{scene, ws_, ws.lambda, ws.pdf, sensor_.density(), ctx.counter};
   if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;
   const Vec3 pixelScale = Observer::cie1931().weight(ws.lambda) / ws.pdf;  // W(λ)/p(λ)
   if (ctx.recordStrategies) {

@@ -2,11 +2,13 @@
 // Bidirectional path tracing for bispectral scenes (docs/bdpt-mis.md): every (s, t) strategy,
 // densities both ways, every wavelength density in the MIS weights, and the two exact wavelength
 // families of transport.md §3 — light subpaths sharing the camera sample's wavelength (Shared) or
-// drawing their own from the lights' power spectrum (Independent), the latter joined through a
-// connection vertex that evaluates its fluorescent lobe. Optionally (Independent only) spectral
-// mollification joins elastic connection vertices through a wavelength kernel whose half-width
-// shrinks pass by pass (docs/bdpt-mis.md §6); each pass then takes one sample per pixel.
-#include "core/sensor_sampling.h"
+// drawing their own from the light-start strategy, by default the lights' power spectrum
+// (Independent), the latter joined through a connection vertex that evaluates its fluorescent
+// lobe. The sensor and light-start strategies must be densities (single or mix:), which enter
+// the MIS weights. Optionally (Independent only) spectral mollification joins elastic connection
+// vertices through a wavelength kernel whose half-width shrinks pass by pass (docs/bdpt-mis.md
+// §6); each pass then takes one sample per pixel.
+#include "core/wavelength_strategy.h"
 #include "integrators/bdpt/subpaths.h"
 #include "integrators/integrator.h"
 
@@ -14,9 +16,10 @@ namespace kasha {
 
 class Bdpt final : public Integrator {
  public:
-  // `mollify` is used only if given (Independent mode); a zero bandwidth becomes 2% of the
-  // scene's wavelength range. Throws std::invalid_argument for settings out of range.
-  Bdpt(const Scene& scene, SensorSampling sensor, bdpt::WalkSettings settings,
+  // Throws std::invalid_argument if a wavelength strategy does not apply (docs/wavelength-sampling.md)
+  // or the mollification settings are out of range. `mollify` is used only if given (Independent
+  // mode); a zero bandwidth becomes 2% of the scene's wavelength range.
+  Bdpt(const Scene& scene, const RenderSettings& settings, bdpt::WavelengthMode mode,
        const MollificationSettings* mollify = nullptr);
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const override;
   std::string name() const override;
@@ -30,7 +33,7 @@ class Bdpt final : public Integrator {
   float bandwidth(int sample) const;
 
  private:
-  SensorWavelengths sensor_;
+  WavelengthStrategy sensor_, light_;
   bdpt::WalkSettings ws_;
   float bandwidth1_ = 0.0f, alpha_ = 0.0f;
 };

@@ -49,7 +49,7 @@ void lightEnd(const Context& c, int light, float lambda0, const PathVertex& x0, 
   float pdfPos = 0.0f, pdfDir = 0.0f;
   L.emissionPdfs(x0.p, x0.n, w, pdfPos, pdfDir);
   const float startDensity = L.atInfinity() ? pdfDir : pdfPos;  // of x_0 itself
-  fp.v[0].pdfLight = double(lightChoicePdf(c.scene, light, lambda0, c.mode)) * startDensity;
+  fp.v[0].pdfLight = double(lightChoicePdf(c.scene, light, lambda0, c.walk)) * startDensity;
   fp.v[0].connectible = true;
   if (x1.kind != Kind::Camera)
     fp.v[1].pdfLight = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
@@ -60,7 +60,7 @@ void lightEnd(const Context& c, int light, float lambda0, const PathVertex& x0, 
 // Stored densities of the subpath vertices L[0..s−1], C[0..t−1] laid out as x_0 … x_k.
 FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t) {
   FullPath fp;
-  fp.mode = c.mode;
+  fp.mode = c.walk.mode;
   const int k = s + t - 1;
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {
@@ -73,7 +73,7 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   }
   fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
   fp.v[size_t(k)].pdfLight = 0.0;
-  if (c.mode == WavelengthMode::Independent && c.bandwidth > 0.0f) fp.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
+  if (c.walk.mode == WavelengthMode::Independent && c.bandwidth > 0.0f) fp.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
   return fp;
 }
 
@@ -231,7 +231,7 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
   };
   Pair pairs[3];
   int n = 0;
-  if (c.mode == WavelengthMode::Shared) {
+  if (c.walk.mode == WavelengthMode::Shared) {
     pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, c.lambdaCamera, c.lambdaCamera, Variant::kStandard};
   } else {
     if (a.material->fluoresces())
@@ -299,7 +299,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
   const int k = s;
   // The camera's density of a: its direction over the whole film, [× the sensor's density of the
   // wavelength arriving at it].
-  const float sensor = c.mode == WavelengthMode::Independent ? c.sensor.pdf(lambda) : 1.0f;
+  const float sensor = c.walk.mode == WavelengthMode::Independent ? c.sensor.pdf(lambda) : 1.0f;
   fp.v[size_t(k - 1)].pdfCam = toAreaDensity(c.scene.camera.directionPdf(-conn->wi) * sensor, cam, a);
   if (s == 1) {
     // The light itself, seen directly (area lights only).
@@ -332,7 +332,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
   // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel).
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
   float sensorWeight = perPath;
-  if (c.mode == WavelengthMode::Shared) sensorWeight /= c.sensorPdf;  // λ was the sensor's sample
+  if (c.walk.mode == WavelengthMode::Shared) sensorWeight /= c.sensorPdf;  // λ was the sensor's sample
   const Vec3 xyz = Observer::cie1931().weight(lambda) * (value * conn->importance * sensorWeight);
   splats.push_back({conn->pixel, xyz * weight});
   if (c.log) c.log->push_back({conn->pixel, xyz * weight, xyz, s, 1, uint8_t(Variant::kStandard)});

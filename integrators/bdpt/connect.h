@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "core/scene.h"
-#include "core/sensor_sampling.h"
+#include "core/wavelength_density.h"
 #include "integrators/bdpt/mis.h"
 #include "integrators/bdpt/path_vertex.h"
 
@@ -11,10 +11,10 @@ namespace kasha::bdpt {
 
 struct Context {
   const Scene& scene;
-  WavelengthMode mode;
+  const WalkSettings& walk;
   float lambdaCamera;   // the sensor's wavelength
   float sensorPdf;      // its density
-  const SensorWavelengths& sensor;  // the sensor's distribution, for other wavelengths' densities
+  const WavelengthDensity& sensor;  // the sensor's density, for other wavelengths' densities
   RayCounter& counter;
   // Spectral mollification (Independent only): the wavelength kernel's half-width h of this
   // pass in nm; 0 for none (docs/bdpt-mis.md §6).

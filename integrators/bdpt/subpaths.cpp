@@ -89,9 +89,9 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
 
 }  // namespace
 
-float lightChoicePdf(const Scene& scene, int light, float lambda, WavelengthMode mode) {
+float lightChoicePdf(const Scene& scene, int light, float lambda, const WalkSettings& ws) {
   const float conditional = scene.lightSelector->probability(size_t(light), lambda);
-  return mode == WavelengthMode::Independent ? conditional * scene.lightSelector->wavelengthPdf(lambda) : conditional;
+  return ws.mode == WavelengthMode::Independent ? conditional * ws.lightWavelengths->pdf(lambda) : conditional;
 }
 
 void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float sensorPdf, const WalkSettings& ws,
@@ -118,7 +118,7 @@ void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSetting
   float lambda = sharedLambda, choice = 0.0f;
   const float u1 = rng.uniform(), u2 = rng.uniform();
   if (ws.mode == WavelengthMode::Independent) {
-    const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(u1, u2);
+    const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(*ws.lightWavelengths, u1, u2);
     light = lw.light, lambda = lw.lambda, choice = lw.pdf;
   } else {
     const auto [l, p] = scene.lightSelector->select(sharedLambda, u2);

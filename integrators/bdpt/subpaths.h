@@ -4,6 +4,7 @@
 
 #include "core/rng.h"
 #include "core/scene.h"
+#include "core/wavelength_density.h"
 #include "integrators/bdpt/path_vertex.h"
 #include "integrators/integrator.h"
 
@@ -19,6 +20,7 @@ struct WalkSettings {
   int maxDepth = 64;  // maximum number of scattering vertices on a full path
   int rrDepth = 3;
   WavelengthMode mode = WavelengthMode::Independent;
+  const WavelengthDensity* lightWavelengths = nullptr;  // Independent: the light-start strategy's density
 };
 
 // C[0] is the pinhole; C[1] the first hit. lambda is the sensor's wavelength, sensorPdf its
@@ -32,7 +34,7 @@ void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSetting
                        std::vector<PathVertex>& out);
 
 // Density with which a light subpath starts at light `light` with wavelength lambda: the joint
-// p(light, λ) in Independent mode, p(light | λ) in Shared mode.
-float lightChoicePdf(const Scene& scene, int light, float lambda, WavelengthMode mode);
+// p(light, λ) = p(light | λ)·p(λ) in Independent mode, p(light | λ) in Shared mode.
+float lightChoicePdf(const Scene& scene, int light, float lambda, const WalkSettings& ws);
 
 }  // namespace kasha::bdpt

@@ -16,7 +16,7 @@ constexpr size_t kPathsPerChunk = 1024;
 
 // One light subpath, as the light tracer starts and continues it (without camera connections).
 void tracePath(const Scene& scene, const PhotonTracing& s, Rng& rng, std::vector<Photon>& out, RayCounter& counter) {
-  const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(rng.uniform(), rng.uniform());
+  const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(*s.wavelengths, rng.uniform(), rng.uniform());
   if (lw.pdf <= 0.0f) return;
   const Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
   const std::optional<EmissionSample> es = scene.lights[lw.light]->sampleEmission(lw.lambda, uPos, uDir);

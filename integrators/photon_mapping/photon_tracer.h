@@ -1,10 +1,11 @@
 #pragma once
 // The photon pass: light subpaths in Importance mode, started with the joint (light, wavelength)
-// density of LightSelector, each photon keeping its own wavelength, which the material's spectral
+// density of LightSelector (λ from the light-start strategy), each photon keeping its own wavelength, which the material's spectral
 // stage changes at fluorescent events (Jung18 eq. 6: P_l, then λ_o ∝ e).
 #include <cstdint>
 #include <vector>
 
+#include "core/wavelength_density.h"
 #include "integrators/integrator.h"
 #include "integrators/photon_mapping/photon.h"
 
@@ -15,6 +16,7 @@ struct PhotonTracing {
   int maxDepth = 0;      // photons are stored at vertices 1..maxDepth
   int rrDepth = 3;       // Russian roulette from this vertex on
   uint64_t memoryLimit = 0;  // bytes: stored photons × kBytesPerPhoton must stay within it
+  const WavelengthDensity* wavelengths = nullptr;  // the light-start strategy's density
 };
 
 // Traces the subpaths and returns a photon for every vertex that has a non-specular lobe. Path j

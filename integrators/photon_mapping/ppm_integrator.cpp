@@ -51,8 +51,12 @@ Vec3 gather(const PhotonPass& pass, const Material& mat, const Vec3& p, const Ve
 }  // namespace
 
 PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
-    : sensor_(s.sensor, scene.range), maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
+    : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
+      light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
+      maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
       alwaysKernel_(s.ppm.alwaysKernel), memoryLimit_(s.memoryLimit) {
+  requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by ppm");
+  requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by ppm");
   const PhotonMappingSettings& p = s.ppm;
   if (p.photonsPerPass < 0 || !(p.radius >= 0.0f) || !(p.bandwidth >= 0.0f))
     throw std::invalid_argument("ppm: photons per pass, radius and bandwidth must not be negative");
@@ -84,6 +88,7 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
     t.maxDepth = maxDepth_;
     t.rrDepth = rrDepth_;
     t.memoryLimit = memoryLimit_;
+    t.wavelengths = &light_.density();
     // A stream family per iteration, apart from the camera samples' (render_loop.cpp).
     const uint64_t passSeed = mixBits(mixBits(seed ^ 0x5851f42d4c957f2dULL) + uint64_t(firstSample));
     photons = tracePhotons(scene, t, passSeed, counter);
@@ -93,7 +98,7 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
 
 Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
   const auto& pass = static_cast<const PhotonPass&>(*ctx.pass);
-  const WavelengthSample ws = sensor_.sample(rng.uniform());
+  const WavelengthSample ws = sensor_.density().sample(rng.uniform());
   if (ws.pdf <= 0.0f) return Vec3(0.0f);
   Ray ray = scene.camera.generateRay(pixel + Vec2(rng.uniform(), rng.uniform()));
   const Vec3 sensor = Observer::cie1931().weight(ws.lambda) / ws.pdf;  // W(λ)/p(λ)

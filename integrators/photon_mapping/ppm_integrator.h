@@ -13,7 +13,7 @@
 // behind specular vertices (or always, if asked) an Epanechnikov kernel of half-width h_i =
 // h_1·r_i/r_1 in wavelength stands in for the delta. Emission seen along the camera path is added
 // exactly; there is no next-event estimation.
-#include "core/sensor_sampling.h"
+#include "core/wavelength_strategy.h"
 #include "integrators/integrator.h"
 
 namespace kasha {
@@ -35,7 +35,7 @@ class PpmIntegrator final : public Integrator {
   float bandwidth(int sample) const;
 
  private:
-  SensorWavelengths sensor_;
+  WavelengthStrategy sensor_, light_;
   int maxDepth_, rrDepth_;
   size_t photonsPerPass_;
   float radius1_, alpha_, bandwidth1_;
