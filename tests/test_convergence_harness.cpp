@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -57,7 +58,8 @@ class Harness : public ::testing::Test {
       "reference": {"integrator": "pt", "time": 0.2},
       "configurations": [{"label": "pt uniform", "integrator": "pt", "args": ["--sensor-sampling", "uniform"]},
                          {"label": "lt", "integrator": "lt"}],
-      "scenes": [{"scene": "tiny.json", "crop": [0, 0, 0.5, 0.5]}]})";
+      "scenes": [{"scene": "tiny.json", "crop": [0, 0, 0.5, 0.5],
+                  "comparisons": [{"combination": "pt uniform", "parts": ["lt"]}]}]})";
   }
   void TearDown() override {
     if (!HasFailure()) fs::remove_all(dir);
@@ -105,6 +107,27 @@ TEST_F(Harness, TinyReportSlow) {
   for (const char* f : {"report.md", "tiny_convergence.png", "tiny_crops.png"})
     EXPECT_TRUE(fs::is_regular_file(dir + "/out/" + f)) << f;
 
+  // The comparison: per budget, (relMSE · time)_lt ÷ (relMSE · time)_pt uniform with the same seed,
+  // mean ± sd over the two seeds.
+  std::map<std::string, double> relmseTime;  // config|budget|seed
+  for (const auto& r : runs)
+    relmseTime[r.at("config") + "|" + r.at("budget") + "|" + r.at("seed")] =
+        std::stod(r.at("relmse")) * std::stod(r.at("seconds"));
+  std::ifstream page(dir + "/out/report.md");
+  std::stringstream md;
+  md << page.rdbuf();
+  const auto table = md.str().find("**pt uniform** against its parts");
+  ASSERT_NE(table, std::string::npos) << md.str();
+  const auto row = md.str().find("| lt | ", table);
+  ASSERT_NE(row, std::string::npos) << md.str();
+  double first = 0.0, second = 0.0;
+  ASSERT_EQ(std::sscanf(md.str().c_str() + row, "| lt | %lf ± %*f | %lf", &first, &second), 2) << md.str();
+  auto factor = [&](const std::string& budget, const std::string& seed) {
+    return relmseTime.at("lt|" + budget + "|" + seed) / relmseTime.at("pt uniform|" + budget + "|" + seed);
+  };
+  EXPECT_NEAR(first, (factor("1", "1") + factor("1", "2")) / 2.0, 6e-3 * first);
+  EXPECT_NEAR(second, (factor("2", "1") + factor("2", "2")) / 2.0, 6e-3 * second);
+
   // A second run reuses the reference; a changed scene renders it again.
   const auto written = fs::last_write_time(dir + "/work/references/tiny.exr");
   ASSERT_EQ(runHarness(), 0) << log();
@@ -121,6 +144,19 @@ TEST_F(Harness, BadConfigurationNamesFileAndField) {
       "configurations": [{"label": "a", "integrator": "pt"}], "scenes": [{"scene": "tiny.json", "crop": [0, 0, 1, 1]}]})";
   EXPECT_EQ(runHarness(), 1);
   EXPECT_NE(log().find(dir + "/report.json: /budget/kind: expected"), std::string::npos) << log();
+  EXPECT_FALSE(fs::exists(dir + "/out"));
+}
+
+TEST_F(Harness, ComparisonWithAnUnknownLabelIsAnError) {
+  std::ofstream(dir + "/report.json") << R"({"output": "out", "work": "work", "seeds": [1, 2],
+      "budget": {"kind": "spp", "values": [1]}, "reference": {"integrator": "pt", "time": 1},
+      "configurations": [{"label": "a", "integrator": "pt"}, {"label": "b", "integrator": "lt"}],
+      "scenes": [{"scene": "tiny.json", "crop": [0, 0, 1, 1], "configurations": ["a"],
+                  "comparisons": [{"combination": "a", "parts": ["b"]}]}]})";
+  EXPECT_EQ(runHarness(), 1);
+  EXPECT_NE(log().find(dir + "/report.json: /scenes/0/comparisons/0/parts/0: no configuration labelled \"b\""),
+            std::string::npos)
+      << log();
   EXPECT_FALSE(fs::exists(dir + "/out"));
 }
 

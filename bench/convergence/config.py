@@ -58,6 +58,23 @@ def _crop(path, pointer, crop):
     return crop
 
 
+def _comparisons(path, pointer, value, labels):
+    """A scene's comparisons: [{"combination": label, "parts": [label, ...]}], labels among the scene's."""
+    if not isinstance(value, list):
+        _fail(path, pointer, "expected a list of {\"combination\": label, \"parts\": [labels]}")
+    out = []
+    for i, c in enumerate(value):
+        p = f"{pointer}/{i}"
+        _only(path, p, c, ("combination", "parts"), ("combination", "parts"))
+        if not isinstance(c["parts"], list) or not c["parts"]:
+            _fail(path, p + "/parts", "expected a non-empty list of configuration labels")
+        for q, label in [("/combination", c["combination"])] + [(f"/parts/{j}", l) for j, l in enumerate(c["parts"])]:
+            if _string(path, p + q, label) not in labels:
+                _fail(path, p + q, f"no configuration labelled {json.dumps(label)} in this scene")
+        out.append({"combination": c["combination"], "parts": list(c["parts"])})
+    return out
+
+
 def _scene_reference(path, pointer, r, default):
     """A scene's reference: the report's, with the scene's own integrator and arguments if given."""
     _only(path, pointer, r, ("integrator", "args"))
@@ -123,8 +140,8 @@ def load(path, quick=False):
     out["scenes"] = []
     for i, s in enumerate(cfg["scenes"]):
         p = f"/scenes/{i}"
-        _only(path, p, s, ("scene", "name", "note", "crop", "resolution_scale", "configurations", "reference"),
-              ("scene", "crop"))
+        _only(path, p, s, ("scene", "name", "note", "crop", "resolution_scale", "configurations", "reference",
+                           "comparisons"), ("scene", "crop"))
         scene = os.path.normpath(os.path.join(base, _string(path, p + "/scene", s["scene"])))
         if not os.path.isfile(scene):
             _fail(path, p + "/scene", f"no such file: {scene}")
@@ -139,7 +156,8 @@ def load(path, quick=False):
                               "resolution_scale": _number(path, p + "/resolution_scale", s.get("resolution_scale", 1.0)),
                               "reference": _scene_reference(path, p + "/reference", s.get("reference", {}),
                                                             out["reference"]),
-                              "configurations": [c for c in out["configurations"] if c["label"] in only]})
+                              "configurations": [c for c in out["configurations"] if c["label"] in only],
+                              "comparisons": _comparisons(path, p + "/comparisons", s.get("comparisons", []), only)})
 
     q = cfg.get("quick", {})
     _only(path, "/quick", q, ("budget_scale", "reference_scale", "resolution_scale", "seeds"))

@@ -27,11 +27,15 @@ def read_pfm(path):
 def convergence_plot(summary, budget_kind, title, path):
     """relMSE and RMSE against mean render time, log-log; error bars: standard deviation over seeds."""
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for label, rows in summary.items():
+    # Ten colours, then the same ten dashed with square markers: every line stays distinguishable.
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for i, (label, rows) in enumerate(summary.items()):
         t = [r["seconds_mean"] for r in rows]
+        style = {"color": colours[i % len(colours)], "marker": "os^"[i // len(colours) % 3],
+                 "linestyle": ("-", "--", ":")[i // len(colours) % 3]}
         for ax, key in zip(axes, ("relmse", "rmse")):
-            ax.errorbar(t, [r[key + "_mean"] for r in rows], yerr=[r[key + "_std"] for r in rows], marker="o",
-                        capsize=3, label=label)
+            ax.errorbar(t, [r[key + "_mean"] for r in rows], yerr=[r[key + "_std"] for r in rows],
+                        capsize=3, label=label, **style)
     for ax, name in zip(axes, ("relMSE", "RMSE (XYZ)")):
         ax.set_xscale("log")
         ax.set_yscale("log")

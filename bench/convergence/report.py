@@ -58,6 +58,61 @@ def ranking(configs):
     return sorted(out, key=lambda t: t[1]["relmse_mean"])
 
 
+def comparison(runs, scene, combination, part):
+    """Per budget (ascending): (budget, [relMSE_part / relMSE_combination per seed],
+    [efficiency factor (relMSE · time)_part / (relMSE · time)_combination per seed]); seeds paired."""
+    by = {}
+    for r in runs:
+        if r["scene"] == scene and r["config"] in (combination, part):
+            by[(r["config"], r["budget"], r["seed"])] = r
+    out = []
+    for budget in sorted({k[1] for k in by}):
+        ratio, eff = [], []
+        for seed in sorted({k[2] for k in by if k[1] == budget}):
+            c, q = by.get((combination, budget, seed)), by.get((part, budget, seed))
+            if c and q and c["relmse"] > 0 and c["seconds"] > 0:
+                ratio.append(q["relmse"] / c["relmse"])
+                eff.append(q["relmse"] * q["seconds"] / (c["relmse"] * c["seconds"]))
+        out.append((budget, ratio, eff))
+    return out
+
+
+def _ms(values):
+    if not values:
+        return "–"
+    m, s = _mean_std(values)
+    return f"{m:.3g} ± {s:.2g}"
+
+
+def _comparison_lines(runs, scene, comparisons, budget_kind):
+    unit = "s" if budget_kind == "time" else "spp"
+    lines = []
+    for comp in comparisons:
+        rows = {part: comparison(runs, scene, comp["combination"], part) for part in comp["parts"]}
+        budgets = [b for b, _, _ in next(iter(rows.values()))]
+        lines += [f"**{comp['combination']}** against its parts: factor by which each part's relMSE · time exceeds "
+                  f"the combination's (> 1: the combination wins at equal time), per seed (same seed, same budget), "
+                  "mean ± sd over seeds; last column: the plain relMSE ratio at the largest budget.", "",
+                  "| part | " + " | ".join(f"{b:g} {unit}" for b in budgets) + " | relMSE ratio, largest |",
+                  "|---|" + "---|" * (len(budgets) + 1)]
+        for part, per in rows.items():
+            lines.append(f"| {part} | " + " | ".join(_ms(eff) for _, _, eff in per) + f" | {_ms(per[-1][1])} |")
+        lines.append("")
+    return lines
+
+
+def comparison_summary(runs, scene, comp):
+    """One sentence: the efficiency factor against each part at the largest budget."""
+    parts = []
+    for part in comp["parts"]:
+        _, _, eff = comparison(runs, scene, comp["combination"], part)[-1]
+        if eff:
+            m, s = _mean_std(eff)
+            parts.append(f"{part} ×{m:.2g} ± {s:.1g}")
+    return f"{comp['combination']} against its parts (relMSE · time ÷ the combination's, largest budget): " + \
+        ", ".join(parts)
+
+
 def write_csv(path, fields, rows):
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore", lineterminator="\n")
@@ -78,7 +133,7 @@ def _table(configs, budget_kind):
     return "\n".join(lines)
 
 
-def markdown(cfg, scenes, summary, command, runtime, machine, date):
+def markdown(cfg, scenes, summary, command, runtime, machine, date, runs=()):
     """The report page; `scenes` is a list of dicts with name, note, scene, reference stats and figure names."""
     b = cfg["budget"]
     mode = "**preliminary (quick) budgets**" if cfg["quick"] else "full budgets"
@@ -104,6 +159,8 @@ def markdown(cfg, scenes, summary, command, runtime, machine, date):
         ranked = ranking(summary[s["name"]])
         rest = ", ".join(f"{label} ×{ratio:.2g}" for label, _, ratio, _, _ in ranked[1:])
         out.append(f"- **{s['name']}**: {ranked[0][0]} best; then {rest}.")
+        for comp in s.get("comparisons", []):
+            out.append(f"  {comparison_summary(runs, s['name'], comp)} ({len(cfg['seeds'])} seeds).")
     out.append("")
     for s in scenes:
         rs = s["reference_stats"]
@@ -111,6 +168,7 @@ def markdown(cfg, scenes, summary, command, runtime, machine, date):
                 f"{s['resolution'][1]}. {s['note']}", "",
                 f"Reference: `{' '.join([s['reference']['integrator']] + s['reference']['args'])}`, "
                 f"{rs.get('spp', '?')} spp in {rs.get('seconds', 0):.0f} s.", "",
-                _table(summary[s["name"]], b["kind"]), "",
-                f"![convergence]({s['plot']})", "", f"![crops]({s['crops']})", ""]
+                _table(summary[s["name"]], b["kind"]), ""]
+        out += _comparison_lines(runs, s["name"], s.get("comparisons", []), b["kind"])
+        out += [f"![convergence]({s['plot']})", "", f"![crops]({s['crops']})", ""]
     return "\n".join(out) + "\n"

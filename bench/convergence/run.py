@@ -72,7 +72,7 @@ def run_scene(binary, cfg, sc, runs, log):
     return {"name": sc["name"], "note": sc["note"], "scene": sc["scene"], "reference": sc["reference"],
             "reference_stats": ref_stats,
             "resolution": ref_stats.get("resolution", [0, 0]), "reference_png": os.path.splitext(ref)[0] + ".png",
-            "crops_columns": crops, "crop": sc["crop"]}
+            "crops_columns": crops, "crop": sc["crop"], "comparisons": sc["comparisons"]}
 
 
 def main():
@@ -124,7 +124,7 @@ def main():
                                     for p in [os.path.abspath(__file__), os.path.abspath(a.config)])
     command += " --quick" if a.quick else ""
     page = report.markdown(cfg, done, summary, command, time.time() - start, _machine(),
-                           datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"))
+                           datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"), runs)
     with open(os.path.join(cfg["output"], "report.md"), "w") as f:
         f.write(page)
     log(f"wrote {os.path.join(cfg['output'], 'report.md')} in {(time.time() - start) / 60:.1f} min")
