@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/spectrum_csv.h"
@@ -47,6 +48,19 @@ void writeBispectralCsv(const std::string& path, const BispectralData& d, const 
     f << "\n";
   }
   if (!f) throw InputError(path, "", "write failed");
+}
+
+std::vector<float> bandWidths(const std::vector<float>& g) {
+  std::vector<float> w(g.size(), 1.0f);
+  for (size_t k = 0; k < g.size() && g.size() > 1; ++k)
+    w[k] = k == 0 ? g[1] - g[0] : k + 1 == g.size() ? g[k] - g[k - 1] : 0.5f * (g[k + 1] - g[k - 1]);
+  return w;
+}
+
+std::string formatNm(float lambda) {
+  std::ostringstream s;
+  s << lambda;
+  return s.str();
 }
 
 }  // namespace kasha

@@ -32,4 +32,11 @@ BispectralData readBispectralCsv(const std::string& path);
 // Writes the same layout (with a comment naming `comment`).
 void writeBispectralCsv(const std::string& path, const BispectralData& d, const std::string& comment);
 
+// Width of each band of a wavelength grid: from the midpoint with the previous knot to the
+// midpoint with the next one, the end bands as wide as their one neighbour spacing (1 for a
+// single knot). Turns per-band values into densities per nm.
+std::vector<float> bandWidths(const std::vector<float>& grid);
+// A wavelength for messages: "450", "452.5".
+std::string formatNm(float lambda);
+
 }  // namespace kasha

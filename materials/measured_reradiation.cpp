@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "core/error.h"
 #include "materials/diffuse_lobe.h"
@@ -10,21 +9,7 @@
 namespace kasha {
 namespace {
 
-// A wavelength for messages: 450, 452.5.
-std::string nm(float l) {
-  std::ostringstream s;
-  s << l;
-  return s.str();
-}
-
-// Width of band k: from the midpoint with the previous knot to the midpoint with the next one;
-// the end bands are as wide as their one neighbour spacing.
-float bandWidth(const std::vector<float>& g, size_t k) {
-  if (g.size() == 1) return 1.0f;
-  if (k == 0) return g[1] - g[0];
-  if (k + 1 == g.size()) return g[k] - g[k - 1];
-  return 0.5f * (g[k + 1] - g[k - 1]);
-}
+const auto nm = formatNm;
 
 void requireIncreasing(const std::vector<float>& g, const std::string& source, const char* what) {
   if (g.empty()) throw InputError(source, what, "no wavelengths");
@@ -47,6 +32,7 @@ MeasuredReradiation::MeasuredReradiation(const BispectralData& data, MeasuredRer
     throw InputError(data.source, "", "matrix size does not match its wavelength grids");
   // Clean the noise and convert band values to densities per nm (header comment).
   f_.assign(data.value.size(), 0.0f);
+  const std::vector<float> outWidth = bandWidths(out_);
   for (size_t i = 0; i < in_.size(); ++i)
     for (size_t o = 0; o < out_.size(); ++o) {
       const float v = data.at(o, i);
@@ -56,7 +42,7 @@ MeasuredReradiation::MeasuredReradiation(const BispectralData& data, MeasuredRer
         diagL_.push_back(in_[i]);
         diagV_.push_back(std::max(v, 0.0f));
       } else if (out_[o] > in_[i] && v > options.noiseFloor) {
-        f_[o * in_.size() + i] = v / bandWidth(out_, o);
+        f_[o * in_.size() + i] = v / outWidth[o];
       }
     }
   std::vector<float> line;

@@ -1,27 +1,13 @@
 #include "materials/zhdanov_extraction.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "core/error.h"
 
 namespace kasha {
 namespace {
 
-// A wavelength for messages: 450, 452.5.
-std::string nm(float l) {
-  std::ostringstream s;
-  s << l;
-  return s.str();
-}
-
-// Output band widths: midpoints between neighbours, the end bands as wide as their one spacing.
-std::vector<float> bandWidths(const std::vector<float>& g) {
-  std::vector<float> w(g.size(), 1.0f);
-  for (size_t k = 0; k < g.size() && g.size() > 1; ++k)
-    w[k] = k == 0 ? g[1] - g[0] : k + 1 == g.size() ? g[k] - g[k - 1] : 0.5f * (g[k + 1] - g[k - 1]);
-  return w;
-}
+const auto nm = formatNm;
 
 }  // namespace
 
