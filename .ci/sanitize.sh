@@ -4,7 +4,7 @@
 # made it (halt_on_error) and fails the run. Under the sanitizers the statistical integrator tests
 # take about 20 minutes on 2 cores, so by default each integrator runs its closed-form tests but
 # not the long ones (Cornell agreement, the furnace scene series, the point light in a sphere,
-# uniform sensor sampling): about 2 minutes. SANITIZE_ALL=1 runs everything.
+# uniform sensor sampling, tests named Slow): about 5 minutes. SANITIZE_ALL=1 runs everything.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash .ci/install-deps.sh
