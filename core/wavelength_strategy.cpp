@@ -94,9 +94,13 @@ WavelengthSources::WavelengthSources(const Scene& scene) : range(scene.range) {
       for (const Shape& s : scene.shapes)
         if (s.material == m) fl.area += s.area;
       fluorophores.push_back(std::move(fl));
+    } else if (scene.materials[m]->fluoresces()) {
+      opaqueFluorescent.push_back(m < scene.materialNames.size() ? scene.materialNames[m] : std::to_string(m));
     }
   all.emplace_back(1.0f, &lightPower);
   for (const Fluorophore& f : fluorophores) all.emplace_back(1.0f, &f.spectra.reemitted);
+  const Spectrum anywhere = Spectrum::constant(1.0f);
+  if (!opaqueFluorescent.empty()) all.emplace_back(1.0f, &anywhere);
   reachable = Spectrum::weightedSum(all);
 }
 

@@ -15,6 +15,11 @@ FluorescenceSampling::FluorescenceSampling(const WavelengthSpec& spec, const Wav
                                                    "'absorption')"
                                                  : "nee_sampling"));
   requireDensity(spec, site, "at fluorescent events");
+  if (!sources.opaqueFluorescent.empty())
+    throw WavelengthStrategyError(site, std::string("wavelength strategy '") + spec.text +
+                                            "' needs every fluorescent material's absorption, and material '" +
+                                            sources.opaqueFluorescent.front() +
+                                            "' does not give it (only untextured jung_fluorescent does)");
   for (const WavelengthSources::Fluorophore& f : sources.fluorophores)
     perMaterial_[f.material] = std::make_unique<WavelengthStrategy>(spec, sources, site, f.material);
 }

@@ -322,5 +322,21 @@ TEST(WavelengthStrategy, RejectsStrategiesThatWouldBeBiasedOrDoNotApply) {
   expectStrategyError([&] { makeIntegrator("pt", *scene, nee); }, WavelengthSite::Fluorescence, "applies only to");
 }
 
+// Fluorescent materials without fluorophore spectra (here measured Post-it matrices under UV) may
+// re-emit anywhere: a sensor density that only follows the light must be refused, not render the
+// visible fluorescence black, and strategies that follow fluorophores cannot serve them.
+TEST(WavelengthStrategy, OpaqueFluorescentMaterialsNeedDensitiesThatCoverEverything) {
+  const auto scene = loadScene(KASHA_SOURCE_DIR "/scenes/postit_uv.json");
+  const WavelengthSources src(*scene);
+  ASSERT_FALSE(src.opaqueFluorescent.empty());
+  expectStrategyError([&] { build("light", src, WavelengthSite::Sensor); }, WavelengthSite::Sensor,
+                      "has density 0 at");
+  EXPECT_NO_THROW(build("mix:light,cmf", src, WavelengthSite::Sensor));
+  expectStrategyError(
+      [&] { FluorescenceSampling(parseWavelengthSpec("absorption"), src, scene->materials.size()); },
+      WavelengthSite::Fluorescence, "does not give it");
+  EXPECT_NO_THROW(FluorescenceSampling(parseWavelengthSpec("material"), src, scene->materials.size()));
+}
+
 }  // namespace
 }  // namespace kasha
