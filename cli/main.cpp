@@ -30,6 +30,7 @@
 #include "core/image_output.h"
 #include "core/memory_budget.h"
 #include "core/scene_loader.h"
+#include "core/spectral_film.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/strategy_images.h"
 #include "core/wavelength_strategy.h"
@@ -84,6 +85,8 @@ struct RenderArgs {
   std::string strategyImages;  // directory for one image per BDPT strategy
   bool strategyUnweighted = false;
   int strategyDepth = 4;
+  int spectralBins = 0;        // 0: none
+  float spectralStep = 0.0f;   // nm; 0: none
 };
 
 struct MatrixArgs {
@@ -170,6 +173,16 @@ int runRender(const RenderArgs& a) {
   if (!png.empty()) checkWritable(png);
   if (!checkpoint.empty()) checkWritable(checkpoint);
   const int width = scene->camera.width(), height = scene->camera.height();
+  SpectralBins bins;
+  try {
+    if (a.spectralBins > 0) bins = SpectralBins::fromCount(scene->range, a.spectralBins);
+    if (a.spectralStep > 0.0f) bins = SpectralBins::fromStep(scene->range, a.spectralStep);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(a.spectralBins > 0 ? "--spectral-bins" : "--spectral-step", "", e.what());
+  }
+  if (bins.enabled() && !integrator->recordsSpectrum())
+    throw InputError(a.spectralBins > 0 ? "--spectral-bins" : "--spectral-step", "",
+                     "integrator '" + a.integrator + "' cannot keep spectral bins");
   std::unique_ptr<bdpt::StrategyImages> strategies;
   if (!a.strategyImages.empty()) {
     if (!dynamic_cast<const Bdpt*>(integrator.get()))
@@ -198,14 +211,22 @@ int runRender(const RenderArgs& a) {
                                    {"light_sampling", r.wavelengths.light.text},
                                    {"nee_sampling", r.wavelengths.nee.text},
                                    {"hero_wavelengths", r.heroWavelengths},
-                                   {"resolution", {width, height}}};
+                                   {"resolution", {width, height}},
+                                   {"spectral_bins", bins.enabled() ? nlohmann::json{bins.min, bins.step, bins.count}
+                                                                    : nlohmann::json(nullptr)}};
   if (a.integrator == "bdpt-mollified") settings["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
 
-  // Film buffers, plus the same again while a checkpoint is read, plus the EXR's six float channels.
-  const uint64_t filmBytes = Film::bytesFor(width, height);
-  requireMemory(filmBytes * (a.resume.empty() ? 1 : 2) + uint64_t(width) * uint64_t(height) * 6 * sizeof(float),
-                "the film (" + std::to_string(width) + "x" + std::to_string(height) + " pixels)", memoryLimit);
+  // Film buffers and spectral bins, plus the same again while a checkpoint is read, plus the EXR's
+  // float channels (six and one per bin).
+  const uint64_t filmBytes = Film::bytesFor(width, height) + SpectralFilm::bytesFor(width, height, bins.count);
+  requireMemory(saturatingMul(filmBytes, a.resume.empty() ? 1 : 2) +
+                    saturatingMul(uint64_t(width) * uint64_t(height) * sizeof(float), 6 + uint64_t(bins.count)),
+                "the film (" + std::to_string(width) + "x" + std::to_string(height) + " pixels" +
+                    (bins.enabled() ? ", " + std::to_string(bins.count) + " spectral bins" : "") + ")",
+                memoryLimit);
   Film film(width, height);
+  std::unique_ptr<SpectralFilm> spectral;
+  if (bins.enabled()) spectral = std::make_unique<SpectralFilm>(width, height, bins);
   RenderOptions opt;
   opt.spp = r.spp;
   opt.timeBudgetSeconds = r.timeBudgetSeconds;
@@ -224,7 +245,7 @@ int runRender(const RenderArgs& a) {
     if (opt.samplesPerPass < 1 || !(opt.previousSeconds >= 0.0)) throw InputError(a.resume, "", "checkpoint header is corrupted");
     opt.startSpp = d.spp;
     resumed = {{"checkpoint", a.resume}, {"spp", d.spp}, {"seconds", opt.previousSeconds}};
-    restoreFilm(std::move(d), film);
+    restoreFilm(std::move(d), film, spectral.get());
   }
   if (!checkpoint.empty()) {
     opt.checkpointIntervalSeconds = a.checkpointInterval;
@@ -232,7 +253,7 @@ int runRender(const RenderArgs& a) {
       const nlohmann::json run = {{"scene", a.scene}, {"samples_per_pass", s.samplesPerPass},
                                   {"seconds", opt.previousSeconds + s.seconds}};
       try {
-        writeCheckpoint(checkpoint, settings, run, film);
+        writeCheckpoint(checkpoint, settings, run, film, spectral.get());
       } catch (const std::exception& e) {  // a full disk must not end an overnight render
         std::fprintf(stderr, "kasha: warning: %s\n", e.what());
       }
@@ -240,13 +261,14 @@ int runRender(const RenderArgs& a) {
   }
   if (strategies) opt.strategies = [&](const StrategySample& rec) { strategies->add(rec); };
   opt.stop = &gStopSignal;
+  opt.spectral = spectral.get();
   ProgressBar bar(std::filesystem::path(a.scene).filename().string());
   if (!a.quiet) opt.progress = [&](int spp, double t, double total) { bar.update(spp, t, total); };
   installStopHandlers();
   const RenderStats st = render(*scene, *integrator, film, opt);
   bar.finish();
 
-  writeExr(film, exr);
+  writeExr(film, exr, spectral.get());
   if (!png.empty()) writePng(film, png, a.exposure);
   nlohmann::json j = toJson(st);
   j["scene"] = a.scene;
@@ -271,6 +293,7 @@ int runRender(const RenderArgs& a) {
     j["outputs"]["strategy_images"] = strategies->write(a.strategyImages, a.strategyUnweighted, !png.empty(), a.exposure);
   }
   if (a.integrator == "bdpt-mollified") j["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
+  if (spectral) j["spectral_bins"] = {{"min_nm", bins.min}, {"step_nm", bins.step}, {"count", bins.count}};
   writeTextFile(stats, j.dump(2) + "\n");
   std::printf("%s\nwrote %s%s%s, %s\n", summaryLine(st).c_str(), exr.c_str(), png.empty() ? "" : ", ", png.c_str(),
               stats.c_str());
@@ -385,6 +408,14 @@ int main(int argc, char** argv) {
   render->add_option("--strategy-depth", ra.strategyDepth,
                      "With --strategy-images: longest path (scattering events) with its own images; longer ones go to deeper.exr (default 4)")
       ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 64));
+  CLI::Option* bins = render->add_option("--spectral-bins", ra.spectralBins,
+                     "Also write the spectral radiance per nm in N equal bins of the scene's wavelength range "
+                     "(S0.<nm> channels, Fichet et al. 2021 layout)")
+      ->check(numberCheck(Sign::Positive, true) & CLI::Range(1, kasha::SpectralBins::kMaxBins));
+  render->add_option("--spectral-step", ra.spectralStep,
+                     "Like --spectral-bins, bins NM wide (must divide the scene's wavelength range)")
+      ->check(numberCheck(Sign::Positive, false))
+      ->excludes(bins);
   const CLI::Validator strategy(
       [](std::string& s) {
         try {

@@ -6,6 +6,7 @@
 #include <ImfInputFile.h>
 
 #include "core/error.h"
+#include "core/spectral_exr.h"
 
 namespace kasha {
 
@@ -17,8 +18,10 @@ XyzImage readExrXyz(const std::string& path) {
     img.width = dw.max.x - dw.min.x + 1;
     img.height = dw.max.y - dw.min.y + 1;
     for (const char* c : {"XYZ.X", "XYZ.Y", "XYZ.Z"})
-      if (!file.header().channels().findChannel(c))
-        throw InputError(path, c, "missing channel (not a kasha render with an XYZ layer)");
+      if (!file.header().channels().findChannel(c)) {
+        if (hasEmissiveChannels(path)) return spectralToXyz(readSpectralExr(path));
+        throw InputError(path, c, "missing channel (not a kasha render with an XYZ layer, nor a spectral image with S0.* channels)");
+      }
     std::vector<float> ch[3];
     Imf::FrameBuffer fb;
     const char* names[3] = {"XYZ.X", "XYZ.Y", "XYZ.Z"};

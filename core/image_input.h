@@ -12,7 +12,9 @@ struct XyzImage {
   std::vector<Vec3> pixels;  // row-major, y down
 };
 
-// Throws InputError naming the file if it cannot be read or has no XYZ.X/Y/Z channels.
+// A file without an XYZ layer but with emissive spectral channels S0.<λ> (Fichet et al. 2021, e.g.
+// from pbrt-v4 or Mitsuba 3) is integrated to XYZ (core/spectral_exr.h). Throws InputError naming
+// the file if it cannot be read or has neither.
 XyzImage readExrXyz(const std::string& path);
 
 }  // namespace kasha

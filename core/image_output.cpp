@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/color.h"
+#include "core/spectral_exr.h"
 
 namespace kasha {
 namespace {
@@ -27,7 +28,7 @@ void commit(const std::string& tmp, const std::string& path) {
 
 }  // namespace
 
-void writeExr(const Film& film, const std::string& path) {
+void writeExr(const Film& film, const std::string& path, const SpectralFilm* spectral) {
   const int w = film.width(), h = film.height();
   std::vector<float> ch[6];
   for (auto& c : ch) c.resize(size_t(w) * h);
@@ -46,6 +47,13 @@ void writeExr(const Film& film, const std::string& path) {
   for (int c = 0; c < 6; ++c) {
     header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
     fb.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(ch[c].data()), sizeof(float), sizeof(float) * w));
+  }
+  const auto bins = spectral ? spectralChannels(*spectral) : std::vector<std::pair<std::string, std::vector<float>>>{};
+  if (spectral) addSpectralAttributes(header);
+  for (const auto& [name, values] : bins) {
+    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    fb.insert(name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(values.data())), sizeof(float),
+                               sizeof(float) * w));
   }
   const std::string tmp = tempName(path);
   try {

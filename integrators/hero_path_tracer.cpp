@@ -85,7 +85,7 @@ Vec3 HeroPathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, Sampl
   radiance(scene, scene.camera.generateRay(pixel + jitter), lanes, pSum / hero.pdf, rng, ctx.counter);
   // Balance heuristic over the N hero techniques (Wilkie14 eq. 8): W(λ_j)·L_j / Σ_k p(λ_k).
   Vec3 xyz(0.0f);
-  for (int j = 0; j < n_; ++j) xyz += Observer::cie1931().weight(lambdas[j]) * (lanes.L[j] / pSum);
+  for (int j = 0; j < n_; ++j) xyz += sensorResponse(ctx, lambdas[j], lanes.L[j] / pSum);
   return xyz;
 }
 

@@ -9,7 +9,7 @@ namespace {
 // subpaths per sample per pixel.
 void splatToCamera(const Scene& scene, const Camera::Connection& c, float value, float lambda, SampleContext& ctx) {
   const float perPath = 1.0f / (float(scene.camera.width()) * float(scene.camera.height()));
-  ctx.splats.push_back({c.pixel, Observer::cie1931().weight(lambda) * (value * c.importance * perPath)});
+  ctx.splats.push_back(spectralSplat(c.pixel, lambda, value * c.importance * perPath));
 }
 
 bool visible(const Scene& scene, const Vec3& p, const Vec3& n, const Camera::Connection& c, SampleContext& ctx) {

@@ -10,8 +10,22 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 
 namespace kasha {
+
+namespace {
+
+bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// A camera sample's spectral shares go to the bins unless the film dropped its XYZ as non-finite.
+void addSpectralShares(SpectralFilm& spectral, int x, int y, const Vec3& xyz, std::vector<SpectralSample>& shares) {
+  if (isFinite(xyz))
+    for (const SpectralSample& s : shares) spectral.add(x, y, s.lambda, s.value);
+  shares.clear();
+}
+
+}  // namespace
 
 int defaultSamplesPerPass(int width, int height) { return std::max(1, 65536 / std::max(1, width * height)); }
 
@@ -53,6 +67,13 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   };
   int pass = std::max(0, opt.startSpp);
   film.setSamplesPerPixel(pass);
+  if (opt.spectral) {
+    if (!integrator.recordsSpectrum())
+      throw std::invalid_argument("integrator '" + integrator.name() + "' cannot keep spectral bins");
+    if (opt.spectral->width() != w || opt.spectral->height() != h)
+      throw std::invalid_argument("render: the spectral film's size differs from the film's");
+    opt.spectral->setSamplesPerPixel(pass);
+  }
   double lastCheckpoint = 0.0;
   bool unsaved = false;
   while (pass < opt.spp) {
@@ -70,6 +91,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
         ctx.splats.clear();
         ctx.strategies.clear();
         ctx.recordStrategies = bool(opt.strategies);
+        ctx.recordSpectral = opt.spectral != nullptr;
         ctx.pass = passData.get();
         const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
         for (int y = y0; y < std::min(y0 + kTile, h); ++y)
@@ -77,7 +99,9 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
             const uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
             for (int s = first; s < first + count; ++s) {
               Rng rng(mixBits(seedMix ^ mixBits(pixel)), uint64_t(s));
-              film.add(x, y, integrator.samplePixel(scene, Vec2(float(x), float(y)), rng, ctx));
+              const Vec3 xyz = integrator.samplePixel(scene, Vec2(float(x), float(y)), rng, ctx);
+              film.add(x, y, xyz);
+              if (opt.spectral) addSpectralShares(*opt.spectral, x, y, xyz, ctx.spectral);
             }
           }
       }
@@ -92,12 +116,14 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
         // Clamped as floats: converting a huge float to int would be undefined behaviour.
         const int x = int(std::clamp(sp.pixel.x, 0.0f, float(w - 1))), y = int(std::clamp(sp.pixel.y, 0.0f, float(h - 1)));
         film.addSplat(x, y, sp.xyz);
+        if (opt.spectral && isFinite(sp.xyz)) opt.spectral->add(x, y, sp.lambda, sp.value);
       }
     if (opt.strategies)
       for (const SampleContext& ctx : contexts)
         for (const StrategySample& r : ctx.strategies) opt.strategies(r);
     pass += count;
     film.setSamplesPerPixel(pass);
+    if (opt.spectral) opt.spectral->setSamplesPerPixel(pass);
     unsaved = true;
     const double t = elapsed(), total = opt.previousSeconds + t;
     const bool outOfTime = opt.timeBudgetSeconds > 0.0 && total >= opt.timeBudgetSeconds;

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/film.h"
+#include "core/spectral_film.h"
 #include "integrators/integrator.h"
 
 namespace kasha {
@@ -61,6 +62,10 @@ struct RenderOptions {
   // If set, integrators that can record each strategy's share of their samples
   // (SampleContext::recordStrategies), and this receives the records after each pass, in tile order.
   std::function<void(const StrategySample&)> strategies;
+  // If set (same size as the film), also receives every sample's spectral shares; the XYZ film's
+  // non-finite samples are left out of it too. The integrator must record them
+  // (Integrator::recordsSpectrum).
+  SpectralFilm* spectral = nullptr;
 };
 
 RenderStats render(const Scene& scene, const Integrator& integrator, Film& film, const RenderOptions& options);

@@ -1,0 +1,43 @@
+#pragma once
+// Emissive spectral images in the OpenEXR layout of Fichet, Pacanowski & Wilkie (2021), "An
+// OpenEXR Layout for Spectral Images", JCGT 10(3), §3: one channel "S0.<λ>" per wavelength (the
+// first Stokes component, i.e. unpolarised radiance; λ with a decimal comma and a unit,
+// core/exr_wavelength.h), the header attributes spectralLayoutVersion = "1.0" and emissiveUnits =
+// "W.m^-2.sr^-1" (radiance per nm: the unit of the wavelength the channel names). kasha writes the
+// bins of a SpectralFilm at their centres beside its R, G, B and XYZ layers (core/image_output.h).
+#include <ImfForward.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/image_input.h"
+#include "core/spectral_film.h"
+
+namespace kasha {
+
+// "S0.<λ>nm" for a bin centred at λ.
+std::string emissiveChannelName(float nm);
+// Adds the layout's attributes to an OpenEXR header.
+void addSpectralAttributes(Imf::Header& header);
+// One (name, row-major float image) pair per bin of the film: its radiance per nm.
+std::vector<std::pair<std::string, std::vector<float>>> spectralChannels(const SpectralFilm& film);
+
+struct SpectralImage {
+  int width = 0, height = 0;
+  std::vector<float> wavelengths;  // the channels' wavelengths in nm, increasing
+  std::vector<float> values;       // pixel-major: values[(y·width + x)·wavelengths.size() + k]
+  float at(int x, int y, size_t k) const { return values[(size_t(y) * width + x) * wavelengths.size() + k]; }
+};
+
+// True if the file has at least one S0.<λ> channel (false for files that are not OpenEXR).
+bool hasEmissiveChannels(const std::string& path);
+// Reads every S0.<λ> channel. Throws InputError naming the file (and channel) if it cannot be read,
+// has none, or names one wavelength twice.
+SpectralImage readSpectralExr(const std::string& path);
+// XYZ in the film's normalisation (core/color.h): each channel is the mean radiance per nm of the
+// band from the midpoint with its lower neighbour to the midpoint with its upper one (the end
+// bands symmetric about their centre), integrated exactly against the CIE 1931 observer.
+XyzImage spectralToXyz(const SpectralImage& image);
+
+}  // namespace kasha
