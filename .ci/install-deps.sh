@@ -7,6 +7,7 @@ PACKAGES=(
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libtinyobjloader-dev libcli11-dev libpng-dev
   python3-numpy python3-matplotlib
+  python3-dev pybind11-dev python3-pybind11 python3-pytest
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
