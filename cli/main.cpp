@@ -29,13 +29,14 @@
 #include "core/error.h"
 #include "core/image_output.h"
 #include "core/memory_budget.h"
-#include "core/scene_loader.h"
 #include "core/spectral_film.h"
+#include "scene/scene_loader.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/strategy_images.h"
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
+#include "integrators/render_setup.h"
 #include "materials/jung_bbrrdf.h"
 
 namespace kasha {
@@ -216,22 +217,11 @@ int runRender(const RenderArgs& a) {
                                                                     : nlohmann::json(nullptr)}};
   if (a.integrator == "bdpt-mollified") settings["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
 
-  // Film buffers and spectral bins, plus the same again while a checkpoint is read, plus the EXR's
-  // float channels (six and one per bin).
-  const uint64_t filmBytes = Film::bytesFor(width, height) + SpectralFilm::bytesFor(width, height, bins.count);
-  requireMemory(saturatingMul(filmBytes, a.resume.empty() ? 1 : 2) +
-                    saturatingMul(uint64_t(width) * uint64_t(height) * sizeof(float), 6 + uint64_t(bins.count)),
-                "the film (" + std::to_string(width) + "x" + std::to_string(height) + " pixels" +
-                    (bins.enabled() ? ", " + std::to_string(bins.count) + " spectral bins" : "") + ")",
-                memoryLimit);
+  requireFilmMemory(width, height, bins, !a.resume.empty(), memoryLimit);
   Film film(width, height);
   std::unique_ptr<SpectralFilm> spectral;
   if (bins.enabled()) spectral = std::make_unique<SpectralFilm>(width, height, bins);
-  RenderOptions opt;
-  opt.spp = r.spp;
-  opt.timeBudgetSeconds = r.timeBudgetSeconds;
-  opt.seed = r.seed;
-  opt.threads = a.threads;
+  RenderOptions opt = renderOptions(r, a.threads);
   nlohmann::json resumed;
   if (!a.resume.empty()) {
     CheckpointData d = readCheckpoint(a.resume);
@@ -272,13 +262,7 @@ int runRender(const RenderArgs& a) {
   if (!png.empty()) writePng(film, png, a.exposure);
   nlohmann::json j = toJson(st);
   j["scene"] = a.scene;
-  j["seed"] = r.seed;
-  j["sensor_sampling"] = r.wavelengths.sensor.text;
-  j["fluorescence_sampling"] = r.wavelengths.fluorescence.text;
-  j["light_sampling"] = r.wavelengths.light.text;
-  j["nee_sampling"] = r.wavelengths.nee.text;
-  j["hero_wavelengths"] = r.heroWavelengths;
-  j["max_depth"] = r.maxDepth;
+  j.update(settingsRecord(r));
   j["resolution"] = {film.width(), film.height()};
   j["first_non_finite_pixel"] = {film.firstNonFinitePixel().first, film.firstNonFinitePixel().second};
   if (!st.nonFiniteSamples) j.erase("first_non_finite_pixel");

@@ -4,6 +4,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 #include <png.h>
 
 #include <cstdio>
@@ -49,7 +50,8 @@ void writeExr(const Film& film, const std::string& path, const SpectralFilm* spe
     fb.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(ch[c].data()), sizeof(float), sizeof(float) * w));
   }
   const auto bins = spectral ? spectralChannels(*spectral) : std::vector<std::pair<std::string, std::vector<float>>>{};
-  if (spectral) addSpectralAttributes(header);
+  if (spectral)
+    for (const auto& [name, value] : spectralAttributes()) header.insert(name, Imf::StringAttribute(value));
   for (const auto& [name, values] : bins) {
     header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     fb.insert(name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(values.data())), sizeof(float),

@@ -4,7 +4,6 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
-#include <ImfStringAttribute.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,9 +27,8 @@ std::optional<float> emissiveWavelength(const std::string& name) {
 
 std::string emissiveChannelName(float nm) { return "S0." + exrWavelengthName(nm); }
 
-void addSpectralAttributes(Imf::Header& header) {
-  header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
-  header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
+std::vector<std::pair<std::string, std::string>> spectralAttributes() {
+  return {{"spectralLayoutVersion", "1.0"}, {"emissiveUnits", "W.m^-2.sr^-1"}};
 }
 
 std::vector<std::pair<std::string, std::vector<float>>> spectralChannels(const SpectralFilm& film) {

@@ -5,8 +5,6 @@
 // core/exr_wavelength.h), the header attributes spectralLayoutVersion = "1.0" and emissiveUnits =
 // "W.m^-2.sr^-1" (radiance per nm: the unit of the wavelength the channel names). kasha writes the
 // bins of a SpectralFilm at their centres beside its R, G, B and XYZ layers (core/image_output.h).
-#include <ImfForward.h>
-
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,8 +16,8 @@ namespace kasha {
 
 // "S0.<λ>nm" for a bin centred at λ.
 std::string emissiveChannelName(float nm);
-// Adds the layout's attributes to an OpenEXR header.
-void addSpectralAttributes(Imf::Header& header);
+// The layout's string attributes (name, value) for the header of a spectral image.
+std::vector<std::pair<std::string, std::string>> spectralAttributes();
 // One (name, row-major float image) pair per bin of the film: its radiance per nm.
 std::vector<std::pair<std::string, std::vector<float>>> spectralChannels(const SpectralFilm& film);
 

@@ -12,7 +12,7 @@
 #include "core/color.h"
 #include "core/math.h"
 #include "core/rng.h"
-#include "core/scene.h"
+#include "scene/scene.h"
 
 namespace kasha {
 

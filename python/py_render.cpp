@@ -11,6 +11,7 @@
 #include "integrators/bdpt/strategy_images.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
+#include "integrators/render_setup.h"
 #include "python/py_arrays.h"
 
 namespace py = pybind11;
@@ -59,11 +60,7 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
   const SpectralBins bins = binsFor(scene, req);
   if (bins.enabled() && !integrator->recordsSpectrum())
     throw py::value_error("integrator '" + req.integrator + "' cannot keep spectral bins");
-  requireMemory(Film::bytesFor(w, h) + SpectralFilm::bytesFor(w, h, bins.count) +
-                    saturatingMul(uint64_t(w) * uint64_t(h) * sizeof(float), 6 + uint64_t(bins.count)),
-                "the film (" + std::to_string(w) + "x" + std::to_string(h) + " pixels" +
-                    (bins.enabled() ? ", " + std::to_string(bins.count) + " spectral bins" : "") + ")",
-                memoryLimit);
+  requireFilmMemory(w, h, bins, false, memoryLimit);
   std::unique_ptr<bdpt::StrategyImages> strategies;
   if (req.strategyImages) {
     if (!dynamic_cast<const Bdpt*>(integrator.get()))
@@ -75,11 +72,7 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
   std::unique_ptr<SpectralFilm> spectral;
   if (bins.enabled()) spectral = std::make_unique<SpectralFilm>(w, h, bins);
 
-  RenderOptions opt;
-  opt.spp = settings.spp;
-  opt.timeBudgetSeconds = settings.timeBudgetSeconds;
-  opt.seed = settings.seed;
-  opt.threads = req.threads;
+  RenderOptions opt = renderOptions(settings, req.threads);
   opt.spectral = spectral.get();
   if (strategies) opt.strategies = [&](const StrategySample& r) { strategies->add(r); };
   std::atomic<int> stop{0};
@@ -117,13 +110,7 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
   result["xyz"] = xyzArray(film);
   result["rgb"] = rgbArray(result["xyz"].cast<py::array_t<float>>());
   nlohmann::json st = toJson(stats);
-  st["seed"] = settings.seed;
-  st["max_depth"] = settings.maxDepth;
-  st["sensor_sampling"] = settings.wavelengths.sensor.text;
-  st["fluorescence_sampling"] = settings.wavelengths.fluorescence.text;
-  st["light_sampling"] = settings.wavelengths.light.text;
-  st["nee_sampling"] = settings.wavelengths.nee.text;
-  st["hero_wavelengths"] = settings.heroWavelengths;
+  st.update(settingsRecord(settings));
   result["stats"] = fromJson(st);
   if (spectral) {
     result["spectral"] = spectralArray(*spectral);

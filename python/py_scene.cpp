@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "core/spectrum_json.h"
 
 namespace py = pybind11;

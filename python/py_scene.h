@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene.h"
+#include "scene/scene.h"
 
 namespace kasha::python {
 

@@ -1,0 +1,26 @@
+#pragma once
+// What every front end (the command line, the Python module) does around render(): checking the
+// film's memory, render options from the settings, and the settings a statistics record names.
+#include <cstdint>
+
+#include <nlohmann/json.hpp>
+
+#include "core/spectral_film.h"
+#include "integrators/render_loop.h"
+#include "scene/render_settings.h"
+
+namespace kasha {
+
+// Checks the film's buffers against `limit` before they are allocated: the XYZ sums and the
+// spectral bins (twice while a checkpoint is read into them) and the output's float channels (six
+// and one per bin). Throws MemoryLimitError naming the resolution and bins.
+void requireFilmMemory(int width, int height, const SpectralBins& bins, bool resuming, uint64_t limit);
+
+// The stop conditions (spp, time) and seed of the settings, with `threads` (0: all cores).
+RenderOptions renderOptions(const RenderSettings& settings, int threads);
+
+// The settings a statistics record names: seed, the four wavelength strategies, hero wavelengths
+// and maximum depth.
+nlohmann::json settingsRecord(const RenderSettings& settings);
+
+}  // namespace kasha
