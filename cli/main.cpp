@@ -181,9 +181,6 @@ int runRender(const RenderArgs& a) {
   } catch (const std::invalid_argument& e) {
     throw InputError(a.spectralBins > 0 ? "--spectral-bins" : "--spectral-step", "", e.what());
   }
-  if (bins.enabled() && !integrator->recordsSpectrum())
-    throw InputError(a.spectralBins > 0 ? "--spectral-bins" : "--spectral-step", "",
-                     "integrator '" + a.integrator + "' cannot keep spectral bins");
   std::unique_ptr<bdpt::StrategyImages> strategies;
   if (!a.strategyImages.empty()) {
     if (!dynamic_cast<const Bdpt*>(integrator.get()))

@@ -89,9 +89,6 @@ class Integrator {
   }
   // The most samples per pixel one pass may take.
   virtual int maxSamplesPerPass() const { return std::numeric_limits<int>::max(); }
-  // Whether every contribution goes through sensorResponse or spectralSplat, so that spectral
-  // bins (core/spectral_film.h) see all of the image.
-  virtual bool recordsSpectrum() const { return true; }
 };
 
 }  // namespace kasha

@@ -68,8 +68,6 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   int pass = std::max(0, opt.startSpp);
   film.setSamplesPerPixel(pass);
   if (opt.spectral) {
-    if (!integrator.recordsSpectrum())
-      throw std::invalid_argument("integrator '" + integrator.name() + "' cannot keep spectral bins");
     if (opt.spectral->width() != w || opt.spectral->height() != h)
       throw std::invalid_argument("render: the spectral film's size differs from the film's");
     opt.spectral->setSamplesPerPixel(pass);

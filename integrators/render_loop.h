@@ -63,8 +63,7 @@ struct RenderOptions {
   // (SampleContext::recordStrategies), and this receives the records after each pass, in tile order.
   std::function<void(const StrategySample&)> strategies;
   // If set (same size as the film), also receives every sample's spectral shares; the XYZ film's
-  // non-finite samples are left out of it too. The integrator must record them
-  // (Integrator::recordsSpectrum).
+  // non-finite samples are left out of it too.
   SpectralFilm* spectral = nullptr;
 };
 

@@ -58,8 +58,6 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
   const std::unique_ptr<Integrator> integrator = makeIntegrator(req.integrator, scene, settings);
   const int w = scene.camera.width(), h = scene.camera.height();
   const SpectralBins bins = binsFor(scene, req);
-  if (bins.enabled() && !integrator->recordsSpectrum())
-    throw py::value_error("integrator '" + req.integrator + "' cannot keep spectral bins");
   requireFilmMemory(w, h, bins, false, memoryLimit);
   std::unique_ptr<bdpt::StrategyImages> strategies;
   if (req.strategyImages) {

@@ -26,8 +26,6 @@ class PpmIntegrator final : public Integrator {
   std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                             RayCounter& counter) const override;
   int maxSamplesPerPass() const override { return 1; }
-  // Gathered photons add XYZ at their own wavelengths inside one estimate: no spectral bins yet.
-  bool recordsSpectrum() const override { return false; }
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const override;
   std::string name() const override { return "ppm"; }
 

@@ -48,8 +48,16 @@ def cmf():
 
 
 def pixel_mean_and_sigma(values):
-    """Mean over pixels (axes 0, 1) and its standard error: the pixels are independent estimates
-    (each draws from its own random streams)."""
+    """Mean over pixels (axes 0, 1) and its standard error, for integrators whose pixels are
+    independent estimates (each draws from its own random streams; splats from independent light
+    subpaths). Not photon mapping: a pass's pixels share one photon map."""
     n = values.shape[0] * values.shape[1]
     flat = values.reshape(n, -1)
     return flat.mean(axis=0), flat.std(axis=0, ddof=1) / np.sqrt(n)
+
+
+def seed_mean_and_sigma(render, seeds):
+    """Mean over independent renders (one per seed) of their image means, and its standard error:
+    for photon mapping, whose pixels are correlated through the pass's shared photon map."""
+    means = np.array([render(seed).mean(axis=(0, 1)) for seed in seeds])
+    return means.mean(axis=0), means.std(axis=0, ddof=1) / np.sqrt(len(seeds))

@@ -60,8 +60,6 @@ def test_errors_carry_kashas_message(tmp_path):
         kasha.render(scene, spp=-3)
     with pytest.raises(kasha.MemoryLimitError, match="memory limit"):
         kasha.render(scene, spp=1, spectral_bins=400, memory_limit="64K")
-    with pytest.raises(ValueError, match="cannot keep spectral bins"):
-        kasha.render(scene, integrator="ppm", spp=1, spectral_bins=4)
 
 
 def test_metrics_on_arrays():
