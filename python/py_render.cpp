@@ -36,6 +36,8 @@ nlohmann::json withSettings(const nlohmann::json& scene, const RenderRequest& r)
 }
 
 SpectralBins binsFor(const Scene& scene, const RenderRequest& r) {
+  if (r.spectralBins < 0 || !(r.spectralStep >= 0.0f))
+    throw py::value_error("spectral_bins and spectral_step must be positive (0: no spectral bins)");
   if (r.spectralBins > 0 && r.spectralStep > 0.0f) throw py::value_error("give spectral_bins or spectral_step, not both");
   if (r.spectralBins > 0) return SpectralBins::fromCount(scene.range, r.spectralBins);
   if (r.spectralStep > 0.0f) return SpectralBins::fromStep(scene.range, r.spectralStep);

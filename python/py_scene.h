@@ -16,7 +16,9 @@ class PyScene {
  public:
   // `path` names the scene in error messages and anchors its relative file names.
   PyScene(nlohmann::json json, std::string path) : json_(std::move(json)), path_(std::move(path)) {}
+  // The scene file's JSON; InputError naming the file if it cannot be read or parsed.
   static PyScene fromFile(const std::string& path);
+  // A dict in the scene format; relative file names start from baseDir.
   static PyScene fromDict(const pybind11::dict& scene, const std::string& baseDir);
 
   // The JSON value at a JSON pointer ("/materials/dye/c"), as a Python object; KeyError if absent.
@@ -26,6 +28,7 @@ class PyScene {
   // The spectrum at a JSON pointer as its piecewise-linear knots (wavelengths in nm, values).
   pybind11::tuple spectrum(const std::string& pointer) const;
 
+  // The scene's JSON as edited so far, and the name it goes by in messages.
   const nlohmann::json& json() const { return json_; }
   const std::string& path() const { return path_; }
   // The scene loaded from `json` (the scene's own JSON with `render` merged into its render

@@ -58,6 +58,12 @@ def test_errors_carry_kashas_message(tmp_path):
         kasha.render(scene, integrator="nope", spp=1)
     with pytest.raises(kasha.InputError, match="/render/spp"):
         kasha.render(scene, spp=-3)
+    with pytest.raises(ValueError, match="spectral_bins"):
+        kasha.render(scene, spp=1, spectral_bins=-2)
+    with pytest.raises(kasha.InputError, match=r"/materials/nope: no such material"):
+        scene.set_material("nope", c=0.5)
+    with pytest.raises(KeyError, match="/materials/wall/nothing"):
+        scene.get("/materials/wall/nothing")
     with pytest.raises(kasha.MemoryLimitError, match="memory limit"):
         kasha.render(scene, spp=1, spectral_bins=400, memory_limit="64K")
 
