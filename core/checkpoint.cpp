@@ -259,8 +259,10 @@ CheckpointData readCheckpoint(const std::string& path) {
   d.splats.resize(pixels);
   r.bytes(d.sums.data(), pixels * sizeof(DVec3));
   r.bytes(d.splats.data(), pixels * sizeof(DVec3));
-  d.spectral.resize(spectralValues);
-  r.bytes(d.spectral.data(), spectralValues * sizeof(double));
+  if (spectralValues > 0) {  // an empty vector's data() may be null, which memcpy must not get
+    d.spectral.resize(spectralValues);
+    r.bytes(d.spectral.data(), spectralValues * sizeof(double));
+  }
   r.checksum();
   for (const double v : d.spectral)
     if (!std::isfinite(v)) throw InputError(path, "", "checkpoint is corrupted (a non-finite spectral sum)");
