@@ -76,6 +76,7 @@ struct RenderArgs {
   int64_t seed = -1;
   std::string integrator = "pt", sensor, fluorescence, light, nee;
   int hero = 0;
+  std::string sampler;
   float exposure = 0.0f;
   std::string checkpoint, resume;
   double checkpointInterval = 60.0;
@@ -144,6 +145,7 @@ int runRender(const RenderArgs& a) {
   if (!a.light.empty()) r.wavelengths.light = parseWavelengthSpec(a.light);
   if (!a.nee.empty()) r.wavelengths.nee = parseWavelengthSpec(a.nee);
   if (a.hero > 0) r.heroWavelengths = a.hero;
+  if (!a.sampler.empty()) r.sampler = *parseSamplerKind(a.sampler);  // validated by the option's check
   r.memoryLimit = memoryLimit;
   if ((a.mollifyBandwidth >= 0.0f || a.mollifyAlpha >= 0.0f) && a.integrator != "bdpt-mollified")
     throw InputError(a.mollifyBandwidth >= 0.0f ? "--mollify-bandwidth" : "--mollify-alpha", "",
@@ -191,6 +193,7 @@ int runRender(const RenderArgs& a) {
   nlohmann::json settings = {{"scene_hash", hex(hashBytes(sceneText.data(), sceneText.size()))},
                                    {"integrator", integrator->name()},
                                    {"seed", r.seed},
+                                   {"sampler", toString(r.sampler)},
                                    {"max_depth", r.maxDepth},
                                    {"rr_depth", r.rrDepth},
                                    {"sensor_sampling", r.wavelengths.sensor.text},
@@ -210,6 +213,7 @@ int runRender(const RenderArgs& a) {
   opt.spp = r.spp;
   opt.timeBudgetSeconds = r.timeBudgetSeconds;
   opt.seed = r.seed;
+  opt.sampler = r.sampler;
   opt.threads = a.threads;
   nlohmann::json resumed;
   if (!a.resume.empty()) {
@@ -251,6 +255,7 @@ int runRender(const RenderArgs& a) {
   nlohmann::json j = toJson(st);
   j["scene"] = a.scene;
   j["seed"] = r.seed;
+  j["sampler"] = toString(r.sampler);
   j["sensor_sampling"] = r.wavelengths.sensor.text;
   j["fluorescence_sampling"] = r.wavelengths.fluorescence.text;
   j["light_sampling"] = r.wavelengths.light.text;
@@ -414,6 +419,9 @@ int main(int argc, char** argv) {
                      "Hero wavelength sampling (pt): wavelengths per path, 1 (off) to 16; ended at fluorescent "
                      "and specular events")
       ->check(CLI::Range(1, 16));
+  render->add_option("--sampler", ra.sampler,
+                     "Random numbers of every sample: sobol (Owen-scrambled Sobol, the default) | independent (PCG32)")
+      ->check(CLI::IsMember({"sobol", "independent"}));
   render->add_option("--max-depth", ra.maxDepth, "Maximum number of scattering events")->check(numberCheck(Sign::NonNegative, true));
   render->add_option("--exposure", ra.exposure, "PNG exposure in stops")
       ->check(numberCheck(Sign::Any, false) & CLI::Range(-100.0, 100.0));

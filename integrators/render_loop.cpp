@@ -76,7 +76,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
           for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
             const uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
             for (int s = first; s < first + count; ++s) {
-              Rng rng(mixBits(seedMix ^ mixBits(pixel)), uint64_t(s));
+              Sampler rng(opt.sampler, seedMix, pixel, uint32_t(s));
               film.add(x, y, integrator.samplePixel(scene, Vec2(float(x), float(y)), rng, ctx));
             }
           }
