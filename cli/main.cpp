@@ -519,7 +519,12 @@ int main(int argc, char** argv) {
     return 1;
   };
   try {
-    if (render->parsed()) return runRender(ra, mpi.get());
+    if (render->parsed()) {
+      const int code = runRender(ra, mpi.get());
+      // No rank ends (and has mpirun end the job) before rank 0 has written the outputs.
+      if (mpi) mpi->barrier();
+      return code;
+    }
     if (matrix->parsed()) return runMatrix(ma);
     if (compare->parsed()) return runCompare(ca);
     if (metrics->parsed()) return runMetrics(mt);

@@ -80,6 +80,8 @@ void MpiGroup::maxOverRanks(std::span<int> values) {
   MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_INT, MPI_MAX, MPI_COMM_WORLD);
 }
 
+void MpiGroup::barrier() { MPI_Barrier(MPI_COMM_WORLD); }
+
 void MpiGroup::abort(int code) {
   MPI_Abort(MPI_COMM_WORLD, code);
   std::exit(code);  // MPI_Abort does not return; this satisfies [[noreturn]] if it ever did

@@ -22,6 +22,8 @@ class MpiGroup final : public RenderGroup {
   void send(const PassRecord& record) override;
   PassRecord receive(int from, int width, int height) override;
   void maxOverRanks(std::span<int> values) override;
+  // Returns when every rank has called it.
+  void barrier();
   // Ends every rank of the job with exit code `code` (after an error on this rank that the
   // others, waiting for it, would never see).
   [[noreturn]] void abort(int code);

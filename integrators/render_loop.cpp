@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 namespace kasha {
 
@@ -77,7 +79,13 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
         opt.group->send(rec);
     }
     if (root)
-      for (int k = 1; k < st.ranks && firstOf(k) < opt.spp; ++k) commit(opt.group->receive(k, w, h));
+      for (int k = 1; k < st.ranks && firstOf(k) < opt.spp; ++k) {
+        const PassRecord rec = opt.group->receive(k, w, h);
+        if (rec.first != firstOf(k))
+          throw std::runtime_error("rank " + std::to_string(k) + " sent the pass of sample " + std::to_string(rec.first) +
+                                   " instead of " + std::to_string(firstOf(k)));
+        commit(rec);
+      }
     pass = int(std::min<int64_t>(opt.spp, firstOf(st.ranks)));
     film.setSamplesPerPixel(pass);
     unsaved = true;
