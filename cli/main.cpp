@@ -234,6 +234,11 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     resumed = {{"checkpoint", a.resume}, {"spp", d.spp}, {"seconds", opt.previousSeconds}};
     restoreFilm(std::move(d), film);
   }
+  // A pass's camera samples wait in a record before they reach the film (integrators/render_pass.h).
+  const int perPass = opt.samplesPerPass > 0 ? opt.samplesPerPass
+                                             : std::min(defaultSamplesPerPass(width, height), integrator->maxSamplesPerPass());
+  requireMemory(PassTracer::sampleBytes(width, height, perPass),
+                "the samples of one pass (" + std::to_string(perPass) + " per pixel)", memoryLimit);
   if (!checkpoint.empty()) {
     opt.checkpointIntervalSeconds = a.checkpointInterval;
     opt.checkpoint = [&](const RenderStats& s) {

@@ -3,11 +3,16 @@
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR identical INTEGRATOR
 #     renders a small UV Cornell box (128×96, at most 6 bounces, 23 spp: passes of 5 samples, the last of 3) with one
 #     process and with `mpirun -np 2` and `-np 3`; the EXRs must be the same bytes (cmp) and the
-#     statistics' sample and ray counts (summed over the ranks) the same numbers.
+#     statistics' sample and ray counts (summed over the ranks) the same numbers. (That the film
+#     adds the passes in pass order is tested where the order shows in the bits:
+#     tests/test_render_group.cpp.)
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR stop
 #     SIGTERM to the last rank of `mpirun -np 3`: every rank stops after the same pass, exit 143,
 #     the partial image and a checkpoint are written; the image equals a one-process render to
 #     the same spp, and resuming the checkpoint with `-np 2` equals a one-process render to the end.
+#   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR error
+#     a missing scene under `mpirun -np 2`: exit code 1 with the error line (from each rank), no
+#     hang, nothing written.
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR time
 #     `--time 1` with `-np 2` ends every rank after the same pass; the image equals a one-process
 #     render to the spp reached.
@@ -82,6 +87,12 @@ time)
   [ "$spp" -gt 0 ] && [ "$spp" -lt 1000000 ] || fail "the time budget did not end the render ($spp spp)"
   render --spp "$spp" -o reference_time.exr >/dev/null
   same_image reference_time.exr timed.exr
+  ;;
+error)
+  code=0; mpi 2 render missing.json -q >error.out 2>error.err || code=$?
+  [ "$code" -eq 1 ] || fail "a missing scene under mpirun exited with $code, expected 1"
+  grep -q "^kasha: error: missing.json: cannot open scene file" error.err || fail "no error line naming the file"
+  [ ! -e missing.exr ] || fail "an image was written"
   ;;
 *) fail "unknown mode $mode" ;;
 esac
