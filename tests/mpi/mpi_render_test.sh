@@ -3,7 +3,8 @@
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR identical INTEGRATOR
 #     renders a small UV Cornell box (128×96, at most 6 bounces, 23 spp: passes of 5 samples, the last of 3) with one
 #     process and with `mpirun -np 2` and `-np 3`; the EXRs must be the same bytes (cmp) and the
-#     statistics' sample and ray counts (summed over the ranks) the same numbers. (That the film
+#     statistics' sample and ray counts (summed over the ranks) the same numbers; with bdpt, the
+#     per-strategy images too. (That the film
 #     adds the passes in pass order is tested where the order shows in the bits:
 #     tests/test_render_group.cpp.)
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR stop
@@ -45,10 +46,15 @@ same_image() { cmp "$1" "$2" || fail "$1 and $2 differ"; }
 
 case $mode in
 identical)
-  render --integrator "$integrator" --spp 23 -o one.exr >/dev/null
+  # BDPT also writes its per-strategy images, which travel with the passes too.
+  strategies() { if [ "$integrator" = bdpt ]; then echo --strategy-images "strategies_$1"; fi; }
+  render --integrator "$integrator" --spp 23 -o one.exr $(strategies one) >/dev/null
   for n in 2 3; do
-    mpi "$n" render scene.json --no-png -q --integrator "$integrator" --spp 23 -o "np$n.exr" >/dev/null
+    mpi "$n" render scene.json --no-png -q --integrator "$integrator" --spp 23 -o "np$n.exr" $(strategies "np$n") >/dev/null
     same_image one.exr "np$n.exr"
+    if [ "$integrator" = bdpt ]; then
+      for f in strategies_one/*.exr; do same_image "$f" "strategies_np$n/$(basename "$f")"; done
+    fi
     [ "$(stat "np$n.stats.json" ranks)" = "$n" ] || fail "np$n.stats.json: ranks is not $n"
     for key in samples rays closest_hit_rays shadow_rays spp; do
       [ "$(stat one.stats.json $key)" = "$(stat "np$n.stats.json" $key)" ] || fail "$key differs with $n ranks"
