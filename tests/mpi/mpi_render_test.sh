@@ -18,7 +18,7 @@
 #     `--time 1` with `-np 2` ends every rank after the same pass; the image equals a one-process
 #     render to the spp reached.
 set -euo pipefail
-kasha=$1 src=$2 work=$3 mode=$4 integrator=${5:-pt}
+kasha=$(realpath "$1") src=$(realpath "$2") work=$3 mode=$4 integrator=${5:-pt}
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
