@@ -29,6 +29,7 @@ int runCompare(const CompareArgs& a) {
     opt.spp = 1 << 30;
     opt.timeBudgetSeconds = a.referenceTime;
     opt.seed = 0x5eed;
+    opt.sampler = scene->render.sampler;
     opt.threads = a.threads;
     const RenderStats st = render(*scene, *ref, film, opt);
     writeExr(film, a.reference);
@@ -40,6 +41,7 @@ int runCompare(const CompareArgs& a) {
   opt.spp = a.spp > 0 ? a.spp : 1 << 30;
   opt.timeBudgetSeconds = a.time;
   opt.seed = uint64_t(a.seed);
+  opt.sampler = scene->render.sampler;
   opt.threads = a.threads;
   std::ofstream csv;
   if (!a.csv.empty()) {

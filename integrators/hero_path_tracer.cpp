@@ -63,10 +63,10 @@ std::pair<size_t, float> HeroPathTracer::selectLight(const Scene& scene, const L
   return {last, lightSelectProbability(scene, last, lanes)};
 }
 
-Vec3 HeroPathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
+Vec3 HeroPathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   const WavelengthDensity& p = sensor_.density();
   const WavelengthSample hero = p.sample(rng.uniform());
-  const Vec2 jitter(rng.uniform(), rng.uniform());
+  const Vec2 jitter = rng.uniform2();
   if (hero.pdf <= 0.0f) return Vec3(0.0f);
   // Wilkie14 §3: the rotations of the hero over the sensor's range.
   const WavelengthRange r = sources_.seen;
@@ -89,7 +89,7 @@ Vec3 HeroPathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, Sampl
   return xyz;
 }
 
-void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float collapseFactor, Rng& rng,
+void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float collapseFactor, Sampler& rng,
                               RayCounter& counter) const {
   float beta0 = 1.0f;          // Russian roulette compares the throughput with this
   float prevDirPdf = 0.0f;     // solid-angle density of the direction that led here
@@ -103,7 +103,9 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
     s.beta[0] *= collapseFactor;
     beta0 *= collapseFactor;
   };
+  const uint32_t firstDimension = rng.dimension();
   for (int depth = 0;; ++depth) {
+    rng.startVertex(firstDimension, depth);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++counter.closest;
     if (!hit) {
@@ -154,7 +156,7 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
 
     // Next-event estimation for every lane through one light sample.
     const float uLight = rng.uniform();
-    const Vec2 uPos(rng.uniform(), rng.uniform());
+    const Vec2 uPos = rng.uniform2();
     prevSelect.n = s.n;
     std::copy(lambdaIn, lambdaIn + s.n, prevSelect.lambda);
     if (!mat.purelySpecular()) {
@@ -182,7 +184,7 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
     // would have been the same for them. (Next-event estimation above assumed that too: every
     // non-specular lobe of kasha's materials samples directions independently of λ.)
     const std::optional<DirectionSample> ds = mat.sampleDirection(TransportMode::Radiance, wo, lobe, lambdaIn[0],
-                                                                  s.lambda[0], Vec2(rng.uniform(), rng.uniform()));
+                                                                  s.lambda[0], rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
     if (ds->specular) collapse();
     for (int j = 1; j < s.n; ++j) {

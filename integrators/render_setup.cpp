@@ -4,6 +4,7 @@
 
 #include "core/film.h"
 #include "core/memory_budget.h"
+#include "core/sampler.h"
 
 namespace kasha {
 
@@ -21,12 +22,14 @@ RenderOptions renderOptions(const RenderSettings& settings, int threads) {
   opt.spp = settings.spp;
   opt.timeBudgetSeconds = settings.timeBudgetSeconds;
   opt.seed = settings.seed;
+  opt.sampler = settings.sampler;
   opt.threads = threads;
   return opt;
 }
 
 nlohmann::json settingsRecord(const RenderSettings& r) {
   return {{"seed", r.seed},
+          {"sampler", toString(r.sampler)},
           {"sensor_sampling", r.wavelengths.sensor.text},
           {"fluorescence_sampling", r.wavelengths.fluorescence.text},
           {"light_sampling", r.wavelengths.light.text},

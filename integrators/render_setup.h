@@ -16,11 +16,11 @@ namespace kasha {
 // and one per bin). Throws MemoryLimitError naming the resolution and bins.
 void requireFilmMemory(int width, int height, const SpectralBins& bins, bool resuming, uint64_t limit);
 
-// The stop conditions (spp, time) and seed of the settings, with `threads` (0: all cores).
+// The stop conditions (spp, time), seed and sampler of the settings, with `threads` (0: all cores).
 RenderOptions renderOptions(const RenderSettings& settings, int threads);
 
-// The settings a statistics record names: seed, the four wavelength strategies, hero wavelengths
-// and maximum depth.
+// The settings a statistics record names: seed, sampler, the four wavelength strategies, hero
+// wavelengths and maximum depth.
 nlohmann::json settingsRecord(const RenderSettings& settings);
 
 }  // namespace kasha

@@ -113,6 +113,9 @@ struct Loader {
     const int seed = f.integer("seed", int(r.seed));
     if (seed < 0) f.fail("seed", "must not be negative");
     r.seed = uint64_t(seed);
+    const std::string sampler = f.string("sampler", toString(r.sampler));
+    if (const auto kind = parseSamplerKind(sampler)) r.sampler = *kind;
+    else f.fail("sampler", "'" + sampler + "' is not a sampler (sobol, independent)");
     wavelengthSpec(f, "sensor_sampling", r.wavelengths.sensor);
     wavelengthSpec(f, "fluorescence_sampling", r.wavelengths.fluorescence);
     wavelengthSpec(f, "light_sampling", r.wavelengths.light);

@@ -74,7 +74,9 @@ TEST_P(Furnace, EachPathLength) {
       term = transport(g, jung(*scene), term);
       for (size_t i = 0; i < sum.size(); ++i) sum[i] += term[i];
     }
-    expectAgreement(*scene, d, toXyz(g, sum), 8, 256);
+    // 32 batches: from depth 3 Russian roulette makes the batch means skewed, and 8 of them
+    // estimated the standard error anywhere between 0.2 and 1.7 times its typical value.
+    expectAgreement(*scene, d, toXyz(g, sum), 32, 64);
   }
 }
 

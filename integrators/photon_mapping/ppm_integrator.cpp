@@ -54,7 +54,7 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
     : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
       light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
       maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
-      alwaysKernel_(s.ppm.alwaysKernel), memoryLimit_(s.memoryLimit) {
+      alwaysKernel_(s.ppm.alwaysKernel), memoryLimit_(s.memoryLimit), sampler_(s.sampler) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by ppm");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by ppm");
   const PhotonMappingSettings& p = s.ppm;
@@ -88,6 +88,7 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
     t.maxDepth = maxDepth_;
     t.rrDepth = rrDepth_;
     t.memoryLimit = memoryLimit_;
+    t.sampler = sampler_;
     t.wavelengths = &light_.density();
     // A stream family per iteration, apart from the camera samples' (render_loop.cpp).
     const uint64_t passSeed = mixBits(mixBits(seed ^ 0x5851f42d4c957f2dULL) + uint64_t(firstSample));
@@ -96,11 +97,11 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
   return std::make_unique<PhotonPass>(std::move(photons), radius(firstSample), bandwidth(firstSample), photonsPerPass_);
 }
 
-Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
+Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   const auto& pass = static_cast<const PhotonPass&>(*ctx.pass);
   const WavelengthSample ws = sensor_.density().sample(rng.uniform());
   if (ws.pdf <= 0.0f) return Vec3(0.0f);
-  Ray ray = scene.camera.generateRay(pixel + Vec2(rng.uniform(), rng.uniform()));
+  Ray ray = scene.camera.generateRay(pixel + rng.uniform2());
   float lambda = ws.lambda, beta = 1.0f;  // beta: throughput of the specular vertices so far
   float L = 0.0f;    // radiance arriving at the camera's wavelength
   Vec3 xyz(0.0f);    // elastic photons seen at their own wavelengths
@@ -121,7 +122,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, Sample
       L += beta * gather(pass, mat, hit->p, wo, lambda, bounces, maxDepth_, bounces == 0 && !alwaysKernel_, ctx, xyz);
     // The gather covers every non-specular lobe; a sampled specular lobe continues the path.
     const std::optional<ScatterSample> ss =
-        mat.sample(TransportMode::Radiance, wo, lambda, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+        mat.sample(TransportMode::Radiance, wo, lambda, rng.uniform3());
     if (!ss || !ss->specular) break;
     beta *= ss->f * std::abs(ss->w.z) / ss->pdf;
     if (!(beta > 0.0f)) break;

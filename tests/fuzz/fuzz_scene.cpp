@@ -48,6 +48,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     opt.spp = 1;
     opt.threads = 1;
     opt.seed = settings.seed;
+    opt.sampler = settings.sampler;
     render(*scene, *integrator, film, opt);
     for (int y = 0; y < 4; ++y)
       for (int x = 0; x < 4; ++x) {
