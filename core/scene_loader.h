@@ -1,6 +1,8 @@
 #pragma once
 // Loading scenes from JSON (the format is documented in docs/scene-format.md). Every problem is an
 // InputError naming the file, the JSON pointer and the reason.
+#include <nlohmann/json_fwd.hpp>
+
 #include <memory>
 #include <string>
 
@@ -14,9 +16,13 @@ struct SceneLoadOptions {
   uint64_t memoryLimit = kDefaultMemoryLimit;
 };
 
+// A path ending in .xml is a Mitsuba 3 scene (mitsuba/mitsuba_scene.h), anything else kasha JSON.
 std::unique_ptr<Scene> loadScene(const std::string& path, const SceneLoadOptions& options = {});
 // Same, from JSON text; `path` names it in messages and anchors relative file names.
 std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::string& path,
                                            const SceneLoadOptions& options = {});
+// Same, from parsed JSON (the Mitsuba importer's translation).
+std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& root, const std::string& path,
+                                         const SceneLoadOptions& options = {});
 
 }  // namespace kasha
