@@ -10,11 +10,11 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/scene_loader.h"
-#include "mitsuba/mitsuba_scene.h"
-#include "mitsuba/xml_sensor.h"
-#include "mitsuba/xml_spectrum.h"
-#include "mitsuba/xml_transform.h"
+#include "scene/scene_loader.h"
+#include "scene/mitsuba/mitsuba_scene.h"
+#include "scene/mitsuba/xml_sensor.h"
+#include "scene/mitsuba/xml_spectrum.h"
+#include "scene/mitsuba/xml_transform.h"
 
 namespace kasha {
 namespace {

@@ -1,11 +1,11 @@
-#include "mitsuba/mitsuba_scene.h"
+#include "scene/mitsuba/mitsuba_scene.h"
 
 #include <iostream>
 
-#include "mitsuba/xml_bsdf.h"
-#include "mitsuba/xml_emitter.h"
-#include "mitsuba/xml_sensor.h"
-#include "mitsuba/xml_shape.h"
+#include "scene/mitsuba/xml_bsdf.h"
+#include "scene/mitsuba/xml_emitter.h"
+#include "scene/mitsuba/xml_sensor.h"
+#include "scene/mitsuba/xml_shape.h"
 
 namespace kasha::mitsuba {
 namespace {

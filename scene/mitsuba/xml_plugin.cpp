@@ -1,4 +1,4 @@
-#include "mitsuba/xml_plugin.h"
+#include "scene/mitsuba/xml_plugin.h"
 
 #include <algorithm>
 #include <cctype>

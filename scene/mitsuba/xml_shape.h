@@ -3,7 +3,7 @@
 // transformed corners; cube → six rectangles; sphere → sphere (uniform scale only); disk → kasha's
 // tessellated disk. A nested <bsdf> or <ref> sets the material (default: Mitsuba's diffuse 0.5),
 // a nested <emitter type="area"> the emission.
-#include "mitsuba/scene_json.h"
+#include "scene/mitsuba/scene_json.h"
 
 namespace kasha::mitsuba {
 

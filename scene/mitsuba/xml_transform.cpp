@@ -1,4 +1,4 @@
-#include "mitsuba/xml_transform.h"
+#include "scene/mitsuba/xml_transform.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "core/scene.h"
+#include "scene/scene.h"
 
 namespace kasha {
 
@@ -16,7 +16,7 @@ struct SceneLoadOptions {
   uint64_t memoryLimit = kDefaultMemoryLimit;
 };
 
-// A path ending in .xml is a Mitsuba 3 scene (mitsuba/mitsuba_scene.h), anything else kasha JSON.
+// A path ending in .xml is a Mitsuba 3 scene (scene/mitsuba/mitsuba_scene.h), anything else kasha JSON.
 std::unique_ptr<Scene> loadScene(const std::string& path, const SceneLoadOptions& options = {});
 // Same, from JSON text; `path` names it in messages and anchors relative file names.
 std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::string& path,

@@ -3,7 +3,7 @@
 // (Mitsuba's linear falloff between beam_width and cutoff_angle becomes kasha's smooth one),
 // directional → distant, constant → environment, envmap → envmap (kasha's importance-sampled
 // equirectangular light, core/envmap_light.h).
-#include "mitsuba/scene_json.h"
+#include "scene/mitsuba/scene_json.h"
 
 namespace kasha::mitsuba {
 

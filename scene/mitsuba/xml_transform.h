@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/math.h"
-#include "mitsuba/xml_plugin.h"
+#include "scene/mitsuba/xml_plugin.h"
 
 namespace kasha::mitsuba {
 

@@ -2,7 +2,7 @@
 // Mitsuba's <sensor type="perspective"> (fov, fov_axis, to_world, its <film> size and <sampler>
 // sample count) as kasha's camera and samples per pixel, and <integrator type="path">'s
 // max_depth and rr_depth as kasha's render settings.
-#include "mitsuba/scene_json.h"
+#include "scene/mitsuba/scene_json.h"
 
 namespace kasha::mitsuba {
 

@@ -1,4 +1,4 @@
-#include "mitsuba/xml_bsdf.h"
+#include "scene/mitsuba/xml_bsdf.h"
 
 #include <cmath>
 #include <map>
@@ -6,7 +6,7 @@
 
 #include "core/math.h"
 #include "core/spectrum_json.h"
-#include "mitsuba/xml_spectrum.h"
+#include "scene/mitsuba/xml_spectrum.h"
 
 namespace kasha::mitsuba {
 namespace {

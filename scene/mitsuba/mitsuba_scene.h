@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 
 namespace kasha::mitsuba {
 

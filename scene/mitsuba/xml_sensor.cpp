@@ -1,8 +1,8 @@
-#include "mitsuba/xml_sensor.h"
+#include "scene/mitsuba/xml_sensor.h"
 
 #include <cmath>
 
-#include "mitsuba/xml_transform.h"
+#include "scene/mitsuba/xml_transform.h"
 
 namespace kasha::mitsuba {
 namespace {

@@ -8,7 +8,7 @@
 // fields of docs/scene-format.md. Approximations are recorded as notes.
 #include <nlohmann/json.hpp>
 
-#include "mitsuba/xml_plugin.h"
+#include "scene/mitsuba/xml_plugin.h"
 
 namespace kasha::mitsuba {
 

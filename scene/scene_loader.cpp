@@ -1,4 +1,4 @@
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 
 #include <tiny_obj_loader.h>
 
@@ -16,7 +16,7 @@
 #include "core/spectrum_json.h"
 #include "core/spectrum_presets.h"
 #include "materials/material_json.h"
-#include "mitsuba/mitsuba_scene.h"
+#include "scene/mitsuba/mitsuba_scene.h"
 
 namespace kasha {
 namespace {

@@ -6,7 +6,7 @@
 #include <map>
 #include <string>
 
-#include "mitsuba/xml_plugin.h"
+#include "scene/mitsuba/xml_plugin.h"
 
 namespace kasha::mitsuba {
 

@@ -1,4 +1,4 @@
-#include "mitsuba/xml_spectrum.h"
+#include "scene/mitsuba/xml_spectrum.h"
 
 #include <algorithm>
 #include <cmath>

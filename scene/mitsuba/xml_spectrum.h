@@ -6,7 +6,7 @@
 // spectrum file. <rgb> and textures are refused (see docs/mitsuba-import.md).
 #include <nlohmann/json.hpp>
 
-#include "mitsuba/xml_plugin.h"
+#include "scene/mitsuba/xml_plugin.h"
 
 namespace kasha::mitsuba {
 

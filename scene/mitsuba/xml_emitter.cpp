@@ -1,7 +1,7 @@
-#include "mitsuba/xml_emitter.h"
+#include "scene/mitsuba/xml_emitter.h"
 
-#include "mitsuba/xml_spectrum.h"
-#include "mitsuba/xml_transform.h"
+#include "scene/mitsuba/xml_spectrum.h"
+#include "scene/mitsuba/xml_transform.h"
 
 namespace kasha::mitsuba {
 namespace {

@@ -1,12 +1,12 @@
-#include "mitsuba/xml_shape.h"
+#include "scene/mitsuba/xml_shape.h"
 
 #include <array>
 #include <cmath>
 #include <vector>
 
-#include "mitsuba/xml_bsdf.h"
-#include "mitsuba/xml_spectrum.h"
-#include "mitsuba/xml_transform.h"
+#include "scene/mitsuba/xml_bsdf.h"
+#include "scene/mitsuba/xml_spectrum.h"
+#include "scene/mitsuba/xml_transform.h"
 
 namespace kasha::mitsuba {
 namespace {
