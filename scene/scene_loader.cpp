@@ -10,6 +10,8 @@
 #include <sstream>
 #include <vector>
 
+#include "core/affine.h"
+#include "core/envmap_light.h"
 #include "core/json_fields.h"
 #include "core/mesh_builders.h"
 #include "core/memory_budget.h"
@@ -406,8 +408,21 @@ struct Loader {
           const float scale = scaleField(f, L);
           scene.environmentLight = int(scene.lights.size());
           l = std::make_unique<EnvironmentLight>(std::move(L), scale, bounds);
+        } else if (type == "envmap") {
+          if (scene.environmentLight >= 0) f.fail("type", "only one environment light is allowed");
+          const std::string path = resolve(f.string("file"));
+          const float scale = f.number("scale", 1.0f);
+          if (!(scale > 0.0f)) f.fail("scale", "must be positive");
+          const glm::mat4 m = f.has("transform") ? matrixField(f, "transform") : glm::mat4(1.0f);
+          if (!(uniformScale(glm::mat3(m)) > 0.0f)) f.fail("transform", "must rotate only (and scale uniformly)");
+          scene.environmentLight = int(scene.lights.size());
+          try {
+            l = std::make_unique<EnvMapLight>(loadEnvironmentImage(path, options.memoryLimit), m, scale, bounds, scene.range);
+          } catch (const std::runtime_error& e) {
+            f.fail("file", e.what());
+          }
         } else {
-          f.fail("type", "unknown light type '" + type + "' (point, spot, distant, environment)");
+          f.fail("type", "unknown light type '" + type + "' (point, spot, distant, environment, envmap)");
         }
         f.finish();
         scene.lights.push_back(std::move(l));

@@ -9,6 +9,10 @@
 #include <fstream>
 #include <string>
 
+#include <ImfRgbaFile.h>
+
+#include "core/color.h"
+#include "core/envmap_light.h"
 #include "core/error.h"
 #include "scene/scene_loader.h"
 #include "scene/mitsuba/mitsuba_scene.h"
@@ -242,7 +246,7 @@ TEST_F(MitsubaImport, Emitters) {
   ASSERT_NE(distant, nullptr);
   expectNear(distant->direction(), Vec3(0, -1, 0));
   ASSERT_NE(s->environment(), nullptr);
-  EXPECT_FLOAT_EQ(s->environment()->Le(500.0f), 0.5f);
+  EXPECT_FLOAT_EQ(s->environment()->Le(500.0f, Vec3(0, 1, 0)), 0.5f);
 }
 
 TEST_F(MitsubaImport, Bsdfs) {
@@ -315,6 +319,44 @@ TEST_F(MitsubaImport, Spectra) {
   EXPECT_NEAR(mitsuba::planckRadiance(580.0, 5000.0), 1.2800e4, 0.001e4);
 }
 
+TEST_F(MitsubaImport, RgbColours) {
+  const auto t = translate(R"(
+    <bsdf type="diffuse" id="a"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf>
+    <shape type="rectangle"><ref id="a"/><emitter type="area"><rgb name="radiance" value="3, 2, 1"/></emitter></shape>)");
+  // A reflectance stays kasha's rgb spectrum (Jakob–Hanika, upsampled by the JSON loader).
+  EXPECT_EQ(t.scene["materials"]["a"]["reflectance"], json({{"type", "rgb"}, {"value", {0.2f, 0.5f, 0.8f}}}));
+  // An emission is tabulated; on kasha's film (XYZ by the CIE observer) it has the colour given.
+  const json& e = t.scene["shapes"][0]["emission"]["radiance"];
+  Vec3 xyz(0.0f);
+  for (size_t i = 0; i + 1 < e["wavelengths"].size(); ++i) {
+    const float a = e["wavelengths"][i], b = e["wavelengths"][i + 1];
+    const float mid = 0.5f * (a + b), v = 0.5f * (e["values"][i].get<float>() + e["values"][i + 1].get<float>());
+    xyz += Observer::cie1931().weight(mid) * v * (b - a);
+  }
+  const Vec3 rgb = xyzToLinearSrgb(xyz);
+  EXPECT_NEAR(rgb.x, 3.0f, 0.03f);
+  EXPECT_NEAR(rgb.y, 2.0f, 0.02f);
+  EXPECT_NEAR(rgb.z, 1.0f, 0.01f);
+  EXPECT_NO_THROW(load(R"(<shape type="rectangle"><bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf>
+      <emitter type="area"><rgb name="radiance" value="3, 2, 1"/></emitter></shape>)"));
+}
+
+TEST_F(MitsubaImport, EnvmapEmitter) {
+  std::vector<Imf::Rgba> px(8, Imf::Rgba(1.0f, 0.5f, 0.25f, 1.0f));
+  {
+    Imf::RgbaOutputFile out((dir / "sky.exr").c_str(), 4, 2, Imf::WRITE_RGBA);
+    out.setFrameBuffer(px.data(), 1, 4);
+    out.writePixels(2);
+  }
+  const auto s = load(std::string(kFloor) + R"(<emitter type="envmap"><string name="filename" value="sky.exr"/>
+      <float name="scale" value="2"/><transform name="to_world"><rotate y="1" angle="90"/></transform></emitter>)");
+  const auto* env = dynamic_cast<const EnvMapLight*>(s->environment());
+  ASSERT_NE(env, nullptr);
+  // Rotating 90° about +y takes local +x (u = 1/4) to world −z.
+  EXPECT_NEAR(env->directionToUv(Vec3(0, 0, -1)).x, 0.25f, 1e-6f);
+  EXPECT_FLOAT_EQ(env->Le(550.0f, Vec3(0, 1, 0)), 2.0f * rgbIlluminant(Vec3(1.0f, 0.5f, 0.25f))(550.0f));
+}
+
 TEST_F(MitsubaImport, DefaultsRefsAndIncludes) {
   write("materials.xml", R"(<scene version="3.0.0"><bsdf type="diffuse" id="grey"><float name="reflectance" value="$refl"/></bsdf></scene>)");
   const auto t = translate(std::string(R"(<default name="refl" value="0.7"/><default name="w" value="2"/>)") + kLight + R"(
@@ -340,8 +382,8 @@ TEST_F(MitsubaImport, UnsupportedPluginsAndPropertiesAreErrorsWithFileLineAndPlu
   // A property the plugin does not read: the line of the property, the plugin's name.
   EXPECT_CONTAINS(error(prefix + std::string(kLight) + "<shape type=\"sphere\">\n<float name=\"radiuss\" value=\"1\"/></shape>"),
                   file() + ":8: shape 'sphere': unsupported property 'radiuss'");
-  EXPECT_CONTAINS(error(prefix + "<shape type=\"rectangle\"><bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.5\"/></bsdf></shape>"),
-                  "rgb");
+  EXPECT_CONTAINS(error(prefix + std::string(kLight) + "<shape type=\"rectangle\"><bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"1.5, 0.2, 0.2\"/></bsdf></shape>"),
+                  "reflectance colour component 1.500000 is outside [0, 1]");
   EXPECT_CONTAINS(error(prefix + "<shape type=\"rectangle\"><ref id=\"nowhere\"/></shape>"), "no <bsdf id=\"nowhere\">");
   EXPECT_CONTAINS(error(prefix + "<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>"),
                   "parameter '$r' has no <default>");

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/affine.h"
 #include "scene/mitsuba/xml_bsdf.h"
 #include "scene/mitsuba/xml_spectrum.h"
 #include "scene/mitsuba/xml_transform.h"
@@ -47,20 +48,9 @@ json emission(Plugin& s) {
   if (emitters.size() > 1) s.fail(emitters[1], "more than one emitter in a shape");
   Plugin e(s.xml(), emitters[0]);
   if (e.type() != "area") e.fail("only an 'area' emitter can be attached to a shape");
-  json em = {{"radiance", spectrumProperty(e, "radiance")}};
+  json em = {{"radiance", spectrumProperty(e, "radiance", nullptr, SpectrumUse::Emission)}};
   e.finish();
   return em;
-}
-
-// Uniform scale s of an affine map (its 3×3 part is s times a rotation), or 0 if it is not one.
-float uniformScale(const Mat4& m) {
-  const glm::mat3 a(m);
-  const float s = glm::length(a[0]);
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(glm::length(a[i]) - s) > 1e-4f * s) return 0.0f;
-    if (std::abs(glm::dot(a[i], a[(i + 1) % 3])) > 1e-4f * s * s) return 0.0f;
-  }
-  return s;
 }
 
 std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
@@ -100,7 +90,7 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     if (flip) s.fail("flip_normals on a sphere is not supported (kasha's sphere normals point outwards)");
     const pugi::xml_node c = s.property("center");
     const Vec3 center = transformPoint(m, c ? parsePointProperty(s.xml(), c) : Vec3(0.0f));
-    const float scale = uniformScale(m);
+    const float scale = uniformScale(glm::mat3(m));
     if (!(scale > 0.0f)) s.fail("a sphere's to_world may only rotate, translate and scale uniformly");
     return {{{"type", "sphere"}, {"center", {center.x, center.y, center.z}}, {"radius", s.number("radius", 1.0f) * scale}}};
   }

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/rgb_illuminant.h"
+
 namespace kasha::mitsuba {
 namespace {
 
@@ -94,6 +96,18 @@ json spectrumPlugin(XmlImport& xml, pugi::xml_node p) {
   return out;
 }
 
+// <rgb value="r, g, b"> (or one value for grey), linear sRGB: a reflectance stays kasha's
+// {"type": "rgb"} (the JSON loader upsamples it); an emission is tabulated here.
+json rgb(XmlImport& xml, pugi::xml_node p, SpectrumUse use) {
+  const auto v = parseNumbers(xml.attribute(p, "value"));
+  if (!v || (v->size() != 3 && v->size() != 1)) xml.fail(p, "value is not 1 or 3 finite numbers");
+  const Vec3 c = v->size() == 3 ? Vec3((*v)[0], (*v)[1], (*v)[2]) : Vec3(v->front());
+  if (c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) xml.fail(p, "negative colour component");
+  if (use == SpectrumUse::Reflectance) return {{"type", "rgb"}, {"value", {c.x, c.y, c.z}}};
+  const Spectrum s = rgbIlluminantSpectrum(c, WavelengthRange{360.0f, 830.0f});
+  return {{"type", "tabulated"}, {"wavelengths", s.lambdas()}, {"values", s.values()}};
+}
+
 }  // namespace
 
 double planckRadiance(double nm, double kelvin) {
@@ -102,7 +116,7 @@ double planckRadiance(double nm, double kelvin) {
   return 2.0 * h * c * c / std::pow(l, 5) / std::expm1(h * c / (l * k * kelvin)) * 1e-9;  // per nm
 }
 
-json spectrumElement(XmlImport& xml, pugi::xml_node p) {
+json spectrumElement(XmlImport& xml, pugi::xml_node p, SpectrumUse use) {
   const std::string tag = p.name();
   if (tag == "float") {
     const auto v = parseNumbers(xml.attribute(p, "value"));
@@ -121,9 +135,7 @@ json spectrumElement(XmlImport& xml, pugi::xml_node p) {
     }
     return out;
   }
-  if (tag == "rgb" || tag == "srgb")
-    xml.fail(p, "<" + tag + "> colours are not supported yet: kasha has no RGB-to-spectrum upsampling "
-                "on this branch; give a <spectrum> (value=\"400:r1, 500:r2, ...\", filename=\"x.spd\")");
+  if (tag == "rgb") return rgb(xml, p, use);
   if (tag == "texture" || tag == "ref")
     xml.fail(p, "textures are not supported for this property; give a <spectrum>");
   if (tag != "spectrum") xml.fail(p, "expected a spectrum (<spectrum>, <float>, <blackbody>), got <" + tag + ">");
@@ -146,13 +158,13 @@ json spectrumElement(XmlImport& xml, pugi::xml_node p) {
   return v->front();
 }
 
-json spectrumProperty(Plugin& owner, const std::string& name, const json& fallback) {
+json spectrumProperty(Plugin& owner, const std::string& name, const json& fallback, SpectrumUse use) {
   const pugi::xml_node p = owner.property(name);
   if (!p) {
     if (fallback.is_null()) owner.fail("missing spectrum property '" + name + "'");
     return fallback;
   }
-  return spectrumElement(owner.xml(), p);
+  return spectrumElement(owner.xml(), p, use);
 }
 
 }  // namespace kasha::mitsuba
