@@ -371,6 +371,19 @@ TEST_F(MitsubaImport, DefaultsRefsAndIncludes) {
   EXPECT_EQ(t.scene["shapes"][0]["corners"][2], json({2.0f, 2.0f, 0.0f}));
 }
 
+TEST_F(MitsubaImport, ExampleSceneLoads) {
+  const auto s = loadScene(std::string(KASHA_SOURCE_DIR) + "/scenes/mitsuba/fluorescent_matpreview.xml");
+  EXPECT_EQ(s->shapes.size(), 1u + 1u + 1u + 1u + 6u);  // ground, coaster, sphere, icosphere, cube faces
+  EXPECT_EQ(s->lights.size(), 2u);                     // envmap and spot
+  ASSERT_NE(dynamic_cast<const EnvMapLight*>(s->environment()), nullptr);
+  EXPECT_EQ(s->shapes[3].indices.size(), 320u * 3u);   // the PLY icosphere
+  EXPECT_EQ(s->render.spp, 128);
+  EXPECT_EQ(s->camera.width(), 480);
+  size_t fluorescent = 0;
+  for (const auto& m : s->materials) fluorescent += m->fluoresces();
+  EXPECT_EQ(fluorescent, 1u);  // FITC only: roughplastic became coated_fluorescent with c = 0
+}
+
 // ---- errors name the file, the line and the plugin ------------------------------------------
 
 TEST_F(MitsubaImport, UnsupportedPluginsAndPropertiesAreErrorsWithFileLineAndPlugin) {
