@@ -3,6 +3,7 @@
 // InputError naming the file, the JSON pointer and the reason.
 #include <nlohmann/json_fwd.hpp>
 
+#include <iostream>
 #include <memory>
 #include <string>
 
@@ -14,6 +15,8 @@ struct SceneLoadOptions {
   // A mesh whose estimated memory (about 6 times its file size) exceeds this is refused before it
   // is read (a MemoryLimitError naming the file).
   uint64_t memoryLimit = kDefaultMemoryLimit;
+  // Where the Mitsuba importer reports its approximations, one line each; nullptr: nowhere.
+  std::ostream* notes = &std::cerr;
 };
 
 // A path ending in .xml is a Mitsuba 3 scene (scene/mitsuba/mitsuba_scene.h), anything else kasha JSON.

@@ -369,6 +369,16 @@ TEST_F(MitsubaImport, DefaultsRefsAndIncludes) {
   EXPECT_EQ(t.scene["shapes"][0]["material"], "grey");
   EXPECT_EQ(t.scene["shapes"][0]["name"], "floor");
   EXPECT_EQ(t.scene["shapes"][0]["corners"][2], json({2.0f, 2.0f, 0.0f}));
+  // The same file may be included twice (not a cycle); here it defines the same id again.
+  write("plain.xml", "<scene version=\"3.0.0\"><bsdf type=\"diffuse\" id=\"grey\"/></scene>");
+  const std::string twice = write("twice.xml", "<scene version=\"3.0.0\"><include filename=\"plain.xml\"/>"
+                                               "<include filename=\"plain.xml\"/></scene>");
+  try {
+    loadScene(twice);
+    FAIL() << "loaded two bsdfs with one id";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), "a second <bsdf> with id 'grey'"));
+  }
 }
 
 TEST_F(MitsubaImport, ExampleSceneLoads) {

@@ -1,6 +1,5 @@
 #include "scene/mitsuba/mitsuba_scene.h"
 
-#include <iostream>
 
 #include "scene/mitsuba/xml_bsdf.h"
 #include "scene/mitsuba/xml_emitter.h"
@@ -23,6 +22,7 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
     } else if (tag == "include") {
       const pugi::xml_document& doc = xml.include(xml.resolve(c, xml.attribute(c, "filename")), c);
       visit(xml, doc.document_element(), out, depth + 1);
+      xml.endInclude();
     } else if (tag == "integrator") {
       addIntegrator(xml, c, out);
     } else if (tag == "sensor") {
@@ -100,7 +100,8 @@ std::unique_ptr<Scene> loadMitsubaScene(const std::string& text, const std::stri
   XmlImport xml;
   SceneJson out;
   build(xml, out, text, path);
-  for (const std::string& n : xml.notes()) std::cerr << "kasha: note: " << n << "\n";
+  if (options.notes)
+    for (const std::string& n : xml.notes()) *options.notes << "kasha: note: " << n << "\n";
   try {
     return loadSceneFromJson(out.root, path, options);
   } catch (const InputError& e) {

@@ -20,7 +20,7 @@ struct Translation {
 // or properties are InputErrors naming the file, the line and the plugin.
 Translation translateMitsubaScene(const std::string& text, const std::string& path);
 
-// Translates and loads; prints each approximation to stderr as "kasha: note: ...". Errors the
+// Translates and loads; prints each approximation to options.notes as "kasha: note: ...". Errors the
 // JSON loader finds in the translation are reported at the XML element they came from.
 std::unique_ptr<Scene> loadMitsubaScene(const std::string& text, const std::string& path, const SceneLoadOptions& options);
 

@@ -23,8 +23,10 @@ class XmlImport {
   // Parses `text` as the file `path` (the top-level scene); malformed XML is an InputError
   // naming the file and line.
   const pugi::xml_document& parse(const std::string& text, const std::string& path);
-  // Parses the file `path` for an <include> at `from`; a cycle of includes is an error.
+  // Parses the file `path` for an <include> at `from`; a cycle of includes is an error. Call
+  // endInclude() when its elements have been read (the same file may be included again later).
   const pugi::xml_document& include(const std::string& path, pugi::xml_node from);
+  void endInclude() { including_.pop_back(); }
 
   // "file:line" of a node.
   std::string where(pugi::xml_node n) const;
