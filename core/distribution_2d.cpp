@@ -46,8 +46,7 @@ Distribution2D::Sample Distribution2D::sample(Vec2 u) const {
 }
 
 float Distribution2D::pdf(Vec2 uv) const {
-  const size_t y = size_t(std::clamp(int(uv.y * float(h_)), 0, h_ - 1));
-  const size_t x = size_t(std::clamp(int(uv.x * float(w_)), 0, w_ - 1));
+  const size_t y = size_t(cellIndex(uv.y, h_)), x = size_t(cellIndex(uv.x, w_));
   return marginal_.pdf(y) * rows_[y].pdf(x);
 }
 

@@ -2,11 +2,20 @@
 // Piecewise-constant densities over [0, 1] and [0, 1]² (pbrt-v4 §A.5: a marginal density over
 // rows and a conditional density per row), sampled by inverting their CDFs. A cell's density is
 // its weight over the mean weight; cells of zero weight are never sampled.
+#include <algorithm>
 #include <vector>
 
 #include "core/math.h"
 
 namespace kasha {
+
+// The cell of n equal cells over [0, 1) holding t; t outside (or NaN) clamps to the first or
+// last cell, without the undefined float-to-int conversion of an out-of-range value.
+inline int cellIndex(float t, int n) {
+  const float x = t * float(n);
+  if (!(x > 0.0f)) return 0;
+  return x < float(n) ? std::min(int(x), n - 1) : n - 1;
+}
 
 class Distribution1D {
  public:

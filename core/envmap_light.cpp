@@ -115,7 +115,7 @@ Vec3 EnvMapLight::uvToDirection(Vec2 uv) const {
 }
 
 size_t EnvMapLight::texel(Vec2 uv) const {
-  const int x = std::clamp(int(uv.x * float(w_)), 0, w_ - 1), y = std::clamp(int(uv.y * float(h_)), 0, h_ - 1);
+  const int x = cellIndex(uv.x, w_), y = cellIndex(uv.y, h_);
   return size_t(y) * size_t(w_) + size_t(x);
 }
 
