@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/json_fields.h"
+#include "core/rgb_spectrum.h"
 #include "core/spectrum_csv.h"
 #include "core/spectrum_presets.h"
 
@@ -27,6 +28,20 @@ float nonNegative(JsonFields& f, const std::string& key, float fallback, bool re
   const float v = required ? f.number(key) : f.number(key, fallback);
   if (v < 0.0f) f.fail(key, "must not be negative (" + std::to_string(v) + ")");
   return v;
+}
+
+// A linear sRGB reflectance colour: three numbers in [0, 1].
+Vec3 rgbField(JsonFields& f, const std::string& key) {
+  const nlohmann::json& v = f.get(key);
+  if (!v.is_array() || v.size() != 3) f.fail(key, "expected [r, g, b] (linear sRGB, each in [0, 1])");
+  Vec3 rgb;
+  for (int i = 0; i < 3; ++i) {
+    if (!v[i].is_number()) f.fail(key + "/" + std::to_string(i), "expected a number, got " + jsonTypeName(v[i]));
+    rgb[i] = v[i].get<float>();
+    if (!(rgb[i] >= 0.0f && rgb[i] <= 1.0f))
+      f.fail(key + "/" + std::to_string(i), "reflectance colour component " + std::to_string(rgb[i]) + " is outside [0, 1]");
+  }
+  return rgb;
 }
 
 Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr) {
@@ -93,6 +108,8 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
     const float lo = f.number("min"), hi = f.number("max");
     if (!(hi > lo)) f.fail("max", "must exceed /min");
     s = Spectrum::box(lo, hi, nonNegative(f, "value", 1.0f, false));
+  } else if (type == "rgb") {
+    s = rgbToSpectrum(rgbField(f, "value"), ctx.range ? *ctx.range : WavelengthRange{});
   } else if (type == "preset") {
     const std::string name = f.string("name");
     const auto p = presetSpectrum(name);
@@ -100,7 +117,7 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
     s = *p;
   } else {
     f.fail("type", "unknown spectrum type '" + type +
-                       "' (constant, tabulated, file, gaussian, blackbody, box, preset)");
+                       "' (constant, tabulated, file, gaussian, blackbody, box, rgb, preset)");
   }
   const float scale = nonNegative(f, "scale", 1.0f, false);
   f.finish();

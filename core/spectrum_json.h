@@ -9,6 +9,7 @@
 //   {"type": "gaussian", "center": nm, "fwhm": nm, "peak": v}
 //   {"type": "blackbody", "kelvin": T}
 //   {"type": "box", "min": nm, "max": nm, "value": v}
+//   {"type": "rgb", "value": [r, g, b]}  a reflectance from a linear sRGB colour (rgb_spectrum.h)
 //   {"type": "preset", "name": "D65"}
 // and every object form takes an optional "scale". Files are relative to the scene file.
 #include <functional>

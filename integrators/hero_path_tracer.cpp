@@ -113,8 +113,8 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
         float w = 1.0f;
         if (!prevSpecular)
           w = powerHeuristic(prevDirPdf,
-                             lightSelectProbability(scene, size_t(scene.environmentLight), prevSelect) * env->pdfDirection());
-        for (int j = 0; j < s.n; ++j) s.L[j] += s.beta[j] * env->Le(s.lambda[j]) * w;
+                             lightSelectProbability(scene, size_t(scene.environmentLight), prevSelect) * env->pdfDirection(ray.d));
+        for (int j = 0; j < s.n; ++j) s.L[j] += s.beta[j] * env->Le(s.lambda[j], ray.d) * w;
       }
       break;
     }

@@ -44,10 +44,10 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Sampler& r
     ++counter.closest;
     if (!hit) {
       if (const EnvironmentLight* env = scene.environment()) {
-        const float Le = env->Le(lambda);
+        const float Le = env->Le(lambda, ray.d);
         float w = 1.0f;
         if (!prevSpecular) {
-          const float lightPdf = lights.probability(size_t(scene.environmentLight), lambda) * env->pdfDirection();
+          const float lightPdf = lights.probability(size_t(scene.environmentLight), lambda) * env->pdfDirection(ray.d);
           w = powerHeuristic(prevDirPdf * prevSpectralPdf, lightPdf * prevNeeSpectralPdf);
         }
         L += beta * Le * w;

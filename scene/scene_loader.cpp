@@ -10,11 +10,15 @@
 #include <sstream>
 #include <vector>
 
+#include "core/affine.h"
+#include "core/envmap_light.h"
 #include "core/json_fields.h"
+#include "core/mesh_builders.h"
 #include "core/memory_budget.h"
 #include "core/spectrum_json.h"
 #include "core/spectrum_presets.h"
 #include "materials/material_json.h"
+#include "scene/mitsuba/mitsuba_scene.h"
 
 namespace kasha {
 namespace {
@@ -24,6 +28,8 @@ using nlohmann::json;
 // Reading an OBJ file takes about this many times its size in memory (tinyobjloader's arrays,
 // kasha's positions, indices and normals, Embree's BVH): measured on meshes of 10⁴–10⁶ triangles.
 constexpr uint64_t kMeshBytesPerFileByte = 6;
+// Triangles of a "disk" shape: its area is 1 − 1.0·10⁻⁴ of the disk's.
+constexpr int kDiskSegments = 256;
 
 struct Loader {
   std::string file;
@@ -209,16 +215,7 @@ struct Loader {
     cfg.triangulate = true;
     cfg.vertex_color = false;
     tinyobj::ObjReader reader;
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) f.fail("file", "cannot open '" + path + "'");
-    const uint64_t size = std::filesystem::file_size(path, ec);
-    if (ec) f.fail("file", "cannot open '" + path + "': " + ec.message());
-    try {
-      requireMemory(saturatingMul(size, kMeshBytesPerFileByte),
-                    "'" + path + "' (" + formatBytes(size) + "): reading it", options.memoryLimit);
-    } catch (const MemoryLimitError& e) {
-      f.fail("file", e.what());
-    }
+    requireMeshFile(f, path);
     if (!reader.ParseFromFile(path, cfg)) f.fail("file", "'" + path + "': " + reader.Error());
     const auto& v = reader.GetAttrib().vertices;
     for (size_t i = 0; i + 2 < v.size(); i += 3) {
@@ -240,10 +237,63 @@ struct Loader {
       }
     if (!s.cornerUvs.empty() && s.cornerUvs.size() != s.indices.size())
       f.fail("file", "'" + path + "': some faces have texture coordinates (vt) and some do not");
+    scaleAndTranslate(f, s);
+  }
+
+  // A mesh file that exists and fits the memory limit when read.
+  void requireMeshFile(JsonFields& f, const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) f.fail("file", "cannot open '" + path + "'");
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) f.fail("file", "cannot open '" + path + "': " + ec.message());
+    try {
+      requireMemory(saturatingMul(size, kMeshBytesPerFileByte),
+                    "'" + path + "' (" + formatBytes(size) + "): reading it", options.memoryLimit);
+    } catch (const MemoryLimitError& e) {
+      f.fail("file", e.what());
+    }
+  }
+
+  void scaleAndTranslate(JsonFields& f, Shape& s) {
     const float scale = f.number("scale", 1.0f);
     if (!(scale > 0.0f)) f.fail("scale", "must be positive");
     const Vec3 translate = f.vec3("translate", Vec3(0.0f));
     for (Vec3& p : s.positions) p = p * scale + translate;
+  }
+
+  void loadPly(JsonFields& f, Shape& s) {
+    const std::string path = resolve(f.string("file"));
+    requireMeshFile(f, path);
+    try {
+      readPlyMesh(path, s);
+    } catch (const std::runtime_error& e) {
+      f.fail("file", e.what());
+    }
+    scaleAndTranslate(f, s);
+  }
+
+  // "transform": four rows of four finite numbers, an invertible affine map (last row 0 0 0 1).
+  glm::mat4 matrixField(JsonFields& f, const std::string& key) {
+    const json& rows = f.get(key);
+    glm::mat4 m(1.0f);
+    if (!rows.is_array() || rows.size() != 4) f.fail(key, "expected 4 rows of 4 numbers");
+    for (int r = 0; r < 4; ++r) {
+      if (!rows[r].is_array() || rows[r].size() != 4) f.fail(key, "expected 4 rows of 4 numbers");
+      for (int c = 0; c < 4; ++c) {
+        if (!rows[r][c].is_number() || !std::isfinite(rows[r][c].get<double>())) f.fail(key, "expected finite numbers");
+        m[c][r] = rows[r][c].get<float>();
+      }
+    }
+    if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f)
+      f.fail(key, "the last row must be [0, 0, 0, 1] (an affine map)");
+    if (glm::determinant(glm::mat3(m)) == 0.0f) f.fail(key, "the matrix is singular");
+    return m;
+  }
+
+  // Placement of triangle shapes: "transform" (after any scale/translate), then "flip_normals".
+  void meshPlacement(JsonFields& f, Shape& s) {
+    if (f.has("transform")) transformMesh(s, matrixField(f, "transform"));
+    if (f.boolean("flip_normals", false)) flipMeshNormals(s);
   }
 
   void rectangle(JsonFields& f, Shape& s) {
@@ -284,11 +334,17 @@ struct Loader {
         s.radius = f.number("radius");
         if (!(s.radius > 0.0f)) f.fail("radius", "must be positive");
       } else if (type == "mesh") {
-        loadObj(f, s);
+        if (std::filesystem::path(f.string("file")).extension() == ".ply") loadPly(f, s);
+        else loadObj(f, s);
+        meshPlacement(f, s);
       } else if (type == "rectangle") {
         rectangle(f, s);
+        meshPlacement(f, s);
+      } else if (type == "disk") {
+        tessellateUnitDisk(s, kDiskSegments);
+        meshPlacement(f, s);
       } else {
-        f.fail("type", "unknown shape type '" + type + "' (sphere, rectangle, mesh)");
+        f.fail("type", "unknown shape type '" + type + "' (sphere, rectangle, mesh, disk)");
       }
       const std::string mat = f.string("material");
       auto it = materialIndex.find(mat);
@@ -355,8 +411,21 @@ struct Loader {
           const float scale = scaleField(f, L);
           scene.environmentLight = int(scene.lights.size());
           l = std::make_unique<EnvironmentLight>(std::move(L), scale, bounds);
+        } else if (type == "envmap") {
+          if (scene.environmentLight >= 0) f.fail("type", "only one environment light is allowed");
+          const std::string path = resolve(f.string("file"));
+          const float scale = f.number("scale", 1.0f);
+          if (!(scale > 0.0f)) f.fail("scale", "must be positive");
+          const glm::mat4 m = f.has("transform") ? matrixField(f, "transform") : glm::mat4(1.0f);
+          if (!(uniformScale(glm::mat3(m)) > 0.0f)) f.fail("transform", "must rotate only (and scale uniformly)");
+          scene.environmentLight = int(scene.lights.size());
+          try {
+            l = std::make_unique<EnvMapLight>(loadEnvironmentImage(path, options.memoryLimit), m, scale, bounds, scene.range);
+          } catch (const std::runtime_error& e) {
+            f.fail("file", e.what());
+          }
         } else {
-          f.fail("type", "unknown light type '" + type + "' (point, spot, distant, environment)");
+          f.fail("type", "unknown light type '" + type + "' (point, spot, distant, environment, envmap)");
         }
         f.finish();
         scene.lights.push_back(std::move(l));
@@ -410,12 +479,18 @@ void checkFloatRange(const json& v, const std::string& file, const std::string& 
 
 std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::string& path,
                                            const SceneLoadOptions& options) {
+  if (mitsuba::isMitsubaScenePath(path)) return mitsuba::loadMitsubaScene(text, path, options);
   json root;
   try {
     root = json::parse(text);
   } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e400
     throw InputError(path, "", std::string("malformed JSON: ") + e.what());
   }
+  return loadSceneFromJson(root, path, options);
+}
+
+std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& root, const std::string& path,
+                                         const SceneLoadOptions& options) {
   checkFloatRange(root, path, "");
   auto scene = std::make_unique<Scene>();
   scene->path = path;

@@ -1,6 +1,9 @@
 #pragma once
 // Loading scenes from JSON (the format is documented in docs/scene-format.md). Every problem is an
 // InputError naming the file, the JSON pointer and the reason.
+#include <nlohmann/json_fwd.hpp>
+
+#include <iostream>
 #include <memory>
 #include <string>
 
@@ -12,11 +15,17 @@ struct SceneLoadOptions {
   // A mesh whose estimated memory (about 6 times its file size) exceeds this is refused before it
   // is read (a MemoryLimitError naming the file).
   uint64_t memoryLimit = kDefaultMemoryLimit;
+  // Where the Mitsuba importer reports its approximations, one line each; nullptr: nowhere.
+  std::ostream* notes = &std::cerr;
 };
 
+// A path ending in .xml is a Mitsuba 3 scene (scene/mitsuba/mitsuba_scene.h), anything else kasha JSON.
 std::unique_ptr<Scene> loadScene(const std::string& path, const SceneLoadOptions& options = {});
 // Same, from JSON text; `path` names it in messages and anchors relative file names.
 std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::string& path,
                                            const SceneLoadOptions& options = {});
+// Same, from parsed JSON (the Mitsuba importer's translation).
+std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& root, const std::string& path,
+                                         const SceneLoadOptions& options = {});
 
 }  // namespace kasha

@@ -231,7 +231,7 @@ TEST_F(SceneLoader, EveryFeatureLoads) {
   EXPECT_EQ(scene->shapeLight, (std::vector<int>{-1, 4, -1, -1, -1}));
   EXPECT_EQ(scene->environmentLight, 3);
   ASSERT_NE(scene->environment(), nullptr);
-  EXPECT_NEAR(scene->environment()->Le(500.0f), 0.2f, 1e-6f);
+  EXPECT_NEAR(scene->environment()->Le(500.0f, Vec3(0, 1, 0)), 0.2f, 1e-6f);
   const auto* point = dynamic_cast<const PointLight*>(scene->lights[0].get());
   ASSERT_NE(point, nullptr);
   const float fourPi = 4.0f * 3.14159265f;
@@ -379,11 +379,11 @@ TEST_F(SceneLoader, UnknownTypes) {
   expectError([](json& j) { j["materials"]["white"]["type"] = "glass"; }, "/materials/white/type",
               "unknown material type 'glass'");
   expectError([](json& j) { j["shapes"][0]["type"] = "cube"; }, "/shapes/0/type",
-              "unknown shape type 'cube' (sphere, rectangle, mesh)");
+              "unknown shape type 'cube' (sphere, rectangle, mesh, disk)");
   expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "area"}])"); }, "/lights/0/type",
-              "unknown light type 'area' (point, spot, distant, environment)");
-  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "rgb"}}; },
-              "/materials/white/reflectance/type", "unknown spectrum type 'rgb'");
+              "unknown light type 'area' (point, spot, distant, environment, envmap)");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "hsv"}}; },
+              "/materials/white/reflectance/type", "unknown spectrum type 'hsv'");
   expectError([](json& j) { j["render"] = {{"sensor_sampling", "random"}}; }, "/render/sensor_sampling",
               "unknown kind 'random'");
   expectError([](json& j) { j["render"] = {{"mollify", {{"alpha", 1.0}}}}; }, "/render/mollify/alpha", "must be in (0, 1)");

@@ -113,7 +113,7 @@ float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
   if (e.light < 0) return 0.0f;
   const PathVertex& next = C[size_t(t - 2)];
   const float Le = e.kind == Kind::Infinite
-                       ? c.scene.environment()->Le(e.lambda)
+                       ? c.scene.environment()->Le(e.lambda, -e.dir)
                        : static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission->eval(
                              e.lambda, e.n, towards(e, next));
   if (!(Le > 0.0f)) return 0.0f;

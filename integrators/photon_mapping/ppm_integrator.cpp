@@ -109,7 +109,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++ctx.counter.closest;
     if (!hit) {
-      if (const EnvironmentLight* env = scene.environment()) xyz += sensor * (beta * env->Le(lambda));
+      if (const EnvironmentLight* env = scene.environment()) xyz += sensor * (beta * env->Le(lambda, ray.d));
       break;
     }
     const Shape& shape = scene.shapes[hit->shape];
