@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/exr_input.h"
 #include "core/image_input.h"
 
 namespace kasha {

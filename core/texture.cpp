@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/exr_input.h"
 #include "core/image_input.h"
 #include "core/input_file.h"
 
