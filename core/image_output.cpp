@@ -74,6 +74,8 @@ void writeExr(const Film& film, const std::string& path) {
     Imf::OutputFile file(stream, header);
     file.setFrameBuffer(fb);
     file.writePixels(h);
+  } catch (const OutputError&) {  // names the file already
+    throw;
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot write '" + path + "': " + e.what());
   }

@@ -74,14 +74,15 @@ class Checker {
   }
 
   // One index of a corner: an integer, not 0, within the `defined` elements so far.
-  void index(std::string_view text, int64_t defined, const char* kind, std::string_view corner) {
+  void index(std::string_view text, int64_t defined, const char* kind, const char* kinds, std::string_view corner) {
     int64_t i = 0;
     const auto r = std::from_chars(text.data(), text.data() + text.size(), i);
     if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size())
       fail("corner '" + std::string(corner) + "': '" + std::string(text) + "' is not an integer index");
     if (i == 0 || i > defined || i < -defined)
       fail("corner '" + std::string(corner) + "' refers to " + kind + " " + std::string(text) + ", but " +
-           std::to_string(defined) + " " + kind + (defined == 1 ? " is" : "s are") + " defined before this line");
+           std::to_string(defined) + " " + (defined == 1 ? std::string(kind) + " is" : std::string(kinds) + " are") +
+           " defined before this line");
   }
 
   void corners(const std::vector<std::string_view>& t, size_t minimum, const char* what) {
@@ -93,11 +94,11 @@ class Checker {
       const size_t s2 = s1 == std::string_view::npos ? std::string_view::npos : c.find('/', s1 + 1);
       if (s2 != std::string_view::npos && c.find('/', s2 + 1) != std::string_view::npos)
         fail("corner '" + std::string(c) + "' has more than three indices");
-      index(c.substr(0, s1), counts_.v, "vertex", c);
+      index(c.substr(0, s1), counts_.v, "vertex", "vertices", c);
       if (s1 == std::string_view::npos) continue;
       const std::string_view vt = c.substr(s1 + 1, s2 == std::string_view::npos ? std::string_view::npos : s2 - s1 - 1);
-      if (!vt.empty() || s2 == std::string_view::npos) index(vt, counts_.vt, "texture coordinate", c);
-      if (s2 != std::string_view::npos) index(c.substr(s2 + 1), counts_.vn, "normal", c);
+      if (!vt.empty() || s2 == std::string_view::npos) index(vt, counts_.vt, "texture coordinate", "texture coordinates", c);
+      if (s2 != std::string_view::npos) index(c.substr(s2 + 1), counts_.vn, "normal", "normals", c);
     }
   }
 

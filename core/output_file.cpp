@@ -65,11 +65,11 @@ void OutputFile::fail(const std::string& what, int error) {
   fd_ = -1;
   if (!tmp_.empty()) ::unlink(tmp_.c_str());
   tmp_.clear();
-  throw std::runtime_error("cannot write '" + path_ + "': " + what + " (" + std::strerror(error) + ")");
+  throw OutputError("cannot write '" + path_ + "': " + what + " (" + std::strerror(error) + ")");
 }
 
 void OutputFile::write(const void* data, size_t n) {
-  if (fd_ < 0) throw std::runtime_error("cannot write '" + path_ + "': the file is closed");
+  if (fd_ < 0) throw OutputError("cannot write '" + path_ + "': the file is closed");
   const char* p = static_cast<const char*>(data);
   while (n > 0) {
     const ssize_t w = ::write(fd_, p, n);
@@ -80,13 +80,13 @@ void OutputFile::write(const void* data, size_t n) {
 }
 
 void OutputFile::seek(uint64_t position) {
-  if (fd_ < 0) throw std::runtime_error("cannot write '" + path_ + "': the file is closed");
+  if (fd_ < 0) throw OutputError("cannot write '" + path_ + "': the file is closed");
   if (::lseek(fd_, off_t(position), SEEK_SET) < 0) fail("seek failed", errno);
   position_ = position;
 }
 
 void OutputFile::commit() {
-  if (fd_ < 0) throw std::runtime_error("cannot write '" + path_ + "': the file is closed");
+  if (fd_ < 0) throw OutputError("cannot write '" + path_ + "': the file is closed");
   if (::fchmod(fd_, defaultMode()) != 0) fail("cannot set its permissions", errno);
   // On disk before the rename, so that after a crash the name holds the old or the new file.
   if (::fsync(fd_) != 0) fail("fsync failed", errno);

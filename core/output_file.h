@@ -8,14 +8,21 @@
 // commit() nothing exists under the target name; if commit() is not reached (an exception, a
 // failed write) the destructor removes the temporary file.
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace kasha {
 
+// A failure to write an output: "cannot write 'path': reason".
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class OutputFile {
  public:
-  // Creates the temporary file. Throws std::runtime_error "cannot write 'path': reason".
+  // Creates the temporary file. Throws OutputError.
   explicit OutputFile(std::string path);
   ~OutputFile();
   OutputFile(const OutputFile&) = delete;
