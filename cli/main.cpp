@@ -2,8 +2,10 @@
 // reradiation matrix of a fluorescent material (Jung18 eq. 5); `kasha compare` and `kasha metrics`
 // measure renders against a reference.
 //
-// Exit codes: 0 done; 1 bad input (scene, spectrum, mesh, checkpoint) or a memory limit, one line
-// "kasha: error: ..." and nothing written; 2 a bad command line; 128 + signal (130 SIGINT,
+// Exit codes: 0 done; 1 bad input (scene, spectrum, mesh, checkpoint), a memory limit or a failed
+// write, one line "kasha: error: ..." and nothing written; 2 a command-line mistake (CLI11's parse
+// errors and UsageError: an option's value, a combination the integrator refuses, an output path
+// checked by checkOutputs before the first sample); 128 + signal (130 SIGINT,
 // 143 SIGTERM) when a render was asked to stop: it finishes the current pass and writes the image,
 // the statistics and the checkpoint (if any) before exiting.
 #include <CLI/CLI.hpp>
@@ -17,7 +19,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
