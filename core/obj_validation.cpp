@@ -11,13 +11,15 @@
 namespace kasha {
 namespace {
 
+// Tokens separated by spaces and tabs, tinyobjloader's whitespace (any other byte is part of a
+// token, so "v\v1 2 3" is no vertex for either).
 std::vector<std::string_view> tokens(std::string_view line) {
   std::vector<std::string_view> out;
   size_t i = 0;
   while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r' || line[i] == '\v' || line[i] == '\f')) ++i;
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
     const size_t start = i;
-    while (i < line.size() && !(line[i] == ' ' || line[i] == '\t' || line[i] == '\r' || line[i] == '\v' || line[i] == '\f')) ++i;
+    while (i < line.size() && !(line[i] == ' ' || line[i] == '\t')) ++i;
     if (i > start) out.push_back(line.substr(start, i - start));
   }
   return out;
@@ -110,13 +112,15 @@ class Checker {
 
 void validateObjText(const std::string& text, const std::string& path) {
   Checker check(path);
+  // Lines end at "\n", "\r\n" or a lone "\r", as tinyobjloader reads them.
   std::string_view rest(text);
   int64_t number = 0;
   while (!rest.empty()) {
-    const size_t end = rest.find('\n');
+    const size_t end = rest.find_first_of("\r\n");
     check.line(rest.substr(0, end), ++number);
     if (end == std::string_view::npos) break;
-    rest.remove_prefix(end + 1);
+    const bool crlf = rest[end] == '\r' && end + 1 < rest.size() && rest[end + 1] == '\n';
+    rest.remove_prefix(end + (crlf ? 2 : 1));
   }
 }
 

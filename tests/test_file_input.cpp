@@ -245,6 +245,10 @@ TEST_F(FileInput, ImageHeadersAreCheckedAgainstTheMemoryLimitBeforeDecoding) {
             exr + ": decoding its 64x64 pixels needs 48.0 KiB, more than the memory limit of 1.00 KiB (raise it with "
                   "--memory-limit)");
   EXPECT_EQ(ScalarTexture::load(exr, TextureChannel::Mean, 48 * 1024).width(), 64);
+  // A header attribute declaring 2 GB in a 30-byte file: OpenEXR would allocate it before reading.
+  const std::string attr = write("attr.exr", std::string("\x76\x2f\x31\x01\x02\0\0\0x\0string\0\xff\xff\xff\x7f", 22));
+  EXPECT_EQ(errorOf([&] { ScalarTexture::load(attr, TextureChannel::Mean); }),
+            attr + ": cannot read OpenEXR: header attribute 'x' declares 2147483647 bytes, more than the file holds");
 }
 
 TEST_F(FileInput, RenderImagesWithNonFinitePixelsAreRefused) {

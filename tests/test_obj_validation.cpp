@@ -41,6 +41,9 @@ TEST(ObjValidation, NumbersMustBeParsedFullyAndFinite) {
   EXPECT_EQ(problem("v 1 2 3x\n"), "m.obj:1: '3x' is not a finite number (v component 3)");
   EXPECT_EQ(problem("v 1e39 0 0\n"), "m.obj:1: '1e39' is not a finite number (v component 1)");  // beyond a float
   EXPECT_EQ(problem("vt 0.5 0,5\n"), "m.obj:1: '0,5' is not a finite number (vt component 2)");
+  // A lone carriage return ends a line for tinyobjloader (a fuzzing finding): so it does here.
+  EXPECT_EQ(problem("u\rvn inf 1 0\n"), "m.obj:2: 'inf' is not a finite number (vn component 1)");
+  EXPECT_EQ(problem("v 1\v2 3\n"), "m.obj:1: 'v' takes 3 or 4 or 6 or 7 numbers, found 2");
   EXPECT_EQ(problem("vn 0 0\n"), "m.obj:1: 'vn' takes 3 numbers, found 2");
   EXPECT_EQ(problem("v 0 0\n"), "m.obj:1: 'v' takes 3 or 4 or 6 or 7 numbers, found 2");
 }
