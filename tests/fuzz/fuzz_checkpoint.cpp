@@ -14,12 +14,8 @@
 
 namespace {
 
-void require(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "fuzz_checkpoint: broken promise: %s\n", what);
-    std::abort();
-  }
-}
+// A broken promise is a finding.
+void require(bool ok, const char* what) { kasha::fuzz::require(ok, "fuzz_checkpoint", what); }
 
 }  // namespace
 

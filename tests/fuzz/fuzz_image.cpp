@@ -18,12 +18,8 @@
 
 namespace {
 
-void require(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "fuzz_image: broken promise: %s\n", what);
-    std::abort();
-  }
-}
+// A broken promise is a finding.
+void require(bool ok, const char* what) { kasha::fuzz::require(ok, "fuzz_image", what); }
 
 constexpr uint64_t kLimit = uint64_t(256) << 10;
 
@@ -45,7 +41,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     const XyzImage img = readExrXyz(path, kLimit);
     require(img.pixels.size() == size_t(img.width) * size_t(img.height), "one pixel per texel");
-    for (const auto& p : img.pixels) require(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z), "finite pixels");
+    for (const auto& p : img.pixels)
+      require(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z), "finite pixels");
   } catch (const InputError& e) {
     require(std::string(e.what()).rfind(path, 0) == 0, "the message names the file");
   }

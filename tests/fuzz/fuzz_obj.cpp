@@ -12,15 +12,12 @@
 
 #include "core/error.h"
 #include "core/obj_validation.h"
+#include "tests/fuzz/fuzz_support.h"
 
 namespace {
 
-void require(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "fuzz_obj: broken promise: %s\n", what);
-    std::abort();
-  }
-}
+// A broken promise is a finding.
+void require(bool ok, const char* what) { kasha::fuzz::require(ok, "fuzz_obj", what); }
 
 }  // namespace
 

@@ -1,15 +1,24 @@
 #pragma once
-// Shared by the file-reading fuzz targets: kasha's readers take paths, so each input is written
-// to a file in a directory of this process's own (removed at exit) before it is read.
+// Shared by the fuzz targets: promises that abort when broken, and, since kasha's readers take
+// paths, a directory of the process's own (removed at exit) to write each input to before it is read.
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 namespace kasha::fuzz {
+
+// A promise of the code under test: aborts (a libFuzzer finding) with `what` if it is broken.
+inline void require(bool ok, const char* target, const char* what) {
+  if (!ok) {
+    std::fprintf(stderr, "%s: broken promise: %s\n", target, what);
+    std::abort();
+  }
+}
 
 // The process's scratch directory, created on first use; data files of tests/fuzz/data are
 // linked into it, so that inputs can name them by relative paths.
