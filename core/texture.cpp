@@ -8,6 +8,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/error.h"
+#include "core/exr_input.h"
+#include "core/image_input.h"
+#include "core/input_file.h"
+
 namespace kasha {
 namespace {
 
@@ -29,15 +34,26 @@ float pick(TextureChannel c, float r, float g, float b, float a) {
   return (r + g + b) / 3.0f;
 }
 
-ScalarTexture loadPng(const std::string& path, TextureChannel channel) {
+// Bytes per pixel while decoding: the RGBA buffer (8-bit for PNG, half for OpenEXR) and the texels.
+constexpr uint64_t kPngBytesPerPixel = 4 + sizeof(float);
+constexpr uint64_t kExrBytesPerPixel = 8 + sizeof(float);
+
+ScalarTexture loadPng(const std::string& path, TextureChannel channel, uint64_t memoryLimit) {
+  const std::string bytes = readInputFile(path, "texture", kMaxImageFileBytes);
   png_image img{};
   img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&img, path.c_str()))
-    throw std::runtime_error(std::string("cannot read PNG: ") + img.message);
+  if (!png_image_begin_read_from_memory(&img, bytes.data(), bytes.size()))
+    throw InputError(path, "", std::string("cannot read PNG: ") + img.message);
+  try {
+    requireImageMemory(path, img.width, img.height, kPngBytesPerPixel, memoryLimit);
+  } catch (...) {
+    png_image_free(&img);
+    throw;
+  }
   img.format = PNG_FORMAT_RGBA;
   std::vector<unsigned char> buf(PNG_IMAGE_SIZE(img));
   if (!png_image_finish_read(&img, nullptr, buf.data(), 0, nullptr))
-    throw std::runtime_error(std::string("cannot read PNG: ") + img.message);
+    throw InputError(path, "", std::string("cannot read PNG: ") + img.message);
   const int w = int(img.width), h = int(img.height);
   std::vector<float> t(size_t(w) * h);
   for (size_t i = 0; i < t.size(); ++i) {
@@ -47,19 +63,22 @@ ScalarTexture loadPng(const std::string& path, TextureChannel channel) {
   return ScalarTexture(w, h, std::move(t));
 }
 
-ScalarTexture loadExr(const std::string& path, TextureChannel channel) {
+ScalarTexture loadExr(const std::string& path, TextureChannel channel, uint64_t memoryLimit) {
+  ExrInput in(path, "texture");
+  requireImageMemory(path, in.width(), in.height(), kExrBytesPerPixel, memoryLimit);
   try {
-    Imf::RgbaInputFile file(path.c_str());
+    const std::unique_ptr<Imf::IStream> stream = in.stream();
+    Imf::RgbaInputFile file(*stream);
     const Imath::Box2i dw = file.dataWindow();
-    const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+    const int w = int(in.width()), h = int(in.height());
     std::vector<Imf::Rgba> px(size_t(w) * h);
-    file.setFrameBuffer(px.data() - dw.min.x - size_t(dw.min.y) * w, 1, size_t(w));
+    file.setFrameBuffer(px.data() - dw.min.x - int64_t(dw.min.y) * w, 1, size_t(w));
     file.readPixels(dw.min.y, dw.max.y);
     std::vector<float> t(px.size());
     for (size_t i = 0; i < t.size(); ++i) t[i] = pick(channel, px[i].r, px[i].g, px[i].b, px[i].a);
     return ScalarTexture(w, h, std::move(t));
   } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("cannot read OpenEXR: ") + e.what());
+    throw InputError(path, "", std::string("cannot read OpenEXR: ") + e.what());
   }
 }
 
@@ -80,10 +99,10 @@ ScalarTexture::ScalarTexture(int width, int height, std::vector<float> texels)
     throw std::invalid_argument("texture: size does not match its texels");
 }
 
-ScalarTexture ScalarTexture::load(const std::string& path, TextureChannel channel) {
+ScalarTexture ScalarTexture::load(const std::string& path, TextureChannel channel, uint64_t memoryLimit) {
   const std::string ext = lowerExtension(path);
   if (ext != "png" && ext != "exr") throw std::runtime_error("unknown image format '." + ext + "' (expected .png or .exr)");
-  ScalarTexture t = ext == "png" ? loadPng(path, channel) : loadExr(path, channel);
+  ScalarTexture t = ext == "png" ? loadPng(path, channel, memoryLimit) : loadExr(path, channel, memoryLimit);
   for (size_t i = 0; i < t.texels_.size(); ++i)
     if (!(t.texels_[i] >= 0.0f && t.texels_[i] <= 1.0f))
       throw std::runtime_error("value " + std::to_string(t.texels_[i]) + " at pixel (" + std::to_string(i % t.w_) +

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/memory_budget.h"
 
 namespace kasha {
 
@@ -23,10 +24,12 @@ class ScalarTexture {
  public:
   // Row-major texels, row 0 at the top. Requires width·height = texels.size() > 0.
   ScalarTexture(int width, int height, std::vector<float> texels);
-  // Reads a .png or .exr file (by extension, any case). Throws std::runtime_error with the reason
-  // (unreadable file, unknown format, a value outside [0, 1] with its pixel); the caller names the
-  // scene field.
-  static ScalarTexture load(const std::string& path, TextureChannel channel);
+  // Reads a .png or .exr file (by extension, any case) through core/image_input.h: a regular file,
+  // its pixels checked against memoryLimit from the header before decoding. Throws
+  // std::runtime_error with the reason (unreadable file, unknown format, too many pixels, a value
+  // outside [0, 1] with its pixel); the caller names the scene field.
+  static ScalarTexture load(const std::string& path, TextureChannel channel,
+                            uint64_t memoryLimit = kDefaultMemoryLimit);
 
   int width() const { return w_; }
   int height() const { return h_; }

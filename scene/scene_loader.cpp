@@ -5,16 +5,17 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <vector>
 
 #include "core/affine.h"
 #include "core/envmap_light.h"
+#include "core/input_file.h"
 #include "core/json_fields.h"
+#include "core/json_parse.h"
 #include "core/mesh_builders.h"
 #include "core/memory_budget.h"
+#include "core/obj_validation.h"
 #include "core/spectrum_json.h"
 #include "core/spectrum_presets.h"
 #include "materials/material_json.h"
@@ -26,8 +27,12 @@ namespace {
 using nlohmann::json;
 
 // Reading an OBJ file takes about this many times its size in memory (tinyobjloader's arrays,
-// kasha's positions, indices and normals, Embree's BVH): measured on meshes of 10⁴–10⁶ triangles.
-constexpr uint64_t kMeshBytesPerFileByte = 6;
+// kasha's positions, indices and normals, Embree's BVH): measured on meshes of 10⁴–10⁶ triangles;
+// one more for the file's text, read whole before parsing.
+constexpr uint64_t kMeshBytesPerFileByte = 7;
+// Named spectra may refer to each other; no sensible chain of names is longer than this, and a
+// limit keeps the recursion through the references bounded.
+constexpr size_t kMaxSpectrumReferenceDepth = 64;
 // Triangles of a "disk" shape: its area is 1 − 1.0·10⁻⁴ of the disk's.
 constexpr int kDiskSegments = 256;
 
@@ -47,6 +52,7 @@ struct Loader {
     if (ctx.baseDir.empty()) ctx.baseDir = ".";
     ctx.named = &named;
     ctx.range = &scene.range;
+    ctx.memoryLimit = options.memoryLimit;
     ctx.resolveName = [this](const std::string& name, const std::string& ptr) { return namedSpectrum(name, ptr); };
   }
 
@@ -63,6 +69,10 @@ struct Loader {
       if (presetSpectrum(name)) hint = " (for the preset write {\"type\": \"preset\", \"name\": \"" + name + "\"})";
       throw InputError(file, ptr, "named spectra refer to each other in a cycle: " + chain + name + hint);
     }
+    if (resolving.size() >= kMaxSpectrumReferenceDepth)
+      throw InputError(file, ptr, "named spectra refer to each other more than " +
+                                      std::to_string(kMaxSpectrumReferenceDepth) + " deep (from '" + resolving.front() +
+                                      "' to '" + name + "')");
     resolving.push_back(name);
     Spectrum s = parseSpectrum(spectraJson->at(name), ctx, "/spectra/" + name);
     resolving.pop_back();
@@ -185,7 +195,12 @@ struct Loader {
     if (w < 1 || h < 1 || w > 16384 || h > 16384) f.fail("resolution", "width and height must be in 1..16384");
     const Vec3 fwd = at - pos;
     if (!(glm::length(fwd) > 0.0f)) f.fail("look_at", "equals /camera/position");
-    if (!(glm::length(glm::cross(fwd, up)) > 1e-6f * glm::length(fwd) * glm::length(up)))
+    // The lengths first: a product of finite but huge lengths overflows and would blame "up".
+    if (!std::isfinite(glm::length(fwd)))
+      f.fail("look_at", "is too far from /camera/position (their distance overflows a 32-bit float)");
+    if (!(glm::length(up) > 0.0f)) f.fail("up", "must not be zero");
+    if (!std::isfinite(glm::length(up))) f.fail("up", "is too long (its length overflows a 32-bit float)");
+    if (!(glm::length(glm::cross(fwd / glm::length(fwd), up / glm::length(up))) > 1e-6f))
       f.fail("up", "is parallel to the viewing direction");
     f.finish();
     scene.camera = Camera(pos, at, up, fov, int(w), int(h));
@@ -215,8 +230,17 @@ struct Loader {
     cfg.triangulate = true;
     cfg.vertex_color = false;
     tinyobj::ObjReader reader;
-    requireMeshFile(f, path);
-    if (!reader.ParseFromFile(path, cfg)) f.fail("file", "'" + path + "': " + reader.Error());
+    std::string text;
+    try {
+      InputFile in(path, "mesh file", UINT64_MAX);
+      requireMemory(saturatingMul(in.size(), kMeshBytesPerFileByte),
+                    "'" + path + "' (" + formatBytes(in.size()) + "): reading it", options.memoryLimit);
+      text = in.readRest();
+      validateObjText(text, path);
+    } catch (const std::runtime_error& e) {  // InputError, MemoryLimitError
+      f.fail("file", e.what());
+    }
+    if (!reader.ParseFromString(text, "", cfg)) f.fail("file", "'" + path + "': " + reader.Error());
     const auto& v = reader.GetAttrib().vertices;
     for (size_t i = 0; i + 2 < v.size(); i += 3) {
       const Vec3 p(v[i], v[i + 1], v[i + 2]);
@@ -459,9 +483,6 @@ struct Loader {
   }
 };
 
-// No valid scene nests deeper than a few levels; a limit keeps the recursion below bounded.
-constexpr int kMaxJsonDepth = 64;
-
 // Every number is used as a 32-bit float: one finite as a double but beyond ±3.4e38 would
 // silently become infinite.
 void checkFloatRange(const json& v, const std::string& file, const std::string& ptr, int depth = 0) {
@@ -480,13 +501,7 @@ void checkFloatRange(const json& v, const std::string& file, const std::string& 
 std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::string& path,
                                            const SceneLoadOptions& options) {
   if (mitsuba::isMitsubaScenePath(path)) return mitsuba::loadMitsubaScene(text, path, options);
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e400
-    throw InputError(path, "", std::string("malformed JSON: ") + e.what());
-  }
-  return loadSceneFromJson(root, path, options);
+  return loadSceneFromJson(parseJsonStrict(text, path), path, options);
 }
 
 std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& root, const std::string& path,
@@ -509,14 +524,10 @@ std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& root, const std::
   return scene;
 }
 
+std::string readSceneFile(const std::string& path) { return readInputFile(path, "scene file", kMaxJsonFileBytes); }
+
 std::unique_ptr<Scene> loadScene(const std::string& path, const SceneLoadOptions& options) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "cannot open scene file (it is a directory)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open scene file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return loadSceneFromString(ss.str(), path, options);
+  return loadSceneFromString(readSceneFile(path), path, options);
 }
 
 }  // namespace kasha

@@ -126,14 +126,12 @@ TEST_F(TextureFiles, ClearErrors) {
     return "no error";
   };
   const std::string at = "scene.json: /materials/ink/";
-  EXPECT_EQ(error({{"c_texture", "missing.png"}}).rfind(at + "c_texture: '" + dir + "/missing.png': cannot read PNG", 0),
-            0u);
+  EXPECT_EQ(error({{"c_texture", "missing.png"}}),
+            at + "c_texture: " + dir + "/missing.png: cannot open texture (No such file or directory)");
   writeText("garbage.png", "not an image");
-  EXPECT_EQ(error({{"c_texture", "garbage.png"}}).rfind(at + "c_texture: '" + dir + "/garbage.png': cannot read PNG", 0),
-            0u);
+  EXPECT_EQ(error({{"c_texture", "garbage.png"}}).rfind(at + "c_texture: " + dir + "/garbage.png: cannot read PNG", 0), 0u);
   writeText("garbage.exr", "not an image");
-  EXPECT_EQ(error({{"Q_texture", "garbage.exr"}}).rfind(at + "Q_texture: '" + dir + "/garbage.exr': cannot read OpenEXR", 0),
-            0u);
+  EXPECT_EQ(error({{"Q_texture", "garbage.exr"}}).rfind(at + "Q_texture: " + dir + "/garbage.exr: cannot read OpenEXR", 0), 0u);
   EXPECT_EQ(error({{"c_texture", "ink.jpg"}}),
             at + "c_texture: '" + dir + "/ink.jpg': unknown image format '.jpg' (expected .png or .exr)");
   writePng("two.png", 2, 1, std::vector<unsigned char>(8, 255));
