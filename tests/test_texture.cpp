@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "core/texture.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
