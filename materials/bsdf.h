@@ -38,8 +38,8 @@ class Bsdf {
              SpectralLobe lobe) const {
     return model_->eval(mode, wi, wo, lambdaIn, lambdaOut, lobe);
   }
-  // Spectral stage: from the known wavelength, the lobe and the unknown wavelength; pdf is the
-  // lobe's probability × (fluorescent) its per-nm density.
+  // Spectral stage: from the known wavelength, the lobe (fluorescent exactly when u < P) and the
+  // unknown wavelength; pdf is the lobe's probability × (fluorescent) its per-nm density.
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
     return model_->sampleSpectral(mode, lambdaKnown, u);
   }
