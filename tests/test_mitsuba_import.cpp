@@ -390,7 +390,7 @@ TEST_F(MitsubaImport, ExampleSceneLoads) {
   EXPECT_EQ(s->render.spp, 128);
   EXPECT_EQ(s->camera.width(), 480);
   size_t fluorescent = 0;
-  for (const auto& m : s->materials) fluorescent += m->fluoresces();
+  for (const auto& m : s->materials) fluorescent += has(m->flags(), BsdfFlags::Fluorescent);
   EXPECT_EQ(fluorescent, 1u);  // FITC only: roughplastic became coated_fluorescent with c = 0
 }
 
