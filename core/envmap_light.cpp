@@ -1,5 +1,7 @@
 #include "core/envmap_light.h"
 
+#include "core/input_file.h"
+
 #include "core/memory_budget.h"
 
 #include <ImfArray.h>
@@ -55,6 +57,7 @@ std::vector<float> weights(const RgbImage& image) {
 RgbImage loadEnvironmentImage(const std::string& path, uint64_t memoryLimit) {
   RgbImage img;
   try {
+    InputFile(path, "environment map", kMaxImageFileBytes);  // refuses FIFOs, devices and directories at once
     Imf::RgbaInputFile file(path.c_str());
     const Imath::Box2i dw = file.dataWindow();
     const int64_t w = int64_t(dw.max.x) - dw.min.x + 1, h = int64_t(dw.max.y) - dw.min.y + 1;

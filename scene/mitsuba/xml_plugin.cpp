@@ -5,8 +5,9 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
+
+#include "core/input_file.h"
 
 namespace kasha::mitsuba {
 
@@ -40,14 +41,14 @@ const pugi::xml_document& XmlImport::include(const std::string& path, pugi::xml_
   const std::string canon = std::filesystem::weakly_canonical(path).string();
   for (const std::string& p : including_)
     if (std::filesystem::weakly_canonical(p).string() == canon) fail(from, "'" + path + "' includes itself (a cycle of <include>s)");
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) fail(from, "cannot open '" + path + "'");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(from, "cannot open '" + path + "'");
-  std::stringstream ss;
-  ss << in.rdbuf();
+  std::string text;
+  try {
+    text = readInputFile(path, "included scene file", kMaxJsonFileBytes);  // regular files only, never blocks
+  } catch (const std::runtime_error& e) {
+    fail(from, e.what());
+  }
   including_.push_back(path);
-  return load(ss.str(), path);
+  return load(text, path);
 }
 
 const XmlImport::File& XmlImport::fileOf(pugi::xml_node n) const {

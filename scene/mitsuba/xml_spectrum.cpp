@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "core/input_file.h"
 #include "core/rgb_illuminant.h"
 
 namespace kasha::mitsuba {
@@ -43,9 +44,12 @@ json pairs(XmlImport& xml, pugi::xml_node p, const std::string& text) {
 
 // Mitsuba's .spd file: one "wavelength value" pair per line, '#' comments.
 json spdFile(XmlImport& xml, pugi::xml_node p, const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) xml.fail(p, "cannot open '" + path + "'");
-  std::ifstream in(path);
+  std::istringstream in;
+  try {
+    in.str(readInputFile(path, "spectrum file", kMaxJsonFileBytes));  // regular files only, never blocks
+  } catch (const std::runtime_error& e) {
+    xml.fail(p, e.what());
+  }
   std::vector<float> wl, v;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
