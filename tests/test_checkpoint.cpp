@@ -29,6 +29,7 @@
 
 #include "core/checkpoint.h"
 #include "tests/process.h"
+#include "tests/expect_contains.h"
 
 namespace kasha {
 namespace {
@@ -36,9 +37,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using test::runKasha;
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "text: " << (haystack)
 
 // 32×32 pixels: 64 samples per pixel in a pass (at least 65536 samples per pass), so `kSpp` makes
 // kSpp / 64 passes. A fluorescent sphere on a floor under an area light: camera paths and light

@@ -16,15 +16,13 @@
 #include <nlohmann/json.hpp>
 
 #include "core/spectrum_csv.h"
+#include "tests/expect_contains.h"
 
 namespace kasha {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "text: " << (haystack)
 
 const std::string kKasha = KASHA_BINARY_DIR "/kasha";
 

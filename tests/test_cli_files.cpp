@@ -14,14 +14,12 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/process.h"
+#include "tests/expect_contains.h"
 
 namespace kasha {
 namespace {
 
 namespace fs = std::filesystem;
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "text: " << (haystack)
 
 // 8×8 pixels, 1 sample: a lambertian floor under an emissive rectangle, its reflectance from a CSV.
 const char* kScene = R"({

@@ -26,6 +26,8 @@
 #include "core/spectrum_csv.h"
 #include "core/texture.h"
 #include "scene/scene_loader.h"
+#include "tests/expect_contains.h"
+#include "tests/support.h"
 
 namespace kasha {
 namespace {
@@ -33,17 +35,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "message: " << (haystack)
-
-// The smallest valid scene: a camera, a material, an emissive rectangle.
-json baseScene() {
-  return json::parse(R"({
-    "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0], "fov": 40, "resolution": [8, 8]},
-    "materials": {"white": {"type": "lambertian", "reflectance": 0.5}},
-    "shapes": [{"type": "rectangle", "center": [0, 0, 0], "u": [1, 0, 0], "v": [0, 1, 0],
-                "material": "white", "emission": {"radiance": 1}}]})");
-}
+json baseScene() { return json::parse(test::kMinimalScene); }
 
 // The message of the InputError that `f` throws ("no error" if none; a non-InputError fails).
 template <class F>

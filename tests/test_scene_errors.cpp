@@ -15,23 +15,13 @@
 #include "scene/scene_loader.h"
 #include "materials/lambertian.h"
 #include "tests/support.h"
+#include "tests/expect_contains.h"
 
 namespace kasha {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "message: " << (haystack)
-
-// A camera, one lambertian material and one emissive rectangle: the smallest valid scene.
-const char* kBaseScene = R"({
-  "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0], "fov": 40, "resolution": [8, 8]},
-  "materials": {"white": {"type": "lambertian", "reflectance": 0.5}},
-  "shapes": [{"type": "rectangle", "center": [0, 0, 0], "u": [1, 0, 0], "v": [0, 1, 0],
-              "material": "white", "emission": {"radiance": 1}}]
-})";
 
 const char* kJungMaterial = R"({"type": "jung_fluorescent",
   "absorption": {"type": "gaussian", "center": 450, "fwhm": 40},
@@ -47,7 +37,7 @@ class SceneLoader : public ::testing::Test {
     fs::remove_all(dir);
     fs::create_directories(dir);
     path = dir + "/scene.json";
-    base = json::parse(kBaseScene);
+    base = json::parse(test::kMinimalScene);
   }
   void TearDown() override {
     if (!HasFailure()) fs::remove_all(fs::path(dir).parent_path());  // kept for inspection on failure
