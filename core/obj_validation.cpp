@@ -42,9 +42,9 @@ class Checker {
  public:
   Checker(const std::string& path) : path_(path) {}
 
+  // Checks one line (without its comment).
   void line(std::string_view text, int64_t number) {
     where_ = path_ + ":" + std::to_string(number);
-    if (const size_t hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
     const std::vector<std::string_view> t = tokens(text);
     if (t.empty()) return;
     const std::string_view key = t[0];
@@ -110,18 +110,25 @@ class Checker {
 
 }  // namespace
 
-void validateObjText(const std::string& text, const std::string& path) {
+std::string validateObjText(const std::string& text, const std::string& path) {
   Checker check(path);
+  std::string uncommented;
+  uncommented.reserve(text.size());
   // Lines end at "\n", "\r\n" or a lone "\r", as tinyobjloader reads them.
   std::string_view rest(text);
   int64_t number = 0;
   while (!rest.empty()) {
     const size_t end = rest.find_first_of("\r\n");
-    check.line(rest.substr(0, end), ++number);
+    std::string_view content = rest.substr(0, end);
+    if (const size_t hash = content.find('#'); hash != std::string_view::npos) content = content.substr(0, hash);
+    check.line(content, ++number);
+    uncommented += content;
     if (end == std::string_view::npos) break;
     const bool crlf = rest[end] == '\r' && end + 1 < rest.size() && rest[end + 1] == '\n';
+    uncommented += rest.substr(end, crlf ? 2 : 1);
     rest.remove_prefix(end + (crlf ? 2 : 1));
   }
+  return uncommented;
 }
 
 }  // namespace kasha

@@ -236,7 +236,7 @@ struct Loader {
       requireMemory(saturatingMul(in.size(), kMeshBytesPerFileByte),
                     "'" + path + "' (" + formatBytes(in.size()) + "): reading it", options.memoryLimit);
       text = in.readRest();
-      validateObjText(text, path);
+      text = validateObjText(text, path);
     } catch (const std::runtime_error& e) {  // InputError, MemoryLimitError
       f.fail("file", e.what());
     }

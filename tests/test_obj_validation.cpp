@@ -68,5 +68,13 @@ TEST(ObjValidation, IndicesMustBeIntegersInRange) {
   EXPECT_EQ(problem(kTriangle + "f 1 2\n"), "m.obj:4: a face needs at least 3 corners, found 2");
 }
 
+TEST(ObjValidation, ReturnsTheTextWithoutCommentsAndKeepsLineEnds) {
+  EXPECT_EQ(validateObjText("v 0 0 0  # origin\r\n#x\rf 1 1 1\n", "m.obj"), "v 0 0 0  \r\n\rf 1 1 1\n");
+  // A fuzzing finding: tinyobjloader reads "3# 21" as corners 3 and 21; the comment is checked and
+  // handed on as nothing, so the face has the three corners that were checked.
+  EXPECT_EQ(validateObjText(kTriangle + "f 1 2 3# 21\n", "m.obj"), kTriangle + "f 1 2 3\n");
+  EXPECT_EQ(problem(kTriangle + "f 1 2 3 # 21\n2 4\n"), "");
+}
+
 }  // namespace
 }  // namespace kasha

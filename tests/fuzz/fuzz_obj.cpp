@@ -22,9 +22,9 @@ void require(bool ok, const char* what) { kasha::fuzz::require(ok, "fuzz_obj", w
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string text(reinterpret_cast<const char*>(data), size);
+  std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    kasha::validateObjText(text, "fuzz.obj");
+    text = kasha::validateObjText(text, "fuzz.obj");
   } catch (const kasha::InputError& e) {
     require(std::string(e.what()).rfind("fuzz.obj:", 0) == 0, "the message names the file and line");
     return 0;
