@@ -14,6 +14,7 @@
 #include "core/memory_budget.h"
 #include "core/spectrum_json.h"
 #include "core/spectrum_presets.h"
+#include "core/texture.h"
 #include "materials/material_json.h"
 
 namespace kasha {
@@ -34,13 +35,16 @@ struct Loader {
   SceneLoadOptions options;
   const json* spectraJson = nullptr;
   std::vector<std::string> resolving;  // named spectra being parsed, to detect cycles
+  TextureLoader textures;
 
-  Loader(std::string f, Scene& s, SceneLoadOptions o) : file(std::move(f)), scene(s), options(o) {
+  Loader(std::string f, Scene& s, SceneLoadOptions o)
+      : file(std::move(f)), scene(s), options(o), textures(o.memoryLimit) {
     ctx.file = file;
     ctx.baseDir = std::filesystem::path(file).parent_path().string();
     if (ctx.baseDir.empty()) ctx.baseDir = ".";
     ctx.named = &named;
     ctx.range = &scene.range;
+    ctx.textures = &textures;
     ctx.resolveName = [this](const std::string& name, const std::string& ptr) { return namedSpectrum(name, ptr); };
   }
 

@@ -22,6 +22,8 @@
 
 namespace kasha {
 
+class TextureLoader;
+
 struct SpectrumContext {
   SpectrumContext() = default;
   SpectrumContext(std::string sceneFile, std::string dir, const std::map<std::string, Spectrum>* names = nullptr)
@@ -37,6 +39,9 @@ struct SpectrumContext {
   // If set, the scene's wavelength range: a spectrum file must cover it, or say with "outside"
   // how to extend it, and must overlap it.
   const WavelengthRange* range = nullptr;
+  // If set, loads the textures of materials (core/texture.h) against the scene's memory limit;
+  // otherwise each texture is loaded on its own against the default limit.
+  TextureLoader* textures = nullptr;
 };
 
 Spectrum parseSpectrum(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& pointer);

@@ -382,8 +382,8 @@ TEST_F(SceneLoader, UnknownTypes) {
               "unknown shape type 'cube' (sphere, rectangle, mesh)");
   expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "area"}])"); }, "/lights/0/type",
               "unknown light type 'area' (point, spot, distant, environment)");
-  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "rgb"}}; },
-              "/materials/white/reflectance/type", "unknown spectrum type 'rgb'");
+  expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "hsv"}}; },
+              "/materials/white/reflectance/type", "unknown spectrum type 'hsv'");
   expectError([](json& j) { j["render"] = {{"sensor_sampling", "random"}}; }, "/render/sensor_sampling",
               "unknown kind 'random'");
   expectError([](json& j) { j["render"] = {{"mollify", {{"alpha", 1.0}}}}; }, "/render/mollify/alpha", "must be in (0, 1)");
