@@ -238,9 +238,15 @@ struct Loader {
           const float* t = &reader.GetAttrib().texcoords[2 * size_t(idx.texcoord_index)];
           s.cornerUvs.emplace_back(t[0], t[1]);
         }
+        if (idx.normal_index >= 0 && 3 * size_t(idx.normal_index) + 2 < reader.GetAttrib().normals.size()) {
+          const float* n = &reader.GetAttrib().normals[3 * size_t(idx.normal_index)];
+          s.cornerNormals.emplace_back(n[0], n[1], n[2]);
+        }
       }
     if (!s.cornerUvs.empty() && s.cornerUvs.size() != s.indices.size())
       f.fail("file", "'" + path + "': some faces have texture coordinates (vt) and some do not");
+    if (!s.cornerNormals.empty() && s.cornerNormals.size() != s.indices.size())
+      f.fail("file", "'" + path + "': some faces have vertex normals (vn) and some do not");
     const float scale = f.number("scale", 1.0f);
     if (!(scale > 0.0f)) f.fail("scale", "must be positive");
     const Vec3 translate = f.vec3("translate", Vec3(0.0f));
