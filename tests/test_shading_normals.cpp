@@ -1,26 +1,19 @@
 // Shading normals from OBJ vertex normals (core/shape.h): interpolation, orientation relative to
 // the geometric normal, fallbacks, and the loader's handling of vn.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
 #include "core/scene_loader.h"
+#include "temp_dir.h"
 
 namespace kasha {
 namespace {
 
-namespace fs = std::filesystem;
-
-class ShadingNormals : public ::testing::Test {
+class ShadingNormals : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir = (fs::path(::testing::TempDir()) / ("kasha_shading_normals." + std::to_string(getpid()))).string();
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
+  ShadingNormals() : TempDirTest("shading_normals") {}
 
   // A scene with the OBJ text as its only shape, lit by a point light.
   std::unique_ptr<Scene> load(const std::string& obj) {
@@ -33,8 +26,6 @@ class ShadingNormals : public ::testing::Test {
 })";
     return loadScene(dir + "/s.json");
   }
-
-  std::string dir;
 };
 
 // The triangle (0,0,0) (1,0,0) (0,1,0) faces +z; its corners' normals lean different ways.

@@ -20,19 +20,16 @@
 #include "materials/jung_bbrrdf.h"
 #include "materials/material_json.h"
 #include "materials/textured_jung.h"
+#include "temp_dir.h"
 
 namespace kasha {
 namespace {
 
 namespace fs = std::filesystem;
 
-class TextureFiles : public ::testing::Test {
+class TextureFiles : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir = (fs::path(::testing::TempDir()) / ("kasha_texture." + std::to_string(getpid()))).string();
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
+  TextureFiles() : TempDirTest("texture") {}
 
   // RGBA bytes, row 0 at the top.
   std::string writePng(const std::string& name, int w, int h, const std::vector<unsigned char>& rgba) {
@@ -60,7 +57,6 @@ class TextureFiles : public ::testing::Test {
     return dir + "/" + name;
   }
 
-  std::string dir;
 };
 
 // ---------------------------------------------------------------------------------------------
