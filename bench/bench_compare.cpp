@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "core/image_output.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/comparison.h"
 #include "integrators/integrator_factory.h"
 

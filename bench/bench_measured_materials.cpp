@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/rng.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 
 namespace kasha {
 namespace {

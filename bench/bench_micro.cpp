@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/rng.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "core/spectral_distribution.h"
 #include "core/spectrum.h"
 #include "materials/jung_bbrrdf.h"

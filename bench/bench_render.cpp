@@ -14,7 +14,7 @@
 #include <string>
 
 #include "core/sampling.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/path_tracer.h"
 #include "integrators/render_loop.h"
 

@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "core/image_output.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/comparison.h"
 #include "integrators/integrator_factory.h"
 

@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 #include "materials/material.h"
 
 namespace kasha {

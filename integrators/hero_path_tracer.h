@@ -12,7 +12,7 @@
 // the hero's (dispersion), the secondary wavelengths end and the hero continues alone (Mojzík,
 // Fichet & Wilkie 2018, "Handling fluorescence in a uni-directional spectral path tracer"): no other
 // technique can produce what follows, so from there on the hero is weighted by 1/p(λ_h) alone.
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 #include "integrators/fluorescence_sampling.h"
 #include "integrators/integrator.h"
 

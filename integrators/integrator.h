@@ -11,7 +11,7 @@
 
 #include "core/math.h"
 #include "core/rng.h"
-#include "core/scene.h"
+#include "scene/scene.h"
 
 namespace kasha {
 

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/hero_path_tracer.h"
 #include "integrators/light_tracer.h"

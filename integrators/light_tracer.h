@@ -5,7 +5,7 @@
 // proportion to its power there (p(light, λ) = p(λ)·Φ_light(λ)/Σ_l Φ_l(λ)); at each vertex the material's spectral stage picks the lobe and the outgoing
 // wavelength (Jung18 eq. 6 and λ_o ∝ e), which the camera connection and the continued path
 // share; the sensor responds at the wavelength that arrives at it.
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 #include "integrators/integrator.h"
 
 namespace kasha {

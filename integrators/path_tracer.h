@@ -7,7 +7,7 @@
 // the power heuristic over directions (the choice of wavelength, common to both, cancels) — unless
 // the nee strategy draws next-event estimation's own λ_i after a fluorescent event, when the
 // weights compare the full densities, wavelength included.
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 #include "integrators/fluorescence_sampling.h"
 #include "integrators/integrator.h"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "core/light.h"
-#include "core/scene.h"
+#include "scene/scene.h"
 #include "integrators/integrator.h"
 
 namespace kasha {

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/color.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "materials/jung_bbrrdf.h"

@@ -4,7 +4,7 @@
 // integrator (tests/CMakeLists.txt), with KASHA_TEST_INTEGRATOR naming it.
 #include <gtest/gtest.h>
 
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 #include "tests/closed_form_support.h"
 
 namespace kasha {

@@ -4,7 +4,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/scene.h"
+#include "scene/scene.h"
 #include "integrators/integrator.h"
 #include "integrators/render_loop.h"
 #include "tests/support.h"

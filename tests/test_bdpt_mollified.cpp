@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/color.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/strategy_images.h"
 #include "integrators/integrator_factory.h"

@@ -3,7 +3,7 @@
 // wavelengths) must agree with each other, region by region.
 #include <gtest/gtest.h>
 
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "tests/support.h"

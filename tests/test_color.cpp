@@ -1,6 +1,6 @@
 // Colorimetry (core/color.h): the CIE 1931 observer tables, the film's XYZ normalisation checked
 // against the published chromaticities of the standard illuminants, XYZ → sRGB, and the camera's
-// wavelength densities (core/wavelength_strategy.h, site Sensor).
+// wavelength densities (scene/wavelength_strategy.h, site Sensor).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "core/color.h"
 #include "core/spectrum_presets.h"
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 
 namespace kasha {
 namespace {

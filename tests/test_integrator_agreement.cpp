@@ -8,7 +8,7 @@
 #include <array>
 #include <map>
 
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "tests/region_batches.h"

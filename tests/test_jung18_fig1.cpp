@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/color.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "core/spectrum_presets.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"

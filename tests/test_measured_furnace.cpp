@@ -13,7 +13,7 @@
 #include <map>
 
 #include "core/color.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "materials/measured_reradiation.h"
 #include "materials/zhdanov_bdf.h"

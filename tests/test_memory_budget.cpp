@@ -13,7 +13,7 @@
 #include "core/error.h"
 #include "core/film.h"
 #include "core/memory_budget.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "tests/process.h"
 
 namespace kasha {

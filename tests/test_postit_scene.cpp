@@ -9,7 +9,7 @@
 #include <array>
 #include <map>
 
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "tests/region_batches.h"
 #include "tests/support.h"

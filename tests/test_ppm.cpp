@@ -12,7 +12,7 @@
 
 #include "core/color.h"
 #include "core/memory_budget.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/photon_mapping/photon.h"
 #include "integrators/photon_mapping/ppm_integrator.h"

@@ -1,7 +1,7 @@
 // Reproducibility: an image depends on the seed only, never on the number of threads.
 #include <gtest/gtest.h>
 
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/path_tracer.h"
 #include "integrators/render_loop.h"
 #include "tests/support.h"

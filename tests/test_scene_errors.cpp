@@ -1,4 +1,4 @@
-// The JSON scene loader (core/scene_loader.h): a scene using every feature loads as written, and
+// The JSON scene loader (scene/scene_loader.h): a scene using every feature loads as written, and
 // every class of bad input is an InputError "file: /json/pointer: reason".
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "materials/lambertian.h"
 #include "tests/support.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 
 namespace kasha {

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "temp_dir.h"
 
 namespace kasha {

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "core/color.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "materials/dielectric.h"

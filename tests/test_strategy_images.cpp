@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/bdpt/strategy_images.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"

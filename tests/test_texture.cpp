@@ -13,7 +13,7 @@
 
 #include "core/error.h"
 #include "core/memory_budget.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "core/texture.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"

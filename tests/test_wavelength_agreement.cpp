@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "tests/support.h"

@@ -4,7 +4,7 @@
 // miss wavelengths the image needs must be rejected instead, and only where that is expected.
 #include <gtest/gtest.h>
 
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 #include "tests/closed_form_support.h"
 
 namespace kasha {

@@ -1,4 +1,4 @@
-// Unit tests of the wavelength sampling strategies (core/wavelength_strategy.h): the text form,
+// Unit tests of the wavelength sampling strategies (scene/wavelength_strategy.h): the text form,
 // each density's normalisation and sample/pdf consistency (χ²), Yamamoto's weights against a hand
 // computation, unbiasedness of the MIS combinations on a 1-D integral, the fluorescent-event
 // override, and the errors for strategies that do not apply.
@@ -8,8 +8,8 @@
 
 #include "core/color.h"
 #include "core/rng.h"
-#include "core/scene_loader.h"
-#include "core/wavelength_strategy.h"
+#include "scene/scene_loader.h"
+#include "scene/wavelength_strategy.h"
 #include "integrators/fluorescence_sampling.h"
 #include "integrators/integrator_factory.h"
 #include "tests/support.h"

@@ -8,7 +8,7 @@
 // the MIS weights. Optionally (Independent only) spectral mollification joins elastic connection
 // vertices through a wavelength kernel whose half-width shrinks pass by pass (docs/bdpt-mis.md
 // §6); each pass then takes one sample per pixel.
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 #include "integrators/bdpt/subpaths.h"
 #include "integrators/integrator.h"
 

@@ -2,7 +2,7 @@
 // The contributions of BDPT's strategies, each with its MIS weight (docs/bdpt-mis.md §3).
 #include <vector>
 
-#include "core/scene.h"
+#include "scene/scene.h"
 #include "core/wavelength_density.h"
 #include "integrators/bdpt/mis.h"
 #include "integrators/bdpt/path_vertex.h"

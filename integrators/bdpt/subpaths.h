@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "core/rng.h"
-#include "core/scene.h"
+#include "scene/scene.h"
 #include "core/wavelength_density.h"
 #include "integrators/bdpt/path_vertex.h"
 #include "integrators/integrator.h"

@@ -13,7 +13,7 @@
 // behind specular vertices (or always, if asked) an Epanechnikov kernel of half-width h_i =
 // h_1·r_i/r_1 in wavelength stands in for the delta. Emission seen along the camera path is added
 // exactly; there is no next-event estimation.
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 #include "integrators/integrator.h"
 
 namespace kasha {

@@ -1,4 +1,4 @@
-// libFuzzer target: the scene loader (core/scene_loader.h) on arbitrary text. A scene is either
+// libFuzzer target: the scene loader (scene/scene_loader.h) on arbitrary text. A scene is either
 // loaded or rejected with an InputError (a message naming the file and the place); anything else
 // (a crash, a sanitizer report, another exception, a hang, running out of memory) is a finding.
 // A scene that loads is also rendered, 4×4 pixels at 1 sample with the path and light tracers:
@@ -15,7 +15,7 @@
 
 #include "core/error.h"
 #include "core/film.h"
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 

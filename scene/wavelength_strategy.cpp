@@ -1,4 +1,4 @@
-#include "core/wavelength_strategy.h"
+#include "scene/wavelength_strategy.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "core/scene.h"
+#include "scene/scene.h"
 
 namespace kasha {
 

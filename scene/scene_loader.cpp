@@ -1,4 +1,4 @@
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 
 #include <tiny_obj_loader.h>
 

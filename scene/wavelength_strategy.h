@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
+#include "scene/scene.h"
 #include "core/wavelength_density.h"
 #include "core/wavelength_spec.h"
 

@@ -1,17 +1,10 @@
 #pragma once
-// A loaded scene: immutable after loading; integrators only read it.
+// Render and integrator settings: read from a scene file's "render" object and the command line,
+// used by the integrators.
 #include <cstdint>
-#include <memory>
-#include <string>
-#include <vector>
 
-#include "core/accel.h"
-#include "core/camera.h"
-#include "core/light.h"
 #include "core/memory_budget.h"
 #include "core/wavelength_spec.h"
-#include "core/shape.h"
-#include "materials/material.h"
 
 namespace kasha {
 
@@ -53,32 +46,6 @@ struct RenderSettings {
   uint64_t memoryLimit = kDefaultMemoryLimit;
   PhotonMappingSettings ppm;
   MollificationSettings mollify;
-};
-
-struct Scene {
-  std::string path;  // the scene file
-  WavelengthRange range;
-  Camera camera;
-  RenderSettings render;
-  std::vector<std::string> materialNames;
-  std::vector<std::unique_ptr<Material>> materials;
-  std::vector<Shape> shapes;
-  std::vector<std::unique_ptr<Light>> lights;
-  std::vector<int> shapeLight;        // index into lights per shape, or −1
-  int environmentLight = -1;          // index into lights, or −1
-  std::unique_ptr<Accel> accel;
-  std::unique_ptr<LightSelector> lightSelector;
-
-  // Texture coordinates of a hit (Shape::surfaceUv).
-  Vec2 uv(const Hit& h) const { return shapes[h.shape].surfaceUv(h.prim, h.bary, h.ng); }
-  // The material at a hit, resolved at its texture coordinates if it is textured (Material::at).
-  const Material& material(const Hit& h) const {
-    const Material& m = *materials[shapes[h.shape].material];
-    return m.textured() ? m.at(uv(h)) : m;
-  }
-  const EnvironmentLight* environment() const {
-    return environmentLight < 0 ? nullptr : static_cast<const EnvironmentLight*>(lights[size_t(environmentLight)].get());
-  }
 };
 
 }  // namespace kasha

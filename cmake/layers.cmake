@@ -1,0 +1,25 @@
+# Layering check: every #include "<folder>/…" in a layer's sources must name the layer itself or
+# one listed before it (kasha_check_layers(core materials scene …), lowest first). Runs at
+# configure time, so a header that points up or sideways stops the build with the file and line.
+function(kasha_check_layers)
+  set(allowed "")
+  set(violations "")
+  foreach(layer IN LISTS ARGN)
+    list(APPEND allowed ${layer})
+    file(GLOB_RECURSE files CONFIGURE_DEPENDS
+      ${CMAKE_SOURCE_DIR}/${layer}/*.h ${CMAKE_SOURCE_DIR}/${layer}/*.cpp)
+    foreach(f IN LISTS files)
+      file(STRINGS ${f} includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"[a-z_]+/")
+      foreach(line IN LISTS includes)
+        string(REGEX REPLACE "^[^\"]*\"([a-z_]+)/.*$" "\\1" target "${line}")
+        if(IS_DIRECTORY ${CMAKE_SOURCE_DIR}/${target} AND NOT target IN_LIST allowed)
+          file(RELATIVE_PATH rel ${CMAKE_SOURCE_DIR} ${f})
+          string(APPEND violations "\n  ${rel}: ${line} (layer '${layer}' may include only: ${allowed})")
+        endif()
+      endforeach()
+    endforeach()
+  endforeach()
+  if(violations)
+    message(FATAL_ERROR "kasha layering: includes that point up or sideways:${violations}")
+  endif()
+endfunction()

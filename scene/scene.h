@@ -1,0 +1,44 @@
+#pragma once
+// A loaded scene: immutable after loading; integrators only read it.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/accel.h"
+#include "core/camera.h"
+#include "core/light.h"
+#include "core/shape.h"
+#include "materials/material.h"
+#include "scene/light_selector.h"
+#include "scene/render_settings.h"
+
+namespace kasha {
+
+struct Scene {
+  std::string path;  // the scene file
+  WavelengthRange range;
+  Camera camera;
+  RenderSettings render;
+  std::vector<std::string> materialNames;
+  std::vector<std::unique_ptr<Material>> materials;
+  std::vector<Shape> shapes;
+  std::vector<std::unique_ptr<Light>> lights;
+  std::vector<int> shapeLight;        // index into lights per shape, or −1
+  int environmentLight = -1;          // index into lights, or −1
+  std::unique_ptr<Accel> accel;
+  std::unique_ptr<LightSelector> lightSelector;
+
+  // Texture coordinates of a hit (Shape::surfaceUv).
+  Vec2 uv(const Hit& h) const { return shapes[h.shape].surfaceUv(h.prim, h.bary, h.ng); }
+  // The material at a hit, resolved at its texture coordinates if it is textured (Material::at).
+  const Material& material(const Hit& h) const {
+    const Material& m = *materials[shapes[h.shape].material];
+    return m.textured() ? m.at(uv(h)) : m;
+  }
+  const EnvironmentLight* environment() const {
+    return environmentLight < 0 ? nullptr : static_cast<const EnvironmentLight*>(lights[size_t(environmentLight)].get());
+  }
+};
+
+}  // namespace kasha
