@@ -128,13 +128,12 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
     }
     if (depth >= maxDepth_) break;
 
-    const Material& mat = scene.material(*hit);
-    const Frame frame = Frame::fromNormal(hit->ng);
-    const Vec3 wo = frame.toLocal(-ray.d);
+    const Bsdf bsdf = scene.bsdf(*hit, {s.lambda, size_t(s.n)});
+    const Vec3 wo = bsdf.toLocal(-ray.d);
     // Spectral stage, symmetric in the lanes: the fluorescent lobe with the mean of their P_c.
     float pFluor = 0.0f;
-    if (mat.fluoresces()) {
-      for (int j = 0; j < s.n; ++j) pFluor += mat.fluorescenceProbability(TransportMode::Radiance, s.lambda[j]);
+    if (bsdf.has(BsdfFlags::Fluorescent)) {
+      for (int j = 0; j < s.n; ++j) pFluor += bsdf.fluorescenceProbability(TransportMode::Radiance, s.lambda[j]);
       pFluor /= float(s.n);
     }
     const float u = rng.uniform();
@@ -151,50 +150,45 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
       lambdaIn[0] = ex.lambda;
     }
     if (!(spectralPdf > 0.0f)) break;
+    // The lanes share one direction sample only where its density is the same for every lane
+    // (pbrt-v4's SampledWavelengths::TerminateSecondary): next-event estimation below weights all
+    // of them with the hero's direction density, so the secondaries end before it.
+    if (bsdf.has(BsdfFlags::WavelengthDependentDirection)) collapse();
 
     // Next-event estimation for every lane through one light sample.
     const float uLight = rng.uniform();
     const Vec2 uPos(rng.uniform(), rng.uniform());
     prevSelect.n = s.n;
     std::copy(lambdaIn, lambdaIn + s.n, prevSelect.lambda);
-    if (!mat.purelySpecular()) {
+    if (!bsdf.has(BsdfFlags::DeltaDirection)) {
       const auto [li, pSelect] = selectLight(scene, prevSelect, uLight);
       const std::optional<LightSample> ls =
           pSelect > 0.0f ? scene.lights[li]->sampleLi(hit->p, lambdaIn[0], uPos) : std::nullopt;
       if (ls && ls->pdf > 0.0f) {
-        const Vec3 wi = frame.toLocal(ls->wi);
+        const Vec3 wi = bsdf.toLocal(ls->wi);
         if (lightVisible(scene, *hit, *ls, counter)) {
           const float lightPdf = pSelect * ls->pdf;
           const float w = ls->delta ? 1.0f
-                                    : powerHeuristic(lightPdf, mat.directionPdf(TransportMode::Radiance, wo, wi, lobe,
-                                                                                lambdaIn[0], s.lambda[0]));
+                                    : powerHeuristic(lightPdf, bsdf.directionPdf(TransportMode::Radiance, wo, wi, lobe,
+                                                                                 lambdaIn[0], s.lambda[0]));
           for (int j = 0; j < s.n; ++j) {
             // The light's geometry does not depend on λ: the same point at every lane's wavelength.
             const std::optional<LightSample> lj = j == 0 ? ls : scene.lights[li]->sampleLi(hit->p, lambdaIn[j], uPos);
-            const float f = mat.eval(TransportMode::Radiance, wi, wo, lambdaIn[j], s.lambda[j], lobe);
+            const float f = bsdf.eval(TransportMode::Radiance, wi, wo, lambdaIn[j], s.lambda[j], lobe);
             if (lj) s.L[j] += s.beta[j] * (f * std::abs(wi.z) / spectralPdf) * lj->Li * w / lightPdf;
           }
         }
       }
     }
 
-    // Direction stage, sampled at the hero's wavelengths; lanes continue only where the density
-    // would have been the same for them. (Next-event estimation above assumed that too: every
-    // non-specular lobe of kasha's materials samples directions independently of λ.)
-    const std::optional<DirectionSample> ds = mat.sampleDirection(TransportMode::Radiance, wo, lobe, lambdaIn[0],
-                                                                  s.lambda[0], Vec2(rng.uniform(), rng.uniform()));
+    // Direction stage, sampled at the hero's wavelengths; every remaining lane has the same density.
+    const std::optional<DirectionSample> ds = bsdf.sampleDirection(TransportMode::Radiance, wo, lobe, lambdaIn[0],
+                                                                   s.lambda[0], Vec2(rng.uniform(), rng.uniform()));
     if (!ds || ds->pdf <= 0.0f) break;
     if (ds->specular) collapse();
-    for (int j = 1; j < s.n; ++j) {
-      const float pj = mat.directionPdf(TransportMode::Radiance, wo, ds->w, lobe, lambdaIn[j], s.lambda[j]);
-      if (std::abs(pj - ds->pdf) > 1e-5f * ds->pdf) {
-        collapse();
-        break;
-      }
-    }
     float maxBeta = 0.0f;
     for (int j = 0; j < s.n; ++j) {
-      const float f = mat.eval(TransportMode::Radiance, ds->w, wo, lambdaIn[j], s.lambda[j], lobe);
+      const float f = bsdf.eval(TransportMode::Radiance, ds->w, wo, lambdaIn[j], s.lambda[j], lobe);
       s.beta[j] *= f * std::abs(ds->w.z) / (spectralPdf * ds->pdf);
       s.lambda[j] = lambdaIn[j];
       maxBeta = std::max(maxBeta, s.beta[j]);
@@ -203,7 +197,7 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
     prevDirPdf = ds->pdf;
     prevSpecular = ds->specular;
     prevP = hit->p;
-    const Vec3 wiWorld = frame.toWorld(ds->w);
+    const Vec3 wiWorld = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, wiWorld), wiWorld};
 
     // Russian roulette on the largest lane's throughput (every lane divided by the same q).

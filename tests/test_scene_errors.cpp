@@ -194,7 +194,7 @@ TEST_F(SceneLoader, EveryFeatureLoads) {
   ASSERT_EQ(scene->materials.size(), 4u);
   EXPECT_EQ(scene->materialNames, (std::vector<std::string>{"dye", "grey", "tinted", "wall"}));
   EXPECT_EQ(scene->materials[0]->describe(), "jung_fluorescent");
-  EXPECT_TRUE(scene->materials[0]->fluoresces());
+  EXPECT_TRUE(has(scene->materials[0]->flags(), BsdfFlags::Fluorescent));
 
   ASSERT_EQ(scene->shapes.size(), 5u);
   const auto& s = scene->shapes;

@@ -27,7 +27,7 @@ struct PhotonPass final : PassData {
 // The reflected radiance at a camera vertex from the photons of the pass, as XYZ: `sensor` is the
 // camera sample's W(λ)/p(λ) times the camera path's throughput, λ the wavelength leaving this
 // vertex towards the camera, `bounces` the specular vertices before it.
-Vec3 gather(const PhotonPass& pass, const Material& mat, const Vec3& p, const Vec3& wo, float lambda, const Vec3& sensor,
+Vec3 gather(const PhotonPass& pass, const Bsdf& bsdf, const Vec3& p, const Vec3& wo, float lambda, const Vec3& sensor,
             int bounces, int maxDepth, bool exactElastic) {
   const Observer& obs = Observer::cie1931();
   Vec3 sum(0.0f);
@@ -36,9 +36,9 @@ Vec3 gather(const PhotonPass& pass, const Material& mat, const Vec3& p, const Ve
     if (int(ph.depth) + bounces > maxDepth) continue;
     const Vec3 wi(ph.wi[0], ph.wi[1], ph.wi[2]);  // the photon's direction in its own surface frame
     // Fluorescent lobe: exact for any pair of wavelengths (transport.md §4).
-    if (mat.fluoresces())
-      sum += sensor * (mat.eval(TransportMode::Radiance, wi, wo, ph.lambda, lambda, SpectralLobe::Fluorescent) * ph.power);
-    const float fe = mat.eval(TransportMode::Radiance, wi, wo, ph.lambda, ph.lambda, SpectralLobe::Elastic) * ph.power;
+    if (bsdf.has(BsdfFlags::Fluorescent))
+      sum += sensor * (bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, lambda, SpectralLobe::Fluorescent) * ph.power);
+    const float fe = bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, ph.lambda, SpectralLobe::Elastic) * ph.power;
     if (fe <= 0.0f) continue;
     if (exactElastic)
       sum += obs.weight(ph.lambda) * fe;  // the sensor at the photon's own wavelength (β = 1 here)
@@ -114,19 +114,18 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, Sample
     const Shape& shape = scene.shapes[hit->shape];
     if (shape.emission) xyz += sensor * (beta * shape.emission->eval(lambda, hit->ng, -ray.d));
     if (bounces >= maxDepth_) break;
-    const Material& mat = scene.material(*hit);
-    const Frame frame = Frame::fromNormal(hit->ng);
-    const Vec3 wo = frame.toLocal(-ray.d);
-    if (!mat.purelySpecular())
-      xyz += gather(pass, mat, hit->p, wo, lambda, sensor * beta, bounces, maxDepth_, bounces == 0 && !alwaysKernel_);
+    const Bsdf bsdf = scene.bsdf(*hit, {&lambda, 1});
+    const Vec3 wo = bsdf.toLocal(-ray.d);
+    if (!bsdf.has(BsdfFlags::DeltaDirection))
+      xyz += gather(pass, bsdf, hit->p, wo, lambda, sensor * beta, bounces, maxDepth_, bounces == 0 && !alwaysKernel_);
     // The gather covers every non-specular lobe; a sampled specular lobe continues the path.
     const std::optional<ScatterSample> ss =
-        mat.sample(TransportMode::Radiance, wo, lambda, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+        bsdf.sample(TransportMode::Radiance, wo, lambda, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
     if (!ss || !ss->specular) break;
     beta *= ss->f * std::abs(ss->w.z) / ss->pdf;
     if (!(beta > 0.0f)) break;
     lambda = ss->lambda;
-    const Vec3 w = frame.toWorld(ss->w);
+    const Vec3 w = bsdf.toWorld(ss->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
   }
   return xyz;
