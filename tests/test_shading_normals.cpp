@@ -5,8 +5,11 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/rng.h"
+#include "materials/lambertian.h"
 #include "scene/scene_loader.h"
 #include "temp_dir.h"
+#include "tests/support.h"
 
 namespace kasha {
 namespace {
@@ -86,6 +89,41 @@ TEST_F(ShadingNormals, SomeFacesWithoutNormalsIsAnError) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               dir + "/s.json: /shapes/0/file: '" + dir + "/m.obj': some faces have vertex normals (vn) and some do not");
+  }
+}
+
+// The furnace at one point, in both transport modes: a white Lambertian Bsdf whose shading normal
+// is tilted by α from the geometric one. The mean path weight f·|cos θ_s|/pdf of a sampled
+// direction (what the integrators multiply by) must be Veach's f_s integrated with the geometric
+// cosine (materials/shading_normal.h): (1 + cos α)/2 for a camera path (Radiance: ω_i sampled),
+// (ω_i·n_s)/(ω_i·n_g)·(1 + cos α)/2 for a light path arriving along ω_i (Importance: ω_o sampled).
+TEST(ShadingNormalBsdf, FurnaceInBothTransportModes) {
+  const Lambertian white(Spectrum::constant(1.0f));
+  const float lambda = 550.0f;
+  for (const float alphaDeg : {0.0f, 10.0f, 30.0f, 60.0f}) {
+    const float alpha = alphaDeg * kPi / 180.0f;
+    const Frame geometric = Frame::fromNormal(Vec3(0, 0, 1));
+    const Frame shading = Frame::fromNormal(Vec3(std::sin(alpha), 0.0f, std::cos(alpha)));
+    const Bsdf bsdf = white.bsdf(HitContext{Vec2(0.0f), geometric, shading, {&lambda, 1}});
+    // A known direction on the same side of both normals, tilted towards -x.
+    const Vec3 known = bsdf.toLocal(glm::normalize(Vec3(-0.3f, 0.2f, 1.0f)));
+    const Vec3 ngLocal = bsdf.toLocal(geometric.n);
+    for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
+      SCOPED_TRACE(std::string(toString(mode)) + ", alpha " + std::to_string(alphaDeg));
+      Rng rng(17);
+      const int n = 200000;
+      double sum = 0.0, sum2 = 0.0;
+      for (int i = 0; i < n; ++i) {
+        const std::optional<ScatterSample> s = bsdf.sample(mode, known, lambda, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+        const double w = s ? double(s->f * std::abs(s->w.z) / s->pdf) : 0.0;
+        sum += w, sum2 += w * w;
+      }
+      const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+      double exact = 0.5 * (1.0 + std::cos(double(alpha)));
+      if (mode == TransportMode::Importance) exact *= double(known.z) / double(glm::dot(known, ngLocal));
+      EXPECT_NEAR(mean, exact, 4.0 * se + 1e-6) << "mean " << mean << " ± " << se;
+      if (alphaDeg >= 10.0f) EXPECT_GT(std::abs(mean - 1.0), 8.0 * se) << "the tilt is visible";
+    }
   }
 }
 
