@@ -10,10 +10,14 @@
 namespace kasha {
 namespace {
 
-// The material's own excitation density, as a strategy: what "material" means once the lobe is
-// chosen by the hero set (for the Jung18 BBRRDF the same density, λ_i ∝ a).
-WavelengthSpec excitationSpec(const WavelengthSpec& s) {
-  return s.uses(WavelengthSpec::Kind::Material) ? parseWavelengthSpec("absorption") : s;
+// λ_i of the fluorescent lobe for the hero alone, given its λ_o: the Bsdf's own density (its
+// sampleSpectral takes the fluorescent lobe for every u below P_c, then draws λ_i from u/P_c).
+WavelengthSample ownExcitation(const Bsdf& bsdf, float lambdaOut, float u) {
+  const float pc = bsdf.fluorescenceProbability(TransportMode::Radiance, lambdaOut);
+  if (!(pc > 0.0f)) return {};  // the hero's fluorescent lobe is zero: nothing to sample
+  const SpectralChoice c = bsdf.sampleSpectral(TransportMode::Radiance, lambdaOut, u * pc);
+  if (c.lobe != SpectralLobe::Fluorescent) return {};
+  return {c.lambda, c.pdf / pc};
 }
 
 }  // namespace
@@ -21,7 +25,7 @@ WavelengthSpec excitationSpec(const WavelengthSpec& s) {
 HeroPathTracer::HeroPathTracer(const Scene& scene, const RenderSettings& s)
     : sources_(scene),
       sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
-      excitation_(excitationSpec(s.wavelengths.fluorescence), sources_, scene.materials.size()),
+      excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
       n_(s.heroWavelengths),
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth) {
@@ -143,7 +147,9 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
     std::copy(s.lambda, s.lambda + s.n, lambdaIn);
     if (u < pFluor) {
       collapse();
-      const WavelengthSample ex = excitation_.sampleExcitation(shape.material, std::min(u / pFluor, 0x1.fffffep-1f));
+      const float v = std::min(u / pFluor, 0x1.fffffep-1f);
+      const WavelengthSample ex = excitation_.draws(shape.material) ? excitation_.sampleExcitation(shape.material, v)
+                                                                    : ownExcitation(bsdf, s.lambda[0], v);
       if (ex.pdf <= 0.0f) break;
       lobe = SpectralLobe::Fluorescent;
       spectralPdf = pFluor * ex.pdf;

@@ -43,7 +43,7 @@ class HeroPathTracer final : public Integrator {
 
   WavelengthSources sources_;
   WavelengthStrategy sensor_;
-  FluorescenceSampling excitation_;  // λ_i given the fluorescent lobe ("material": the absorption)
+  FluorescenceSampling excitation_;  // λ_i given the fluorescent lobe ("material": the Bsdf's own)
   int n_, maxDepth_, rrDepth_;
 };
 

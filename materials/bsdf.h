@@ -42,8 +42,8 @@ class Bsdf {
     const float c = correction_.factor(mode, wi, wo);
     return c > 0.0f ? c * model_->eval(mode, wi, wo, lambdaIn, lambdaOut, lobe) : 0.0f;
   }
-  // Spectral stage: from the known wavelength, the lobe and the unknown wavelength; pdf is the
-  // lobe's probability × (fluorescent) its per-nm density.
+  // Spectral stage: from the known wavelength, the lobe (fluorescent exactly when u < P) and the
+  // unknown wavelength; pdf is the lobe's probability × (fluorescent) its per-nm density.
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
     return model_->sampleSpectral(mode, lambdaKnown, u);
   }

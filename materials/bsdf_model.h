@@ -93,7 +93,9 @@ class BsdfModel {
                      SpectralLobe lobe) const = 0;
 
   // Spectral stage: chooses the lobe and the unknown wavelength given the known one (λ_o in
-  // Radiance mode, λ_i in Importance mode). Returns pdf 0 when nothing is scattered.
+  // Radiance mode, λ_i in Importance mode): the fluorescent lobe exactly when
+  // u < fluorescenceProbability(mode, λ), its wavelength then drawn with u/P. Returns pdf 0 when
+  // nothing is scattered.
   virtual SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const = 0;
   // Density of that choice: lambdaOther is the sampled side's wavelength.
   virtual float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const = 0;
