@@ -6,6 +6,9 @@
 // "kasha: error: ..." and nothing written; 2 a bad command line; 128 + signal (130 SIGINT,
 // 143 SIGTERM) when a render was asked to stop: it finishes the current pass and writes the image,
 // the statistics and the checkpoint (if any) before exiting.
+//
+// `mpirun -np N kasha render ...` (detected, or --mpi) renders one image with N processes
+// (cli/mpi_group.h); rank 0 writes the outputs, an error on any rank ends all with its exit code.
 #include <CLI/CLI.hpp>
 #include <signal.h>
 #include <unistd.h>
@@ -23,6 +26,7 @@
 
 #include "cli/compare_command.h"
 #include "cli/metrics_command.h"
+#include "cli/mpi_group.h"
 #include "cli/extract_command.h"
 #include "cli/progress.h"
 #include "core/checkpoint.h"
@@ -84,6 +88,7 @@ struct RenderArgs {
   std::string strategyImages;  // directory for one image per BDPT strategy
   bool strategyUnweighted = false;
   int strategyDepth = 4;
+  bool mpi = false;  // initialise MPI even if no MPI launcher is detected
 };
 
 struct MatrixArgs {
@@ -125,7 +130,8 @@ std::string hex(uint64_t v) {
 
 const char* signalName(int sig) { return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "signal"; }
 
-int runRender(const RenderArgs& a) {
+// group: the MPI ranks rendering together, or nullptr; only rank 0 writes files and prints.
+int runRender(const RenderArgs& a, RenderGroup* group) {
   const uint64_t memoryLimit = parseByteSize(a.memoryLimit);  // validated by the option's check
   SceneLoadOptions load;
   load.memoryLimit = memoryLimit;
@@ -211,6 +217,8 @@ int runRender(const RenderArgs& a) {
   opt.timeBudgetSeconds = r.timeBudgetSeconds;
   opt.seed = r.seed;
   opt.threads = a.threads;
+  opt.group = group;
+  const bool root = !group || group->rank() == 0;
   nlohmann::json resumed;
   if (!a.resume.empty()) {
     CheckpointData d = readCheckpoint(a.resume);
@@ -226,6 +234,11 @@ int runRender(const RenderArgs& a) {
     resumed = {{"checkpoint", a.resume}, {"spp", d.spp}, {"seconds", opt.previousSeconds}};
     restoreFilm(std::move(d), film);
   }
+  // A pass's camera samples wait in a record before they reach the film (integrators/render_pass.h).
+  const int perPass = opt.samplesPerPass > 0 ? opt.samplesPerPass
+                                             : std::min(defaultSamplesPerPass(width, height), integrator->maxSamplesPerPass());
+  requireMemory(PassTracer::sampleBytes(width, height, perPass),
+                "the samples of one pass (" + std::to_string(perPass) + " per pixel)", memoryLimit);
   if (!checkpoint.empty()) {
     opt.checkpointIntervalSeconds = a.checkpointInterval;
     opt.checkpoint = [&](const RenderStats& s) {
@@ -241,10 +254,13 @@ int runRender(const RenderArgs& a) {
   if (strategies) opt.strategies = [&](const StrategySample& rec) { strategies->add(rec); };
   opt.stop = &gStopSignal;
   ProgressBar bar(std::filesystem::path(a.scene).filename().string());
-  if (!a.quiet) opt.progress = [&](int spp, double t, double total) { bar.update(spp, t, total); };
+  if (!a.quiet && root) opt.progress = [&](int spp, double t, double total) { bar.update(spp, t, total); };
   installStopHandlers();
   const RenderStats st = render(*scene, *integrator, film, opt);
   bar.finish();
+  // A stop request on another rank ends this one too.
+  const int sig = st.stopSignal != 0 ? st.stopSignal : gStopSignal.load();
+  if (!root) return sig != 0 ? 128 + sig : 0;
 
   writeExr(film, exr);
   if (!png.empty()) writePng(film, png, a.exposure);
@@ -263,7 +279,6 @@ int runRender(const RenderArgs& a) {
   j["total_seconds"] = opt.previousSeconds + st.seconds;
   if (!resumed.is_null()) j["resumed"] = resumed;
   if (!checkpoint.empty()) j["checkpoint"] = checkpoint;
-  const int sig = gStopSignal.load();
   if (sig != 0) j["signal"] = signalName(sig);
   j["outputs"] = {{"exr", exr}, {"png", png}};
   if (strategies) {
@@ -423,6 +438,8 @@ int main(int argc, char** argv) {
       ->check(numberCheck(Sign::NonNegative, false));
   render->add_option("--resume", ra.resume,
                      "Continue the render saved in this checkpoint (same scene and options); keeps checkpointing to it");
+  render->add_flag("--mpi", ra.mpi,
+                   "Render with the ranks of an MPI job (automatic under mpirun/mpiexec/srun); rank 0 writes the outputs");
   render->add_option("--memory-limit", ra.memoryLimit, "Largest buffer kasha may allocate, e.g. 512M, 8G (default 8G)")
       ->check(kByteSize);
 
@@ -494,18 +511,31 @@ int main(int argc, char** argv) {
                                      : "");
     return 2;
   }
+  // Only `render` is distributed; under an MPI launcher the other commands run once per rank.
+  std::unique_ptr<MpiGroup> mpi;
+  if (render->parsed() && (ra.mpi || launchedByMpi())) mpi = std::make_unique<MpiGroup>(&argc, &argv);
+  // After an error on one rank the others would wait for it forever: end them all.
+  auto fail = [&](const char* what) {
+    std::fprintf(stderr, "kasha: error: %s\n", what);
+    if (mpi && mpi->size() > 1) {
+      std::fflush(stderr);
+      mpi->abort(1);
+    }
+    return 1;
+  };
   try {
-    if (render->parsed()) return runRender(ra);
+    if (render->parsed()) {
+      const int code = runRender(ra, mpi.get());
+      // No rank ends (and has mpirun end the job) before rank 0 has written the outputs.
+      if (mpi) mpi->barrier();
+      return code;
+    }
     if (matrix->parsed()) return runMatrix(ma);
     if (compare->parsed()) return runCompare(ca);
     if (metrics->parsed()) return runMetrics(mt);
     if (extract->parsed()) return runExtract(xa);
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "kasha: error: %s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "kasha: error: %s\n", e.what());
-    return 1;
+  } catch (const std::exception& e) {  // InputError included
+    return fail(e.what());
   }
   return 1;
 }

@@ -1,15 +1,14 @@
 #include "integrators/render_loop.h"
 
-#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
+#include <array>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 namespace kasha {
 
@@ -24,27 +23,34 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   RenderStats st;
   st.integrator = integrator.name();
   st.threads = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-  const uint64_t seedMix = mixBits(opt.seed + 0x9e3779b97f4a7c15ULL);
+  const int rank = opt.group ? opt.group->rank() : 0;
+  st.ranks = opt.group ? opt.group->size() : 1;
+  const bool root = rank == 0;
   // The stream of a sample depends only on its index, not on how samples are grouped into passes.
   const int perPass = std::min(opt.samplesPerPass > 0 ? opt.samplesPerPass : defaultSamplesPerPass(w, h),
                                integrator.maxSamplesPerPass());
   st.samplesPerPass = perPass;
-  constexpr int kTile = 16;
-  const int tilesX = (w + kTile - 1) / kTile, tilesY = (h + kTile - 1) / kTile, tileCount = tilesX * tilesY;
-  std::vector<SampleContext> contexts(static_cast<size_t>(tileCount));
-  RayCounter passRays;  // traced by Integrator::beginPass
-  auto stopRequested = [&] { return opt.stop && opt.stop->load() != 0; };
+  PassTracer tracer(scene, integrator, w, h, opt.seed, bool(opt.strategies));
+  RayCounter rays;  // of the committed passes: on rank 0, those of every rank
+  auto commit = [&](const PassRecord& rec) {
+    tracer.commit(rec, film, opt.strategies);
+    rays.closest += rec.rays.closest;
+    rays.shadow += rec.rays.shadow;
+  };
+  // Agreed by all ranks after the same pass: the highest stop request and whether rank 0's time
+  // budget is spent.
+  auto agree = [&](int stop, bool outOfTime) {
+    std::array<int, 2> v{stop, outOfTime ? 1 : 0};
+    if (opt.group) opt.group->maxOverRanks(v);
+    return v;
+  };
   // Statistics of this run so far; spp and the non-finite count are the film's totals.
   auto snapshot = [&](int pass) {
     st.seconds = elapsed();
     st.spp = pass;
     st.samples = uint64_t(pass - opt.startSpp) * uint64_t(w) * uint64_t(h);
-    st.closestRays = passRays.closest;
-    st.shadowRays = passRays.shadow;
-    for (const SampleContext& ctx : contexts) {
-      st.closestRays += ctx.counter.closest;
-      st.shadowRays += ctx.counter.shadow;
-    }
+    st.closestRays = rays.closest;
+    st.shadowRays = rays.shadow;
     st.rays = st.closestRays + st.shadowRays;
     st.samplesPerSecond = st.seconds > 0.0 ? double(st.samples) / st.seconds : 0.0;
     st.raysPerSecond = st.seconds > 0.0 ? double(st.rays) / st.seconds : 0.0;
@@ -56,66 +62,50 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   double lastCheckpoint = 0.0;
   bool unsaved = false;
   while (pass < opt.spp) {
-    if (stopRequested()) {
+    const int stop = agree(opt.stop ? opt.stop->load() : 0, false)[0];
+    if (stop != 0) {
       st.interrupted = true;
+      st.stopSignal = stop;
       break;
     }
-    const int first = pass, count = std::min(perPass, opt.spp - pass);
-    const std::unique_ptr<const PassData> passData = integrator.beginPass(scene, first, count, opt.seed, passRays);
-    // Fixed 16×16 tiles; each keeps its splats, merged in tile order so the sums do not depend
-    // on scheduling.
-    tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
-      for (int tile = range.begin(); tile < range.end(); ++tile) {
-        SampleContext& ctx = contexts[size_t(tile)];
-        ctx.splats.clear();
-        ctx.strategies.clear();
-        ctx.recordStrategies = bool(opt.strategies);
-        ctx.pass = passData.get();
-        const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
-        for (int y = y0; y < std::min(y0 + kTile, h); ++y)
-          for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
-            const uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
-            for (int s = first; s < first + count; ++s) {
-              Rng rng(mixBits(seedMix ^ mixBits(pixel)), uint64_t(s));
-              film.add(x, y, integrator.samplePixel(scene, Vec2(float(x), float(y)), rng, ctx));
-            }
-          }
+    // One round: its k-th pass goes to rank k; rank 0 commits them in pass order.
+    auto firstOf = [&](int k) { return int64_t(pass) + int64_t(k) * perPass; };
+    if (firstOf(rank) < opt.spp) {
+      const int first = int(firstOf(rank));
+      const PassRecord rec = tracer.trace(first, std::min(perPass, opt.spp - first));
+      if (root)
+        commit(rec);
+      else
+        opt.group->send(rec);
+    }
+    if (root)
+      for (int k = 1; k < st.ranks && firstOf(k) < opt.spp; ++k) {
+        const PassRecord rec = opt.group->receive(k, w, h);
+        if (rec.first != firstOf(k))
+          throw std::runtime_error("rank " + std::to_string(k) + " sent the pass of sample " + std::to_string(rec.first) +
+                                   " instead of " + std::to_string(firstOf(k)));
+        commit(rec);
       }
-    }, tbb::simple_partitioner());
-    for (SampleContext& ctx : contexts)
-      for (const Splat& sp : ctx.splats) {
-        // A splat at a non-finite position is counted like a non-finite sample (pixel -1, -1).
-        if (!std::isfinite(sp.pixel.x) || !std::isfinite(sp.pixel.y)) {
-          film.addNonFinite(-1, -1);
-          continue;
-        }
-        // Clamped as floats: converting a huge float to int would be undefined behaviour.
-        const int x = int(std::clamp(sp.pixel.x, 0.0f, float(w - 1))), y = int(std::clamp(sp.pixel.y, 0.0f, float(h - 1)));
-        film.addSplat(x, y, sp.xyz);
-      }
-    if (opt.strategies)
-      for (const SampleContext& ctx : contexts)
-        for (const StrategySample& r : ctx.strategies) opt.strategies(r);
-    pass += count;
+    pass = int(std::min<int64_t>(opt.spp, firstOf(st.ranks)));
     film.setSamplesPerPixel(pass);
     unsaved = true;
     const double t = elapsed(), total = opt.previousSeconds + t;
-    const bool outOfTime = opt.timeBudgetSeconds > 0.0 && total >= opt.timeBudgetSeconds;
-    if (opt.progress) {
+    const bool outOfTime = agree(0, root && opt.timeBudgetSeconds > 0.0 && total >= opt.timeBudgetSeconds)[1] != 0;
+    if (root && opt.progress) {
       double estimate = t * double(opt.spp - opt.startSpp) / double(pass - opt.startSpp);
       if (opt.timeBudgetSeconds > 0.0) estimate = std::min(estimate, std::max(opt.timeBudgetSeconds - opt.previousSeconds, t));
       if (outOfTime) estimate = t;
       opt.progress(pass, t, estimate);
     }
     if (outOfTime) break;
-    if (opt.checkpoint && pass < opt.spp && t - lastCheckpoint >= opt.checkpointIntervalSeconds) {
+    if (root && opt.checkpoint && pass < opt.spp && t - lastCheckpoint >= opt.checkpointIntervalSeconds) {
       opt.checkpoint(snapshot(pass));
       lastCheckpoint = elapsed();
       unsaved = false;
     }
   }
   snapshot(pass);
-  if (opt.checkpoint && unsaved) opt.checkpoint(st);
+  if (root && opt.checkpoint && unsaved) opt.checkpoint(st);
   return st;
 }
 
@@ -136,13 +126,15 @@ nlohmann::json toJson(const RenderStats& s) {
           {"non_finite_samples", s.nonFiniteSamples},
           {"threads", s.threads},
           {"samples_per_pass", s.samplesPerPass},
-          {"interrupted", s.interrupted}};
+          {"interrupted", s.interrupted},
+          {"ranks", s.ranks}};
 }
 
 std::string summaryLine(const RenderStats& s) {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%s: %.2f s, %d spp, %.3g samples/s, %.3g rays/s, %d threads%s%s", s.integrator.c_str(),
+  std::snprintf(buf, sizeof buf, "%s: %.2f s, %d spp, %.3g samples/s, %.3g rays/s, %d threads%s%s%s", s.integrator.c_str(),
                 s.seconds, s.spp, s.samplesPerSecond, s.raysPerSecond, s.threads,
+                s.ranks > 1 ? (" x " + std::to_string(s.ranks) + " processes").c_str() : "",
                 s.nonFiniteSamples ? (", " + std::to_string(s.nonFiniteSamples) + " non-finite samples dropped").c_str() : "",
                 s.interrupted ? ", interrupted" : "");
   return buf;

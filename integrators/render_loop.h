@@ -1,19 +1,22 @@
 #pragma once
 // Runs an integrator over the image: passes of a few samples per pixel over 16×16 tiles in
-// parallel (TBB). Sample s of pixel (x, y) draws from its own PCG32 stream seeded by
-// (seed, x, y, s), so the image does not depend on the number of threads.
+// parallel (TBB), optionally dealt among processes (render_group.h). Sample s of pixel (x, y)
+// draws from its own PCG32 stream seeded by (seed, x, y, s), so the image depends neither on the
+// number of threads nor on the number of processes.
 //
-// Bit-identical results. A pixel's camera samples are added to its sum in sample order, whatever
-// the passes and threads. Splats are kept per tile and merged after each pass in tile order, so a
-// pixel's splat sum depends on how samples are grouped into passes: with the same samples per
-// pass (stored in checkpoints) a render resumed at a pass boundary adds exactly the same numbers
-// in exactly the same order as an uninterrupted one.
+// Bit-identical results. Each pass is traced into a record and committed to the film in pass
+// order (render_pass.h): a pixel's camera samples are added to its sum in sample order, splats in
+// tile order after each pass, so a pixel's splat sum depends on how samples are grouped into
+// passes: with the same samples per pass (stored in checkpoints) a render resumed at a pass
+// boundary, or split among processes, adds exactly the same numbers in exactly the same order as
+// an uninterrupted one-process render.
 #include <atomic>
 #include <functional>
 #include <string>
 
 #include "core/film.h"
 #include "integrators/integrator.h"
+#include "integrators/render_group.h"
 
 namespace kasha {
 
@@ -29,6 +32,8 @@ struct RenderStats {
   int threads = 0;
   int samplesPerPass = 0;
   bool interrupted = false;  // stopped by RenderOptions::stop before reaching spp or the time budget
+  int stopSignal = 0;        // the stop value that ended it (the highest over the processes)
+  int ranks = 1;             // processes that rendered (RenderOptions::group); counts and rays are their sums
 };
 
 // At least ~64k samples per pass, so that small images keep every core busy.
@@ -61,8 +66,15 @@ struct RenderOptions {
   // If set, integrators that can record each strategy's share of their samples
   // (SampleContext::recordStrategies), and this receives the records after each pass, in tile order.
   std::function<void(const StrategySample&)> strategies;
+  // The processes rendering this image together; nullptr: this one alone. All of them call
+  // render() with the same options; only rank 0's film receives samples, and only rank 0 calls
+  // progress, checkpoint and strategies. A stop request on any rank stops all after the same pass;
+  // rank 0's clock decides the time budget.
+  RenderGroup* group = nullptr;
 };
 
+// Renders into `film` until options.spp, the time budget or a stop request; returns the
+// statistics (on rank 0 of a group: summed over the ranks).
 RenderStats render(const Scene& scene, const Integrator& integrator, Film& film, const RenderOptions& options);
 
 }  // namespace kasha

@@ -1,0 +1,53 @@
+#pragma once
+// One render pass: samples [first, first + count) of every pixel, traced into a PassRecord and
+// then committed to the film. Tracing and committing are apart so that a pass may be traced by
+// another process (render_group.h) and still reach the film in exactly the order of a
+// one-process render: a pixel's camera samples in sample order, splats and strategy records in
+// tile order, the passes in pass order.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/film.h"
+#include "integrators/integrator.h"
+
+namespace kasha {
+
+// What one pass produced, before it reaches the film. Plain data, so it can be sent as bytes.
+struct PassRecord {
+  int first = 0, count = 0;   // the samples of every pixel this pass took
+  std::vector<Vec3> samples;  // row-major pixels, `count` consecutive values each, in sample order
+  std::vector<Splat> splats;  // in tile order
+  std::vector<StrategySample> strategies;  // in tile order (only when recording strategies)
+  RayCounter rays;            // traced by the pass (Integrator::beginPass and the samples)
+};
+
+// Traces passes of one integrator over one image: fixed 16×16 tiles in parallel (TBB). Sample s
+// of pixel p draws from the PCG32 stream (seed, p, s), so a record depends only on the pass's
+// samples, never on threads, processes or the passes before it.
+class PassTracer {
+ public:
+  PassTracer(const Scene& scene, const Integrator& integrator, int width, int height, uint64_t seed,
+             bool recordStrategies);
+  // Traces samples [first, first + count) of every pixel.
+  PassRecord trace(int first, int count);
+  // Adds a record to the film: each pixel's samples in sample order (pixels in tile order, so the
+  // first non-finite pixel is the same as with one thread), then the splats; strategy records go
+  // to `strategies` if set. Records must be committed in pass order for bit-identical sums.
+  void commit(const PassRecord& record, Film& film, const std::function<void(const StrategySample&)>& strategies) const;
+
+  // Bytes of the sample buffer of a pass of `samplesPerPixel` (a record's splats come on top).
+  static uint64_t sampleBytes(int width, int height, int samplesPerPixel);
+
+ private:
+  template <class PixelFn>
+  void forEachPixelOfTile(int tile, PixelFn&& fn) const;
+  const Scene& scene_;
+  const Integrator& integrator_;
+  int w_, h_, tilesX_, tileCount_;
+  uint64_t seedMix_, seed_;
+  bool recordStrategies_;
+  std::vector<SampleContext> contexts_;  // one per tile, reused across passes
+};
+
+}  // namespace kasha
