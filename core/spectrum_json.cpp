@@ -61,6 +61,7 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
       const std::string wi = "wavelengths/" + std::to_string(i), vi = "values/" + std::to_string(i);
       if (!wl[i].is_number() || !std::isfinite(wl[i].get<double>())) f.fail(wi, "expected a finite number");
       if (!val[i].is_number() || !std::isfinite(val[i].get<double>())) f.fail(vi, "expected a finite number");
+      if (!(wl[i].get<float>() > 0.0f)) f.fail(wi, "wavelength must be positive (" + wl[i].dump() + ")");
       if (!x.empty() && wl[i].get<float>() <= x.back()) f.fail(wi, "wavelengths must be strictly increasing");
       if (val[i].get<float>() < 0.0f) f.fail(vi, "negative value " + std::to_string(val[i].get<float>()));
       x.push_back(wl[i].get<float>());
@@ -106,6 +107,7 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
     s = Spectrum::blackbody(k);
   } else if (type == "box") {
     const float lo = f.number("min"), hi = f.number("max");
+    if (lo < 0.0f) f.fail("min", "wavelength must not be negative (" + formatNm(lo) + ")");
     if (!(hi > lo)) f.fail("max", "must exceed /min");
     s = Spectrum::box(lo, hi, nonNegative(f, "value", 1.0f, false));
   } else if (type == "rgb") {
@@ -119,6 +121,12 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
     f.fail("type", "unknown spectrum type '" + type +
                        "' (constant, tabulated, file, gaussian, blackbody, box, rgb, preset)");
   }
+  // A value that overflows before the scale is applied is the type's field's fault (a blackbody of
+  // 10^30 K), not the scale's.
+  for (float y : s.values())
+    if (!std::isfinite(y))
+      f.fail(type == "blackbody" ? "kelvin" : type == "gaussian" ? "peak" : "type",
+             "the " + type + " spectrum overflows a 32-bit float");
   const float scale = nonNegative(f, "scale", 1.0f, false);
   f.finish();
   if (scale != 1.0f) s = s.scaled(scale);

@@ -15,9 +15,11 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "core/memory_budget.h"
 #include "core/spectrum.h"
 
 namespace kasha {
@@ -42,6 +44,11 @@ struct SpectrumContext {
   // If set, loads the textures of materials (core/texture.h) against the scene's memory limit;
   // otherwise each texture is loaded on its own against the default limit.
   TextureLoader* textures = nullptr;
+  // The largest buffer a file named in the scene may need (a decoded texture).
+  uint64_t memoryLimit = kDefaultMemoryLimit;
+  // The material files (type "file") being read, outermost first: a file that names one of them
+  // is a cycle, and the chain has a depth limit.
+  std::vector<std::string> materialFiles;
 };
 
 Spectrum parseSpectrum(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& pointer);

@@ -6,8 +6,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
+#include "core/error.h"
+#include "core/exr_input.h"
+#include "core/input_file.h"
 #include "core/memory_budget.h"
 
 namespace kasha {
@@ -46,15 +50,28 @@ struct Decoded {
   std::vector<float> texels;
 };
 
-Decoded decodePng(const std::string& path, TextureChannel channel) {
+// Called with an image's size from its header, before anything is decoded; throws to refuse it.
+// decodeBytes: the decoder's own buffer while reading.
+using SizeCheck = std::function<void(uint64_t width, uint64_t height, uint64_t decodeBytes)>;
+
+// Reads the file through core/input_file.h (a regular file only, never blocking) and decodes it
+// from memory once `check` has accepted the header's size.
+Decoded decodePng(const std::string& path, TextureChannel channel, const SizeCheck& check) {
+  const std::string bytes = readInputFile(path, "texture", kMaxImageFileBytes);
   png_image img{};
   img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&img, path.c_str()))
-    throw std::runtime_error(std::string("cannot read PNG: ") + img.message);
+  if (!png_image_begin_read_from_memory(&img, bytes.data(), bytes.size()))
+    throw InputError(path, "", std::string("cannot read PNG: ") + img.message);
+  try {
+    check(img.width, img.height, saturatingMul(uint64_t(img.width) * img.height, 4));
+  } catch (...) {
+    png_image_free(&img);
+    throw;
+  }
   img.format = PNG_FORMAT_RGBA;
   std::vector<unsigned char> buf(PNG_IMAGE_SIZE(img));
   if (!png_image_finish_read(&img, nullptr, buf.data(), 0, nullptr))
-    throw std::runtime_error(std::string("cannot read PNG: ") + img.message);
+    throw InputError(path, "", std::string("cannot read PNG: ") + img.message);
   Decoded d{int(img.width), int(img.height), {}};
   d.texels.reserve(size_t(d.w) * size_t(d.h) * size_t(channelCount(channel)));
   for (size_t i = 0; i < buf.size(); i += 4)
@@ -62,11 +79,15 @@ Decoded decodePng(const std::string& path, TextureChannel channel) {
   return d;
 }
 
-Decoded decodeExr(const std::string& path, TextureChannel channel) {
+// As decodePng, through core/exr_input.h.
+Decoded decodeExr(const std::string& path, TextureChannel channel, const SizeCheck& check) {
+  ExrInput in(path, "texture");
+  check(in.width(), in.height(), saturatingMul(saturatingMul(in.width(), in.height()), sizeof(Imf::Rgba)));
   try {
-    Imf::RgbaInputFile file(path.c_str());
+    const std::unique_ptr<Imf::IStream> stream = in.stream();
+    Imf::RgbaInputFile file(*stream);
     const Imath::Box2i dw = file.dataWindow();
-    Decoded d{dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, {}};
+    Decoded d{int(in.width()), int(in.height()), {}};
     std::vector<Imf::Rgba> px(size_t(d.w) * size_t(d.h));
     file.setFrameBuffer(px.data() - dw.min.x - ptrdiff_t(dw.min.y) * d.w, 1, size_t(d.w));
     file.readPixels(dw.min.y, dw.max.y);
@@ -74,7 +95,7 @@ Decoded decodeExr(const std::string& path, TextureChannel channel) {
     for (const Imf::Rgba& p : px) pick(channel, p.r, p.g, p.b, p.a, d.texels);
     return d;
   } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("cannot read OpenEXR: ") + e.what());
+    throw InputError(path, "", std::string("cannot read OpenEXR: ") + e.what());
   }
 }
 
@@ -177,41 +198,26 @@ Vec3 ImageTexture::rgb(Vec2 uv) const {
   return v;
 }
 
-ImageSize readImageSize(const std::string& path) {
-  if (isPng(path)) {
-    png_image img{};
-    img.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&img, path.c_str()))
-      throw std::runtime_error(std::string("cannot read PNG: ") + img.message);
-    const ImageSize s{int(img.width), int(img.height), saturatingMul(uint64_t(img.width) * img.height, 4)};
-    png_image_free(&img);
-    return s;
-  }
-  try {
-    Imf::RgbaInputFile file(path.c_str());
-    const Imath::Box2i dw = file.dataWindow();
-    const uint64_t w = uint64_t(int64_t(dw.max.x) - dw.min.x + 1), h = uint64_t(int64_t(dw.max.y) - dw.min.y + 1);
-    if (w > uint64_t(INT32_MAX) || h > uint64_t(INT32_MAX)) throw std::runtime_error("image too large");
-    return {int(w), int(h), saturatingMul(saturatingMul(w, h), sizeof(Imf::Rgba))};
-  } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("cannot read OpenEXR: ") + e.what());
-  }
-}
-
 std::shared_ptr<const ImageTexture> TextureLoader::load(const std::string& path, TextureChannel channel,
                                                         TextureWrap wrap, TextureFilter filter) {
   const auto key = std::make_tuple(path, channel, wrap, filter);
   if (const auto it = loaded_.find(key); it != loaded_.end()) return it->second;
-  const ImageSize size = readImageSize(path);
-  const uint64_t texels = saturatingMul(saturatingMul(uint64_t(size.width), uint64_t(size.height)),
-                                        uint64_t(channelCount(channel)) * sizeof(float));
-  // While decoding, the decoder's buffer and the texels exist at once, besides the textures so far.
-  requireMemory(bytes_ + texels + size.decodeBytes,
-                "decoding this texture (" + std::to_string(size.width) + "×" + std::to_string(size.height) +
-                    " pixels) besides the scene's textures before it (" + formatBytes(bytes_) + ")",
-                limit_);
-  Decoded d = isPng(path) ? decodePng(path, channel) : decodeExr(path, channel);
+  const bool png = isPng(path);
   const int nc = channelCount(channel);
+  // While decoding, the decoder's buffer and the texels exist at once, besides the textures so far.
+  const SizeCheck check = [&](uint64_t w, uint64_t h, uint64_t decodeBytes) {
+    const uint64_t texels = saturatingMul(saturatingMul(w, h), uint64_t(nc) * sizeof(float));
+    const uint64_t need = std::min(std::min(texels, UINT64_MAX - decodeBytes) + decodeBytes, UINT64_MAX - bytes_) + bytes_;
+    try {
+      requireMemory(need,
+                    "decoding this texture (" + std::to_string(w) + "×" + std::to_string(h) +
+                        " pixels) besides the scene's textures before it (" + formatBytes(bytes_) + ")",
+                    limit_);
+    } catch (const MemoryLimitError& e) {
+      throw InputError(path, "", e.what());
+    }
+  };
+  Decoded d = png ? decodePng(path, channel, check) : decodeExr(path, channel, check);
   for (size_t i = 0; i < d.texels.size(); ++i)
     if (!(d.texels[i] >= 0.0f && d.texels[i] <= 1.0f)) {
       const size_t px = i / size_t(nc);

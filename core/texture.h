@@ -11,6 +11,8 @@
 // decoding: a texture holds parameters and linear colours); OpenEXR values are read as they are.
 // Every value must lie in [0, 1].
 //
+// Input: every image is opened by core/input_file.h's rule (OpenEXR through core/exr_input.h) and
+// decoded from memory, so a FIFO or a device is refused at once and never blocks.
 // Memory: TextureLoader reads each image's header first and counts the decoded size of every
 // texture of the scene against the memory limit before it decodes anything.
 #include <cstdint>
@@ -22,6 +24,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/memory_budget.h"
 
 namespace kasha {
 
@@ -73,22 +76,16 @@ class ImageTexture {
   TextureFilter filter_;
 };
 
-struct ImageSize {
-  int width = 0, height = 0;
-  uint64_t decodeBytes = 0;  // the decoder's own buffer while reading
-};
-
-// Reads only the header of a .png or .exr file (by extension, any case). Throws
-// std::runtime_error with the reason (unreadable file, unknown format).
-ImageSize readImageSize(const std::string& path);
-
 // Loads textures for one scene: checks the memory limit from each image's header, decodes,
 // checks the values, and shares a texture used by several fields with the same settings.
 class TextureLoader {
  public:
   explicit TextureLoader(uint64_t memoryLimit) : limit_(memoryLimit) {}
-  // Throws std::runtime_error with the reason (as readImageSize, a value outside [0, 1] with its
-  // pixel) or MemoryLimitError (core/memory_budget.h); the caller names the file and the field.
+  // Opens the .png or .exr file (by extension, any case) through core/input_file.h (a regular
+  // file only: a FIFO or a device is refused at once) and decodes it from memory. Throws
+  // InputError naming the file (unreadable, not a regular file, its header's pixels with the
+  // textures so far over the memory limit) or std::runtime_error with the reason (unknown
+  // format, a value outside [0, 1] with its pixel); the caller names the field.
   std::shared_ptr<const ImageTexture> load(const std::string& path, TextureChannel channel, TextureWrap wrap,
                                            TextureFilter filter);
   // Bytes held by the textures loaded so far.

@@ -67,10 +67,10 @@ std::pair<size_t, float> HeroPathTracer::selectLight(const Scene& scene, const L
   return {last, lightSelectProbability(scene, last, lanes)};
 }
 
-Vec3 HeroPathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
+Vec3 HeroPathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   const WavelengthDensity& p = sensor_.density();
   const WavelengthSample hero = p.sample(rng.uniform());
-  const Vec2 jitter(rng.uniform(), rng.uniform());
+  const Vec2 jitter = rng.uniform2();
   if (hero.pdf <= 0.0f) return Vec3(0.0f);
   // Wilkie14 §3: the rotations of the hero over the sensor's range.
   const WavelengthRange r = sources_.seen;
@@ -93,7 +93,7 @@ Vec3 HeroPathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, Sampl
   return xyz;
 }
 
-void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float collapseFactor, Rng& rng,
+void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float collapseFactor, Sampler& rng,
                               RayCounter& counter) const {
   float beta0 = 1.0f;          // Russian roulette compares the throughput with this
   float prevDirPdf = 0.0f;     // solid-angle density of the direction that led here
@@ -107,7 +107,9 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
     s.beta[0] *= collapseFactor;
     beta0 *= collapseFactor;
   };
+  const uint32_t firstDimension = rng.dimension();
   for (int depth = 0;; ++depth) {
+    rng.startVertex(firstDimension, depth);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++counter.closest;
     if (!hit) {
@@ -115,8 +117,8 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
         float w = 1.0f;
         if (!prevSpecular)
           w = powerHeuristic(prevDirPdf,
-                             lightSelectProbability(scene, size_t(scene.environmentLight), prevSelect) * env->pdfDirection());
-        for (int j = 0; j < s.n; ++j) s.L[j] += s.beta[j] * env->Le(s.lambda[j]) * w;
+                             lightSelectProbability(scene, size_t(scene.environmentLight), prevSelect) * env->pdfDirection(ray.d));
+        for (int j = 0; j < s.n; ++j) s.L[j] += s.beta[j] * env->Le(s.lambda[j], ray.d) * w;
       }
       break;
     }
@@ -163,7 +165,7 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
 
     // Next-event estimation for every lane through one light sample.
     const float uLight = rng.uniform();
-    const Vec2 uPos(rng.uniform(), rng.uniform());
+    const Vec2 uPos = rng.uniform2();
     prevSelect.n = s.n;
     std::copy(lambdaIn, lambdaIn + s.n, prevSelect.lambda);
     if (!bsdf.has(BsdfFlags::DeltaDirection)) {
@@ -189,7 +191,7 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
 
     // Direction stage, sampled at the hero's wavelengths; every remaining lane has the same density.
     const std::optional<DirectionSample> ds = bsdf.sampleDirection(TransportMode::Radiance, wo, lobe, lambdaIn[0],
-                                                                   s.lambda[0], Vec2(rng.uniform(), rng.uniform()));
+                                                                   s.lambda[0], rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
     if (ds->specular) collapse();
     float maxBeta = 0.0f;

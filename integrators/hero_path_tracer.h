@@ -26,7 +26,7 @@ class HeroPathTracer final : public Integrator {
   // settings.heroWavelengths in [2, kMaxWavelengths]; the sensor strategy must be a density.
   // Throws std::invalid_argument (WavelengthStrategyError for a strategy) otherwise.
   HeroPathTracer(const Scene& scene, const RenderSettings& settings);
-  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const override;
+  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override { return "pt"; }
 
  private:
@@ -36,7 +36,7 @@ class HeroPathTracer final : public Integrator {
     float beta[kMaxWavelengths];     // throughput over the (shared) path density
     float L[kMaxWavelengths];        // radiance gathered
   };
-  void radiance(const Scene& scene, Ray ray, Lanes& lanes, float collapseFactor, Rng& rng, RayCounter& counter) const;
+  void radiance(const Scene& scene, Ray ray, Lanes& lanes, float collapseFactor, Sampler& rng, RayCounter& counter) const;
   // Probability of choosing light `light` for next-event estimation: ∝ Σ_j Φ_light(λ_j).
   float lightSelectProbability(const Scene& scene, size_t light, const Lanes& lanes) const;
   std::pair<size_t, float> selectLight(const Scene& scene, const Lanes& lanes, float u) const;

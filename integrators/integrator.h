@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/math.h"
-#include "core/rng.h"
+#include "core/sampler.h"
 #include "scene/scene.h"
 
 namespace kasha {
@@ -55,7 +55,7 @@ class Integrator {
   // One estimate of the pixel's XYZ (the film normalisation of core/color.h) through the
   // continuous film position `pixel` (its integer corner; the integrator jitters). Contributions
   // to other pixels go to ctx.splats, in units where the film divides by samples per pixel.
-  virtual Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const = 0;
+  virtual Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const = 0;
   virtual std::string name() const = 0;
 
   // Called by the render loop before each pass, which takes samples [firstSample, firstSample +

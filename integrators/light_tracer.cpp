@@ -27,12 +27,12 @@ LightTracer::LightTracer(const Scene& scene, const RenderSettings& s)
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "for light subpaths");
 }
 
-Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Rng& rng, SampleContext& ctx) const {
+Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleContext& ctx) const {
   const LightSelector::LightWavelength lw =
       scene.lightSelector->sampleLightAndWavelength(wavelengths_.density(), rng.uniform(), rng.uniform());
   if (lw.pdf <= 0.0f) return Vec3(0.0f);
   const Light& light = *scene.lights[lw.light];
-  const Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
+  const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
   const std::optional<EmissionSample> es = light.sampleEmission(lw.lambda, uPos, uDir);
   if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return Vec3(0.0f);
 
@@ -73,7 +73,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Rng& rng, SampleContext&
     if (depth == maxDepth_) break;
 
     const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(TransportMode::Importance, wi, sc.lobe, lambda, lambdaOut, Vec2(rng.uniform(), rng.uniform()));
+        bsdf.sampleDirection(TransportMode::Importance, wi, sc.lobe, lambda, lambdaOut, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
     const float f = bsdf.eval(TransportMode::Importance, wi, ds->w, lambda, lambdaOut, sc.lobe);
     beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);

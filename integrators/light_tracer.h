@@ -16,7 +16,7 @@ class LightTracer final : public Integrator {
   LightTracer(const Scene& scene, const RenderSettings& settings);
   // Traces one light subpath (the pixel only seeds its random stream) and returns zero: all of
   // its contributions are splats.
-  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const override;
+  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override { return "lt"; }
 
  private:

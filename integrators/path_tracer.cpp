@@ -14,11 +14,11 @@ PathTracer::PathTracer(const Scene& scene, const RenderSettings& s)
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth) {}
 
-Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
+Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   Vec3 xyz(0.0f);
   for (int i = 0; i < sensor_.samplesPerEstimate(); ++i) {
     const WavelengthStrategy::Draw d = sensor_.draw(i, rng.uniform());
-    const Vec2 jitter(rng.uniform(), rng.uniform());
+    const Vec2 jitter = rng.uniform2();
     if (!(d.weight > 0.0f)) continue;
     const Ray ray = scene.camera.generateRay(pixel + jitter);
     const float L = radiance(scene, ray, d.lambda, rng, ctx.counter);
@@ -28,7 +28,7 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleCon
   return xyz;
 }
 
-float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, RayCounter& counter) const {
+float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Sampler& rng, RayCounter& counter) const {
   const LightSelector& lights = *scene.lightSelector;
   float L = 0.0f, beta = 1.0f;
   float prevDirPdf = 0.0f;     // solid-angle density of the direction that led here
@@ -37,15 +37,17 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
   float prevSpectralPdf = 1.0f, prevNeeSpectralPdf = 1.0f;
   bool prevSpecular = true;    // the camera ray counts as specular: no MIS on direct hits
   Vec3 prevP = ray.o;
+  const uint32_t firstDimension = rng.dimension();
   for (int depth = 0;; ++depth) {
+    rng.startVertex(firstDimension, depth);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++counter.closest;
     if (!hit) {
       if (const EnvironmentLight* env = scene.environment()) {
-        const float Le = env->Le(lambda);
+        const float Le = env->Le(lambda, ray.d);
         float w = 1.0f;
         if (!prevSpecular) {
-          const float lightPdf = lights.probability(size_t(scene.environmentLight), lambda) * env->pdfDirection();
+          const float lightPdf = lights.probability(size_t(scene.environmentLight), lambda) * env->pdfDirection(ray.d);
           w = powerHeuristic(prevDirPdf * prevSpectralPdf, lightPdf * prevNeeSpectralPdf);
         }
         L += beta * Le * w;
@@ -88,7 +90,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
       prevNeeSpectralPdf = nee_.pdf(bsdf, shape.material, lambda, lambdaIn, SpectralLobe::Fluorescent);
     }
     const float uLight = rng.uniform();
-    const Vec2 uPos(rng.uniform(), rng.uniform());
+    const Vec2 uPos = rng.uniform2();
     if (!bsdf.has(BsdfFlags::DeltaDirection) && neeSpectralPdf > 0.0f) {
       const auto [li, pSelect] = lights.select(lambdaNee, uLight);
       if (pSelect > 0.0f) {
@@ -111,7 +113,7 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, 
 
     // Direction stage.
     const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(TransportMode::Radiance, wo, sc.lobe, lambdaIn, lambda, Vec2(rng.uniform(), rng.uniform()));
+        bsdf.sampleDirection(TransportMode::Radiance, wo, sc.lobe, lambdaIn, lambda, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
     const float f = bsdf.eval(TransportMode::Radiance, ds->w, wo, lambdaIn, lambda, sc.lobe);
     beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);

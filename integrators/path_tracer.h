@@ -17,10 +17,10 @@ class PathTracer final : public Integrator {
  public:
   // Throws std::invalid_argument if a wavelength strategy does not apply to the scene.
   PathTracer(const Scene& scene, const RenderSettings& settings);
-  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const override;
+  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override { return "pt"; }
   // Radiance arriving at the camera along `ray` at wavelength lambda (one sample).
-  float radiance(const Scene& scene, Ray ray, float lambda, Rng& rng, RayCounter& counter) const;
+  float radiance(const Scene& scene, Ray ray, float lambda, Sampler& rng, RayCounter& counter) const;
 
  private:
   WavelengthSources sources_;

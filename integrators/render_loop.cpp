@@ -30,7 +30,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   const int perPass = std::min(opt.samplesPerPass > 0 ? opt.samplesPerPass : defaultSamplesPerPass(w, h),
                                integrator.maxSamplesPerPass());
   st.samplesPerPass = perPass;
-  PassTracer tracer(scene, integrator, w, h, opt.seed, bool(opt.strategies));
+  PassTracer tracer(scene, integrator, w, h, opt.seed, opt.sampler, bool(opt.strategies));
   RayCounter rays;  // of the committed passes: on rank 0, those of every rank
   auto commit = [&](const PassRecord& rec) {
     tracer.commit(rec, film, opt.strategies);

@@ -1,8 +1,8 @@
 #pragma once
 // Runs an integrator over the image: passes of a few samples per pixel over 16×16 tiles in
 // parallel (TBB), optionally dealt among processes (render_group.h). Sample s of pixel (x, y)
-// draws from its own PCG32 stream seeded by (seed, x, y, s), so the image depends neither on the
-// number of threads nor on the number of processes.
+// draws its random numbers from a Sampler (core/sampler.h) determined by (seed, pixel, s) alone, so
+// the image depends neither on the number of threads nor on the number of processes.
 //
 // Bit-identical results. Each pass is traced into a record and committed to the film in pass
 // order (render_pass.h): a pixel's camera samples are added to its sum in sample order, splats in
@@ -43,6 +43,7 @@ struct RenderOptions {
   int spp = 16;                  // stop after this many samples per pixel (counting startSpp)
   double timeBudgetSeconds = 0;  // > 0: stop after the first pass that ends past this time
   uint64_t seed = 1;
+  SamplerKind sampler = SamplerKind::Sobol;  // RenderSettings::sampler
   int threads = 0;               // 0: all cores
   // Called after every pass with (samples per pixel so far, seconds so far, estimated total seconds).
   std::function<void(int, double, double)> progress;

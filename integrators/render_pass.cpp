@@ -12,10 +12,10 @@ constexpr int kTile = 16;
 }  // namespace
 
 PassTracer::PassTracer(const Scene& scene, const Integrator& integrator, int width, int height, uint64_t seed,
-                       bool recordStrategies)
+                       SamplerKind sampler, bool recordStrategies)
     : scene_(scene), integrator_(integrator), w_(width), h_(height), tilesX_((width + kTile - 1) / kTile),
       tileCount_(tilesX_ * ((height + kTile - 1) / kTile)), seedMix_(mixBits(seed + 0x9e3779b97f4a7c15ULL)),
-      seed_(seed), recordStrategies_(recordStrategies), contexts_(size_t(tileCount_)) {}
+      seed_(seed), sampler_(sampler), recordStrategies_(recordStrategies), contexts_(size_t(tileCount_)) {}
 
 uint64_t PassTracer::sampleBytes(int width, int height, int samplesPerPixel) {
   return uint64_t(width) * uint64_t(height) * uint64_t(std::max(samplesPerPixel, 0)) * sizeof(Vec3);
@@ -45,7 +45,7 @@ PassRecord PassTracer::trace(int first, int count) {
       forEachPixelOfTile(tile, [&](int x, int y, size_t pixel) {
         Vec3* out = rec.samples.data() + pixel * size_t(count);
         for (int s = first; s < first + count; ++s) {
-          Rng rng(mixBits(seedMix_ ^ mixBits(uint64_t(pixel))), uint64_t(s));
+          Sampler rng(sampler_, seedMix_, uint64_t(pixel), uint32_t(s));
           out[s - first] = integrator_.samplePixel(scene_, Vec2(float(x), float(y)), rng, ctx);
         }
       });

@@ -23,12 +23,12 @@ struct PassRecord {
 };
 
 // Traces passes of one integrator over one image: fixed 16×16 tiles in parallel (TBB). Sample s
-// of pixel p draws from the PCG32 stream (seed, p, s), so a record depends only on the pass's
-// samples, never on threads, processes or the passes before it.
+// of pixel p draws from the Sampler (kind, seed, p, s) (core/sampler.h), so a record depends only
+// on the pass's samples, never on threads, processes or the passes before it.
 class PassTracer {
  public:
   PassTracer(const Scene& scene, const Integrator& integrator, int width, int height, uint64_t seed,
-             bool recordStrategies);
+             SamplerKind sampler, bool recordStrategies);
   // Traces samples [first, first + count) of every pixel.
   PassRecord trace(int first, int count);
   // Adds a record to the film: each pixel's samples in sample order (pixels in tile order, so the
@@ -46,6 +46,7 @@ class PassTracer {
   const Integrator& integrator_;
   int w_, h_, tilesX_, tileCount_;
   uint64_t seedMix_, seed_;
+  SamplerKind sampler_;
   bool recordStrategies_;
   std::vector<SampleContext> contexts_;  // one per tile, reused across passes
 };

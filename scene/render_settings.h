@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "core/memory_budget.h"
+#include "core/sampler.h"
 #include "core/wavelength_spec.h"
 
 namespace kasha {
@@ -39,6 +40,7 @@ struct RenderSettings {
   int maxDepth = 64;            // maximum number of scattering events on a path
   int rrDepth = 3;              // Russian roulette from this depth on
   uint64_t seed = 1;
+  SamplerKind sampler = SamplerKind::Sobol;  // random numbers of every sample (core/sampler.h)
   WavelengthSettings wavelengths;
   int heroWavelengths = 1;      // > 1: hero wavelength sampling with this many wavelengths per path (pt)
   // Largest buffer an integrator may allocate (photon maps, ...): check with requireMemory()

@@ -74,7 +74,9 @@ TEST_P(Furnace, EachPathLength) {
       term = transport(g, jung(*scene), term);
       for (size_t i = 0; i < sum.size(); ++i) sum[i] += term[i];
     }
-    expectAgreement(*scene, d, toXyz(g, sum), 8, 256);
+    // 32 batches: from depth 3 Russian roulette makes the batch means skewed, and 8 of them
+    // estimated the standard error anywhere between 0.2 and 1.7 times its typical value.
+    expectAgreement(*scene, d, toXyz(g, sum), 32, 64);
   }
 }
 
@@ -128,10 +130,10 @@ TEST(ClosedForm, SingleScatteringSphereUnderEnvironment) {
   const JungBbrrdf& m = jung(*scene);
   const EnvironmentLight& env = *scene->environment();
   const Grid g(scene->range);
-  const double absorbed = g.integrate(g.sample([&](double l) { return m.c() * m.a(float(l)) * env.Le(float(l)); }));
+  const double absorbed = g.integrate(g.sample([&](double l) { return m.c() * m.a(float(l)) * env.Le(float(l), Vec3(0, 1, 0)); }));
   const std::vector<double> L = g.sample([&](double l) {
     const float lf = float(l);
-    return (1.0 - m.c() * m.a(lf)) * m.r(lf) * env.Le(lf) + m.q() * m.e(lf) * absorbed;
+    return (1.0 - m.c() * m.a(lf)) * m.r(lf) * env.Le(lf, Vec3(0, 1, 0)) + m.q() * m.e(lf) * absorbed;
   });
   // The worked example: 0.10 / 0.50 / 1.22 in the three bands.
   EXPECT_NEAR(L[size_t((425.0 - scene->range.min) / kStep)], 0.10, 1e-3);

@@ -285,8 +285,11 @@ TEST_P(CheckpointCli, MismatchedOrDamagedCheckpointsAreRefused) {
   flipped[bytes.size() / 2] ^= 0x10;
   std::ofstream(dir + "/corrupted.ckpt", std::ios::binary) << flipped;
   expectRefused({"--resume", dir + "/corrupted.ckpt"}, "corrupted");
-  // A checkpoint directory that does not exist is an error before rendering.
-  expectRefused({"--checkpoint", dir + "/no/such/dir.ckpt"}, "output directory does not exist");
+  // A checkpoint directory that does not exist is a command-line mistake found before rendering.
+  const auto noDir = runKasha(renderArgs("resumed", {"--checkpoint", dir + "/no/such/dir.ckpt"}), dir + "/resumed");
+  EXPECT_EQ(noDir.code, 2) << noDir.err;
+  EXPECT_CONTAINS(noDir.err, dir + "/no/such/dir.ckpt: --checkpoint: directory '" + dir + "/no/such' does not exist");
+  EXPECT_FALSE(fs::exists(dir + "/resumed.exr"));
 
   // The same settings resume; a finished render can be continued to more samples.
   r = runKasha(renderArgs("more", {"--resume", ckpt, "--spp", "128"}), dir + "/more");

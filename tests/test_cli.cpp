@@ -252,9 +252,13 @@ TEST_F(Cli, MatrixRowsConserveEnergy) {
 
 TEST_F(Cli, MatrixBadMaterial) {
   const std::string scene = write("tiny.json", kTinyScene);
-  expectInputError(kasha("matrix '" + scene + "' --material white"), scene,
-                   "/materials/white: not a jung_fluorescent material");
-  expectInputError(kasha("matrix '" + scene + "' --material nothing"), scene, "/materials/nothing: no such material");
+  // The option's value is the mistake: exit code 2, the option and the scene named.
+  Outcome r = kasha("matrix '" + scene + "' --material white");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_CONTAINS(r.err, "kasha: error: --material: white: not a jung_fluorescent material in " + scene);
+  r = kasha("matrix '" + scene + "' --material nothing");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_CONTAINS(r.err, "kasha: error: --material: nothing: no material of that name in " + scene);
 }
 
 }  // namespace

@@ -54,7 +54,7 @@ TEST_P(Agreement, WithPathTracerRegionByRegion) {
   static std::map<std::string, Estimate> references;  // one path-traced reference per scene
   if (!references.count(sceneName)) references[sceneName] = estimate(*scene, "pt", uv ? 1024 : 64, 12);
   const Estimate& ref = references[sceneName];
-  const Estimate other = estimate(*scene, integratorName, uv ? 256 : 64, 12);
+  const Estimate other = estimate(*scene, integratorName, uv ? 384 : 64, 12);
   // 12 comparisons per pair: 4.5σ keeps the chance of a false alarm below 1e-4.
   for (size_t i = 0; i < ref.stats.size(); ++i) {
     const double sigma = std::hypot(ref.stats[i].stderr_, other.stats[i].stderr_);

@@ -201,7 +201,7 @@ TEST(BispectralFiles, SceneMaterialErrorsNameTheField) {
   for (const auto& [name, text, expected] :
        std::vector<std::tuple<std::string, std::string, std::string>>{
            {"kasha_no_such_material.json", "", "/materials/m/file"},
-           {"kasha_bad_material.json", "{\"type\": ", "not valid JSON"},
+           {"kasha_bad_material.json", "{\"type\": ", "malformed JSON"},
            {"kasha_bad_field.json", "{\"type\": \"zhdanov\", \"passive\": 0.5, \"excitation\": 0, \"emission\": 1, "
                                     "\"gloss\": 2}", "gloss"}}) {
     const std::string path = text.empty() ? name : writeTemp(name, text);

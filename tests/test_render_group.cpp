@@ -28,13 +28,13 @@ class SplattingIntegrator : public Integrator {
     if (firstSample == stopAt && stop) stop->store(15);
     return nullptr;
   }
-  Vec3 samplePixel(const Scene&, Vec2 pixel, Rng& rng, SampleContext& ctx) const override {
+  Vec3 samplePixel(const Scene&, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override {
     ++ctx.counter.closest;
     const float u = rng.uniform();
     if (u < 0.5f) ctx.splats.push_back({Vec2(rng.uniform() * 24.0f, pixel.x), Vec3(wide(rng), u, 1.0f)});
     return Vec3(wide(rng), wide(rng) * pixel.y, u);
   }
-  static float wide(Rng& rng) { return std::ldexp(rng.uniform(), int(rng.uniform() * 120.0f) - 60); }
+  static float wide(Sampler& rng) { return std::ldexp(rng.uniform(), int(rng.uniform() * 120.0f) - 60); }
   std::string name() const override { return "splatting"; }
   int stopAt = -1;
   std::atomic<int>* stop = nullptr;

@@ -36,7 +36,7 @@ class ScriptedIntegrator : public Integrator {
     ++counter.closest;
     return p;
   }
-  Vec3 samplePixel(const Scene&, Vec2 pixel, Rng& rng, SampleContext& ctx) const override {
+  Vec3 samplePixel(const Scene&, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override {
     ++ctx.counter.closest;
     const float offset = static_cast<const ScriptedPass*>(ctx.pass)->offset;
     const int x = int(pixel.x), y = int(pixel.y);
@@ -59,7 +59,7 @@ class ScriptedIntegrator : public Integrator {
 class StoppingIntegrator : public Integrator {
  public:
   explicit StoppingIntegrator(std::atomic<int>& flag) : flag_(flag) {}
-  Vec3 samplePixel(const Scene&, Vec2, Rng& rng, SampleContext&) const override {
+  Vec3 samplePixel(const Scene&, Vec2, Sampler& rng, SampleContext&) const override {
     flag_.store(2);
     return Vec3(rng.uniform());
   }

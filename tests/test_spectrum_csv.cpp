@@ -149,7 +149,7 @@ TEST(SpectralCsvErrors, MissingFile) {
   const std::string path = tempDir() + "/does_not_exist.csv";
   const std::string msg = inputError([&] { readSpectralCsv(path); });
   EXPECT_EQ(msg.rfind(path, 0), 0u) << msg;
-  EXPECT_CONTAINS(msg, "cannot open file");
+  EXPECT_CONTAINS(msg, "cannot open spectrum file (No such file or directory)");
 }
 
 TEST(SpectralCsvErrors, NoHeader) {

@@ -195,12 +195,11 @@ TEST_F(TextureFiles, MemoryLimitFromTheHeader) {
   const uLong crc = crc32(0, reinterpret_cast<const Bytef*>(bytes.data() + 12), 17);  // type + data
   for (int b = 0; b < 4; ++b) bytes[size_t(29 + b)] = char((crc >> (24 - 8 * b)) & 0xff);
   std::ofstream(p, std::ios::binary) << bytes;
-  EXPECT_EQ(readImageSize(p).width, 40000);
   try {
     TextureLoader(uint64_t(1) << 30).load(p, TextureChannel::Rgb, TextureWrap::Repeat, TextureFilter::Bilinear);
     ADD_FAILURE() << "no error";
-  } catch (const MemoryLimitError& e) {
-    EXPECT_EQ(std::string(e.what()), "decoding this texture (40000×40000 pixels) besides the scene's textures before it "
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), p + ": decoding this texture (40000×40000 pixels) besides the scene's textures before it "
                                      "(0 bytes) needs 23.8 GiB, more than the memory limit of 1.00 GiB (raise it with "
                                      "--memory-limit)");
   }
@@ -208,7 +207,7 @@ TEST_F(TextureFiles, MemoryLimitFromTheHeader) {
   const std::string a = writePng("a.png", 64, 64, std::vector<unsigned char>(64 * 64 * 4, 128));
   TextureLoader loader(40 << 10);
   EXPECT_NO_THROW(loader.load(a, TextureChannel::R, TextureWrap::Repeat, TextureFilter::Bilinear));
-  EXPECT_THROW(loader.load(a, TextureChannel::G, TextureWrap::Repeat, TextureFilter::Bilinear), MemoryLimitError);
+  EXPECT_THROW(loader.load(a, TextureChannel::G, TextureWrap::Repeat, TextureFilter::Bilinear), InputError);
 }
 
 // Errors in a scene's material name the scene file, the field and the image file.
@@ -226,14 +225,12 @@ TEST_F(TextureFiles, ClearErrors) {
     return "no error";
   };
   const std::string at = "scene.json: /materials/ink/";
-  EXPECT_EQ(error({{"c_texture", "missing.png"}}).rfind(at + "c_texture: '" + dir + "/missing.png': cannot read PNG", 0),
-            0u);
+  EXPECT_EQ(error({{"c_texture", "missing.png"}}),
+            at + "c_texture: " + dir + "/missing.png: cannot open texture (No such file or directory)");
   writeText("garbage.png", "not an image");
-  EXPECT_EQ(error({{"c_texture", "garbage.png"}}).rfind(at + "c_texture: '" + dir + "/garbage.png': cannot read PNG", 0),
-            0u);
+  EXPECT_EQ(error({{"c_texture", "garbage.png"}}).rfind(at + "c_texture: " + dir + "/garbage.png: cannot read PNG", 0), 0u);
   writeText("garbage.exr", "not an image");
-  EXPECT_EQ(error({{"Q_texture", "garbage.exr"}}).rfind(at + "Q_texture: '" + dir + "/garbage.exr': cannot read OpenEXR", 0),
-            0u);
+  EXPECT_EQ(error({{"Q_texture", "garbage.exr"}}).rfind(at + "Q_texture: " + dir + "/garbage.exr: cannot read OpenEXR", 0), 0u);
   EXPECT_EQ(error({{"c_texture", "ink.jpg"}}),
             at + "c_texture: '" + dir + "/ink.jpg': unknown image format '.jpg' (expected .png or .exr)");
   writePng("two.png", 2, 1, std::vector<unsigned char>(8, 255));
@@ -318,8 +315,8 @@ TEST_F(TextureFiles, SceneMemoryLimit) {
     loadScene(dir + "/ink.json", options);
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), dir + "/ink.json: /materials/paper/c_texture: '" + dir +
-                                         "/ink.png': decoding this texture (64×64 pixels) besides the scene's textures "
+    EXPECT_EQ(std::string(e.what()), dir + "/ink.json: /materials/paper/c_texture: " + dir +
+                                         "/ink.png: decoding this texture (64×64 pixels) besides the scene's textures "
                                          "before it (0 bytes) needs 32.0 KiB, more than the memory limit of 16.0 KiB "
                                          "(raise it with --memory-limit)");
   }

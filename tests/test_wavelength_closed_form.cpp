@@ -81,7 +81,7 @@ INSTANTIATE_TEST_SUITE_P(
                       StrategyCase{"pt", "cmf", "light", "light", "furnace_uv.json"},
                       StrategyCase{"pt", "cmf", "yamamoto=0.3"}, StrategyCase{"pt", "cmf", "mix:absorption,uniform@0.5"},
                       StrategyCase{"lt", "cmf", "material", "uniform", "", 8},
-                      StrategyCase{"lt", "cmf", "material", "mix:light,absorption", "", 8},
+                      StrategyCase{"lt", "cmf", "material", "mix:light,absorption", "", 16},
                       StrategyCase{"bdpt-independent", "uniform", "material", "yamamoto"},
                       StrategyCase{"bdpt-independent", "mix:cmf,light", "material", "uniform"},
                       StrategyCase{"ppm", "mix:cmf,uniform", "material", "mix:light,uniform"},

@@ -48,13 +48,13 @@ std::unique_ptr<const PassData> Bdpt::beginPass(const Scene&, int firstSample, i
 
 int Bdpt::maxSamplesPerPass() const { return mollifies() ? 1 : Integrator::maxSamplesPerPass(); }
 
-Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
+Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   using namespace bdpt;
   thread_local std::vector<PathVertex> C, L;
   if (C.capacity() < 16) C.reserve(16), L.reserve(16);
   const WavelengthSample ws = sensor_.density().sample(rng.uniform());
   if (ws.pdf <= 0.0f) return Vec3(0.0f);
-  const Vec2 film = pixel + Vec2(rng.uniform(), rng.uniform());
+  const Vec2 film = pixel + rng.uniform2();
   traceCameraSubpath(scene, film, ws.lambda, ws.pdf, ws_, rng, ctx.counter, C);
   traceLightSubpath(scene, ws.lambda, ws_, rng, ctx.counter, L);
   Context c{scene, ws_, ws.lambda, ws.pdf, sensor_.density(), ctx.counter};

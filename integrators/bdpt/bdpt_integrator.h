@@ -21,7 +21,7 @@ class Bdpt final : public Integrator {
   // mode); a zero bandwidth becomes 2% of the scene's wavelength range.
   Bdpt(const Scene& scene, const RenderSettings& settings, bdpt::WavelengthMode mode,
        const MollificationSettings* mollify = nullptr);
-  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const override;
+  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override;
   std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                             RayCounter& counter) const override;

@@ -113,7 +113,7 @@ float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
   if (e.light < 0) return 0.0f;
   const PathVertex& next = C[size_t(t - 2)];
   const float Le = e.kind == Kind::Infinite
-                       ? c.scene.environment()->Le(e.lambda)
+                       ? c.scene.environment()->Le(e.lambda, -e.dir)
                        : static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission->eval(
                              e.lambda, e.n, towards(e, next));
   if (!(Le > 0.0f)) return 0.0f;
@@ -130,10 +130,10 @@ float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
   return e.beta * Le * weight;
 }
 
-float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& rng) {
+float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampler& rng) {
   const PathVertex& x1 = C[size_t(t - 1)];
   const float uSel = rng.uniform();
-  const Vec2 uPos(rng.uniform(), rng.uniform());
+  const Vec2 uPos = rng.uniform2();
   if (!x1.eventSampled || !x1.connectible()) return 0.0f;
   const float lambda0 = x1.lambdaNext;
   const auto [li, pSel] = c.scene.lightSelector->select(lambda0, uSel);

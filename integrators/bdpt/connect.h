@@ -29,7 +29,7 @@ struct Context {
 // s = 0: the camera subpath's vertex C[t−1] lies on an emitter. Radiance, weighted.
 float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t);
 // s = 1: next-event estimation from C[t−1] at the wavelength its spectral event chose.
-float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Rng& rng);
+float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampler& rng);
 // s = 1 through the light subpath's own vertex L[0] (Independent): its wavelength, drawn from the
 // lights' power spectrum, reaches the camera's through C[t−1]'s fluorescent lobe.
 float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t);

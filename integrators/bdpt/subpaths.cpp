@@ -7,7 +7,7 @@ namespace {
 // ray's direction at the last vertex (per steradian; for a light at infinity, per unit area of
 // its disk). Camera walks run in Radiance mode, light walks in Importance mode.
 void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lambda, TransportMode mode,
-                const WalkSettings& ws, Rng& rng, RayCounter& counter, std::vector<PathVertex>& path) {
+                const WalkSettings& ws, Sampler& rng, RayCounter& counter, std::vector<PathVertex>& path) {
   const bool camera = mode == TransportMode::Radiance;
   const float beta0 = beta;
   int surfaces = 0;
@@ -57,7 +57,7 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     if (!camera && ws.mode == WavelengthMode::Shared && sc.lobe == SpectralLobe::Fluorescent) return;
     const float lambdaIn = camera ? sc.lambda : lambda, lambdaOut = camera ? lambda : sc.lambda;
     const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, Vec2(rng.uniform(), rng.uniform()));
+        bsdf.sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) return;
     const Vec3 wi = camera ? ds->w : wKnown, wo = camera ? wKnown : ds->w;
     const float f = bsdf.eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
@@ -95,7 +95,7 @@ float lightChoicePdf(const Scene& scene, int light, float lambda, const WalkSett
 }
 
 void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float sensorPdf, const WalkSettings& ws,
-                        Rng& rng, RayCounter& counter, std::vector<PathVertex>& out) {
+                        Sampler& rng, RayCounter& counter, std::vector<PathVertex>& out) {
   out.clear();
   PathVertex c;
   c.kind = PathVertex::Kind::Camera;
@@ -111,7 +111,7 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float se
   randomWalk(scene, ray, 1.0f, pdfDir, lambda, TransportMode::Radiance, ws, rng, counter, out);
 }
 
-void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSettings& ws, Rng& rng, RayCounter& counter,
+void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSettings& ws, Sampler& rng, RayCounter& counter,
                        std::vector<PathVertex>& out) {
   out.clear();
   size_t light = 0;
@@ -124,7 +124,7 @@ void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSetting
     const auto [l, p] = scene.lightSelector->select(sharedLambda, u2);
     light = l, choice = p;
   }
-  const Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
+  const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
   if (choice <= 0.0f) return;
   const Light& L = *scene.lights[light];
   const std::optional<EmissionSample> es = L.sampleEmission(lambda, uPos, uDir);

@@ -2,7 +2,7 @@
 // Camera and light subpaths for BDPT (docs/bdpt-mis.md §2).
 #include <vector>
 
-#include "core/rng.h"
+#include "core/sampler.h"
 #include "scene/scene.h"
 #include "core/wavelength_density.h"
 #include "integrators/bdpt/path_vertex.h"
@@ -26,11 +26,11 @@ struct WalkSettings {
 // C[0] is the pinhole; C[1] the first hit. lambda is the sensor's wavelength, sensorPdf its
 // density (folded into C[1].pdfFwd in Independent mode only, where it does not cancel).
 void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float sensorPdf, const WalkSettings& ws,
-                        Rng& rng, RayCounter& counter, std::vector<PathVertex>& out);
+                        Sampler& rng, RayCounter& counter, std::vector<PathVertex>& out);
 
 // L[0] is the light vertex. In Shared mode the subpath starts at `sharedLambda` and stops at its
 // first fluorescent event (later vertices could only form paths Shared mode cannot weight).
-void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSettings& ws, Rng& rng, RayCounter& counter,
+void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSettings& ws, Sampler& rng, RayCounter& counter,
                        std::vector<PathVertex>& out);
 
 // Density with which a light subpath starts at light `light` with wavelength lambda: the joint

@@ -15,10 +15,10 @@ namespace {
 constexpr size_t kPathsPerChunk = 1024;
 
 // One light subpath, as the light tracer starts and continues it (without camera connections).
-void tracePath(const Scene& scene, const PhotonTracing& s, Rng& rng, std::vector<Photon>& out, RayCounter& counter) {
+void tracePath(const Scene& scene, const PhotonTracing& s, Sampler& rng, std::vector<Photon>& out, RayCounter& counter) {
   const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(*s.wavelengths, rng.uniform(), rng.uniform());
   if (lw.pdf <= 0.0f) return;
-  const Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
+  const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
   const std::optional<EmissionSample> es = scene.lights[lw.light]->sampleEmission(lw.lambda, uPos, uDir);
   if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return;
   // Flux per subpath: Le·cos/(p_pos·p_dir·p(light, λ)).
@@ -37,7 +37,7 @@ void tracePath(const Scene& scene, const PhotonTracing& s, Rng& rng, std::vector
     if (depth == s.maxDepth) break;
     // Both stages in Importance mode: lobe and λ_o (Jung18 eq. 6), then the direction.
     const std::optional<ScatterSample> ss =
-        bsdf.sample(TransportMode::Importance, wi, lambda, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+        bsdf.sample(TransportMode::Importance, wi, lambda, rng.uniform3());
     if (!ss) break;
     beta *= ss->f * std::abs(ss->w.z) / ss->pdf;
     if (!(beta > 0.0f)) break;
@@ -65,7 +65,7 @@ std::vector<Photon> tracePhotons(const Scene& scene, const PhotonTracing& s, uin
     for (size_t c = range.begin(); c < range.end() && !overflow.load(std::memory_order_relaxed); ++c) {
       const size_t end = std::min(s.paths, (c + 1) * kPathsPerChunk);
       for (size_t j = c * kPathsPerChunk; j < end; ++j) {
-        Rng rng(seed, uint64_t(j));
+        Sampler rng(s.sampler, seed, 0, uint32_t(j));
         tracePath(scene, s, rng, parts[c], counters[c]);
       }
       if (stored.fetch_add(parts[c].size()) + parts[c].size() > maxStored) overflow = true;

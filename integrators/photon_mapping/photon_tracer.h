@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/sampler.h"
 #include "core/wavelength_density.h"
 #include "integrators/integrator.h"
 #include "integrators/photon_mapping/photon.h"
@@ -17,6 +18,7 @@ struct PhotonTracing {
   int rrDepth = 3;       // Russian roulette from this vertex on
   uint64_t memoryLimit = 0;  // bytes: stored photons × kBytesPerPhoton must stay within it
   const WavelengthDensity* wavelengths = nullptr;  // the light-start strategy's density
+  SamplerKind sampler = SamplerKind::Sobol;        // path j is sample j of the pass's sequence
 };
 
 // Traces the subpaths and returns a photon for every vertex that has a non-specular lobe. Path j

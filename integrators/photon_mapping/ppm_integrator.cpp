@@ -54,7 +54,7 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
     : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
       light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
       maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
-      alwaysKernel_(s.ppm.alwaysKernel), memoryLimit_(s.memoryLimit) {
+      alwaysKernel_(s.ppm.alwaysKernel), memoryLimit_(s.memoryLimit), sampler_(s.sampler) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by ppm");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by ppm");
   const PhotonMappingSettings& p = s.ppm;
@@ -88,6 +88,7 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
     t.maxDepth = maxDepth_;
     t.rrDepth = rrDepth_;
     t.memoryLimit = memoryLimit_;
+    t.sampler = sampler_;
     t.wavelengths = &light_.density();
     // A stream family per iteration, apart from the camera samples' (render_loop.cpp).
     const uint64_t passSeed = mixBits(mixBits(seed ^ 0x5851f42d4c957f2dULL) + uint64_t(firstSample));
@@ -96,11 +97,11 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
   return std::make_unique<PhotonPass>(std::move(photons), radius(firstSample), bandwidth(firstSample), photonsPerPass_);
 }
 
-Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const {
+Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   const auto& pass = static_cast<const PhotonPass&>(*ctx.pass);
   const WavelengthSample ws = sensor_.density().sample(rng.uniform());
   if (ws.pdf <= 0.0f) return Vec3(0.0f);
-  Ray ray = scene.camera.generateRay(pixel + Vec2(rng.uniform(), rng.uniform()));
+  Ray ray = scene.camera.generateRay(pixel + rng.uniform2());
   const Vec3 sensor = Observer::cie1931().weight(ws.lambda) / ws.pdf;  // W(λ)/p(λ)
   float lambda = ws.lambda, beta = 1.0f;  // beta: throughput of the specular vertices so far
   Vec3 xyz(0.0f);
@@ -108,7 +109,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, Sample
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++ctx.counter.closest;
     if (!hit) {
-      if (const EnvironmentLight* env = scene.environment()) xyz += sensor * (beta * env->Le(lambda));
+      if (const EnvironmentLight* env = scene.environment()) xyz += sensor * (beta * env->Le(lambda, ray.d));
       break;
     }
     const Shape& shape = scene.shapes[hit->shape];
@@ -120,7 +121,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, Sample
       xyz += gather(pass, bsdf, hit->p, wo, lambda, sensor * beta, bounces, maxDepth_, bounces == 0 && !alwaysKernel_);
     // The gather covers every non-specular lobe; a sampled specular lobe continues the path.
     const std::optional<ScatterSample> ss =
-        bsdf.sample(TransportMode::Radiance, wo, lambda, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+        bsdf.sample(TransportMode::Radiance, wo, lambda, rng.uniform3());
     if (!ss || !ss->specular) break;
     beta *= ss->f * std::abs(ss->w.z) / ss->pdf;
     if (!(beta > 0.0f)) break;

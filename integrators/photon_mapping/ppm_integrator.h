@@ -26,7 +26,7 @@ class PpmIntegrator final : public Integrator {
   std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                             RayCounter& counter) const override;
   int maxSamplesPerPass() const override { return 1; }
-  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Rng& rng, SampleContext& ctx) const override;
+  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override { return "ppm"; }
 
   size_t photonsPerPass() const { return photonsPerPass_; }
@@ -41,6 +41,7 @@ class PpmIntegrator final : public Integrator {
   float radius1_, alpha_, bandwidth1_;
   bool alwaysKernel_;
   uint64_t memoryLimit_;
+  SamplerKind sampler_;
 };
 
 }  // namespace kasha
