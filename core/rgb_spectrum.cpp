@@ -1,9 +1,9 @@
 #include "core/rgb_spectrum.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include "core/color.h"
@@ -142,7 +142,8 @@ struct RgbTable {
     fitNodes();  // before the threads
     // One column (l, x, y) per task, walked outwards in z from a mid-grey start so that each fit
     // starts from its neighbour's solution (JH19 §4).
-    tbb::parallel_for(0, 3 * kRes * kRes, [&](int column) {
+    std::atomic<int> next{0};
+    const auto fitColumn = [&](int column) {
       const int l = column / (kRes * kRes), j = (column / kRes) % kRes, i = column % kRes;
       const int start = kRes / 5;
       Vec3d c = {0.0, 0.0, 0.0}, atStart{};
@@ -162,7 +163,13 @@ struct RgbTable {
       }
       c = atStart;
       for (int k = start - 1; k >= 0; --k) fitAt(k);
-    });
+    };
+    std::vector<std::thread> workers(std::max(1u, std::thread::hardware_concurrency()));
+    for (std::thread& w : workers)
+      w = std::thread([&] {
+        for (int column; (column = next++) < 3 * kRes * kRes;) fitColumn(column);
+      });
+    for (std::thread& w : workers) w.join();
   }
 };
 

@@ -24,6 +24,8 @@
 
 namespace kasha {
 
+class TextureLoader;
+
 struct SpectrumContext {
   SpectrumContext() = default;
   SpectrumContext(std::string sceneFile, std::string dir, const std::map<std::string, Spectrum>* names = nullptr)
@@ -39,6 +41,9 @@ struct SpectrumContext {
   // If set, the scene's wavelength range: a spectrum file must cover it, or say with "outside"
   // how to extend it, and must overlap it.
   const WavelengthRange* range = nullptr;
+  // If set, loads the textures of materials (core/texture.h) against the scene's memory limit;
+  // otherwise each texture is loaded on its own against the default limit.
+  TextureLoader* textures = nullptr;
   // The largest buffer a file named in the scene may need (a decoded texture).
   uint64_t memoryLimit = kDefaultMemoryLimit;
   // The material files (type "file") being read, outermost first: a file that names one of them

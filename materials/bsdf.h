@@ -6,6 +6,7 @@
 #include <span>
 
 #include "materials/bsdf_model.h"
+#include "materials/shading_normal.h"
 
 namespace kasha {
 
@@ -21,7 +22,8 @@ class Bsdf {
  public:
   // `model` must outlive the Bsdf (the material's own, or its palette entry).
   Bsdf(const BsdfModel& model, const HitContext& ctx)
-      : model_(&model), geometric_(ctx.geometric), shading_(ctx.shading), flags_(model.flags()) {}
+      : model_(&model), geometric_(ctx.geometric), shading_(ctx.shading), correction_(ctx.geometric, ctx.shading),
+        flags_(model.flags()) {}
 
   // DeltaDirection, Fluorescent, WavelengthDependentDirection: known before anything is sampled.
   BsdfFlags flags() const { return flags_; }
@@ -34,9 +36,11 @@ class Bsdf {
   Vec3 toWorld(const Vec3& local) const { return shading_.toWorld(local); }
 
   // f in physical order (ω_i, λ_i → ω_o, λ_o) of one lobe; per nm if fluorescent, deltas left out.
+  // With a shading normal, f·|cos θ_s| of the sampled direction is Veach's f_s (shading_normal.h).
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const {
-    return model_->eval(mode, wi, wo, lambdaIn, lambdaOut, lobe);
+    const float c = correction_.factor(mode, wi, wo);
+    return c > 0.0f ? c * model_->eval(mode, wi, wo, lambdaIn, lambdaOut, lobe) : 0.0f;
   }
   // Spectral stage: from the known wavelength, the lobe (fluorescent exactly when u < P) and the
   // unknown wavelength; pdf is the lobe's probability × (fluorescent) its per-nm density.
@@ -56,7 +60,10 @@ class Bsdf {
   // per steradian (a probability if specular).
   std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
                                                  float lambdaIn, float lambdaOut, Vec2 u) const {
-    return model_->sampleDirection(mode, wKnown, lobe, lambdaIn, lambdaOut, u);
+    if (!correction_.consistent(wKnown)) return std::nullopt;
+    std::optional<DirectionSample> ds = model_->sampleDirection(mode, wKnown, lobe, lambdaIn, lambdaOut, u);
+    if (ds && !correction_.consistent(ds->w)) return std::nullopt;
+    return ds;
   }
   // That stage's density of wSampled, per steradian.
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
@@ -65,7 +72,12 @@ class Bsdf {
   }
   // Both stages (u.x spectral, u.y/u.z direction): value, density in this mode and the reverse.
   std::optional<ScatterSample> sample(TransportMode mode, const Vec3& wKnown, float lambdaKnown, Vec3 u) const {
-    return model_->sample(mode, wKnown, lambdaKnown, u);
+    if (!correction_.consistent(wKnown)) return std::nullopt;
+    std::optional<ScatterSample> s = model_->sample(mode, wKnown, lambdaKnown, u);
+    if (!s || !correction_.active) return s;
+    const bool radiance = mode == TransportMode::Radiance;
+    s->f *= correction_.factor(mode, radiance ? s->w : wKnown, radiance ? wKnown : s->w);
+    return s->f > 0.0f ? s : std::nullopt;
   }
   // Both densities (this mode, reverse) of an event in physical order: spectral × directional.
   ScatterDensity pdf(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
@@ -76,6 +88,7 @@ class Bsdf {
  private:
   const BsdfModel* model_;
   Frame geometric_, shading_;
+  ShadingCorrection correction_;
   BsdfFlags flags_;
 };
 

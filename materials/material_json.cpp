@@ -117,13 +117,16 @@ JungParams parseJungParams(JsonFields& f, const SpectrumContext& ctx, Wavelength
   return p;
 }
 
-// "<key>": "image.png" | {"file": "image.exr", "channel": "mean" | "r" | "g" | "b" | "a"} (texture.h);
-// nullopt when absent.
-std::optional<ScalarTexture> parseTexture(JsonFields& parent, const std::string& key, const SpectrumContext& ctx) {
-  if (!parent.has(key)) return std::nullopt;
+// "<key>": "image.png" | {"file": "image.exr", "channel": "mean" | "r" | "g" | "b" | "a",
+// "wrap": "repeat" | "clamp" | "mirror", "filter": "bilinear" | "nearest"} (texture.h); nullptr
+// when absent.
+std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::string& key, const SpectrumContext& ctx) {
+  if (!parent.has(key)) return nullptr;
   const nlohmann::json& v = parent.get(key);
   std::string file;
   TextureChannel channel = TextureChannel::Mean;
+  TextureWrap wrap = TextureWrap::Repeat;
+  TextureFilter filter = TextureFilter::Bilinear;
   if (v.is_string()) {
     file = v.get<std::string>();
   } else if (v.is_object()) {
@@ -133,16 +136,25 @@ std::optional<ScalarTexture> parseTexture(JsonFields& parent, const std::string&
     const std::optional<TextureChannel> c = parseTextureChannel(name);
     if (!c) f.fail("channel", "unknown channel '" + name + "' (mean, r, g, b, a)");
     channel = *c;
+    const std::string wrapName = f.string("wrap", "repeat");
+    const std::optional<TextureWrap> w = parseTextureWrap(wrapName);
+    if (!w) f.fail("wrap", "unknown wrap mode '" + wrapName + "' (repeat, clamp, mirror)");
+    wrap = *w;
+    const std::string filterName = f.string("filter", "bilinear");
+    const std::optional<TextureFilter> fl = parseTextureFilter(filterName);
+    if (!fl) f.fail("filter", "unknown filter '" + filterName + "' (bilinear, nearest)");
+    filter = *fl;
     f.finish();
   } else {
     parent.fail(key, "expected an image file name or {\"file\": ..., \"channel\": ...}, got " + jsonTypeName(v));
   }
   const std::string path = (!file.empty() && file[0] == '/') ? file : ctx.baseDir + "/" + file;
   try {
-    return ScalarTexture::load(path, channel, ctx.memoryLimit);
+    if (ctx.textures) return ctx.textures->load(path, channel, wrap, filter);
+    return TextureLoader(ctx.memoryLimit).load(path, channel, wrap, filter);
   } catch (const InputError& e) {  // names the file already
     parent.fail(key, e.what());
-  } catch (const std::runtime_error& e) {
+  } catch (const std::runtime_error& e) {  // also MemoryLimitError
     parent.fail(key, "'" + path + "': " + e.what());
   }
 }

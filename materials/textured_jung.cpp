@@ -7,13 +7,13 @@
 namespace kasha {
 TexturedJung::TexturedJung(JungParams base, JungTextures tex, WavelengthRange range) {
   if (std::string m = checkJungParams(base, range); !m.empty()) throw std::invalid_argument(m);
-  const std::array<std::pair<const char*, const std::optional<ScalarTexture>*>, 3> fields = {
+  const std::array<std::pair<const char*, const std::shared_ptr<const ImageTexture>*>, 3> fields = {
       {{"reflectance_texture", &tex.reflectance}, {"c_texture", &tex.c}, {"Q_texture", &tex.q}}};
   const char* gridField = nullptr;
   for (const auto& [name, t] : fields) {
     if (!*t) continue;
     if (!grid_) {
-      grid_ = **t;
+      grid_ = *t;
       gridField = name;
     } else if ((*t)->width() != grid_->width() || (*t)->height() != grid_->height()) {
       throw std::invalid_argument(std::string(name) + ": " + std::to_string((*t)->width()) + "×" +

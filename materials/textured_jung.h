@@ -17,7 +17,7 @@
 namespace kasha {
 
 struct JungTextures {
-  std::optional<ScalarTexture> reflectance, c, q;  // multipliers of r(λ), c and Q; absent: 1
+  std::shared_ptr<const ImageTexture> reflectance, c, q;  // multipliers of r(λ), c and Q; absent: 1
 };
 
 class TexturedJung final : public Material {
@@ -40,7 +40,7 @@ class TexturedJung final : public Material {
   std::string describe() const override { return "jung_fluorescent (textured)"; }
 
  private:
-  std::optional<ScalarTexture> grid_;  // the texel grid shared by every texture (values unused)
+  std::shared_ptr<const ImageTexture> grid_;  // the texel grid shared by every texture (values unused)
   std::vector<std::unique_ptr<JungBbrrdf>> palette_;
   std::vector<uint32_t> index_;  // palette entry per texel
   BsdfFlags flags_ = BsdfFlags::None;               // the union of the entries'

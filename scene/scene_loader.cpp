@@ -18,6 +18,7 @@
 #include "core/obj_validation.h"
 #include "core/spectrum_json.h"
 #include "core/spectrum_presets.h"
+#include "core/texture.h"
 #include "materials/material_json.h"
 #include "scene/mitsuba/mitsuba_scene.h"
 
@@ -45,13 +46,16 @@ struct Loader {
   SceneLoadOptions options;
   const json* spectraJson = nullptr;
   std::vector<std::string> resolving;  // named spectra being parsed, to detect cycles
+  TextureLoader textures;
 
-  Loader(std::string f, Scene& s, SceneLoadOptions o) : file(std::move(f)), scene(s), options(o) {
+  Loader(std::string f, Scene& s, SceneLoadOptions o)
+      : file(std::move(f)), scene(s), options(o), textures(o.memoryLimit) {
     ctx.file = file;
     ctx.baseDir = std::filesystem::path(file).parent_path().string();
     if (ctx.baseDir.empty()) ctx.baseDir = ".";
     ctx.named = &named;
     ctx.range = &scene.range;
+    ctx.textures = &textures;
     ctx.memoryLimit = options.memoryLimit;
     ctx.resolveName = [this](const std::string& name, const std::string& ptr) { return namedSpectrum(name, ptr); };
   }
@@ -258,9 +262,15 @@ struct Loader {
           const float* t = &reader.GetAttrib().texcoords[2 * size_t(idx.texcoord_index)];
           s.cornerUvs.emplace_back(t[0], t[1]);
         }
+        if (idx.normal_index >= 0 && 3 * size_t(idx.normal_index) + 2 < reader.GetAttrib().normals.size()) {
+          const float* n = &reader.GetAttrib().normals[3 * size_t(idx.normal_index)];
+          s.cornerNormals.emplace_back(n[0], n[1], n[2]);
+        }
       }
     if (!s.cornerUvs.empty() && s.cornerUvs.size() != s.indices.size())
       f.fail("file", "'" + path + "': some faces have texture coordinates (vt) and some do not");
+    if (!s.cornerNormals.empty() && s.cornerNormals.size() != s.indices.size())
+      f.fail("file", "'" + path + "': some faces have vertex normals (vn) and some do not");
     scaleAndTranslate(f, s);
   }
 

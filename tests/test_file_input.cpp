@@ -91,8 +91,17 @@ TEST_F(FileInput, OnlyRegularFilesAreOpenedAndAFifoNeverBlocks) {
   s["materials"]["white"] = {{"type", "file"}, {"file", "fifo"}};
   EXPECT_EQ(sceneError(s), dir + "/scene.json: /materials/white/file: " + fifo +
                                ": cannot open material file (a FIFO, not a regular file)");
-  EXPECT_CONTAINS(errorOf([&] { ScalarTexture::load(fifo + ".png", TextureChannel::Mean); }), "No such file");
-  fs::rename(fifo, dir + "/fifo.exr");
+  // A texture: refused at once by name, never opened for reading.
+  fs::rename(fifo, dir + "/fifo.png");
+  const auto texture = [](const std::string& path) {
+    TextureLoader(kDefaultMemoryLimit).load(path, TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Bilinear);
+  };
+  const auto textureStart = std::chrono::steady_clock::now();
+  EXPECT_EQ(errorOf([&] { texture(dir + "/fifo.png"); }), dir + "/fifo.png: cannot open texture (a FIFO, not a regular file)");
+  EXPECT_LT(std::chrono::steady_clock::now() - textureStart, std::chrono::seconds(5));
+  EXPECT_CONTAINS(errorOf([&] { texture(dir + "/none.png"); }), "No such file");
+  fs::rename(dir + "/fifo.png", dir + "/fifo.exr");
+  EXPECT_EQ(errorOf([&] { texture(dir + "/fifo.exr"); }), dir + "/fifo.exr: cannot open texture (a FIFO, not a regular file)");
   EXPECT_EQ(errorOf([&] { readExrXyz(dir + "/fifo.exr"); }),
             dir + "/fifo.exr: cannot open image file (a FIFO, not a regular file)");
 }
@@ -214,9 +223,12 @@ std::string pngBomb() {
 TEST_F(FileInput, ImageHeadersAreCheckedAgainstTheMemoryLimitBeforeDecoding) {
   const std::string bomb = write("bomb.png", pngBomb());
   EXPECT_LT(fs::file_size(bomb), 100u);
-  EXPECT_EQ(errorOf([&] { ScalarTexture::load(bomb, TextureChannel::Mean, uint64_t(512) << 20); }),
-            bomb + ": decoding its 30000x30000 pixels needs 6.71 GiB, more than the memory limit of 512 MiB (raise it "
-                   "with --memory-limit)");
+  const auto texture = [](const std::string& path, uint64_t limit) {
+    return TextureLoader(limit).load(path, TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Bilinear);
+  };
+  EXPECT_EQ(errorOf([&] { texture(bomb, uint64_t(512) << 20); }),
+            bomb + ": decoding this texture (30000×30000 pixels) besides the scene's textures before it (0 bytes) "
+                   "needs 6.71 GiB, more than the memory limit of 512 MiB (raise it with --memory-limit)");
   // The same through a scene: the scene's memory limit applies.
   json s = baseScene();
   s["materials"]["white"] = {{"type", "jung_fluorescent"}, {"absorption", 0.5}, {"emission", 1.0}, {"reflectance", 0.5},
@@ -224,7 +236,7 @@ TEST_F(FileInput, ImageHeadersAreCheckedAgainstTheMemoryLimitBeforeDecoding) {
   SceneLoadOptions small;
   small.memoryLimit = uint64_t(1) << 30;
   EXPECT_CONTAINS(errorOf([&] { loadSceneFromString(s.dump(), dir + "/scene.json", small); }),
-                  "/materials/white/c_texture: " + bomb + ": decoding its 30000x30000 pixels");
+                  "/materials/white/c_texture: " + bomb + ": decoding this texture (30000×30000 pixels)");
   // OpenEXR: the data window of the header decides.
   std::vector<Imf::Rgba> px(64 * 64, Imf::Rgba(0.5f, 0.5f, 0.5f, 1.0f));
   const std::string exr = dir + "/t.exr";
@@ -233,13 +245,13 @@ TEST_F(FileInput, ImageHeadersAreCheckedAgainstTheMemoryLimitBeforeDecoding) {
     out.setFrameBuffer(px.data(), 1, 64);
     out.writePixels(64);
   }
-  EXPECT_EQ(errorOf([&] { ScalarTexture::load(exr, TextureChannel::Mean, 1024); }),
-            exr + ": decoding its 64x64 pixels needs 48.0 KiB, more than the memory limit of 1.00 KiB (raise it with "
-                  "--memory-limit)");
-  EXPECT_EQ(ScalarTexture::load(exr, TextureChannel::Mean, 48 * 1024).width(), 64);
+  EXPECT_EQ(errorOf([&] { texture(exr, 1024); }),
+            exr + ": decoding this texture (64×64 pixels) besides the scene's textures before it (0 bytes) needs "
+                  "48.0 KiB, more than the memory limit of 1.00 KiB (raise it with --memory-limit)");
+  EXPECT_EQ(texture(exr, 48 * 1024)->width(), 64);
   // A header attribute declaring 2 GB in a 30-byte file: OpenEXR would allocate it before reading.
   const std::string attr = write("attr.exr", std::string("\x76\x2f\x31\x01\x02\0\0\0x\0string\0\xff\xff\xff\x7f", 22));
-  EXPECT_EQ(errorOf([&] { ScalarTexture::load(attr, TextureChannel::Mean); }),
+  EXPECT_EQ(errorOf([&] { texture(attr, kDefaultMemoryLimit); }),
             attr + ": cannot read OpenEXR: header attribute 'x' declares 2147483647 bytes, more than the file holds");
 }
 

@@ -30,10 +30,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const bool png = size >= 8 && std::memcmp(data, "\x89PNG\r\n\x1a\n", 8) == 0;
   const std::string path = fuzz::writeInput(png ? "fuzz.png" : "fuzz.exr", data, size);
   try {
-    const ScalarTexture t = ScalarTexture::load(path, TextureChannel::Mean, kLimit);
-    require(t.width() > 0 && t.height() > 0, "a texture has pixels");
-    for (size_t i = 0; i < size_t(t.width()) * size_t(t.height()); ++i)
-      require(t.texel(i) >= 0.0f && t.texel(i) <= 1.0f, "texels in [0, 1]");
+    const auto t = TextureLoader(kLimit).load(path, TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Bilinear);
+    require(t->width() > 0 && t->height() > 0, "a texture has pixels");
+    for (size_t i = 0; i < size_t(t->width()) * size_t(t->height()); ++i)
+      require(t->texel(i) >= 0.0f && t->texel(i) <= 1.0f, "texels in [0, 1]");
   } catch (const std::runtime_error& e) {  // InputError, or the texture's own reasons
     require(std::strlen(e.what()) > 0, "a reason");
   }
