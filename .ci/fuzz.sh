@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# libFuzzer run of the scene parser and the spectrum/matrix reader: installs clang (libFuzzer is in
-# Debian's libclang-rt-<v>-dev), builds tests/fuzz with KASHA_FUZZ=ON (ASan + UBSan) into
-# build-fuzz/, and runs each target for FUZZ_SECONDS (default 30) on a copy of its seed corpus
+# libFuzzer run of kasha's readers — the scene parser (JSON and Mitsuba XML), the spectrum/matrix reader, the strict OBJ
+# reader, image (texture and render) input, material files and the checkpoint reader: installs
+# clang (libFuzzer is in Debian's libclang-rt-<v>-dev), builds tests/fuzz with KASHA_FUZZ=ON
+# (ASan + UBSan) into build-fuzz/, and runs each target for FUZZ_SECONDS (default 30) on a copy of its seed corpus
 # tests/fuzz/corpus/<target>/. A finding stops the run, leaves the input as build-fuzz/crash-* /
 # leak-* / timeout-* and fails the script. New inputs that grow coverage stay in
 # build-fuzz/corpus/<target>/; copy the interesting ones (small!) to the seed corpus by hand.
@@ -25,12 +26,13 @@ fi
 
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER="clang++-${CLANG_VERSION}" \
   -DKASHA_FUZZ=ON -DKASHA_BUILD_TESTS=OFF -DKASHA_BUILD_BENCH=OFF >/dev/null
-cmake --build build-fuzz -j2 --target fuzz_scene fuzz_spectrum_csv
+TARGETS=(fuzz_scene fuzz_mitsuba fuzz_spectrum_csv fuzz_obj fuzz_image fuzz_material fuzz_checkpoint)
+cmake --build build-fuzz -j2 --target "${TARGETS[@]}"
 
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 rm -f build-fuzz/crash-* build-fuzz/leak-* build-fuzz/timeout-* build-fuzz/oom-*
-for target in fuzz_scene fuzz_spectrum_csv; do
+for target in "${TARGETS[@]}"; do
   corpus="build-fuzz/corpus/${target}"
   mkdir -p "${corpus}"
   cp -n tests/fuzz/corpus/"${target}"/* "${corpus}/" 2>/dev/null || true

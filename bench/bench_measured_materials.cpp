@@ -13,17 +13,17 @@
 namespace kasha {
 namespace {
 
-// The first material of the given type in the Post-it scene (the pink note comes first).
-const Material& postIt(const std::string& type) {
+// The Bsdf of the first material of the given type in the Post-it scene (the pink note comes first).
+Bsdf postIt(const std::string& type) {
   static const std::unique_ptr<Scene> scene = loadScene(std::string(KASHA_SOURCE_DIR) + "/scenes/postit_d65.json");
   for (const auto& m : scene->materials)
-    if (m->describe() == type) return *m;
+    if (m->describe() == type) return m->bsdf(HitContext{});
   throw std::runtime_error("no " + type + " material in postit_d65.json");
 }
 const std::string kMeasured = "measured_reradiation", kFit = "zhdanov";
 
 void sampleMaterial(benchmark::State& state, const std::string& type, TransportMode mode) {
-  const Material& m = postIt(type);
+  const Bsdf m = postIt(type);
   const Vec3 wKnown = glm::normalize(Vec3(0.2f, 0.3f, 0.9f));
   Rng rng(11);
   for (auto _ : state) {
@@ -41,7 +41,7 @@ BENCHMARK(BM_ZhdanovFitSampleRadiance);
 BENCHMARK(BM_ZhdanovFitSampleImportance);
 
 void evalFluorescent(benchmark::State& state, const std::string& type) {
-  const Material& m = postIt(type);
+  const Bsdf m = postIt(type);
   const Vec3 wi = glm::normalize(Vec3(0.2f, 0.3f, 0.9f)), wo = glm::normalize(Vec3(-0.4f, 0.1f, 0.8f));
   Rng rng(5);
   for (auto _ : state) {

@@ -2,10 +2,11 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/image_output.h"
+#include "core/output_file.h"
 #include "scene/scene_loader.h"
 #include "integrators/comparison.h"
 #include "integrators/integrator_factory.h"
@@ -14,11 +15,22 @@ namespace kasha {
 
 int runCompare(const CompareArgs& a) {
   std::unique_ptr<Scene> scene = loadScene(a.scene);
-  for (const std::string& n : a.integrators) makeIntegrator(n, *scene, scene->render);  // validate names early
-  if (a.time <= 0.0 && a.spp <= 0) throw InputError("--time/--spp", "", "give a time budget or a sample count");
-  if (a.reference.empty()) throw InputError("--reference", "", "a reference image path is required");
+  if (a.time <= 0.0 && a.spp <= 0) throw UsageError("--time/--spp", "", "give a time budget or a sample count");
+  if (a.reference.empty()) throw UsageError("--reference", "", "a reference image path is required");
+  for (const std::string& n : a.integrators) {  // combinations the integrators refuse, before any render
+    try {
+      makeIntegrator(n, *scene, scene->render);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError("--integrators " + n, "", e.what());
+    }
+  }
+  std::vector<OutputTarget> outputs;
+  if (!a.csv.empty()) outputs.push_back({a.csv, "--csv", "", ""});
+  const bool renderReference = !std::filesystem::exists(a.reference);
+  if (renderReference) outputs.push_back({a.reference, "--reference", ".exr", ""});
+  checkOutputs(outputs);
   XyzImage reference;
-  if (std::filesystem::exists(a.reference)) {
+  if (!renderReference) {
     reference = readExrXyz(a.reference);
     std::printf("reference: %s\n", a.reference.c_str());
   } else {
@@ -43,20 +55,17 @@ int runCompare(const CompareArgs& a) {
   opt.seed = uint64_t(a.seed);
   opt.sampler = scene->render.sampler;
   opt.threads = a.threads;
-  std::ofstream csv;
-  if (!a.csv.empty()) {
-    csv.open(a.csv);
-    if (!csv) throw InputError(a.csv, "", "cannot write");
-    csv << "integrator,seconds,spp,samples_per_second,rmse,relmse\n";
-  }
+  std::ostringstream csv;
+  csv << "integrator,seconds,spp,samples_per_second,rmse,relmse\n";
   std::printf("%-18s %9s %7s %12s %12s %12s\n", "integrator", "seconds", "spp", "samples/s", "RMSE", "relMSE");
   for (const std::string& n : a.integrators) {
     const ComparisonRow r = compareIntegrators(*scene, {n}, opt, reference)[0];
     std::printf("%-18s %9.2f %7d %12.4g %12.5g %12.5g\n", n.c_str(), r.stats.seconds, r.stats.spp,
                 r.stats.samplesPerSecond, r.error.rmse, r.error.relMse);
-    if (csv) csv << n << "," << r.stats.seconds << "," << r.stats.spp << "," << r.stats.samplesPerSecond << ","
+    csv << n << "," << r.stats.seconds << "," << r.stats.spp << "," << r.stats.samplesPerSecond << ","
                  << r.error.rmse << "," << r.error.relMse << "\n";
   }
+  if (!a.csv.empty()) writeFileAtomically(a.csv, csv.str());
   return 0;
 }
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <iomanip>
 #include <set>
 
@@ -12,6 +12,7 @@
 
 #include "core/bispectral_exr.h"
 #include "core/error.h"
+#include "core/output_file.h"
 #include "core/spectrum_csv.h"
 #include "materials/zhdanov_bdf.h"
 #include "materials/zhdanov_extraction.h"
@@ -23,7 +24,7 @@ BispectralData readMatrix(const std::string& path, const char* flag) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".csv") return readBispectralCsv(path);
   if (ext == ".exr") return readBispectralExr(path);
-  throw InputError(path, flag, "expected a .csv or .exr bispectral matrix");
+  throw UsageError(path, flag, "expected a .csv or .exr bispectral matrix");
 }
 
 // The piecewise-linear function through (grid, values), zero outside the grid.
@@ -39,14 +40,14 @@ float linear(const std::vector<float>& grid, const std::vector<float>& values, f
 
 int runExtract(const ExtractArgs& a) {
   const std::filesystem::path out(a.output);
-  if (out.extension() != ".json") throw InputError(a.output, "-o", "the material file must end in .json");
+  if (out.extension() != ".json") throw UsageError(a.output, "-o", "the material file must end in .json");
   ExtractionInput in;
   in.sample = readMatrix(a.sample, "--sample");
   in.epsilon = a.epsilon;
   in.noiseFloor = a.noiseFloor;
   if (!a.etalon.empty()) {
     if (a.etalonReflectance.empty())
-      throw InputError("", "--etalon-reflectance", "required with --etalon (the etalon's known reflectance)");
+      throw UsageError("", "--etalon-reflectance", "required with --etalon (the etalon's known reflectance)");
     in.etalon = readMatrix(a.etalon, "--etalon");
     char* end = nullptr;
     const float constant = std::strtof(a.etalonReflectance.c_str(), &end);
@@ -54,8 +55,12 @@ int runExtract(const ExtractArgs& a) {
                                ? Spectrum::constant(constant)
                                : spectrumFromTable(readSpectralCsv(a.etalonReflectance), "").zeroOutside();
   } else if (!a.etalonReflectance.empty()) {
-    throw InputError("", "--etalon-reflectance", "given without --etalon");
+    throw UsageError("", "--etalon-reflectance", "given without --etalon");
   }
+  const std::string csvName = out.stem().string() + "_spectra.csv";
+  const std::filesystem::path csvPath = out.parent_path() / csvName;
+  // The inputs have been read: neither output may replace one of them, nor each other.
+  checkOutputs({{a.output, "-o", ".json", ""}, {csvPath.string(), "-o (its spectra)", ".csv", ""}});
   const ZhdanovFit fit = extractZhdanov(in);
   if (!fit.uncalibrated.empty()) {
     std::string list;
@@ -85,11 +90,8 @@ int runExtract(const ExtractArgs& a) {
                                        "): lower --gloss, or check the calibration (is the sample etalon-normalised, "
                                        "or does it need --etalon?)");
 
-  const std::string csvName = out.stem().string() + "_spectra.csv";
-  const std::filesystem::path csvPath = out.parent_path() / csvName;
   {
-    std::ofstream f(csvPath);
-    if (!f) throw InputError(csvPath.string(), "", "cannot open for writing");
+    std::ostringstream f;
     f << "# Zhdanov et al. (2019) three-part BDF extracted by `kasha extract` from " << a.sample
       << (a.etalon.empty() ? " (taken as etalon-normalised: no etalon)" : " with etalon " + a.etalon) << "\n"
       << "# epsilon " << a.epsilon << " nm, noise floor " << a.noiseFloor << "; factorisation residual "
@@ -99,7 +101,7 @@ int runExtract(const ExtractArgs& a) {
       << "wavelength_nm,passive,excitation,emission\n"
       << std::setprecision(8);
     for (size_t k = 0; k < lambdas.size(); ++k) f << lambdas[k] << "," << p[k] << "," << A[k] << "," << E[k] << "\n";
-    if (!f) throw InputError(csvPath.string(), "", "write failed");
+    writeFileAtomically(csvPath.string(), f.str());
   }
   const auto column = [&](const char* name) {
     return nlohmann::json{{"type", "file"}, {"file", csvName}, {"column", name}, {"outside", "zero"}};
@@ -110,12 +112,7 @@ int runExtract(const ExtractArgs& a) {
                                    {"passive", column("passive")},
                                    {"excitation", column("excitation")},
                                    {"emission", column("emission")}};
-  {
-    std::ofstream f(out);
-    if (!f) throw InputError(a.output, "", "cannot open for writing");
-    f << material.dump(2) << "\n";
-    if (!f) throw InputError(a.output, "", "write failed");
-  }
+  writeFileAtomically(a.output, material.dump(2) + "\n");
   float maxPA = 0.0f;
   for (size_t k = 0; k < lambdas.size(); ++k) maxPA = std::max(maxPA, p[k] + A[k]);
   std::printf("%s: factorisation residual |F - E*A| / |F| = %.4f; E*A outside the measured Stokes cells: %.4f; "

@@ -2,8 +2,10 @@
 // reradiation matrix of a fluorescent material (Jung18 eq. 5); `kasha compare` and `kasha metrics`
 // measure renders against a reference.
 //
-// Exit codes: 0 done; 1 bad input (scene, spectrum, mesh, checkpoint) or a memory limit, one line
-// "kasha: error: ..." and nothing written; 2 a bad command line; 128 + signal (130 SIGINT,
+// Exit codes: 0 done; 1 bad input (scene, spectrum, mesh, checkpoint), a memory limit or a failed
+// write, one line "kasha: error: ..." and nothing written; 2 a command-line mistake (CLI11's parse
+// errors and UsageError: an option's value, a combination the integrator refuses, an output path
+// checked by checkOutputs before the first sample); 128 + signal (130 SIGINT,
 // 143 SIGTERM) when a render was asked to stop: it finishes the current pass and writes the image,
 // the statistics and the checkpoint (if any) before exiting.
 //
@@ -20,8 +22,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "cli/compare_command.h"
@@ -33,6 +35,7 @@
 #include "core/error.h"
 #include "core/image_output.h"
 #include "core/memory_budget.h"
+#include "core/output_file.h"
 #include "core/spectral_film.h"
 #include "scene/scene_loader.h"
 #include "integrators/bdpt/bdpt_integrator.h"
@@ -80,7 +83,9 @@ struct RenderArgs {
   int spp = 0, threads = 0, maxDepth = -1;
   double time = -1.0;
   int64_t seed = -1;
-  std::string integrator = "pt", sensor, fluorescence, light, nee;
+  std::string integrator = "pt";
+  bool integratorGiven = false;  // --integrator on the command line
+  std::string sensor, fluorescence, light, nee;
   int hero = 0;
   std::string sampler;
   float exposure = 0.0f;
@@ -106,27 +111,6 @@ std::string withExtension(const std::string& path, const std::string& ext) {
   return std::filesystem::path(path).replace_extension(ext).string();
 }
 
-// Fails before any work if an output cannot be created.
-void checkWritable(const std::string& path) {
-  const std::filesystem::path dir = std::filesystem::absolute(path).parent_path();
-  if (!std::filesystem::is_directory(dir)) throw InputError(path, "", "output directory does not exist");
-  const std::string probe = (dir / ".kasha-write-test").string();
-  std::ofstream f(probe);
-  if (!f) throw InputError(path, "", "output directory is not writable");
-  f.close();
-  std::filesystem::remove(probe);
-}
-
-std::string readBytes(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "cannot open scene file (it is a directory)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open scene file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 std::string hex(uint64_t v) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
@@ -141,7 +125,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   SceneLoadOptions load;
   load.memoryLimit = memoryLimit;
   // Read once: the text is both loaded and hashed for checkpoints.
-  const std::string sceneText = readBytes(a.scene);
+  const std::string sceneText = readSceneFile(a.scene);
   std::unique_ptr<Scene> scene = loadSceneFromString(sceneText, a.scene, load);
   RenderSettings& r = scene->render;
   if (a.spp > 0) r.spp = a.spp;
@@ -158,7 +142,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   if (!a.sampler.empty()) r.sampler = *parseSamplerKind(a.sampler);  // validated by the option's check
   r.memoryLimit = memoryLimit;
   if ((a.mollifyBandwidth >= 0.0f || a.mollifyAlpha >= 0.0f) && a.integrator != "bdpt-mollified")
-    throw InputError(a.mollifyBandwidth >= 0.0f ? "--mollify-bandwidth" : "--mollify-alpha", "",
+    throw UsageError(a.mollifyBandwidth >= 0.0f ? "--mollify-bandwidth" : "--mollify-alpha", "",
                      "only for --integrator bdpt-mollified");
   if (a.mollifyBandwidth >= 0.0f) r.mollify.bandwidth = a.mollifyBandwidth;
   if (a.mollifyAlpha >= 0.0f) r.mollify.alpha = a.mollifyAlpha;
@@ -166,11 +150,19 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   try {
     integrator = makeIntegrator(a.integrator, *scene, r);
   } catch (const WavelengthStrategyError& e) {
+    // A command-line mistake when the command line chose the strategy or the integrator; else
+    // the scene's /render settings do not fit the default integrator.
     std::string option = settingName(e.site());
     std::replace(option.begin(), option.end(), '_', '-');
-    throw InputError("--" + option + " (or /render/" + settingName(e.site()) + " in " + a.scene + ")", "", e.what());
+    const std::map<WavelengthSite, const std::string*> given = {{WavelengthSite::Sensor, &a.sensor},
+        {WavelengthSite::Fluorescence, &a.fluorescence}, {WavelengthSite::LightStart, &a.light}, {WavelengthSite::Nee, &a.nee}};
+    const auto it = given.find(e.site());
+    if (it != given.end() && !it->second->empty()) throw UsageError("--" + option, "", e.what());
+    if (a.integratorGiven) throw UsageError("--integrator " + a.integrator, "", std::string(e.what()) + " (/render/" +
+                                                                                settingName(e.site()) + " in " + a.scene + ")");
+    throw InputError(a.scene, "/render/" + std::string(settingName(e.site())), e.what());
   } catch (const std::invalid_argument& e) {
-    throw InputError("--integrator", "", e.what());
+    throw UsageError(a.hero > 1 ? "--hero" : "--integrator " + a.integrator, "", e.what());
   }
 
   const std::string exr = a.output.empty() ? std::filesystem::path(a.scene).stem().string() + ".exr" : a.output;
@@ -178,28 +170,31 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   const std::string stats = withExtension(exr, ".stats.json");
   // --resume keeps checkpointing into the file it resumes from unless --checkpoint names another.
   const std::string checkpoint = a.checkpoint.empty() ? a.resume : a.checkpoint;
-  checkWritable(exr);
-  if (!png.empty()) checkWritable(png);
-  if (!checkpoint.empty()) checkWritable(checkpoint);
+  // Every output checked before the first sample: the scene and the files it named have been read
+  // by now; a checkpoint may replace the one it resumes (and only that one).
+  std::vector<OutputTarget> outputs = {{exr, "-o", ".exr", ""}, {stats, "-o (its statistics)", ".json", ""}};
+  if (!png.empty()) outputs.push_back({png, a.png.empty() ? "-o (its PNG)" : "--png", ".png", ""});
+  if (!checkpoint.empty()) outputs.push_back({checkpoint, a.checkpoint.empty() ? "--resume" : "--checkpoint", "", a.resume});
+  checkOutputs(outputs, {a.resume});
   const int width = scene->camera.width(), height = scene->camera.height();
   SpectralBins bins;
   try {
     if (a.spectralBins > 0) bins = SpectralBins::fromCount(scene->range, a.spectralBins);
     if (a.spectralStep > 0.0f) bins = SpectralBins::fromStep(scene->range, a.spectralStep);
   } catch (const std::invalid_argument& e) {
-    throw InputError(a.spectralBins > 0 ? "--spectral-bins" : "--spectral-step", "", e.what());
+    throw UsageError(a.spectralBins > 0 ? "--spectral-bins" : "--spectral-step", "", e.what());
   }
   std::unique_ptr<bdpt::StrategyImages> strategies;
   if (!a.strategyImages.empty()) {
     if (!dynamic_cast<const Bdpt*>(integrator.get()))
-      throw InputError("--strategy-images", "",
+      throw UsageError("--strategy-images", "",
                        "only the BDPT integrators have (s, t) strategies (bdpt, bdpt-shared, bdpt-independent, bdpt-mollified), "
                        "not '" + a.integrator + "'");
-    if (!checkpoint.empty()) throw InputError("--strategy-images", "", "cannot be combined with --checkpoint or --resume");
+    if (!checkpoint.empty()) throw UsageError("--strategy-images", "", "cannot be combined with --checkpoint or --resume");
     std::error_code ec;
     std::filesystem::create_directories(a.strategyImages, ec);
     if (ec) throw InputError(a.strategyImages, "", "cannot create the strategy image directory: " + ec.message());
-    checkWritable((std::filesystem::path(a.strategyImages) / "s0_t2.exr").string());
+    checkOutputs({{(std::filesystem::path(a.strategyImages) / "s0_t2.exr").string(), "--strategy-images", ".exr", ""}});
     requireMemory(bdpt::StrategyImages::bytesFor(width, height, a.strategyDepth),
                   "the strategy images (--strategy-depth " + std::to_string(a.strategyDepth) + ")", memoryLimit);
     strategies = std::make_unique<bdpt::StrategyImages>(width, height, a.strategyDepth);
@@ -246,10 +241,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     restoreFilm(std::move(d), film, spectral.get());
   }
   // A pass's camera samples wait in a record before they reach the film (integrators/render_pass.h).
-  const int perPass = opt.samplesPerPass > 0 ? opt.samplesPerPass
-                                             : std::min(defaultSamplesPerPass(width, height), integrator->maxSamplesPerPass());
-  requireMemory(PassTracer::sampleBytes(width, height, perPass),
-                "the samples of one pass (" + std::to_string(perPass) + " per pixel)", memoryLimit);
+  requirePassMemory(*integrator, width, height, opt.samplesPerPass, bins.enabled(), memoryLimit);
   if (!checkpoint.empty()) {
     opt.checkpointIntervalSeconds = a.checkpointInterval;
     opt.checkpoint = [&](const RenderStats& s) {
@@ -307,9 +299,11 @@ int runMatrix(const MatrixArgs& a) {
   std::unique_ptr<Scene> scene = loadScene(a.scene, load);
   size_t idx = 0;
   while (idx < scene->materialNames.size() && scene->materialNames[idx] != a.material) ++idx;
-  if (idx == scene->materialNames.size()) throw InputError(a.scene, "/materials/" + a.material, "no such material");
+  if (idx == scene->materialNames.size())
+    throw UsageError("--material", a.material, "no material of that name in " + a.scene);
   const auto* jung = dynamic_cast<const JungBbrrdf*>(scene->materials[idx].get());
-  if (!jung) throw InputError(a.scene, "/materials/" + a.material, "not a jung_fluorescent material");
+  if (!jung) throw UsageError("--material", a.material, "not a jung_fluorescent material in " + a.scene);
+  if (!a.output.empty()) checkOutputs({{a.output, "-o", "", ""}});
   // Grid points min + i·step up to max (1e-3 nm tolerance); counted in double, so a tiny step is
   // a clear memory error rather than an endless float loop.
   const double span = double(scene->range.max) + 1e-3 - double(scene->range.min);
@@ -350,7 +344,7 @@ namespace {
 // Number checks with short messages (CLI11's own print the range up to DBL_MAX, and let NaN and
 // infinity through).
 enum class Sign { Any, NonNegative, Positive };
-CLI::Validator numberCheck(Sign sign, bool integer) {
+CLI::Validator numberCheck(Sign sign, bool integer, double max = HUGE_VAL) {
   return CLI::Validator(
       [=](std::string& v) {
         char* end = nullptr;
@@ -360,10 +354,26 @@ CLI::Validator numberCheck(Sign sign, bool integer) {
         if (integer && d != std::floor(d)) return "expected an integer, got '" + v + "'";
         if (sign == Sign::NonNegative && d < 0.0) return "must not be negative, got '" + v + "'";
         if (sign == Sign::Positive && !(d > 0.0)) return "must be positive, got '" + v + "'";
+        if (d > max) {
+          char limit[32];
+          std::snprintf(limit, sizeof limit, "%.10g", max);
+          return "must be at most " + std::string(limit) + ", got '" + v + "'";
+        }
         return std::string();
       },
       integer ? (sign == Sign::Positive ? "INT>0" : "INT>=0") : (sign == Sign::Positive ? "NUMBER>0" : sign == Sign::NonNegative ? "NUMBER>=0" : "NUMBER"));
 }
+// The largest seed a scene file's /render/seed (an int) can hold; the options allow the same.
+constexpr double kMaxSeed = 2147483647.0;
+const CLI::Validator kIntegratorName(
+    [](std::string& v) {
+      const std::vector<std::string> names = kasha::integratorNames();
+      if (std::find(names.begin(), names.end(), v) != names.end()) return std::string();
+      std::string list;
+      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+      return "unknown integrator '" + v + "' (" + list + ")";
+    },
+    "INTEGRATOR");
 const CLI::Validator kByteSize(
     [](std::string& v) {
       try {
@@ -391,11 +401,13 @@ int main(int argc, char** argv) {
   render->add_flag("--no-png", ra.noPng, "Do not write a PNG");
   render->add_option("--spp", ra.spp, "Samples per pixel (overrides the scene)")->check(numberCheck(Sign::Positive, true));
   render->add_option("--time", ra.time, "Time budget in seconds (whole passes)")->check(numberCheck(Sign::NonNegative, false));
-  render->add_option("--seed", ra.seed, "Random seed")->check(numberCheck(Sign::NonNegative, true));
+  render->add_option("--seed", ra.seed, "Random seed (0 to 2147483647, as in a scene file)")
+      ->check(numberCheck(Sign::NonNegative, true, kMaxSeed));
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")
       ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 4096));
   render->add_option("--integrator", ra.integrator,
-                     "Integrator: pt | lt | bdpt (= bdpt-independent) | bdpt-shared | bdpt-independent | bdpt-mollified | ppm");
+                     "Integrator: pt | lt | bdpt (= bdpt-independent) | bdpt-shared | bdpt-independent | bdpt-mollified | ppm")
+      ->check(kIntegratorName);
   render->add_option("--mollify-bandwidth", ra.mollifyBandwidth,
                      "bdpt-mollified: wavelength kernel half-width of the first pass in nm (0: 2% of the range)")
       ->check(numberCheck(Sign::NonNegative, false));
@@ -473,14 +485,15 @@ int main(int argc, char** argv) {
   CLI::App* compare = app.add_subcommand("compare", "Render with several integrators for equal time and report RMSE vs a reference");
   compare->add_option("scene", ca.scene, "Scene file (JSON)")->required();
   compare->add_option("--reference", ca.reference, "Reference OpenEXR (rendered first if it does not exist)")->required();
-  compare->add_option("--integrators", ca.integrators, "Comma-separated integrators")->delimiter(',');
+  compare->add_option("--integrators", ca.integrators, "Comma-separated integrators")->delimiter(',')->check(kIntegratorName);
   compare->add_option("--time", ca.time, "Seconds per integrator")->check(numberCheck(Sign::NonNegative, false));
   compare->add_option("--spp", ca.spp, "Samples per pixel per integrator")->check(numberCheck(Sign::Positive, true));
   compare->add_option("--reference-time", ca.referenceTime, "Seconds for the reference (default 60)")
       ->check(numberCheck(Sign::Positive, false));
-  compare->add_option("--reference-integrator", ca.referenceIntegrator, "Integrator for the reference (default pt)");
+  compare->add_option("--reference-integrator", ca.referenceIntegrator, "Integrator for the reference (default pt)")
+      ->check(kIntegratorName);
   compare->add_option("--csv", ca.csv, "Write the table as CSV");
-  compare->add_option("--seed", ca.seed, "Random seed")->check(numberCheck(Sign::NonNegative, true));
+  compare->add_option("--seed", ca.seed, "Random seed (0 to 2147483647)")->check(numberCheck(Sign::NonNegative, true, kMaxSeed));
   compare->add_option("--threads", ca.threads, "Worker threads (default: all cores)")
       ->check(numberCheck(Sign::NonNegative, true));
 
@@ -510,6 +523,7 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+    ra.integratorGiven = render->count("--integrator") > 0;
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // A bad command line: one line, exit code 2.
@@ -533,13 +547,13 @@ int main(int argc, char** argv) {
   std::unique_ptr<MpiGroup> mpi;
   if (render->parsed() && (ra.mpi || launchedByMpi())) mpi = std::make_unique<MpiGroup>(&argc, &argv);
   // After an error on one rank the others would wait for it forever: end them all.
-  auto fail = [&](const char* what) {
+  auto fail = [&](const char* what, int code) {
     std::fprintf(stderr, "kasha: error: %s\n", what);
     if (mpi && mpi->size() > 1) {
       std::fflush(stderr);
-      mpi->abort(1);
+      mpi->abort(code);
     }
-    return 1;
+    return code;
   };
   try {
     if (render->parsed()) {
@@ -552,8 +566,10 @@ int main(int argc, char** argv) {
     if (compare->parsed()) return runCompare(ca);
     if (metrics->parsed()) return runMetrics(mt);
     if (extract->parsed()) return runExtract(xa);
+  } catch (const UsageError& e) {  // a command-line mistake
+    return fail(e.what(), 2);
   } catch (const std::exception& e) {  // InputError included
-    return fail(e.what());
+    return fail(e.what(), 1);
   }
   return 1;
 }

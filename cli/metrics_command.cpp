@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/image_output.h"
+#include "core/output_file.h"
 #include "integrators/comparison.h"
 
 namespace kasha {
@@ -30,6 +31,7 @@ void writePfm(const std::string& path, int width, int height, const std::vector<
 int runMetrics(const MetricsArgs& a) {
   const XyzImage image = readExrXyz(a.image);
   const XyzImage reference = readExrXyz(a.reference);
+  if (!a.errorMap.empty()) checkOutputs({{a.errorMap, "--error-map", ".pfm", ""}});
   ImageError e;
   try {
     e = compareImages(image, reference);

@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/exr_input.h"
 #include "core/exr_wavelength.h"
+#include "core/image_input.h"
 
 namespace kasha {
 
@@ -39,8 +41,9 @@ std::optional<BispectralChannel> parseBispectralChannel(const std::string& name)
 }
 
 BispectralData readBispectralExr(const std::string& path) {
+  ExrInput exr(path, "bispectral image");
   try {
-    Imf::InputFile file(path.c_str());
+    Imf::InputFile& file = exr.file();
     const Imath::Box2i dw = file.header().dataWindow();
     std::vector<std::pair<std::string, BispectralChannel>> channels;
     std::set<float> in, out;
@@ -55,7 +58,8 @@ BispectralData readBispectralExr(const std::string& path) {
       throw InputError(path, "", "no reflective channel T.<wavelength> or T.<wavelength>.<wavelength> (Fichet et "
                                  "al. 2021 bispectral layout)");
     // The first scanline of every channel; the measurement is its first pixel.
-    const size_t width = size_t(dw.max.x - dw.min.x + 1);
+    const size_t width = size_t(exr.width());
+    requireImageMemory(path, width, channels.size(), sizeof(float), kDefaultMemoryLimit);
     std::vector<float> line(channels.size() * width, 0.0f), values(channels.size());
     Imf::FrameBuffer fb;
     for (size_t k = 0; k < channels.size(); ++k) {

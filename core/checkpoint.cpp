@@ -1,18 +1,14 @@
 #include "core/checkpoint.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <bit>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/input_file.h"
+#include "core/output_file.h"
 #include "core/rng.h"
 
 namespace kasha {
@@ -68,13 +64,13 @@ class Hasher {
   size_t n_ = 0;
 };
 
-// Writes to a file descriptor, hashing what it writes.
+// Writes to an output file, hashing what it writes.
 class Writer {
  public:
-  Writer(int fd, std::string path) : fd_(fd), path_(std::move(path)), hash_(0) {}
+  explicit Writer(OutputFile& out) : out_(out), hash_(0) {}
   void bytes(const void* data, size_t len) {
     hash_.update(data, len);
-    raw(data, len);
+    out_.write(data, len);
   }
   template <class T>
   void value(const T& v) {
@@ -82,31 +78,20 @@ class Writer {
   }
   void checksum() {
     const uint64_t h = hash_.finish();
-    raw(&h, sizeof h);
+    out_.write(&h, sizeof h);
   }
 
  private:
-  void raw(const void* data, size_t len) {
-    const char* p = static_cast<const char*>(data);
-    while (len > 0) {
-      const ssize_t n = ::write(fd_, p, len);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) throw std::runtime_error("cannot write checkpoint '" + path_ + "': " + std::strerror(errno));
-      p += n, len -= size_t(n);
-    }
-  }
-  int fd_;
-  std::string path_;
+  OutputFile& out_;
   Hasher hash_;
 };
 
-// Reads from a stream, hashing what it reads; a short read is an InputError naming the file.
+// Reads from an input file, hashing what it reads; a short read is an InputError naming the file.
 class Reader {
  public:
-  Reader(std::istream& in, std::string path) : in_(in), path_(std::move(path)), hash_(0) {}
+  explicit Reader(InputFile& in) : in_(in), hash_(0) {}
   void bytes(void* data, size_t len) {
-    in_.read(static_cast<char*>(data), std::streamsize(len));
-    if (size_t(in_.gcount()) != len) throw InputError(path_, "", "checkpoint is truncated");
+    in_.read(data, len);
     hash_.update(data, len);
   }
   template <class T>
@@ -118,25 +103,15 @@ class Reader {
   void checksum() {
     const uint64_t expected = hash_.finish();
     uint64_t stored = 0;
-    in_.read(reinterpret_cast<char*>(&stored), sizeof stored);
-    if (in_.gcount() != sizeof stored) throw InputError(path_, "", "checkpoint is truncated");
-    if (stored != expected) throw InputError(path_, "", "checkpoint is corrupted (checksum mismatch)");
-    if (in_.peek() != std::char_traits<char>::eof()) throw InputError(path_, "", "checkpoint has trailing data");
+    in_.read(&stored, sizeof stored);
+    if (stored != expected) throw InputError(in_.path(), "", "checkpoint is corrupted (checksum mismatch)");
+    if (!in_.atEnd()) throw InputError(in_.path(), "", "checkpoint has trailing data");
   }
 
  private:
-  std::istream& in_;
-  std::string path_;
+  InputFile& in_;
   Hasher hash_;
 };
-
-void fsyncDirectory(const std::string& path) {
-  const std::string dir = std::filesystem::absolute(path).parent_path().string();
-  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;  // best effort: the rename itself is atomic
-  ::fsync(fd);
-  ::close(fd);
-}
 
 }  // namespace
 
@@ -163,55 +138,31 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& settings, co
     header["film"]["spectral_bins"] = {{"min", b.min}, {"step", b.step}, {"count", b.count}};
   }
   const std::string text = header.dump();
-  const std::string tmp = path + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error("cannot write checkpoint '" + path + "': " + std::strerror(errno));
-  try {
-    Writer w(fd, path);
-    w.bytes(kMagic, sizeof kMagic);
-    w.value(kVersion);
-    w.value(uint32_t(0));
-    w.value(uint64_t(text.size()));
-    w.bytes(text.data(), text.size());
-    const std::vector<DVec3>& sums = film.sampleSums();
-    const std::vector<DVec3>& splats = film.splatSums();
-    static_assert(sizeof(DVec3) == 3 * sizeof(double));
-    w.value(uint64_t(sums.size()));
-    w.bytes(sums.data(), sums.size() * sizeof(DVec3));
-    w.bytes(splats.data(), splats.size() * sizeof(DVec3));
-    if (spectral) w.bytes(spectral->sums().data(), spectral->sums().size() * sizeof(double));
-    w.checksum();
-    // On disk before the rename, so that after a crash the name holds either the old or the new
-    // checkpoint, complete.
-    if (::fsync(fd) != 0) throw std::runtime_error("cannot write checkpoint '" + path + "': " + std::strerror(errno));
-  } catch (...) {
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    throw;
-  }
-  if (::close(fd) != 0) {
-    ::unlink(tmp.c_str());
-    throw std::runtime_error("cannot write checkpoint '" + path + "': " + std::strerror(errno));
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    ::unlink(tmp.c_str());
-    throw std::runtime_error("cannot rename '" + tmp + "' to '" + path + "': " + why);
-  }
-  fsyncDirectory(path);
+  OutputFile out(path);
+  Writer w(out);
+  w.bytes(kMagic, sizeof kMagic);
+  w.value(kVersion);
+  w.value(uint32_t(0));
+  w.value(uint64_t(text.size()));
+  w.bytes(text.data(), text.size());
+  const std::vector<DVec3>& sums = film.sampleSums();
+  const std::vector<DVec3>& splats = film.splatSums();
+  static_assert(sizeof(DVec3) == 3 * sizeof(double));
+  w.value(uint64_t(sums.size()));
+  w.bytes(sums.data(), sums.size() * sizeof(DVec3));
+  w.bytes(splats.data(), splats.size() * sizeof(DVec3));
+  if (spectral) w.bytes(spectral->sums().data(), spectral->sums().size() * sizeof(double));
+  w.checksum();
+  // fsync before the rename, so that after a crash the name holds the old or the new checkpoint.
+  out.commit();
 }
 
 CheckpointData readCheckpoint(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "cannot open checkpoint file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open checkpoint file");
-  // The size of the file opened, not of whatever the name points to by now: a running render
-  // replaces its checkpoint by renaming a new one over it.
-  in.seekg(0, std::ios::end);
-  const uint64_t fileSize = uint64_t(in.tellg());
-  in.seekg(0, std::ios::beg);
-  Reader r(in, path);
+  // Its size is checked against the header below; the size of the file opened, not of whatever
+  // the name points to by now (a running render replaces its checkpoint by renaming a new one over it).
+  InputFile in(path, "checkpoint file", UINT64_MAX);
+  const uint64_t fileSize = in.size();
+  Reader r(in);
   char magic[8];
   r.bytes(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof magic) != 0) throw InputError(path, "", "not a kasha checkpoint");

@@ -21,4 +21,11 @@ class InputError : public std::runtime_error {
   }
 };
 
+// A mistake on the command line (an option's value, a combination of options, an output path):
+// `kasha` exits with code 2 for these, 1 for other InputErrors. `where` is the option.
+class UsageError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 }  // namespace kasha

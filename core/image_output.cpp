@@ -7,25 +7,46 @@
 #include <ImfStringAttribute.h>
 #include <png.h>
 
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <vector>
 
 #include "core/color.h"
+#include "core/output_file.h"
 #include "core/spectral_exr.h"
 
 namespace kasha {
 namespace {
 
-std::string tempName(const std::string& path) { return path + ".tmp"; }
+// OpenEXR's output stream over an OutputFile (every write checked, renamed when committed).
+class ExrOutputStream : public Imf::OStream {
+ public:
+  explicit ExrOutputStream(OutputFile& file) : Imf::OStream(file.path().c_str()), file_(file) {}
+  void write(const char c[], int n) override { file_.write(c, size_t(n)); }
+  uint64_t tellp() override { return file_.tell(); }
+  void seekp(uint64_t pos) override { file_.seek(pos); }
 
-void commit(const std::string& tmp, const std::string& path) {
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw std::runtime_error("cannot rename '" + tmp + "' to '" + path + "': " + ec.message());
+ private:
+  OutputFile& file_;
+};
+
+// Where libpng's write callback sends the bytes, and why it failed.
+struct PngSink {
+  OutputFile& file;
+  std::string error;
+};
+
+// libpng's write callback: a failed write becomes png_error (a longjmp back to writePng), made
+// outside the catch block so that no exception is left behind by the jump.
+void pngWrite(png_structp png, png_bytep data, size_t length) {
+  PngSink& sink = *static_cast<PngSink*>(png_get_io_ptr(png));
+  try {
+    sink.file.write(data, length);
+  } catch (const std::exception& e) {
+    sink.error = e.what();
+  }
+  if (!sink.error.empty()) png_error(png, "write failed");
 }
+void pngFlush(png_structp) {}
 
 }  // namespace
 
@@ -57,16 +78,18 @@ void writeExr(const Film& film, const std::string& path, const SpectralFilm* spe
     fb.insert(name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(values.data())), sizeof(float),
                                sizeof(float) * w));
   }
-  const std::string tmp = tempName(path);
+  OutputFile out(path);
   try {
-    Imf::OutputFile file(tmp.c_str(), header);
+    ExrOutputStream stream(out);
+    Imf::OutputFile file(stream, header);
     file.setFrameBuffer(fb);
     file.writePixels(h);
+  } catch (const OutputError&) {  // names the file already
+    throw;
   } catch (const std::exception& e) {
-    std::remove(tmp.c_str());
     throw std::runtime_error("cannot write '" + path + "': " + e.what());
   }
-  commit(tmp, path);
+  out.commit();
 }
 
 void writePng(const Film& film, const std::string& path, float exposureStops) {
@@ -79,18 +102,16 @@ void writePng(const Film& film, const std::string& path, float exposureStops) {
       for (int c = 0; c < 3; ++c)
         pixels[(size_t(y) * w + x) * 3 + c] = (unsigned char)(std::lround(255.0f * srgbEncode(rgb[c])));
     }
-  const std::string tmp = tempName(path);
-  FILE* fp = std::fopen(tmp.c_str(), "wb");
-  if (!fp) throw std::runtime_error("cannot write '" + path + "'");
+  OutputFile out(path);
+  PngSink sink{out, ""};
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info || setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    std::fclose(fp);
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot write PNG '" + path + "'");
+    // out removes its temporary file.
+    throw std::runtime_error(sink.error.empty() ? "cannot write PNG '" + path + "'" : sink.error);
   }
-  png_init_io(png, fp);
+  png_set_write_fn(png, &sink, pngWrite, pngFlush);
   png_set_IHDR(png, info, w, h, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
   png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
@@ -98,19 +119,9 @@ void writePng(const Film& film, const std::string& path, float exposureStops) {
   for (int y = 0; y < h; ++y) png_write_row(png, pixels.data() + size_t(y) * w * 3);
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
-  if (std::fclose(fp) != 0) throw std::runtime_error("cannot write '" + path + "'");
-  commit(tmp, path);
+  out.commit();
 }
 
-void writeTextFile(const std::string& path, const std::string& text) {
-  const std::string tmp = tempName(path);
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw std::runtime_error("cannot write '" + path + "'");
-    out << text;
-    if (!out) throw std::runtime_error("cannot write '" + path + "'");
-  }
-  commit(tmp, path);
-}
+void writeTextFile(const std::string& path, const std::string& text) { writeFileAtomically(path, text); }
 
 }  // namespace kasha

@@ -178,26 +178,33 @@ void DistantLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float& pd
 
 // ---- environment ---------------------------------------------------------------------------
 
+std::pair<Vec3, float> EnvironmentLight::sampleDirection(Vec2 u) const { return {sampleUniformSphere(u), kUniformSpherePdf}; }
+
+float EnvironmentLight::pdfDirection(const Vec3&) const { return kUniformSpherePdf; }
+
 std::optional<LightSample> EnvironmentLight::sampleLi(const Vec3&, float lambda, Vec2 u) const {
-  return LightSample{sampleUniformSphere(u), kInf, Le(lambda), kUniformSpherePdf, false};
+  const auto [wi, pdf] = sampleDirection(u);
+  if (!(pdf > 0.0f)) return std::nullopt;
+  return LightSample{wi, kInf, Le(lambda, wi), pdf, false};
 }
 
-float EnvironmentLight::pdfDirection() const { return kUniformSpherePdf; }
-
 std::optional<EmissionSample> EnvironmentLight::sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const {
-  // Direction of travel w uniform over the sphere, then a uniform point on the disk facing it.
+  // Direction of travel w against a sampled direction towards the environment, then a uniform
+  // point on the disk facing it.
+  const auto [towards, pdf] = sampleDirection(uDir);
+  if (!(pdf > 0.0f)) return std::nullopt;
   EmissionSample es;
-  es.w = -sampleUniformSphere(uDir);
+  es.w = -towards;
   es.p = pointOnDisk(bounds_.center - es.w * bounds_.radius, es.w, bounds_.radius, uPos);
-  es.Le = Le(lambda);
+  es.Le = Le(lambda, towards);
   es.pdfPos = 1.0f / (kPi * sqr(bounds_.radius));
-  es.pdfDir = kUniformSpherePdf;
+  es.pdfDir = pdf;
   return es;
 }
 
-void EnvironmentLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float& pdfPos, float& pdfDir) const {
+void EnvironmentLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3& w, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f / (kPi * sqr(bounds_.radius));
-  pdfDir = kUniformSpherePdf;
+  pdfDir = pdfDirection(-w);
 }
 
 }  // namespace kasha

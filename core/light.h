@@ -142,19 +142,26 @@ class DistantLight final : public Light {
   SceneBounds bounds_;
 };
 
-// Radiance L arriving from every direction at infinity; sampled uniformly over the sphere.
-class EnvironmentLight final : public Light {
+// Radiance arriving from every direction at infinity. The base class is constant radiance,
+// sampled uniformly over the sphere; subclasses (EnvMapLight) vary it with the direction and
+// sample it by their own density: sampleLi, sampleEmission and emissionPdfs are built on
+// Le, sampleDirection and pdfDirection, so every integrator sees one consistent density.
+class EnvironmentLight : public Light {
  public:
   EnvironmentLight(Spectrum radiance, float scale, SceneBounds bounds)
       : Light(std::move(radiance), scale, 4.0f * kPi * kPi * sqr(bounds.radius)), bounds_(bounds) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
-  float pdfDirection() const;
   bool atInfinity() const override { return true; }
-  float Le(float lambda) const { return scale_ * spectrum_(lambda); }
+  // Radiance at lambda arriving from direction w (unit, from the scene towards the environment).
+  virtual float Le(float lambda, const Vec3& w) const { return scale_ * spectrum_(lambda); }
+  // A direction towards the environment and its solid-angle density (0: none).
+  virtual std::pair<Vec3, float> sampleDirection(Vec2 u) const;
+  // Solid-angle density with which sampleDirection (and so sampleLi) picks w.
+  virtual float pdfDirection(const Vec3& w) const;
 
- private:
+ protected:
   SceneBounds bounds_;
 };
 

@@ -14,6 +14,7 @@ size_t Shape::finalize() {
   }
   std::vector<uint32_t> kept;
   std::vector<Vec2> keptUvs;
+  std::vector<Vec3> keptNormals;
   size_t removed = 0;
   triangleCdf.clear();
   normals.clear();
@@ -27,12 +28,15 @@ size_t Shape::finalize() {
     }
     kept.insert(kept.end(), {indices[t], indices[t + 1], indices[t + 2]});
     if (!cornerUvs.empty()) keptUvs.insert(keptUvs.end(), {cornerUvs[t], cornerUvs[t + 1], cornerUvs[t + 2]});
+    if (!cornerNormals.empty())
+      keptNormals.insert(keptNormals.end(), {cornerNormals[t], cornerNormals[t + 1], cornerNormals[t + 2]});
     normals.push_back(glm::normalize(glm::cross(b - a, c - a)));
     acc += triArea;
     triangleCdf.push_back(float(acc));
   }
   indices = std::move(kept);
   cornerUvs = std::move(keptUvs);
+  cornerNormals = std::move(keptNormals);
   area = float(acc);
   return removed;
 }
@@ -46,6 +50,15 @@ Vec2 Shape::surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const {
   if (cornerUvs.empty()) return Vec2(0.0f);
   const size_t t = 3 * size_t(prim);
   return (1.0f - bary.x - bary.y) * cornerUvs[t] + bary.x * cornerUvs[t + 1] + bary.y * cornerUvs[t + 2];
+}
+
+Vec3 Shape::shadingNormal(uint32_t prim, Vec2 bary, const Vec3& ng) const {
+  if (kind == Kind::Sphere || cornerNormals.empty()) return ng;
+  const size_t t = 3 * size_t(prim);
+  const Vec3 n = (1.0f - bary.x - bary.y) * cornerNormals[t] + bary.x * cornerNormals[t + 1] + bary.y * cornerNormals[t + 2];
+  const float len = glm::length(n);
+  if (!(len > 1e-12f) || !std::isfinite(len)) return ng;
+  return glm::dot(n, ng) < 0.0f ? -n / len : n / len;
 }
 
 SurfaceSample Shape::sampleUniform(Vec2 u) const {

@@ -36,6 +36,7 @@ struct Shape {
   std::vector<float> triangleCdf;  // cumulative area, for sampling
   std::vector<Vec3> normals;       // unit geometric normal per triangle
   std::vector<Vec2> cornerUvs;     // texture coordinates, three per triangle (parallel to indices); empty: none
+  std::vector<Vec3> cornerNormals; // vertex normals (OBJ vn), three per triangle (parallel to indices); empty: none
   // Sphere
   Vec3 center{0.0f};
   float radius = 0.0f;
@@ -51,6 +52,11 @@ struct Shape {
   // barycentrics (b1, b2) of corners 1 and 2. Spheres, from the outward normal n:
   // u = 1/2 + atan2(n_z, n_x)/(2π) (around +y), v = acos(−n_y)/π (0 at the bottom, 1 at the top).
   Vec2 surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const;
+  // The shading normal at a point with geometric normal ng (Hit::ng): the corners' normals
+  // interpolated with the barycentrics and normalised (Phong shading), turned to ng's side of the
+  // surface if it points away from it, so that both normals name the same side. ng itself for
+  // spheres, meshes without normals, and where the interpolation is zero or not finite.
+  Vec3 shadingNormal(uint32_t prim, Vec2 bary, const Vec3& ng) const;
   SurfaceSample sampleUniform(Vec2 u) const;
 };
 

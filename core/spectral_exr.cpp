@@ -10,6 +10,8 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/exr_input.h"
+#include "core/memory_budget.h"
 #include "core/exr_wavelength.h"
 
 namespace kasha {
@@ -44,50 +46,66 @@ std::vector<std::pair<std::string, std::vector<float>>> spectralChannels(const S
   return out;
 }
 
-bool hasEmissiveChannels(const std::string& path) {
-  try {
-    Imf::InputFile file(path.c_str());
-    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
-      if (emissiveWavelength(it.name())) return true;
-  } catch (const std::exception&) {
-  }
+bool hasEmissiveChannels(ExrInput& in) {
+  const Imf::ChannelList& channels = in.file().header().channels();
+  for (auto it = channels.begin(); it != channels.end(); ++it)
+    if (emissiveWavelength(it.name())) return true;
   return false;
 }
 
-SpectralImage readSpectralExr(const std::string& path) {
+SpectralImage readSpectralExr(const std::string& path, uint64_t memoryLimit) {
+  ExrInput in(path, "image file");
+  return readSpectralExr(in, path, memoryLimit);
+}
+
+SpectralImage readSpectralExr(ExrInput& in, const std::string& path, uint64_t memoryLimit) {
+  Imf::InputFile& file = in.file();
+  std::vector<std::pair<float, std::string>> channels;
+  for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+    if (const std::optional<float> l = emissiveWavelength(it.name())) channels.emplace_back(*l, it.name());
+  if (channels.empty())
+    throw InputError(path, "", "no emissive channel S0.<wavelength> (Fichet et al. 2021 spectral layout)");
+  std::sort(channels.begin(), channels.end());
+  for (size_t k = 1; k < channels.size(); ++k)
+    if (channels[k].first == channels[k - 1].first)
+      throw InputError(path, channels[k].second, "same wavelength as channel " + channels[k - 1].second);
+  const size_t n = channels.size();
+  // A float per channel, and the XYZ pixels readExrXyz may integrate from them.
+  requireImageMemory(path, in.width(), in.height(), saturatingMul(n, sizeof(float)) + sizeof(Vec3), memoryLimit);
   try {
-    Imf::InputFile file(path.c_str());
     const Imath::Box2i dw = file.header().dataWindow();
-    std::vector<std::pair<float, std::string>> channels;
-    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
-      if (const std::optional<float> l = emissiveWavelength(it.name())) channels.emplace_back(*l, it.name());
-    if (channels.empty())
-      throw InputError(path, "", "no emissive channel S0.<wavelength> (Fichet et al. 2021 spectral layout)");
-    std::sort(channels.begin(), channels.end());
-    for (size_t k = 1; k < channels.size(); ++k)
-      if (channels[k].first == channels[k - 1].first)
-        throw InputError(path, channels[k].second, "same wavelength as channel " + channels[k - 1].second);
     SpectralImage img;
-    img.width = dw.max.x - dw.min.x + 1;
-    img.height = dw.max.y - dw.min.y + 1;
-    const size_t n = channels.size(), pixels = size_t(img.width) * size_t(img.height);
+    img.width = int(in.width());
+    img.height = int(in.height());
+    const size_t pixels = size_t(img.width) * size_t(img.height);
     img.values.assign(pixels * n, 0.0f);
     // Pixel-major interleaving straight from the file: channel k at offset k, stride n floats.
     Imf::FrameBuffer fb;
     for (size_t k = 0; k < n; ++k) {
       img.wavelengths.push_back(channels[k].first);
       char* base = reinterpret_cast<char*>(img.values.data() + k) -
-                   (ptrdiff_t(dw.min.x) + ptrdiff_t(dw.min.y) * img.width) * ptrdiff_t(n * sizeof(float));
+                   (int64_t(dw.min.x) + int64_t(dw.min.y) * img.width) * int64_t(n * sizeof(float));
       fb.insert(channels[k].second, Imf::Slice(Imf::FLOAT, base, n * sizeof(float), n * sizeof(float) * size_t(img.width)));
     }
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
+    for (size_t i = 0; i < img.values.size(); ++i)
+      if (!std::isfinite(img.values[i]))
+        throw InputError(path, channels[i % n].second, pixelName(i / n, img.width) + " is not finite");
     return img;
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
     throw InputError(path, "", std::string("cannot read OpenEXR: ") + e.what());
   }
+}
+
+ExrImage readExrImage(const std::string& path, uint64_t memoryLimit) {
+  ExrInput in(path, "image file");
+  ExrImage out;
+  out.xyz = readExrXyz(in, path, memoryLimit);
+  if (hasEmissiveChannels(in)) out.spectral = readSpectralExr(in, path, memoryLimit);
+  return out;
 }
 
 XyzImage spectralToXyz(const SpectralImage& image) {

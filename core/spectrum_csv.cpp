@@ -2,12 +2,10 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "core/error.h"
-#include "core/memory_budget.h"
+#include "core/input_file.h"
 
 namespace kasha {
 namespace {
@@ -25,12 +23,21 @@ std::vector<std::string> splitCsv(const std::string& line) {
   return out;
 }
 
+// A cell as it can be shown in a message: a NUL byte written as \0.
+std::string printable(const std::string& cell) {
+  std::string out;
+  for (const char c : cell) out += c == '\0' ? std::string("\\0") : std::string(1, c);
+  return out;
+}
+
 }  // namespace
 
 SpectralTable parseSpectralCsv(const std::string& text, const std::string& source) {
   SpectralTable t;
   t.source = source;
-  std::istringstream in(text);
+  // A UTF-8 byte order mark (spreadsheet exports) is not part of the first line's text.
+  const bool bom = text.compare(0, 3, "\xEF\xBB\xBF") == 0;
+  std::istringstream in(bom ? text.substr(3) : text);
   std::string line;
   int lineNo = 0;
   bool haveHeader = false;
@@ -45,7 +52,7 @@ SpectralTable parseSpectralCsv(const std::string& text, const std::string& sourc
       if (cells.size() < 2) throw InputError(where, "header", "needs a wavelength column and at least one value column");
       char* end = nullptr;
       std::strtod(cells[0].c_str(), &end);
-      if (!cells[0].empty() && *end == '\0')  // a number where the wavelength column's name belongs
+      if (!cells[0].empty() && end == cells[0].c_str() + cells[0].size())  // a number where the wavelength column's name belongs
         throw InputError(where, "header", "the header line is missing (found numbers, expected column names)");
       t.columns = cells;
       t.data.assign(cells.size() - 1, {});
@@ -60,8 +67,8 @@ SpectralTable parseSpectralCsv(const std::string& text, const std::string& sourc
       // strtod, not stod: an overflow is a non-finite value, not an exception.
       char* end = nullptr;
       const double v = std::strtod(cells[c].c_str(), &end);
-      if (cells[c].empty() || *end != '\0')
-        throw InputError(where, t.columns[c], "'" + cells[c] + "' is not a number");
+      if (cells[c].empty() || end != cells[c].c_str() + cells[c].size())  // a NUL inside ends c_str() early
+        throw InputError(where, t.columns[c], "'" + printable(cells[c]) + "' is not a number");
       if (!std::isfinite(v)) throw InputError(where, t.columns[c], "value is not finite");
       if (!std::isfinite(float(v)))
         throw InputError(where, t.columns[c], "value " + cells[c] + " is out of range of a 32-bit float");
@@ -81,22 +88,7 @@ SpectralTable parseSpectralCsv(const std::string& text, const std::string& sourc
 }
 
 SpectralTable readSpectralCsv(const std::string& path) {
-  // Only regular files: a FIFO or /dev/zero would block or never end. The size limit keeps a
-  // wrong file (an image, a log) from being read into memory: a 1-nm table of 300-2500 nm with
-  // a thousand columns is still under 30 MiB.
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "cannot open file");
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "cannot open file (not a regular file)");
-  const uint64_t size = std::filesystem::file_size(path, ec);
-  if (ec) throw InputError(path, "", "cannot open file: " + ec.message());
-  if (size > kMaxSpectralFileBytes)
-    throw InputError(path, "", "file is " + formatBytes(size) + ", more than the " + formatBytes(kMaxSpectralFileBytes) +
-                                   " allowed for a spectrum or matrix file");
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InputError(path, "", "cannot open file");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return parseSpectralCsv(ss.str(), path);
+  return parseSpectralCsv(readInputFile(path, "spectrum file", kMaxSpectralFileBytes), path);
 }
 
 Spectrum spectrumFromTable(const SpectralTable& t, const std::string& column) {

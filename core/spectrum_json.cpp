@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/json_fields.h"
+#include "core/rgb_spectrum.h"
 #include "core/spectrum_csv.h"
 #include "core/spectrum_presets.h"
 
@@ -29,6 +30,20 @@ float nonNegative(JsonFields& f, const std::string& key, float fallback, bool re
   return v;
 }
 
+// A linear sRGB reflectance colour: three numbers in [0, 1].
+Vec3 rgbField(JsonFields& f, const std::string& key) {
+  const nlohmann::json& v = f.get(key);
+  if (!v.is_array() || v.size() != 3) f.fail(key, "expected [r, g, b] (linear sRGB, each in [0, 1])");
+  Vec3 rgb;
+  for (int i = 0; i < 3; ++i) {
+    if (!v[i].is_number()) f.fail(key + "/" + std::to_string(i), "expected a number, got " + jsonTypeName(v[i]));
+    rgb[i] = v[i].get<float>();
+    if (!(rgb[i] >= 0.0f && rgb[i] <= 1.0f))
+      f.fail(key + "/" + std::to_string(i), "reflectance colour component " + std::to_string(rgb[i]) + " is outside [0, 1]");
+  }
+  return rgb;
+}
+
 Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr) {
   JsonFields f(v, ctx.file, ptr);
   const std::string type = f.string("type");
@@ -46,6 +61,7 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
       const std::string wi = "wavelengths/" + std::to_string(i), vi = "values/" + std::to_string(i);
       if (!wl[i].is_number() || !std::isfinite(wl[i].get<double>())) f.fail(wi, "expected a finite number");
       if (!val[i].is_number() || !std::isfinite(val[i].get<double>())) f.fail(vi, "expected a finite number");
+      if (!(wl[i].get<float>() > 0.0f)) f.fail(wi, "wavelength must be positive (" + wl[i].dump() + ")");
       if (!x.empty() && wl[i].get<float>() <= x.back()) f.fail(wi, "wavelengths must be strictly increasing");
       if (val[i].get<float>() < 0.0f) f.fail(vi, "negative value " + std::to_string(val[i].get<float>()));
       x.push_back(wl[i].get<float>());
@@ -91,8 +107,11 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
     s = Spectrum::blackbody(k);
   } else if (type == "box") {
     const float lo = f.number("min"), hi = f.number("max");
+    if (lo < 0.0f) f.fail("min", "wavelength must not be negative (" + formatNm(lo) + ")");
     if (!(hi > lo)) f.fail("max", "must exceed /min");
     s = Spectrum::box(lo, hi, nonNegative(f, "value", 1.0f, false));
+  } else if (type == "rgb") {
+    s = rgbToSpectrum(rgbField(f, "value"), ctx.range ? *ctx.range : WavelengthRange{});
   } else if (type == "preset") {
     const std::string name = f.string("name");
     const auto p = presetSpectrum(name);
@@ -100,8 +119,14 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
     s = *p;
   } else {
     f.fail("type", "unknown spectrum type '" + type +
-                       "' (constant, tabulated, file, gaussian, blackbody, box, preset)");
+                       "' (constant, tabulated, file, gaussian, blackbody, box, rgb, preset)");
   }
+  // A value that overflows before the scale is applied is the type's field's fault (a blackbody of
+  // 10^30 K), not the scale's.
+  for (float y : s.values())
+    if (!std::isfinite(y))
+      f.fail(type == "blackbody" ? "kelvin" : type == "gaussian" ? "peak" : "type",
+             "the " + type + " spectrum overflows a 32-bit float");
   const float scale = nonNegative(f, "scale", 1.0f, false);
   f.finish();
   if (scale != 1.0f) s = s.scaled(scale);

@@ -9,17 +9,22 @@
 //   {"type": "gaussian", "center": nm, "fwhm": nm, "peak": v}
 //   {"type": "blackbody", "kelvin": T}
 //   {"type": "box", "min": nm, "max": nm, "value": v}
+//   {"type": "rgb", "value": [r, g, b]}  a reflectance from a linear sRGB colour (rgb_spectrum.h)
 //   {"type": "preset", "name": "D65"}
 // and every object form takes an optional "scale". Files are relative to the scene file.
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "core/memory_budget.h"
 #include "core/spectrum.h"
 
 namespace kasha {
+
+class TextureLoader;
 
 struct SpectrumContext {
   SpectrumContext() = default;
@@ -36,6 +41,14 @@ struct SpectrumContext {
   // If set, the scene's wavelength range: a spectrum file must cover it, or say with "outside"
   // how to extend it, and must overlap it.
   const WavelengthRange* range = nullptr;
+  // If set, loads the textures of materials (core/texture.h) against the scene's memory limit;
+  // otherwise each texture is loaded on its own against the default limit.
+  TextureLoader* textures = nullptr;
+  // The largest buffer a file named in the scene may need (a decoded texture).
+  uint64_t memoryLimit = kDefaultMemoryLimit;
+  // The material files (type "file") being read, outermost first: a file that names one of them
+  // is a cycle, and the chain has a depth limit.
+  std::vector<std::string> materialFiles;
 };
 
 Spectrum parseSpectrum(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& pointer);

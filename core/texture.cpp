@@ -6,7 +6,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
+
+#include "core/error.h"
+#include "core/exr_input.h"
+#include "core/input_file.h"
+#include "core/memory_budget.h"
 
 namespace kasha {
 namespace {
@@ -18,48 +24,78 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
-float pick(TextureChannel c, float r, float g, float b, float a) {
-  switch (c) {
-    case TextureChannel::R: return r;
-    case TextureChannel::G: return g;
-    case TextureChannel::B: return b;
-    case TextureChannel::A: return a;
-    case TextureChannel::Mean: break;
-  }
-  return (r + g + b) / 3.0f;
+bool isPng(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext != "png" && ext != "exr") throw std::runtime_error("unknown image format '." + ext + "' (expected .png or .exr)");
+  return ext == "png";
 }
 
-ScalarTexture loadPng(const std::string& path, TextureChannel channel) {
+int channelCount(TextureChannel c) { return c == TextureChannel::Rgb ? 3 : 1; }
+
+// Appends the texture's channels of one RGBA pixel.
+void pick(TextureChannel c, float r, float g, float b, float a, std::vector<float>& out) {
+  switch (c) {
+    case TextureChannel::R: out.push_back(r); return;
+    case TextureChannel::G: out.push_back(g); return;
+    case TextureChannel::B: out.push_back(b); return;
+    case TextureChannel::A: out.push_back(a); return;
+    case TextureChannel::Rgb: out.insert(out.end(), {r, g, b}); return;
+    case TextureChannel::Mean: break;
+  }
+  out.push_back((r + g + b) / 3.0f);
+}
+
+struct Decoded {
+  int w, h;
+  std::vector<float> texels;
+};
+
+// Called with an image's size from its header, before anything is decoded; throws to refuse it.
+// decodeBytes: the decoder's own buffer while reading.
+using SizeCheck = std::function<void(uint64_t width, uint64_t height, uint64_t decodeBytes)>;
+
+// Reads the file through core/input_file.h (a regular file only, never blocking) and decodes it
+// from memory once `check` has accepted the header's size.
+Decoded decodePng(const std::string& path, TextureChannel channel, const SizeCheck& check) {
+  const std::string bytes = readInputFile(path, "texture", kMaxImageFileBytes);
   png_image img{};
   img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&img, path.c_str()))
-    throw std::runtime_error(std::string("cannot read PNG: ") + img.message);
+  if (!png_image_begin_read_from_memory(&img, bytes.data(), bytes.size()))
+    throw InputError(path, "", std::string("cannot read PNG: ") + img.message);
+  try {
+    check(img.width, img.height, saturatingMul(uint64_t(img.width) * img.height, 4));
+  } catch (...) {
+    png_image_free(&img);
+    throw;
+  }
   img.format = PNG_FORMAT_RGBA;
   std::vector<unsigned char> buf(PNG_IMAGE_SIZE(img));
   if (!png_image_finish_read(&img, nullptr, buf.data(), 0, nullptr))
-    throw std::runtime_error(std::string("cannot read PNG: ") + img.message);
-  const int w = int(img.width), h = int(img.height);
-  std::vector<float> t(size_t(w) * h);
-  for (size_t i = 0; i < t.size(); ++i) {
-    const unsigned char* p = &buf[4 * i];
-    t[i] = pick(channel, p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f, p[3] / 255.0f);
-  }
-  return ScalarTexture(w, h, std::move(t));
+    throw InputError(path, "", std::string("cannot read PNG: ") + img.message);
+  Decoded d{int(img.width), int(img.height), {}};
+  d.texels.reserve(size_t(d.w) * size_t(d.h) * size_t(channelCount(channel)));
+  for (size_t i = 0; i < buf.size(); i += 4)
+    pick(channel, buf[i] / 255.0f, buf[i + 1] / 255.0f, buf[i + 2] / 255.0f, buf[i + 3] / 255.0f, d.texels);
+  return d;
 }
 
-ScalarTexture loadExr(const std::string& path, TextureChannel channel) {
+// As decodePng, through core/exr_input.h.
+Decoded decodeExr(const std::string& path, TextureChannel channel, const SizeCheck& check) {
+  ExrInput in(path, "texture");
+  check(in.width(), in.height(), saturatingMul(saturatingMul(in.width(), in.height()), sizeof(Imf::Rgba)));
   try {
-    Imf::RgbaInputFile file(path.c_str());
+    const std::unique_ptr<Imf::IStream> stream = in.stream();
+    Imf::RgbaInputFile file(*stream);
     const Imath::Box2i dw = file.dataWindow();
-    const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
-    std::vector<Imf::Rgba> px(size_t(w) * h);
-    file.setFrameBuffer(px.data() - dw.min.x - size_t(dw.min.y) * w, 1, size_t(w));
+    Decoded d{int(in.width()), int(in.height()), {}};
+    std::vector<Imf::Rgba> px(size_t(d.w) * size_t(d.h));
+    file.setFrameBuffer(px.data() - dw.min.x - ptrdiff_t(dw.min.y) * d.w, 1, size_t(d.w));
     file.readPixels(dw.min.y, dw.max.y);
-    std::vector<float> t(px.size());
-    for (size_t i = 0; i < t.size(); ++i) t[i] = pick(channel, px[i].r, px[i].g, px[i].b, px[i].a);
-    return ScalarTexture(w, h, std::move(t));
+    d.texels.reserve(px.size() * size_t(channelCount(channel)));
+    for (const Imf::Rgba& p : px) pick(channel, p.r, p.g, p.b, p.a, d.texels);
+    return d;
   } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("cannot read OpenEXR: ") + e.what());
+    throw InputError(path, "", std::string("cannot read OpenEXR: ") + e.what());
   }
 }
 
@@ -74,29 +110,124 @@ std::optional<TextureChannel> parseTextureChannel(const std::string& name) {
   return std::nullopt;
 }
 
-ScalarTexture::ScalarTexture(int width, int height, std::vector<float> texels)
-    : w_(width), h_(height), texels_(std::move(texels)) {
-  if (w_ <= 0 || h_ <= 0 || texels_.size() != size_t(w_) * size_t(h_))
+std::optional<TextureWrap> parseTextureWrap(const std::string& name) {
+  if (name == "repeat") return TextureWrap::Repeat;
+  if (name == "clamp") return TextureWrap::Clamp;
+  if (name == "mirror") return TextureWrap::Mirror;
+  return std::nullopt;
+}
+
+std::optional<TextureFilter> parseTextureFilter(const std::string& name) {
+  if (name == "bilinear") return TextureFilter::Bilinear;
+  if (name == "nearest") return TextureFilter::Nearest;
+  return std::nullopt;
+}
+
+ImageTexture::ImageTexture(int width, int height, int channels, std::vector<float> texels, TextureWrap wrap,
+                           TextureFilter filter)
+    : w_(width), h_(height), channels_(channels), texels_(std::move(texels)), wrap_(wrap), filter_(filter) {
+  if (w_ <= 0 || h_ <= 0 || (channels_ != 1 && channels_ != 3) ||
+      texels_.size() != size_t(w_) * size_t(h_) * size_t(channels_))
     throw std::invalid_argument("texture: size does not match its texels");
 }
 
-ScalarTexture ScalarTexture::load(const std::string& path, TextureChannel channel) {
-  const std::string ext = lowerExtension(path);
-  if (ext != "png" && ext != "exr") throw std::runtime_error("unknown image format '." + ext + "' (expected .png or .exr)");
-  ScalarTexture t = ext == "png" ? loadPng(path, channel) : loadExr(path, channel);
-  for (size_t i = 0; i < t.texels_.size(); ++i)
-    if (!(t.texels_[i] >= 0.0f && t.texels_[i] <= 1.0f))
-      throw std::runtime_error("value " + std::to_string(t.texels_[i]) + " at pixel (" + std::to_string(i % t.w_) +
-                               ", " + std::to_string(i / t.w_) + ") is outside [0, 1]");
-  return t;
+int ImageTexture::wrapIndex(int i, int n) const {
+  switch (wrap_) {
+    case TextureWrap::Clamp: return std::clamp(i, 0, n - 1);
+    case TextureWrap::Mirror: {
+      const int m = ((i % (2 * n)) + 2 * n) % (2 * n);
+      return m < n ? m : 2 * n - 1 - m;
+    }
+    case TextureWrap::Repeat: break;
+  }
+  return ((i % n) + n) % n;
 }
 
-size_t ScalarTexture::texelIndex(Vec2 uv) const {
+Vec2 ImageTexture::texelCoordinates(Vec2 uv) const {
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = Vec2(0.0f);
-  const float u = uv.x - std::floor(uv.x), v = uv.y - std::floor(uv.y);
-  const int x = std::clamp(int(u * float(w_)), 0, w_ - 1);
-  const int y = std::clamp(int((1.0f - v) * float(h_)), 0, h_ - 1);
-  return size_t(y) * size_t(w_) + size_t(x);
+  // Reduced to one period of the wrap first, so that huge uv do not overflow an int.
+  const float period = wrap_ == TextureWrap::Mirror ? 2.0f : 1.0f;
+  if (wrap_ != TextureWrap::Clamp) uv -= period * glm::floor(uv / period);
+  return glm::clamp(uv, Vec2(-1.0f), Vec2(2.0f)) * Vec2(float(w_), float(h_));
+}
+
+size_t ImageTexture::texelAt(int x, int yUp) const {
+  return size_t(h_ - 1 - wrapIndex(yUp, h_)) * size_t(w_) + size_t(wrapIndex(x, w_));
+}
+
+size_t ImageTexture::texelIndex(Vec2 uv) const {
+  const Vec2 f = texelCoordinates(uv);
+  return texelAt(int(std::floor(f.x)), int(std::floor(f.y)));
+}
+
+int ImageTexture::footprint(Vec2 uv, size_t index[4], float weight[4]) const {
+  if (filter_ == TextureFilter::Nearest) {
+    index[0] = texelIndex(uv);
+    weight[0] = 1.0f;
+    return 1;
+  }
+  // Bilinear: the four texel centres around uv.
+  const Vec2 f = texelCoordinates(uv) - 0.5f;
+  const int x0 = int(std::floor(f.x)), y0 = int(std::floor(f.y));
+  const float dx = f.x - float(x0), dy = f.y - float(y0);
+  index[0] = texelAt(x0, y0), weight[0] = (1.0f - dx) * (1.0f - dy);
+  index[1] = texelAt(x0 + 1, y0), weight[1] = dx * (1.0f - dy);
+  index[2] = texelAt(x0, y0 + 1), weight[2] = (1.0f - dx) * dy;
+  index[3] = texelAt(x0 + 1, y0 + 1), weight[3] = dx * dy;
+  return 4;
+}
+
+float ImageTexture::scalar(Vec2 uv) const {
+  size_t index[4];
+  float weight[4];
+  const int n = footprint(uv, index, weight);
+  float v = 0.0f;
+  for (int k = 0; k < n; ++k) v += weight[k] * texels_[index[k] * size_t(channels_)];
+  return v;
+}
+
+Vec3 ImageTexture::rgb(Vec2 uv) const {
+  size_t index[4];
+  float weight[4];
+  const int n = footprint(uv, index, weight);
+  Vec3 v(0.0f);
+  for (int k = 0; k < n; ++k) {
+    const float* t = &texels_[index[k] * size_t(channels_)];
+    v += weight[k] * Vec3(t[0], t[channels_ > 1 ? 1 : 0], t[channels_ > 2 ? 2 : 0]);
+  }
+  return v;
+}
+
+std::shared_ptr<const ImageTexture> TextureLoader::load(const std::string& path, TextureChannel channel,
+                                                        TextureWrap wrap, TextureFilter filter) {
+  const auto key = std::make_tuple(path, channel, wrap, filter);
+  if (const auto it = loaded_.find(key); it != loaded_.end()) return it->second;
+  const bool png = isPng(path);
+  const int nc = channelCount(channel);
+  // While decoding, the decoder's buffer and the texels exist at once, besides the textures so far.
+  const SizeCheck check = [&](uint64_t w, uint64_t h, uint64_t decodeBytes) {
+    const uint64_t texels = saturatingMul(saturatingMul(w, h), uint64_t(nc) * sizeof(float));
+    const uint64_t need = std::min(std::min(texels, UINT64_MAX - decodeBytes) + decodeBytes, UINT64_MAX - bytes_) + bytes_;
+    try {
+      requireMemory(need,
+                    "decoding this texture (" + std::to_string(w) + "×" + std::to_string(h) +
+                        " pixels) besides the scene's textures before it (" + formatBytes(bytes_) + ")",
+                    limit_);
+    } catch (const MemoryLimitError& e) {
+      throw InputError(path, "", e.what());
+    }
+  };
+  Decoded d = png ? decodePng(path, channel, check) : decodeExr(path, channel, check);
+  for (size_t i = 0; i < d.texels.size(); ++i)
+    if (!(d.texels[i] >= 0.0f && d.texels[i] <= 1.0f)) {
+      const size_t px = i / size_t(nc);
+      throw std::runtime_error("value " + std::to_string(d.texels[i]) + " at pixel (" + std::to_string(px % size_t(d.w)) +
+                               ", " + std::to_string(px / size_t(d.w)) + ") is outside [0, 1]");
+    }
+  auto t = std::make_shared<const ImageTexture>(d.w, d.h, nc, std::move(d.texels), wrap, filter);
+  bytes_ += t->bytes();
+  loaded_.emplace(key, t);
+  return t;
 }
 
 }  // namespace kasha

@@ -1,43 +1,100 @@
 #pragma once
-// Scalar image textures: one channel of a PNG or OpenEXR image, looked up at a surface's texture
-// coordinates (Hit::uv). They drive the spatially varying material parameters (textured_jung.h).
+// Image textures: one channel (a scalar parameter: c, Q, roughness, …) or three (an RGB
+// reflectance, turned into a spectrum by core/rgb_spectrum.h) of a PNG or OpenEXR image, looked
+// up at a surface's texture coordinates (Hit::uv).
 //
-// Conventions: u runs left to right, v bottom to top, so image row 0 (the top) is v ∈ [1 − 1/h, 1).
-// Lookup is nearest-texel (a box filter over the texel grid) with repetition outside [0, 1)²: the
-// texel containing (u, v) mod 1. PNG values are 8-bit data (0..255 → 0..1, no sRGB decoding:
-// a texture holds parameters, not colours); OpenEXR values are read as they are. Every value
-// must lie in [0, 1].
+// Conventions: u runs left to right, v bottom to top, so image row 0 (the top) is v ∈ [1 − 1/h, 1)
+// and texel (x, y) has its centre at ((x + ½)/w, 1 − (y + ½)/h). Bilinear filtering blends the
+// four texels whose centres surround (u, v); nearest takes the texel containing it. Outside the
+// texel grid the wrap mode applies to texel indices: repeat (period w), clamp (the edge texel) or
+// mirror (period 2w, reflected). PNG values are 8- or 16-bit data (0..max → 0..1, no sRGB
+// decoding: a texture holds parameters and linear colours); OpenEXR values are read as they are.
+// Every value must lie in [0, 1].
+//
+// Input: every image is opened by core/input_file.h's rule (OpenEXR through core/exr_input.h) and
+// decoded from memory, so a FIFO or a device is refused at once and never blocks.
+// Memory: TextureLoader reads each image's header first and counts the decoded size of every
+// texture of the scene against the memory limit before it decodes anything.
+#include <cstdint>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/math.h"
+#include "core/memory_budget.h"
 
 namespace kasha {
 
-enum class TextureChannel { Mean, R, G, B, A };
-// "mean" (of R, G, B), "r", "g", "b", "a"; nullopt otherwise.
-std::optional<TextureChannel> parseTextureChannel(const std::string& name);
+// Which channels of the image a texture holds: one of them (or the mean of R, G, B) or all of R, G, B.
+enum class TextureChannel { Mean, R, G, B, A, Rgb };
+enum class TextureWrap { Repeat, Clamp, Mirror };
+enum class TextureFilter { Bilinear, Nearest };
 
-class ScalarTexture {
+// "mean", "r", "g", "b", "a"; nullopt otherwise (Rgb is chosen by the field, not by name).
+std::optional<TextureChannel> parseTextureChannel(const std::string& name);
+// "repeat", "clamp", "mirror"; nullopt otherwise.
+std::optional<TextureWrap> parseTextureWrap(const std::string& name);
+// "bilinear", "nearest"; nullopt otherwise.
+std::optional<TextureFilter> parseTextureFilter(const std::string& name);
+
+class ImageTexture {
  public:
-  // Row-major texels, row 0 at the top. Requires width·height = texels.size() > 0.
-  ScalarTexture(int width, int height, std::vector<float> texels);
-  // Reads a .png or .exr file (by extension, any case). Throws std::runtime_error with the reason
-  // (unreadable file, unknown format, a value outside [0, 1] with its pixel); the caller names the
-  // scene field.
-  static ScalarTexture load(const std::string& path, TextureChannel channel);
+  // Row-major texels, row 0 at the top, `channels` (1 or 3) floats per texel. Throws
+  // std::invalid_argument if width·height·channels ≠ texels.size() or the size is 0.
+  ImageTexture(int width, int height, int channels, std::vector<float> texels, TextureWrap wrap = TextureWrap::Repeat,
+               TextureFilter filter = TextureFilter::Bilinear);
 
   int width() const { return w_; }
   int height() const { return h_; }
-  // Index (row-major) of the texel at uv.
+  int channels() const { return channels_; }
+  // The filtered value at uv of a one-channel texture. Non-finite uv reads (0, 0).
+  float scalar(Vec2 uv) const;
+  // The filtered colour at uv of a three-channel texture.
+  Vec3 rgb(Vec2 uv) const;
+  // Row-major index of the texel containing uv (wrapped), and the first channel of texel i.
   size_t texelIndex(Vec2 uv) const;
-  float texel(size_t index) const { return texels_[index]; }
-  float lookup(Vec2 uv) const { return texels_[texelIndex(uv)]; }
+  float texel(size_t i) const { return texels_[i * size_t(channels_)]; }
+  // Bytes held by the texels.
+  uint64_t bytes() const { return uint64_t(texels_.size()) * sizeof(float); }
 
  private:
-  int w_, h_;
+  // The (up to) four texels and weights that filtering blends at uv.
+  int footprint(Vec2 uv, size_t index[4], float weight[4]) const;
+  // Continuous texel coordinates of uv: u·w to the right, v·h up from the bottom row; texel
+  // centres at integers + ½.
+  Vec2 texelCoordinates(Vec2 uv) const;
+  // Row-major index of texel (x, row yUp counted from the bottom), wrapped.
+  size_t texelAt(int x, int yUp) const;
+  int wrapIndex(int i, int n) const;
+
+  int w_, h_, channels_;
   std::vector<float> texels_;
+  TextureWrap wrap_;
+  TextureFilter filter_;
+};
+
+// Loads textures for one scene: checks the memory limit from each image's header, decodes,
+// checks the values, and shares a texture used by several fields with the same settings.
+class TextureLoader {
+ public:
+  explicit TextureLoader(uint64_t memoryLimit) : limit_(memoryLimit) {}
+  // Opens the .png or .exr file (by extension, any case) through core/input_file.h (a regular
+  // file only: a FIFO or a device is refused at once) and decodes it from memory. Throws
+  // InputError naming the file (unreadable, not a regular file, its header's pixels with the
+  // textures so far over the memory limit) or std::runtime_error with the reason (unknown
+  // format, a value outside [0, 1] with its pixel); the caller names the field.
+  std::shared_ptr<const ImageTexture> load(const std::string& path, TextureChannel channel, TextureWrap wrap,
+                                           TextureFilter filter);
+  // Bytes held by the textures loaded so far.
+  uint64_t bytes() const { return bytes_; }
+
+ private:
+  uint64_t limit_, bytes_ = 0;
+  std::map<std::tuple<std::string, TextureChannel, TextureWrap, TextureFilter>, std::shared_ptr<const ImageTexture>>
+      loaded_;
 };
 
 }  // namespace kasha

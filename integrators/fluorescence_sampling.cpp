@@ -15,25 +15,20 @@ FluorescenceSampling::FluorescenceSampling(const WavelengthSpec& spec, const Wav
                                                    "'absorption')"
                                                  : "nee_sampling"));
   requireDensity(spec, site, "at fluorescent events");
-  if (!sources.opaqueFluorescent.empty())
-    throw WavelengthStrategyError(site, std::string("wavelength strategy '") + spec.text +
-                                            "' needs every fluorescent material's absorption, and material '" +
-                                            sources.opaqueFluorescent.front() +
-                                            "' does not give it (only untextured jung_fluorescent does)");
   for (const WavelengthSources::Fluorophore& f : sources.fluorophores)
     perMaterial_[f.material] = std::make_unique<WavelengthStrategy>(spec, sources, site, f.material);
 }
 
-SpectralChoice FluorescenceSampling::sample(const Material& material, size_t m, float lambdaOut, float u) const {
+SpectralChoice FluorescenceSampling::sample(const Bsdf& bsdf, size_t m, float lambdaOut, float u) const {
   const WavelengthStrategy* s = perMaterial_[m].get();
-  if (!s) return material.sampleSpectral(TransportMode::Radiance, lambdaOut, u);
-  const float pF = material.fluorescenceProbability(TransportMode::Radiance, lambdaOut);
+  if (!s) return bsdf.sampleSpectral(TransportMode::Radiance, lambdaOut, u);
+  const float pF = bsdf.fluorescenceProbability(TransportMode::Radiance, lambdaOut);
   if (u < pF) {
     const WavelengthSample ws = s->density().sample(std::min(u / pF, 0x1.fffffep-1f));
     if (ws.pdf <= 0.0f) return {};
     return {SpectralLobe::Fluorescent, ws.lambda, pF * ws.pdf};
   }
-  const float pElastic = material.spectralPdf(TransportMode::Radiance, lambdaOut, lambdaOut, SpectralLobe::Elastic);
+  const float pElastic = bsdf.spectralPdf(TransportMode::Radiance, lambdaOut, lambdaOut, SpectralLobe::Elastic);
   if (pElastic <= 0.0f) return {};
   return {SpectralLobe::Elastic, lambdaOut, pElastic};
 }
@@ -42,11 +37,11 @@ WavelengthSample FluorescenceSampling::sampleExcitation(size_t m, float u) const
   return perMaterial_[m] ? perMaterial_[m]->density().sample(u) : WavelengthSample{};
 }
 
-float FluorescenceSampling::pdf(const Material& material, size_t m, float lambdaOut, float lambdaIn,
+float FluorescenceSampling::pdf(const Bsdf& bsdf, size_t m, float lambdaOut, float lambdaIn,
                                 SpectralLobe lobe) const {
   const WavelengthStrategy* s = perMaterial_[m].get();
-  if (!s || lobe == SpectralLobe::Elastic) return material.spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe);
-  return material.fluorescenceProbability(TransportMode::Radiance, lambdaOut) * s->density().pdf(lambdaIn);
+  if (!s || lobe == SpectralLobe::Elastic) return bsdf.spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe);
+  return bsdf.fluorescenceProbability(TransportMode::Radiance, lambdaOut) * s->density().pdf(lambdaIn);
 }
 
 }  // namespace kasha

@@ -10,10 +10,14 @@
 namespace kasha {
 namespace {
 
-// The material's own excitation density, as a strategy: what "material" means once the lobe is
-// chosen by the hero set (for the Jung18 BBRRDF the same density, λ_i ∝ a).
-WavelengthSpec excitationSpec(const WavelengthSpec& s) {
-  return s.uses(WavelengthSpec::Kind::Material) ? parseWavelengthSpec("absorption") : s;
+// λ_i of the fluorescent lobe for the hero alone, given its λ_o: the Bsdf's own density (its
+// sampleSpectral takes the fluorescent lobe for every u below P_c, then draws λ_i from u/P_c).
+WavelengthSample ownExcitation(const Bsdf& bsdf, float lambdaOut, float u) {
+  const float pc = bsdf.fluorescenceProbability(TransportMode::Radiance, lambdaOut);
+  if (!(pc > 0.0f)) return {};  // the hero's fluorescent lobe is zero: nothing to sample
+  const SpectralChoice c = bsdf.sampleSpectral(TransportMode::Radiance, lambdaOut, u * pc);
+  if (c.lobe != SpectralLobe::Fluorescent) return {};
+  return {c.lambda, c.pdf / pc};
 }
 
 }  // namespace
@@ -21,7 +25,7 @@ WavelengthSpec excitationSpec(const WavelengthSpec& s) {
 HeroPathTracer::HeroPathTracer(const Scene& scene, const RenderSettings& s)
     : sources_(scene),
       sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
-      excitation_(excitationSpec(s.wavelengths.fluorescence), sources_, scene.materials.size()),
+      excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
       n_(s.heroWavelengths),
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth) {
@@ -113,8 +117,8 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
         float w = 1.0f;
         if (!prevSpecular)
           w = powerHeuristic(prevDirPdf,
-                             lightSelectProbability(scene, size_t(scene.environmentLight), prevSelect) * env->pdfDirection());
-        for (int j = 0; j < s.n; ++j) s.L[j] += s.beta[j] * env->Le(s.lambda[j]) * w;
+                             lightSelectProbability(scene, size_t(scene.environmentLight), prevSelect) * env->pdfDirection(ray.d));
+        for (int j = 0; j < s.n; ++j) s.L[j] += s.beta[j] * env->Le(s.lambda[j], ray.d) * w;
       }
       break;
     }
@@ -130,13 +134,12 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
     }
     if (depth >= maxDepth_) break;
 
-    const Material& mat = scene.material(*hit);
-    const Frame frame = Frame::fromNormal(hit->ng);
-    const Vec3 wo = frame.toLocal(-ray.d);
+    const Bsdf bsdf = scene.bsdf(*hit, {s.lambda, size_t(s.n)});
+    const Vec3 wo = bsdf.toLocal(-ray.d);
     // Spectral stage, symmetric in the lanes: the fluorescent lobe with the mean of their P_c.
     float pFluor = 0.0f;
-    if (mat.fluoresces()) {
-      for (int j = 0; j < s.n; ++j) pFluor += mat.fluorescenceProbability(TransportMode::Radiance, s.lambda[j]);
+    if (bsdf.has(BsdfFlags::Fluorescent)) {
+      for (int j = 0; j < s.n; ++j) pFluor += bsdf.fluorescenceProbability(TransportMode::Radiance, s.lambda[j]);
       pFluor /= float(s.n);
     }
     const float u = rng.uniform();
@@ -146,57 +149,54 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
     std::copy(s.lambda, s.lambda + s.n, lambdaIn);
     if (u < pFluor) {
       collapse();
-      const WavelengthSample ex = excitation_.sampleExcitation(shape.material, std::min(u / pFluor, 0x1.fffffep-1f));
+      const float v = std::min(u / pFluor, 0x1.fffffep-1f);
+      const WavelengthSample ex = excitation_.draws(shape.material) ? excitation_.sampleExcitation(shape.material, v)
+                                                                    : ownExcitation(bsdf, s.lambda[0], v);
       if (ex.pdf <= 0.0f) break;
       lobe = SpectralLobe::Fluorescent;
       spectralPdf = pFluor * ex.pdf;
       lambdaIn[0] = ex.lambda;
     }
     if (!(spectralPdf > 0.0f)) break;
+    // The lanes share one direction sample only where its density is the same for every lane
+    // (pbrt-v4's SampledWavelengths::TerminateSecondary): next-event estimation below weights all
+    // of them with the hero's direction density, so the secondaries end before it.
+    if (bsdf.has(BsdfFlags::WavelengthDependentDirection)) collapse();
 
     // Next-event estimation for every lane through one light sample.
     const float uLight = rng.uniform();
     const Vec2 uPos = rng.uniform2();
     prevSelect.n = s.n;
     std::copy(lambdaIn, lambdaIn + s.n, prevSelect.lambda);
-    if (!mat.purelySpecular()) {
+    if (!bsdf.has(BsdfFlags::DeltaDirection)) {
       const auto [li, pSelect] = selectLight(scene, prevSelect, uLight);
       const std::optional<LightSample> ls =
           pSelect > 0.0f ? scene.lights[li]->sampleLi(hit->p, lambdaIn[0], uPos) : std::nullopt;
       if (ls && ls->pdf > 0.0f) {
-        const Vec3 wi = frame.toLocal(ls->wi);
+        const Vec3 wi = bsdf.toLocal(ls->wi);
         if (lightVisible(scene, *hit, *ls, counter)) {
           const float lightPdf = pSelect * ls->pdf;
           const float w = ls->delta ? 1.0f
-                                    : powerHeuristic(lightPdf, mat.directionPdf(TransportMode::Radiance, wo, wi, lobe,
-                                                                                lambdaIn[0], s.lambda[0]));
+                                    : powerHeuristic(lightPdf, bsdf.directionPdf(TransportMode::Radiance, wo, wi, lobe,
+                                                                                 lambdaIn[0], s.lambda[0]));
           for (int j = 0; j < s.n; ++j) {
             // The light's geometry does not depend on λ: the same point at every lane's wavelength.
             const std::optional<LightSample> lj = j == 0 ? ls : scene.lights[li]->sampleLi(hit->p, lambdaIn[j], uPos);
-            const float f = mat.eval(TransportMode::Radiance, wi, wo, lambdaIn[j], s.lambda[j], lobe);
+            const float f = bsdf.eval(TransportMode::Radiance, wi, wo, lambdaIn[j], s.lambda[j], lobe);
             if (lj) s.L[j] += s.beta[j] * (f * std::abs(wi.z) / spectralPdf) * lj->Li * w / lightPdf;
           }
         }
       }
     }
 
-    // Direction stage, sampled at the hero's wavelengths; lanes continue only where the density
-    // would have been the same for them. (Next-event estimation above assumed that too: every
-    // non-specular lobe of kasha's materials samples directions independently of λ.)
-    const std::optional<DirectionSample> ds = mat.sampleDirection(TransportMode::Radiance, wo, lobe, lambdaIn[0],
-                                                                  s.lambda[0], rng.uniform2());
+    // Direction stage, sampled at the hero's wavelengths; every remaining lane has the same density.
+    const std::optional<DirectionSample> ds = bsdf.sampleDirection(TransportMode::Radiance, wo, lobe, lambdaIn[0],
+                                                                   s.lambda[0], rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
     if (ds->specular) collapse();
-    for (int j = 1; j < s.n; ++j) {
-      const float pj = mat.directionPdf(TransportMode::Radiance, wo, ds->w, lobe, lambdaIn[j], s.lambda[j]);
-      if (std::abs(pj - ds->pdf) > 1e-5f * ds->pdf) {
-        collapse();
-        break;
-      }
-    }
     float maxBeta = 0.0f;
     for (int j = 0; j < s.n; ++j) {
-      const float f = mat.eval(TransportMode::Radiance, ds->w, wo, lambdaIn[j], s.lambda[j], lobe);
+      const float f = bsdf.eval(TransportMode::Radiance, ds->w, wo, lambdaIn[j], s.lambda[j], lobe);
       s.beta[j] *= f * std::abs(ds->w.z) / (spectralPdf * ds->pdf);
       s.lambda[j] = lambdaIn[j];
       maxBeta = std::max(maxBeta, s.beta[j]);
@@ -205,7 +205,7 @@ void HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& s, float colla
     prevDirPdf = ds->pdf;
     prevSpecular = ds->specular;
     prevP = hit->p;
-    const Vec3 wiWorld = frame.toWorld(ds->w);
+    const Vec3 wiWorld = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, wiWorld), wiWorld};
 
     // Russian roulette on the largest lane's throughput (every lane divided by the same q).

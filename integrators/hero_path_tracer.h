@@ -8,8 +8,10 @@
 // so each of the N "hero" techniques that can produce the path has the same path density, and the
 // balance heuristic over them (Wilkie14 eq. 8) divides every lane by Σ_k p(λ_k).
 //
-// At a fluorescent event, at a specular vertex or where a lane's direction density differs from
-// the hero's (dispersion), the secondary wavelengths end and the hero continues alone (Mojzík,
+// At a fluorescent event, at a specular vertex, and before next-event estimation wherever the
+// Bsdf's direction sampling depends on λ (BsdfFlags::WavelengthDependentDirection: dispersion,
+// lobe choices weighted by a spectrum; next-event estimation would otherwise weight every lane
+// with the hero's direction density), the secondary wavelengths end and the hero continues alone (Mojzík,
 // Fichet & Wilkie 2018, "Handling fluorescence in a uni-directional spectral path tracer"): no other
 // technique can produce what follows, so from there on the hero is weighted by 1/p(λ_h) alone.
 #include "scene/wavelength_strategy.h"
@@ -41,7 +43,7 @@ class HeroPathTracer final : public Integrator {
 
   WavelengthSources sources_;
   WavelengthStrategy sensor_;
-  FluorescenceSampling excitation_;  // λ_i given the fluorescent lobe ("material": the absorption)
+  FluorescenceSampling excitation_;  // λ_i given the fluorescent lobe ("material": the Bsdf's own)
   int n_, maxDepth_, rrDepth_;
 };
 

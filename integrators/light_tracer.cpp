@@ -55,18 +55,17 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++ctx.counter.closest;
     if (!hit) break;
-    const Material& mat = scene.material(*hit);
-    const Frame frame = Frame::fromNormal(hit->ng);
-    const Vec3 wi = frame.toLocal(-ray.d);
+    const Bsdf bsdf = scene.bsdf(*hit, {&lambda, 1});
+    const Vec3 wi = bsdf.toLocal(-ray.d);
     // Spectral stage (Importance): the lobe and the wavelength leaving this vertex.
-    const SpectralChoice sc = mat.sampleSpectral(TransportMode::Importance, lambda, rng.uniform());
+    const SpectralChoice sc = bsdf.sampleSpectral(TransportMode::Importance, lambda, rng.uniform());
     if (sc.pdf <= 0.0f) break;
     const float lambdaOut = sc.lambda;
 
-    if (!mat.purelySpecular()) {
+    if (!bsdf.has(BsdfFlags::DeltaDirection)) {
       if (const auto c = scene.camera.connect(hit->p)) {
-        const Vec3 wo = frame.toLocal(c->wi);
-        const float f = mat.eval(TransportMode::Importance, wi, wo, lambda, lambdaOut, sc.lobe);
+        const Vec3 wo = bsdf.toLocal(c->wi);
+        const float f = bsdf.eval(TransportMode::Importance, wi, wo, lambda, lambdaOut, sc.lobe);
         if (f > 0.0f && visible(scene, hit->p, hit->ng, *c, ctx))
           splatToCamera(scene, *c, beta * f * std::abs(wo.z) / sc.pdf, lambdaOut, ctx);
       }
@@ -74,13 +73,13 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     if (depth == maxDepth_) break;
 
     const std::optional<DirectionSample> ds =
-        mat.sampleDirection(TransportMode::Importance, wi, sc.lobe, lambda, lambdaOut, rng.uniform2());
+        bsdf.sampleDirection(TransportMode::Importance, wi, sc.lobe, lambda, lambdaOut, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
-    const float f = mat.eval(TransportMode::Importance, wi, ds->w, lambda, lambdaOut, sc.lobe);
+    const float f = bsdf.eval(TransportMode::Importance, wi, ds->w, lambda, lambdaOut, sc.lobe);
     beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);
     if (!(beta > 0.0f)) break;
     lambda = lambdaOut;
-    const Vec3 w = frame.toWorld(ds->w);
+    const Vec3 w = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
     if (depth >= rrDepth_) {
       const float q = std::min(1.0f, beta / beta0);

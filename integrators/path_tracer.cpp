@@ -44,10 +44,10 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Sampler& r
     ++counter.closest;
     if (!hit) {
       if (const EnvironmentLight* env = scene.environment()) {
-        const float Le = env->Le(lambda);
+        const float Le = env->Le(lambda, ray.d);
         float w = 1.0f;
         if (!prevSpecular) {
-          const float lightPdf = lights.probability(size_t(scene.environmentLight), lambda) * env->pdfDirection();
+          const float lightPdf = lights.probability(size_t(scene.environmentLight), lambda) * env->pdfDirection(ray.d);
           w = powerHeuristic(prevDirPdf * prevSpectralPdf, lightPdf * prevNeeSpectralPdf);
         }
         L += beta * Le * w;
@@ -69,11 +69,10 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Sampler& r
     }
     if (depth >= maxDepth_) break;
 
-    const Material& mat = scene.material(*hit);
-    const Frame frame = Frame::fromNormal(hit->ng);
-    const Vec3 wo = frame.toLocal(-ray.d);
+    const Bsdf bsdf = scene.bsdf(*hit, {&lambda, 1});
+    const Vec3 wo = bsdf.toLocal(-ray.d);
     // Spectral stage: lobe and the wavelength the light had before this vertex.
-    const SpectralChoice sc = fluorescence_.sample(mat, shape.material, lambda, rng.uniform());
+    const SpectralChoice sc = fluorescence_.sample(bsdf, shape.material, lambda, rng.uniform());
     if (sc.pdf <= 0.0f) break;
     const float lambdaIn = sc.lambda;
 
@@ -86,23 +85,23 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Sampler& r
     if (ownNee) {
       const WavelengthSample ws = nee_.sampleExcitation(shape.material, rng.uniform());
       lambdaNee = ws.lambda;
-      neeSpectralPdf = ws.pdf > 0.0f ? mat.fluorescenceProbability(TransportMode::Radiance, lambda) * ws.pdf : 0.0f;
-      eventPdfAtNee = fluorescence_.pdf(mat, shape.material, lambda, lambdaNee, SpectralLobe::Fluorescent);
-      prevNeeSpectralPdf = nee_.pdf(mat, shape.material, lambda, lambdaIn, SpectralLobe::Fluorescent);
+      neeSpectralPdf = ws.pdf > 0.0f ? bsdf.fluorescenceProbability(TransportMode::Radiance, lambda) * ws.pdf : 0.0f;
+      eventPdfAtNee = fluorescence_.pdf(bsdf, shape.material, lambda, lambdaNee, SpectralLobe::Fluorescent);
+      prevNeeSpectralPdf = nee_.pdf(bsdf, shape.material, lambda, lambdaIn, SpectralLobe::Fluorescent);
     }
     const float uLight = rng.uniform();
     const Vec2 uPos = rng.uniform2();
-    if (!mat.purelySpecular() && neeSpectralPdf > 0.0f) {
+    if (!bsdf.has(BsdfFlags::DeltaDirection) && neeSpectralPdf > 0.0f) {
       const auto [li, pSelect] = lights.select(lambdaNee, uLight);
       if (pSelect > 0.0f) {
         const std::optional<LightSample> ls = scene.lights[li]->sampleLi(hit->p, lambdaNee, uPos);
         if (ls && ls->Li > 0.0f && ls->pdf > 0.0f) {
-          const Vec3 wi = frame.toLocal(ls->wi);
-          const float f = mat.eval(TransportMode::Radiance, wi, wo, lambdaNee, lambda, sc.lobe);
+          const Vec3 wi = bsdf.toLocal(ls->wi);
+          const float f = bsdf.eval(TransportMode::Radiance, wi, wo, lambdaNee, lambda, sc.lobe);
           if (f > 0.0f) {
             if (lightVisible(scene, *hit, *ls, counter)) {
               const float lightPdf = pSelect * ls->pdf;
-              const float dirPdf = mat.directionPdf(TransportMode::Radiance, wo, wi, sc.lobe, lambdaNee, lambda);
+              const float dirPdf = bsdf.directionPdf(TransportMode::Radiance, wo, wi, sc.lobe, lambdaNee, lambda);
               const float w =
                   ls->delta ? 1.0f : powerHeuristic(lightPdf * neeSpectralPdf, dirPdf * eventPdfAtNee);
               L += beta * (f * std::abs(wi.z) / neeSpectralPdf) * ls->Li * w / lightPdf;
@@ -114,16 +113,16 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Sampler& r
 
     // Direction stage.
     const std::optional<DirectionSample> ds =
-        mat.sampleDirection(TransportMode::Radiance, wo, sc.lobe, lambdaIn, lambda, rng.uniform2());
+        bsdf.sampleDirection(TransportMode::Radiance, wo, sc.lobe, lambdaIn, lambda, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
-    const float f = mat.eval(TransportMode::Radiance, ds->w, wo, lambdaIn, lambda, sc.lobe);
+    const float f = bsdf.eval(TransportMode::Radiance, ds->w, wo, lambdaIn, lambda, sc.lobe);
     beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);
     if (!(beta > 0.0f)) break;
     prevDirPdf = ds->pdf;
     prevSpecular = ds->specular;
     prevP = hit->p;
     lambda = lambdaIn;
-    const Vec3 wiWorld = frame.toWorld(ds->w);
+    const Vec3 wiWorld = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, wiWorld), wiWorld};
 
     // Russian roulette on the throughput.

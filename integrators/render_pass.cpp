@@ -20,8 +20,9 @@ PassTracer::PassTracer(const Scene& scene, const Integrator& integrator, int wid
       seed_(seed), sampler_(sampler), recordStrategies_(recordStrategies), recordSpectral_(recordSpectral),
       contexts_(size_t(tileCount_)), tileSpectral_(recordSpectral ? size_t(tileCount_) : 0) {}
 
-uint64_t PassTracer::sampleBytes(int width, int height, int samplesPerPixel) {
-  return uint64_t(width) * uint64_t(height) * uint64_t(std::max(samplesPerPixel, 0)) * sizeof(Vec3);
+uint64_t PassTracer::sampleBytes(int width, int height, int samplesPerPixel, bool spectral) {
+  const uint64_t perSample = sizeof(Vec3) + (spectral ? sizeof(uint32_t) + 2 * sizeof(SpectralSample) : 0);
+  return uint64_t(width) * uint64_t(height) * uint64_t(std::max(samplesPerPixel, 0)) * perSample;
 }
 
 template <class PixelFn>

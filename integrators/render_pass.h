@@ -43,8 +43,10 @@ class PassTracer {
   void commit(const PassRecord& record, Film& film, SpectralFilm* spectral,
               const std::function<void(const StrategySample&)>& strategies) const;
 
-  // Bytes of the sample buffer of a pass of `samplesPerPixel` (a record's splats come on top).
-  static uint64_t sampleBytes(int width, int height, int samplesPerPixel);
+  // Bytes of the sample buffer of a pass of `samplesPerPixel` (a record's splats come on top). With
+  // `spectral`, each sample's share count and one share, kept per tile and again in the record;
+  // samples with more shares (hero wavelengths, photon mapping's exact elastic gathers) take more.
+  static uint64_t sampleBytes(int width, int height, int samplesPerPixel, bool spectral = false);
 
  private:
   template <class PixelFn>

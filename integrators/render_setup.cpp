@@ -1,10 +1,12 @@
 #include "integrators/render_setup.h"
 
+#include <algorithm>
 #include <string>
 
 #include "core/film.h"
 #include "core/memory_budget.h"
 #include "core/sampler.h"
+#include "integrators/render_pass.h"
 
 namespace kasha {
 
@@ -15,6 +17,14 @@ void requireFilmMemory(int width, int height, const SpectralBins& bins, bool res
                 "the film (" + std::to_string(width) + "x" + std::to_string(height) + " pixels" +
                     (bins.enabled() ? ", " + std::to_string(bins.count) + " spectral bins" : "") + ")",
                 limit);
+}
+
+void requirePassMemory(const Integrator& integrator, int width, int height, int samplesPerPass, bool spectral,
+                       uint64_t limit) {
+  const int perPass =
+      samplesPerPass > 0 ? samplesPerPass : std::min(defaultSamplesPerPass(width, height), integrator.maxSamplesPerPass());
+  requireMemory(PassTracer::sampleBytes(width, height, perPass, spectral),
+                "the samples of one pass (" + std::to_string(perPass) + " per pixel)", limit);
 }
 
 RenderOptions renderOptions(const RenderSettings& settings, int threads) {

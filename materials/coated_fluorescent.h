@@ -25,13 +25,15 @@
 //                   reflection (visible normals, Heitz18) with probability
 //                   P_coat = F(θ_k)/(F(θ_k) + T(θ_k)·(1 − c·a)·r), else cosine-weighted; the density
 //                   is the mixture of both.
+#include <algorithm>
+
 #include "materials/ggx.h"
 #include "materials/ior.h"
 #include "materials/jung_bbrrdf.h"
 
 namespace kasha {
 
-class CoatedFluorescent final : public Material {
+class CoatedFluorescent final : public UniformMaterial {
  public:
   // Throws std::invalid_argument "field: reason" for invalid base parameters (checkJungParams),
   // coat index (checkIor) or roughness (checkedGgx).
@@ -45,7 +47,15 @@ class CoatedFluorescent final : public Material {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  bool fluoresces() const override { return base_.fluoresces(); }
+  // The elastic lobe picks the coat with a probability weighted by F(λ) and r(λ).
+  BsdfFlags flags() const override {
+    return flagIf(base_.fluoresces(), BsdfFlags::Fluorescent) | BsdfFlags::WavelengthDependentDirection;
+  }
+  float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override {
+    return std::max(probFluorescence(mode, lambdaKnown), 0.0f);
+  }
+  // The base's (an upper bound of what crosses the coat, with the same support).
+  std::optional<FluorophoreSpectra> fluorophore() const override { return base_.fluorophore(); }
   std::string describe() const override { return "coated_fluorescent (" + ior_.describe() + ")"; }
 
   const JungBbrrdf& base() const { return base_; }

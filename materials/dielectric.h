@@ -25,7 +25,7 @@
 
 namespace kasha {
 
-class Dielectric final : public Material {
+class Dielectric final : public UniformMaterial {
  public:
   // Throws std::invalid_argument with checkIor's message if n(λ) is not valid over the range.
   Dielectric(Ior ior, WavelengthRange range);
@@ -38,8 +38,12 @@ class Dielectric final : public Material {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  bool fluoresces() const override { return false; }
-  bool purelySpecular() const override { return true; }
+  // Dispersion refracts each wavelength into its own direction.
+  BsdfFlags flags() const override {
+    return BsdfFlags::DeltaDirection | flagIf(ior_.dispersive(), BsdfFlags::WavelengthDependentDirection);
+  }
+  float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
+  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
   std::string describe() const override { return "dielectric (" + ior_.describe() + ")"; }
 
   const Ior& ior() const { return ior_; }

@@ -38,7 +38,7 @@ struct ReradiationMatrix {
   std::vector<std::vector<float>> m;  // m[in][out]
 };
 
-class JungBbrrdf final : public Material {
+class JungBbrrdf final : public UniformMaterial {
  public:
   // Throws std::invalid_argument with checkJungParams' message if eq. 8's conditions fail.
   JungBbrrdf(JungParams params, WavelengthRange range);
@@ -51,7 +51,8 @@ class JungBbrrdf final : public Material {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  bool fluoresces() const override { return p_.concentration > 0.0f && p_.energyRatio > 0.0f; }
+  BsdfFlags flags() const override { return flagIf(fluoresces(), BsdfFlags::Fluorescent); }
+  bool fluoresces() const { return p_.concentration > 0.0f && p_.energyRatio > 0.0f; }
   std::string describe() const override { return "jung_fluorescent"; }
   // P_c (Radiance) or P_l (Importance).
   float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override;

@@ -5,7 +5,7 @@
 
 namespace kasha {
 
-class Lambertian final : public Material {
+class Lambertian final : public UniformMaterial {
  public:
   explicit Lambertian(Spectrum reflectance) : r_(std::move(reflectance)) {}
 
@@ -17,7 +17,9 @@ class Lambertian final : public Material {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  bool fluoresces() const override { return false; }
+  BsdfFlags flags() const override { return BsdfFlags::None; }
+  float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
+  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
   std::string describe() const override { return "lambertian"; }
 
   const Spectrum& reflectance() const { return r_; }

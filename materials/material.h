@@ -1,129 +1,43 @@
 #pragma once
-// The one material interface shared by every integrator (transport.md §2).
-//
-// Conventions
-// - A query always names the physical order: light arrives along ω_i at λ_i and leaves along ω_o
-//   at λ_o. Both directions point away from the surface, in the local frame of the geometric
-//   normal (z up). Materials decide themselves what the two sides of a surface mean.
-// - TransportMode says which side is known, and is never defaulted:
-//     Radiance   (camera subpaths): ω_o, λ_o known; ω_i, λ_i sampled.
-//     Importance (light subpaths, photons): ω_i, λ_i known; ω_o, λ_o sampled.
-// - A lobe is elastic (λ_o = λ_i, a Dirac delta in wavelength, whose delta is left out of every
-//   value and density, exactly like a specular delta in direction) or fluorescent (a density per
-//   nm in the sampled wavelength). Which one an event used is a flag, never a comparison of
-//   wavelengths.
-// - Sampling runs in two stages: the spectral event (lobe and unknown wavelength, from the known
-//   wavelength alone) and then the direction given that event. Integrators may use the stages
-//   separately (next-event estimation shares the spectral event with direction sampling) or
-//   together through sample()/pdf(), whose densities are the products.
-#include <cstdint>
+// A material is the scene object (parameters, textures, JSON): at each hit it builds the
+// scattering function there, a Bsdf (materials/bsdf.h), from the hit's context. Integrators see
+// only Bsdfs (Scene::bsdf); wavelength strategies read what each material absorbs and re-emits.
 #include <optional>
 #include <string>
 
-#include "core/math.h"
 #include "core/spectrum.h"
+#include "materials/bsdf.h"
 
 namespace kasha {
 
-enum class TransportMode : uint8_t { Radiance, Importance };
-inline TransportMode flip(TransportMode m) {
-  return m == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance;
-}
-const char* toString(TransportMode m);
-
-enum class SpectralLobe : uint8_t { Elastic, Fluorescent };
-
-// Outcome of the spectral stage.
-struct SpectralChoice {
-  SpectralLobe lobe = SpectralLobe::Elastic;
-  float lambda = 0.0f;  // the unknown side's wavelength (equal to the known one when elastic)
-  float pdf = 0.0f;     // P(lobe | known λ) × (per-nm density of lambda, fluorescent only)
-};
-
-// Outcome of the directional stage.
-struct DirectionSample {
-  Vec3 w;                 // the unknown side's direction, local frame
-  float pdf = 0.0f;       // per steradian (for a specular lobe: the discrete probability)
-  bool specular = false;  // Dirac delta in direction
-};
-
-// Both stages together. The reverse density is the probability of sampling the known side
-// from the sampled one in the other transport mode (what BDPT's MIS needs).
-struct ScatterSample {
-  Vec3 w;
-  float lambda = 0.0f;
-  SpectralLobe lobe = SpectralLobe::Elastic;
-  bool specular = false;
-  float f = 0.0f;       // value of f (deltas left out); per nm when fluorescent
-  float pdf = 0.0f;     // spectral pdf × direction pdf, this mode
-  float pdfRev = 0.0f;  // spectral pdf × direction pdf, the other mode, roles swapped
-};
-
 // What a fluorescent material absorbs and re-emits, for the wavelength strategies that follow the
-// scene's fluorophores (docs/wavelength-sampling.md).
+// scene's fluorophores (docs/wavelength-sampling.md). A strategy's density must be positive
+// wherever `absorbed` is (excitation) or `reemitted` is (emission), so both must cover the
+// material's support, at least where it varies over the surface.
 struct FluorophoreSpectra {
   Spectrum absorbed;   // fraction of the energy arriving at λ_i that the fluorophore absorbs
   Spectrum reemitted;  // energy re-emitted per nm at λ_o under unit white irradiance (1 per nm)
-};
-
-struct ScatterDensity {
-  float pdf = 0.0f;
-  float pdfRev = 0.0f;
 };
 
 class Material {
  public:
   virtual ~Material() = default;
 
-  // f(λ_i, ω_i, ω_o, λ_o) of one spectral lobe: for Elastic, λ_i = λ_o is implied and lambdaIn is
-  // used; for Fluorescent, the density per nm of leaving at λ_o. Local directions.
-  // `mode` names the direction that was sampled (ω_i in Radiance mode, ω_o in Importance mode).
-  // It matters only for a specular lobe, whose value is the coefficient of the Dirac delta in the
-  // solid angle of that sampled direction, so that f·|cos θ_sampled|/pdf is the path weight in
-  // both modes. Refraction maps solid angles with dω_o/dω_i = η_i²|cos θ_i| / (η_o²|cos θ_o|), so
-  // there the two coefficients differ (Veach97 §5.2); every non-specular f is the same in both.
-  virtual float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                     SpectralLobe lobe) const = 0;
-
-  // Spectral stage: chooses the lobe and the unknown wavelength given the known one (λ_o in
-  // Radiance mode, λ_i in Importance mode). Returns pdf 0 when nothing is scattered.
-  virtual SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const = 0;
-  // Density of that choice: lambdaOther is the sampled side's wavelength.
-  virtual float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const = 0;
-
-  // Directional stage given the spectral event (lobe and both wavelengths, which a dispersive
-  // material needs); wKnown is ω_o (Radiance) or ω_i (Importance).
-  virtual std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                         float lambdaIn, float lambdaOut, Vec2 u) const = 0;
-  virtual float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
-                             float lambdaIn, float lambdaOut) const = 0;
-
-  // True if any lobe changes wavelength.
-  virtual bool fluoresces() const = 0;
-  // The probability with which sampleSpectral chooses the fluorescent lobe given the known
-  // wavelength. An integrator that draws the unknown wavelength of the fluorescent lobe from its
-  // own density p(λ) (a wavelength strategy) samples the event with density P·p(λ) (the value
-  // eval() is per nm), and the elastic lobe with spectralPdf(mode, λ, λ, Elastic).
-  virtual float fluorescenceProbability(TransportMode mode, float lambdaKnown) const { return 0.0f; }
-  // The fluorophore's spectra if the material fluoresces.
-  virtual std::optional<FluorophoreSpectra> fluorophore() const { return std::nullopt; }
-  // True if every lobe is a Dirac delta in direction (no next-event estimation possible).
-  virtual bool purelySpecular() const { return false; }
+  // The scattering function at one hit (its directions local to ctx.shading). No heap allocation.
+  virtual Bsdf bsdf(const HitContext& ctx) const = 0;
+  // The union of the flags of every Bsdf it builds (BsdfFlags).
+  virtual BsdfFlags flags() const = 0;
+  // What it absorbs and re-emits: set for every material whose flags() are Fluorescent.
+  virtual std::optional<FluorophoreSpectra> fluorophore() const = 0;
   virtual std::string describe() const = 0;
-  // The material at texture coordinates uv: itself unless its parameters vary over the surface
-  // (textured_jung.h). Integrators see only resolved materials, through Scene::material(hit).
-  virtual const Material& at(Vec2 uv) const {
-    (void)uv;
-    return *this;
-  }
-  // True if at() depends on uv (the shapes using it need texture coordinates).
+  // True if its Bsdf depends on the texture coordinates (the shapes using it need them).
   virtual bool textured() const { return false; }
+};
 
-  // Both stages: u.x for the spectral stage, (u.y, u.z) for the direction.
-  std::optional<ScatterSample> sample(TransportMode mode, const Vec3& wKnown, float lambdaKnown, Vec3 u) const;
-  // Densities of an event given in physical order, sampled in `mode` (and reverse).
-  ScatterDensity pdf(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                     SpectralLobe lobe) const;
+// A material that scatters the same everywhere: it is its own per-hit model.
+class UniformMaterial : public Material, public BsdfModel {
+ public:
+  Bsdf bsdf(const HitContext& ctx) const final { return Bsdf(*this, ctx); }
 };
 
 }  // namespace kasha

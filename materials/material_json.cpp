@@ -1,10 +1,12 @@
 #include "materials/material_json.h"
 
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
+#include "core/input_file.h"
 #include "core/json_fields.h"
+#include "core/json_parse.h"
 #include "core/texture.h"
 #include "materials/coated_fluorescent.h"
 #include "materials/dielectric.h"
@@ -64,23 +66,37 @@ Ior parseIor(JsonFields& parent, const std::string& key, const SpectrumContext& 
   return *ior;
 }
 
+// Material files may name further material files; no sensible chain is longer than this.
+constexpr size_t kMaxMaterialFileDepth = 16;
+
 // {"type": "file", "file": "m.json"}: a material object kept in its own file (what `kasha extract`
-// writes); paths inside it are relative to that file.
+// writes); paths inside it are relative to that file. A file that names itself, directly or
+// through others, is refused, as is a chain deeper than kMaxMaterialFileDepth.
 std::unique_ptr<Material> parseMaterialFile(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range) {
   const std::string rel = f.string("file");
   const std::string path = (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel;
-  std::ifstream in(path);
-  if (!in) f.fail("file", "cannot open '" + path + "'");
+  std::error_code ec;
+  const std::string canonical = std::filesystem::weakly_canonical(path, ec).string();
+  const std::string key = ec ? path : canonical;
+  const auto loop = std::find(ctx.materialFiles.begin(), ctx.materialFiles.end(), key);
+  if (loop != ctx.materialFiles.end()) {
+    std::string chain;
+    for (auto it = loop; it != ctx.materialFiles.end(); ++it) chain += *it + " -> ";
+    f.fail("file", "material files name each other in a cycle: " + chain + key);
+  }
+  if (ctx.materialFiles.size() >= kMaxMaterialFileDepth)
+    f.fail("file", "material files name each other more than " + std::to_string(kMaxMaterialFileDepth) + " deep");
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(in);
-  } catch (const std::exception& e) {
-    f.fail("file", "'" + path + "' is not valid JSON: " + e.what());
+    j = parseJsonStrict(readInputFile(path, "material file", kMaxJsonFileBytes), path);
+  } catch (const InputError& e) {
+    f.fail("file", e.what());
   }
   SpectrumContext inner = ctx;
   inner.file = path;
   inner.baseDir = std::filesystem::path(path).parent_path().string();
   if (inner.baseDir.empty()) inner.baseDir = ".";
+  inner.materialFiles.push_back(key);
   return parseMaterial(j, inner, "", range);
 }
 
@@ -101,13 +117,16 @@ JungParams parseJungParams(JsonFields& f, const SpectrumContext& ctx, Wavelength
   return p;
 }
 
-// "<key>": "image.png" | {"file": "image.exr", "channel": "mean" | "r" | "g" | "b" | "a"} (texture.h);
-// nullopt when absent.
-std::optional<ScalarTexture> parseTexture(JsonFields& parent, const std::string& key, const SpectrumContext& ctx) {
-  if (!parent.has(key)) return std::nullopt;
+// "<key>": "image.png" | {"file": "image.exr", "channel": "mean" | "r" | "g" | "b" | "a",
+// "wrap": "repeat" | "clamp" | "mirror", "filter": "bilinear" | "nearest"} (texture.h); nullptr
+// when absent.
+std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::string& key, const SpectrumContext& ctx) {
+  if (!parent.has(key)) return nullptr;
   const nlohmann::json& v = parent.get(key);
   std::string file;
   TextureChannel channel = TextureChannel::Mean;
+  TextureWrap wrap = TextureWrap::Repeat;
+  TextureFilter filter = TextureFilter::Bilinear;
   if (v.is_string()) {
     file = v.get<std::string>();
   } else if (v.is_object()) {
@@ -117,14 +136,25 @@ std::optional<ScalarTexture> parseTexture(JsonFields& parent, const std::string&
     const std::optional<TextureChannel> c = parseTextureChannel(name);
     if (!c) f.fail("channel", "unknown channel '" + name + "' (mean, r, g, b, a)");
     channel = *c;
+    const std::string wrapName = f.string("wrap", "repeat");
+    const std::optional<TextureWrap> w = parseTextureWrap(wrapName);
+    if (!w) f.fail("wrap", "unknown wrap mode '" + wrapName + "' (repeat, clamp, mirror)");
+    wrap = *w;
+    const std::string filterName = f.string("filter", "bilinear");
+    const std::optional<TextureFilter> fl = parseTextureFilter(filterName);
+    if (!fl) f.fail("filter", "unknown filter '" + filterName + "' (bilinear, nearest)");
+    filter = *fl;
     f.finish();
   } else {
     parent.fail(key, "expected an image file name or {\"file\": ..., \"channel\": ...}, got " + jsonTypeName(v));
   }
   const std::string path = (!file.empty() && file[0] == '/') ? file : ctx.baseDir + "/" + file;
   try {
-    return ScalarTexture::load(path, channel);
-  } catch (const std::runtime_error& e) {
+    if (ctx.textures) return ctx.textures->load(path, channel, wrap, filter);
+    return TextureLoader(ctx.memoryLimit).load(path, channel, wrap, filter);
+  } catch (const InputError& e) {  // names the file already
+    parent.fail(key, e.what());
+  } catch (const std::runtime_error& e) {  // also MemoryLimitError
     parent.fail(key, "'" + path + "': " + e.what());
   }
 }

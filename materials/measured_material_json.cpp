@@ -34,8 +34,12 @@ std::unique_ptr<Material> parseMeasuredReradiation(JsonFields& f, const Spectrum
     const std::string e(ext);
     return rel.size() >= e.size() && rel.compare(rel.size() - e.size(), e.size(), e) == 0;
   };
-  if (endsWith(".csv")) return std::make_unique<MeasuredReradiation>(readBispectralCsv(path), o, range);
-  if (endsWith(".exr")) return std::make_unique<MeasuredReradiation>(readBispectralExr(path), o, range);
+  try {  // errors in the matrix file name it; the scene's field comes first
+    if (endsWith(".csv")) return std::make_unique<MeasuredReradiation>(readBispectralCsv(path), o, range);
+    if (endsWith(".exr")) return std::make_unique<MeasuredReradiation>(readBispectralExr(path), o, range);
+  } catch (const InputError& e) {
+    f.fail("file", e.what());
+  }
   f.fail("file", "'" + rel + "': expected a .csv or .exr bispectral matrix");
 }
 

@@ -102,6 +102,15 @@ float MeasuredReradiation::B(float lambdaOut) const {
   return b.w0 * rows_[b.k0].integral() + b.w1 * rows_[b.k1].integral();
 }
 
+std::optional<FluorophoreSpectra> MeasuredReradiation::fluorophore() const {
+  if (!fluoresces_) return std::nullopt;
+  // A and B are linear between the knots (the lines' integrals) and zero outside the grid.
+  std::vector<float> a, b;
+  for (const SpectralDistribution& c : columns_) a.push_back(c.integral());
+  for (const SpectralDistribution& r : rows_) b.push_back(r.integral());
+  return FluorophoreSpectra{Spectrum::piecewiseLinear(in_, a).zeroOutside(), Spectrum::piecewiseLinear(out_, b).zeroOutside()};
+}
+
 float MeasuredReradiation::fluorescentWeight(TransportMode mode, float lambdaKnown) const {
   return mode == TransportMode::Importance ? A(lambdaKnown) : B(lambdaKnown);
 }

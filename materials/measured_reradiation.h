@@ -31,7 +31,7 @@ struct MeasuredReradiationOptions {
 // Measured matrices are noisy: a reflected energy up to 1% above 1 is accepted as noise.
 constexpr float kEnergyTolerance = 0.01f;
 
-class MeasuredReradiation final : public Material {
+class MeasuredReradiation final : public UniformMaterial {
  public:
   // Throws InputError naming the source file and the offending wavelength on bad data.
   MeasuredReradiation(const BispectralData& data, MeasuredReradiationOptions options, WavelengthRange range);
@@ -44,7 +44,12 @@ class MeasuredReradiation final : public Material {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  bool fluoresces() const override { return fluoresces_; }
+  BsdfFlags flags() const override { return flagIf(fluoresces_, BsdfFlags::Fluorescent); }
+  float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override {
+    return probFluorescence(mode, lambdaKnown);
+  }
+  // absorbed = A(λ_i), reemitted = B(λ_o): the matrix's off-diagonal row and column integrals.
+  std::optional<FluorophoreSpectra> fluorophore() const override;
   std::string describe() const override { return "measured_reradiation"; }
 
   float diagonal(float l) const;

@@ -13,7 +13,7 @@
 
 namespace kasha {
 
-class Mirror final : public Material {
+class Mirror final : public UniformMaterial {
  public:
   explicit Mirror(Spectrum reflectance) : r_(std::move(reflectance)) {}
 
@@ -25,8 +25,9 @@ class Mirror final : public Material {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  bool fluoresces() const override { return false; }
-  bool purelySpecular() const override { return true; }
+  BsdfFlags flags() const override { return BsdfFlags::DeltaDirection; }
+  float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
+  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
   std::string describe() const override { return "mirror"; }
 
   const Spectrum& reflectance() const { return r_; }

@@ -21,7 +21,7 @@
 
 namespace kasha {
 
-class RoughConductor final : public Material {
+class RoughConductor final : public UniformMaterial {
  public:
   // Throws std::invalid_argument for α outside [kMinAlpha, kMaxAlpha] (ggx.h).
   RoughConductor(Spectrum f0, float alphaX, float alphaY);
@@ -34,7 +34,9 @@ class RoughConductor final : public Material {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  bool fluoresces() const override { return false; }
+  BsdfFlags flags() const override { return BsdfFlags::None; }
+  float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
+  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
   std::string describe() const override { return "rough_conductor"; }
 
   // Schlick's Fresnel at cos θ = c (relative to the microfacet normal).

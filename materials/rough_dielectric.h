@@ -35,7 +35,7 @@
 
 namespace kasha {
 
-class RoughDielectric final : public Material {
+class RoughDielectric final : public UniformMaterial {
  public:
   // Throws std::invalid_argument "ior: ..." if n(λ) is invalid (checkIor) or closer to 1 than
   // 1.001 anywhere in the range (index-matched refraction is a Dirac delta straight through, which
@@ -50,7 +50,10 @@ class RoughDielectric final : public Material {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  bool fluoresces() const override { return false; }
+  // Dispersion changes the refracted direction and the Fresnel choice between the lobes.
+  BsdfFlags flags() const override { return flagIf(ior_.dispersive(), BsdfFlags::WavelengthDependentDirection); }
+  float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
+  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
   std::string describe() const override { return "rough_dielectric (" + ior_.describe() + ")"; }
 
   const Ior& ior() const { return ior_; }

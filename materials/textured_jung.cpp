@@ -5,23 +5,15 @@
 #include <stdexcept>
 
 namespace kasha {
-namespace {
-
-[[noreturn]] void unresolved() {
-  throw std::logic_error("a textured material was used without resolving it at a hit's uv (Scene::material)");
-}
-
-}  // namespace
-
 TexturedJung::TexturedJung(JungParams base, JungTextures tex, WavelengthRange range) {
   if (std::string m = checkJungParams(base, range); !m.empty()) throw std::invalid_argument(m);
-  const std::array<std::pair<const char*, const std::optional<ScalarTexture>*>, 3> fields = {
+  const std::array<std::pair<const char*, const std::shared_ptr<const ImageTexture>*>, 3> fields = {
       {{"reflectance_texture", &tex.reflectance}, {"c_texture", &tex.c}, {"Q_texture", &tex.q}}};
   const char* gridField = nullptr;
   for (const auto& [name, t] : fields) {
     if (!*t) continue;
     if (!grid_) {
-      grid_ = **t;
+      grid_ = *t;
       gridField = name;
     } else if ((*t)->width() != grid_->width() || (*t)->height() != grid_->height()) {
       throw std::invalid_argument(std::string(name) + ": " + std::to_string((*t)->width()) + "×" +
@@ -50,23 +42,25 @@ TexturedJung::TexturedJung(JungParams base, JungTextures tex, WavelengthRange ra
     }
     index_[i] = it->second;
   }
-}
-
-float TexturedJung::eval(TransportMode, const Vec3&, const Vec3&, float, float, SpectralLobe) const { unresolved(); }
-SpectralChoice TexturedJung::sampleSpectral(TransportMode, float, float) const { unresolved(); }
-float TexturedJung::spectralPdf(TransportMode, float, float, SpectralLobe) const { unresolved(); }
-std::optional<DirectionSample> TexturedJung::sampleDirection(TransportMode, const Vec3&, SpectralLobe, float, float,
-                                                              Vec2) const {
-  unresolved();
-}
-float TexturedJung::directionPdf(TransportMode, const Vec3&, const Vec3&, SpectralLobe, float, float) const {
-  unresolved();
-}
-
-bool TexturedJung::fluoresces() const {
-  for (const auto& m : palette_)
-    if (m->fluoresces()) return true;
-  return false;
+  // Flags and the fluorophore: union and texel-area mean over the entries.
+  std::vector<float> texels(palette_.size(), 0.0f);
+  for (uint32_t e : index_) texels[e] += 1.0f / float(n);
+  std::vector<FluorophoreSpectra> spectra;
+  std::vector<float> weights;
+  for (size_t e = 0; e < palette_.size(); ++e) {
+    flags_ = flags_ | palette_[e]->flags();
+    if (auto f = palette_[e]->fluorophore()) {
+      spectra.push_back(std::move(*f));
+      weights.push_back(texels[e]);
+    }
+  }
+  if (spectra.empty()) return;
+  std::vector<std::pair<float, const Spectrum*>> absorbed, reemitted;
+  for (size_t k = 0; k < spectra.size(); ++k) {
+    absorbed.emplace_back(weights[k], &spectra[k].absorbed);
+    reemitted.emplace_back(weights[k], &spectra[k].reemitted);
+  }
+  fluorophore_ = FluorophoreSpectra{Spectrum::weightedSum(absorbed), Spectrum::weightedSum(reemitted)};
 }
 
 }  // namespace kasha

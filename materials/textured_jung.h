@@ -3,13 +3,10 @@
 // r(λ), the concentration c and the energy ratio Q each multiplied by a scalar image texture
 // (core/texture.h) in [0, 1], so that fluorescent ink printed on paper is a c texture.
 //
-// The material interface takes no position, so a textured material is resolved before any
-// integrator sees it: Scene::material(hit) calls at(uv) at the hit, which returns an ordinary
-// JungBbrrdf. Every distinct combination of texel values becomes one JungBbrrdf, built at load
-// time (a palette: 8-bit images of ink give a handful), and each texel points to its entry. So
-// every integrator keeps its one code path, and a resolved material lives as long as the scene.
-// The price is nearest-texel lookup: values between texels would be materials not in the
-// palette. The unresolved material's own sampling and evaluation must not be called.
+// At a hit, the material's Bsdf is that of an ordinary JungBbrrdf: every distinct combination of
+// texel values becomes one JungBbrrdf, built at load time (a palette: 8-bit images of ink give a
+// handful), and each texel points to its entry, which lives as long as the scene. The price is
+// nearest-texel lookup: values between texels would be materials not in the palette.
 #include <memory>
 #include <optional>
 #include <vector>
@@ -20,7 +17,7 @@
 namespace kasha {
 
 struct JungTextures {
-  std::optional<ScalarTexture> reflectance, c, q;  // multipliers of r(λ), c and Q; absent: 1
+  std::shared_ptr<const ImageTexture> reflectance, c, q;  // multipliers of r(λ), c and Q; absent: 1
 };
 
 class TexturedJung final : public Material {
@@ -33,26 +30,21 @@ class TexturedJung final : public Material {
   // checkJungParams for invalid base parameters.
   TexturedJung(JungParams base, JungTextures textures, WavelengthRange range);
 
-  const Material& at(Vec2 uv) const override { return *palette_[index_[grid_->texelIndex(uv)]]; }
+  // The palette entry of the texel at ctx.uv.
+  Bsdf bsdf(const HitContext& ctx) const override { return Bsdf(*palette_[index_[grid_->texelIndex(ctx.uv)]], ctx); }
   bool textured() const override { return true; }
   size_t paletteSize() const { return palette_.size(); }
-
-  // Unresolved use is a programming error: these throw std::logic_error.
-  float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-             SpectralLobe lobe) const override;
-  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
-  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
-  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                 float lambdaIn, float lambdaOut, Vec2 u) const override;
-  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
-                     float lambdaOut) const override;
-  bool fluoresces() const override;
+  BsdfFlags flags() const override { return flags_; }
+  // The texel-area mean of the entries' spectra (the same shapes, scaled by c and c·Q).
+  std::optional<FluorophoreSpectra> fluorophore() const override { return fluorophore_; }
   std::string describe() const override { return "jung_fluorescent (textured)"; }
 
  private:
-  std::optional<ScalarTexture> grid_;  // the texel grid shared by every texture (values unused)
+  std::shared_ptr<const ImageTexture> grid_;  // the texel grid shared by every texture (values unused)
   std::vector<std::unique_ptr<JungBbrrdf>> palette_;
   std::vector<uint32_t> index_;  // palette entry per texel
+  BsdfFlags flags_ = BsdfFlags::None;               // the union of the entries'
+  std::optional<FluorophoreSpectra> fluorophore_;  // none if no entry fluoresces
 };
 
 }  // namespace kasha

@@ -48,6 +48,11 @@ float ZhdanovBdf::fluorescentWeight(TransportMode mode, float lambdaKnown) const
   return mode == TransportMode::Importance ? A(lambdaKnown) : E(lambdaKnown) * excitation_.integral();
 }
 
+std::optional<FluorophoreSpectra> ZhdanovBdf::fluorophore() const {
+  if (!fluoresces()) return std::nullopt;
+  return FluorophoreSpectra{p_.excitation, p_.emission.scaled(excitation_.integral() / emission_.integral())};
+}
+
 float ZhdanovBdf::probFluorescence(TransportMode mode, float lambdaKnown) const {
   const float fl = fluorescentWeight(mode, lambdaKnown), el = elasticWeight(lambdaKnown);
   return fl + el > 0.0f ? fl / (fl + el) : 0.0f;

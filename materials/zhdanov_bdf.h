@@ -33,7 +33,7 @@ struct ZhdanovParams {
 // Returns "" if the parameters are valid over the range, else "field: reason".
 std::string checkZhdanovParams(const ZhdanovParams& p, WavelengthRange range);
 
-class ZhdanovBdf final : public Material {
+class ZhdanovBdf final : public UniformMaterial {
  public:
   // Throws std::invalid_argument with checkZhdanovParams' message.
   ZhdanovBdf(ZhdanovParams params, WavelengthRange range);
@@ -46,7 +46,17 @@ class ZhdanovBdf final : public Material {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  bool fluoresces() const override { return excitation_.integral() > 0.0f; }
+  // The elastic lobe picks the gloss peak with a probability weighted by p(λ).
+  BsdfFlags flags() const override {
+    return flagIf(fluoresces(), BsdfFlags::Fluorescent) |
+           flagIf(p_.gloss > 0.0f, BsdfFlags::WavelengthDependentDirection);
+  }
+  bool fluoresces() const { return excitation_.integral() > 0.0f; }
+  float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override {
+    return probFluorescence(mode, lambdaKnown);
+  }
+  // absorbed = A(λ_i); reemitted = E(λ_o)·∫A (eq. 3 integrated over λ_i under unit light).
+  std::optional<FluorophoreSpectra> fluorophore() const override;
   std::string describe() const override { return "zhdanov"; }
 
   float passive(float l) const { return p_.passive(l); }

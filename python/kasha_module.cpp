@@ -24,12 +24,12 @@ namespace {
 
 using Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
-py::dict readExr(const std::string& path) {
+py::dict readExr(const std::string& path, const std::string& memoryLimit) {
   py::dict out;
-  const kasha::XyzImage xyz = kasha::readExrXyz(path);
-  out["xyz"] = kasha::python::xyzArray(xyz);
-  if (kasha::hasEmissiveChannels(path)) {
-    const kasha::SpectralImage s = kasha::readSpectralExr(path);
+  const kasha::ExrImage img = kasha::readExrImage(path, kasha::parseByteSize(memoryLimit));
+  out["xyz"] = kasha::python::xyzArray(img.xyz);
+  if (!img.spectral.wavelengths.empty()) {
+    const kasha::SpectralImage& s = img.spectral;
     out["spectral"] = kasha::python::spectralArray(s);
     out["wavelengths"] = py::array_t<float>(py::ssize_t(s.wavelengths.size()), s.wavelengths.data());
   }
@@ -160,8 +160,9 @@ PYBIND11_MODULE(kasha, m) {
       "shape (height, width, 3), as `kasha metrics` computes them.");
   m.def("error_map", &errorMap, py::arg("image"), py::arg("reference"),
         "Per-pixel relative squared error (height, width), averaged over X, Y, Z; its mean is metrics()['relmse'].");
-  m.def("read_exr", &readExr, py::arg("path"),
+  m.def("read_exr", &readExr, py::arg("path"), py::arg("memory_limit") = "8G",
         "Reads an OpenEXR: 'xyz' from its XYZ layer (or integrated from its spectral channels), and 'spectral' + "
-        "'wavelengths' if it has emissive S0.<nm> channels (Fichet et al. 2021).");
+        "'wavelengths' if it has emissive S0.<nm> channels (Fichet et al. 2021). Like `kasha metrics`, it reads "
+        "regular files only and refuses images whose decoded pixels exceed `memory_limit` (kasha.InputError).");
   m.def("integrators", &kasha::integratorNames, "The integrators' names.");
 }

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/image_output.h"
 #include "core/memory_budget.h"
+#include "core/output_file.h"
 #include "core/spectral_film.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/strategy_images.h"
@@ -60,7 +61,10 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
   const std::unique_ptr<Integrator> integrator = makeIntegrator(req.integrator, scene, settings);
   const int w = scene.camera.width(), h = scene.camera.height();
   const SpectralBins bins = binsFor(scene, req);
+  // As on the command line, the output is checked before the first sample (core/output_file.h).
+  if (!req.output.empty()) checkOutputs({{req.output, "output", ".exr", ""}});
   requireFilmMemory(w, h, bins, false, memoryLimit);
+  requirePassMemory(*integrator, w, h, 0, bins.enabled(), memoryLimit);
   std::unique_ptr<bdpt::StrategyImages> strategies;
   if (req.strategyImages) {
     if (!dynamic_cast<const Bdpt*>(integrator.get()))

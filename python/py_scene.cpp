@@ -3,12 +3,13 @@
 #include <pybind11/numpy.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <iostream>
 
 #include "core/error.h"
-#include "scene/scene_loader.h"
+#include "core/json_parse.h"
 #include "core/spectrum_json.h"
+#include "scene/mitsuba/mitsuba_scene.h"
+#include "scene/scene_loader.h"
 
 namespace py = pybind11;
 
@@ -18,25 +19,19 @@ nlohmann::json toJson(const py::handle& value) {
   py::object v = py::reinterpret_borrow<py::object>(value);
   if (py::hasattr(v, "tolist")) v = v.attr("tolist")();
   const std::string text = py::module_::import("json").attr("dumps")(v).cast<std::string>();
-  return nlohmann::json::parse(text);
+  return parseJsonStrict(text, "<python value>");  // bounded nesting, as for scene files
 }
 
 py::object fromJson(const nlohmann::json& value) { return py::module_::import("json").attr("loads")(value.dump()); }
 
 PyScene PyScene::fromFile(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "cannot open scene file");
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in && !in.eof()) throw InputError(path, "", "cannot read scene file");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path, "", std::string("malformed JSON: ") + e.what());
-  }
-  return PyScene(std::move(json), path);
+  // Read by core/input_file.h's rule (a regular file, size-capped, never blocking) and parsed
+  // strictly, as `kasha render` does; a Mitsuba scene (.xml) becomes its kasha JSON translation.
+  const std::string text = readSceneFile(path);
+  if (!mitsuba::isMitsubaScenePath(path)) return PyScene(parseJsonStrict(text, path), path);
+  mitsuba::Translation t = mitsuba::translateMitsubaScene(text, path);
+  for (const std::string& n : t.notes) std::cerr << "kasha: note: " << n << "\n";
+  return PyScene(std::move(t.scene), path);
 }
 
 PyScene PyScene::fromDict(const py::dict& scene, const std::string& baseDir) {
@@ -90,7 +85,7 @@ const Scene& PyScene::load(const nlohmann::json& json, uint64_t memoryLimit) {
     SceneLoadOptions options;
     options.memoryLimit = memoryLimit;
     loaded_.reset();
-    loaded_ = loadSceneFromString(text, path_, options);
+    loaded_ = loadSceneFromJson(json, path_, options);
     loadedText_ = text;
     loadedLimit_ = memoryLimit;
   }

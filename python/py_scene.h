@@ -16,7 +16,8 @@ class PyScene {
  public:
   // `path` names the scene in error messages and anchors its relative file names.
   PyScene(nlohmann::json json, std::string path) : json_(std::move(json)), path_(std::move(path)) {}
-  // The scene file's JSON; InputError naming the file if it cannot be read or parsed.
+  // The scene file's JSON (a Mitsuba 3 .xml scene: its translation, docs/mitsuba-import.md); InputError
+  // naming the file if it cannot be read (core/input_file.h) or parsed (core/json_parse.h).
   static PyScene fromFile(const std::string& path);
   // A dict in the scene format; relative file names start from baseDir.
   static PyScene fromDict(const pybind11::dict& scene, const std::string& baseDir);

@@ -5,16 +5,22 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <vector>
 
+#include "core/affine.h"
+#include "core/envmap_light.h"
+#include "core/input_file.h"
 #include "core/json_fields.h"
+#include "core/json_parse.h"
+#include "core/mesh_builders.h"
 #include "core/memory_budget.h"
+#include "core/obj_validation.h"
 #include "core/spectrum_json.h"
 #include "core/spectrum_presets.h"
+#include "core/texture.h"
 #include "materials/material_json.h"
+#include "scene/mitsuba/mitsuba_scene.h"
 
 namespace kasha {
 namespace {
@@ -22,8 +28,14 @@ namespace {
 using nlohmann::json;
 
 // Reading an OBJ file takes about this many times its size in memory (tinyobjloader's arrays,
-// kasha's positions, indices and normals, Embree's BVH): measured on meshes of 10⁴–10⁶ triangles.
-constexpr uint64_t kMeshBytesPerFileByte = 6;
+// kasha's positions, indices and normals, Embree's BVH): measured on meshes of 10⁴–10⁶ triangles;
+// one more for the file's text, read whole before parsing.
+constexpr uint64_t kMeshBytesPerFileByte = 7;
+// Named spectra may refer to each other; no sensible chain of names is longer than this, and a
+// limit keeps the recursion through the references bounded.
+constexpr size_t kMaxSpectrumReferenceDepth = 64;
+// Triangles of a "disk" shape: its area is 1 − 1.0·10⁻⁴ of the disk's.
+constexpr int kDiskSegments = 256;
 
 struct Loader {
   std::string file;
@@ -34,13 +46,17 @@ struct Loader {
   SceneLoadOptions options;
   const json* spectraJson = nullptr;
   std::vector<std::string> resolving;  // named spectra being parsed, to detect cycles
+  TextureLoader textures;
 
-  Loader(std::string f, Scene& s, SceneLoadOptions o) : file(std::move(f)), scene(s), options(o) {
+  Loader(std::string f, Scene& s, SceneLoadOptions o)
+      : file(std::move(f)), scene(s), options(o), textures(o.memoryLimit) {
     ctx.file = file;
     ctx.baseDir = std::filesystem::path(file).parent_path().string();
     if (ctx.baseDir.empty()) ctx.baseDir = ".";
     ctx.named = &named;
     ctx.range = &scene.range;
+    ctx.textures = &textures;
+    ctx.memoryLimit = options.memoryLimit;
     ctx.resolveName = [this](const std::string& name, const std::string& ptr) { return namedSpectrum(name, ptr); };
   }
 
@@ -57,6 +73,10 @@ struct Loader {
       if (presetSpectrum(name)) hint = " (for the preset write {\"type\": \"preset\", \"name\": \"" + name + "\"})";
       throw InputError(file, ptr, "named spectra refer to each other in a cycle: " + chain + name + hint);
     }
+    if (resolving.size() >= kMaxSpectrumReferenceDepth)
+      throw InputError(file, ptr, "named spectra refer to each other more than " +
+                                      std::to_string(kMaxSpectrumReferenceDepth) + " deep (from '" + resolving.front() +
+                                      "' to '" + name + "')");
     resolving.push_back(name);
     Spectrum s = parseSpectrum(spectraJson->at(name), ctx, "/spectra/" + name);
     resolving.pop_back();
@@ -179,7 +199,12 @@ struct Loader {
     if (w < 1 || h < 1 || w > 16384 || h > 16384) f.fail("resolution", "width and height must be in 1..16384");
     const Vec3 fwd = at - pos;
     if (!(glm::length(fwd) > 0.0f)) f.fail("look_at", "equals /camera/position");
-    if (!(glm::length(glm::cross(fwd, up)) > 1e-6f * glm::length(fwd) * glm::length(up)))
+    // The lengths first: a product of finite but huge lengths overflows and would blame "up".
+    if (!std::isfinite(glm::length(fwd)))
+      f.fail("look_at", "is too far from /camera/position (their distance overflows a 32-bit float)");
+    if (!(glm::length(up) > 0.0f)) f.fail("up", "must not be zero");
+    if (!std::isfinite(glm::length(up))) f.fail("up", "is too long (its length overflows a 32-bit float)");
+    if (!(glm::length(glm::cross(fwd / glm::length(fwd), up / glm::length(up))) > 1e-6f))
       f.fail("up", "is parallel to the viewing direction");
     f.finish();
     scene.camera = Camera(pos, at, up, fov, int(w), int(h));
@@ -209,17 +234,17 @@ struct Loader {
     cfg.triangulate = true;
     cfg.vertex_color = false;
     tinyobj::ObjReader reader;
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) f.fail("file", "cannot open '" + path + "'");
-    const uint64_t size = std::filesystem::file_size(path, ec);
-    if (ec) f.fail("file", "cannot open '" + path + "': " + ec.message());
+    std::string text;
     try {
-      requireMemory(saturatingMul(size, kMeshBytesPerFileByte),
-                    "'" + path + "' (" + formatBytes(size) + "): reading it", options.memoryLimit);
-    } catch (const MemoryLimitError& e) {
+      InputFile in(path, "mesh file", UINT64_MAX);
+      requireMemory(saturatingMul(in.size(), kMeshBytesPerFileByte),
+                    "'" + path + "' (" + formatBytes(in.size()) + "): reading it", options.memoryLimit);
+      text = in.readRest();
+      text = validateObjText(text, path);
+    } catch (const std::runtime_error& e) {  // InputError, MemoryLimitError
       f.fail("file", e.what());
     }
-    if (!reader.ParseFromFile(path, cfg)) f.fail("file", "'" + path + "': " + reader.Error());
+    if (!reader.ParseFromString(text, "", cfg)) f.fail("file", "'" + path + "': " + reader.Error());
     const auto& v = reader.GetAttrib().vertices;
     for (size_t i = 0; i + 2 < v.size(); i += 3) {
       const Vec3 p(v[i], v[i + 1], v[i + 2]);
@@ -237,13 +262,72 @@ struct Loader {
           const float* t = &reader.GetAttrib().texcoords[2 * size_t(idx.texcoord_index)];
           s.cornerUvs.emplace_back(t[0], t[1]);
         }
+        if (idx.normal_index >= 0 && 3 * size_t(idx.normal_index) + 2 < reader.GetAttrib().normals.size()) {
+          const float* n = &reader.GetAttrib().normals[3 * size_t(idx.normal_index)];
+          s.cornerNormals.emplace_back(n[0], n[1], n[2]);
+        }
       }
     if (!s.cornerUvs.empty() && s.cornerUvs.size() != s.indices.size())
       f.fail("file", "'" + path + "': some faces have texture coordinates (vt) and some do not");
+    if (!s.cornerNormals.empty() && s.cornerNormals.size() != s.indices.size())
+      f.fail("file", "'" + path + "': some faces have vertex normals (vn) and some do not");
+    scaleAndTranslate(f, s);
+  }
+
+  // A mesh file that exists and fits the memory limit when read.
+  void requireMeshFile(JsonFields& f, const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) f.fail("file", "cannot open '" + path + "'");
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) f.fail("file", "cannot open '" + path + "': " + ec.message());
+    try {
+      requireMemory(saturatingMul(size, kMeshBytesPerFileByte),
+                    "'" + path + "' (" + formatBytes(size) + "): reading it", options.memoryLimit);
+    } catch (const MemoryLimitError& e) {
+      f.fail("file", e.what());
+    }
+  }
+
+  void scaleAndTranslate(JsonFields& f, Shape& s) {
     const float scale = f.number("scale", 1.0f);
     if (!(scale > 0.0f)) f.fail("scale", "must be positive");
     const Vec3 translate = f.vec3("translate", Vec3(0.0f));
     for (Vec3& p : s.positions) p = p * scale + translate;
+  }
+
+  void loadPly(JsonFields& f, Shape& s) {
+    const std::string path = resolve(f.string("file"));
+    requireMeshFile(f, path);
+    try {
+      readPlyMesh(path, s);
+    } catch (const std::runtime_error& e) {
+      f.fail("file", e.what());
+    }
+    scaleAndTranslate(f, s);
+  }
+
+  // "transform": four rows of four finite numbers, an invertible affine map (last row 0 0 0 1).
+  glm::mat4 matrixField(JsonFields& f, const std::string& key) {
+    const json& rows = f.get(key);
+    glm::mat4 m(1.0f);
+    if (!rows.is_array() || rows.size() != 4) f.fail(key, "expected 4 rows of 4 numbers");
+    for (int r = 0; r < 4; ++r) {
+      if (!rows[r].is_array() || rows[r].size() != 4) f.fail(key, "expected 4 rows of 4 numbers");
+      for (int c = 0; c < 4; ++c) {
+        if (!rows[r][c].is_number() || !std::isfinite(rows[r][c].get<double>())) f.fail(key, "expected finite numbers");
+        m[c][r] = rows[r][c].get<float>();
+      }
+    }
+    if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f)
+      f.fail(key, "the last row must be [0, 0, 0, 1] (an affine map)");
+    if (glm::determinant(glm::mat3(m)) == 0.0f) f.fail(key, "the matrix is singular");
+    return m;
+  }
+
+  // Placement of triangle shapes: "transform" (after any scale/translate), then "flip_normals".
+  void meshPlacement(JsonFields& f, Shape& s) {
+    if (f.has("transform")) transformMesh(s, matrixField(f, "transform"));
+    if (f.boolean("flip_normals", false)) flipMeshNormals(s);
   }
 
   void rectangle(JsonFields& f, Shape& s) {
@@ -284,11 +368,17 @@ struct Loader {
         s.radius = f.number("radius");
         if (!(s.radius > 0.0f)) f.fail("radius", "must be positive");
       } else if (type == "mesh") {
-        loadObj(f, s);
+        if (std::filesystem::path(f.string("file")).extension() == ".ply") loadPly(f, s);
+        else loadObj(f, s);
+        meshPlacement(f, s);
       } else if (type == "rectangle") {
         rectangle(f, s);
+        meshPlacement(f, s);
+      } else if (type == "disk") {
+        tessellateUnitDisk(s, kDiskSegments);
+        meshPlacement(f, s);
       } else {
-        f.fail("type", "unknown shape type '" + type + "' (sphere, rectangle, mesh)");
+        f.fail("type", "unknown shape type '" + type + "' (sphere, rectangle, mesh, disk)");
       }
       const std::string mat = f.string("material");
       auto it = materialIndex.find(mat);
@@ -355,8 +445,21 @@ struct Loader {
           const float scale = scaleField(f, L);
           scene.environmentLight = int(scene.lights.size());
           l = std::make_unique<EnvironmentLight>(std::move(L), scale, bounds);
+        } else if (type == "envmap") {
+          if (scene.environmentLight >= 0) f.fail("type", "only one environment light is allowed");
+          const std::string path = resolve(f.string("file"));
+          const float scale = f.number("scale", 1.0f);
+          if (!(scale > 0.0f)) f.fail("scale", "must be positive");
+          const glm::mat4 m = f.has("transform") ? matrixField(f, "transform") : glm::mat4(1.0f);
+          if (!(uniformScale(glm::mat3(m)) > 0.0f)) f.fail("transform", "must rotate only (and scale uniformly)");
+          scene.environmentLight = int(scene.lights.size());
+          try {
+            l = std::make_unique<EnvMapLight>(loadEnvironmentImage(path, options.memoryLimit), m, scale, bounds, scene.range);
+          } catch (const std::runtime_error& e) {
+            f.fail("file", e.what());
+          }
         } else {
-          f.fail("type", "unknown light type '" + type + "' (point, spot, distant, environment)");
+          f.fail("type", "unknown light type '" + type + "' (point, spot, distant, environment, envmap)");
         }
         f.finish();
         scene.lights.push_back(std::move(l));
@@ -390,9 +493,6 @@ struct Loader {
   }
 };
 
-// No valid scene nests deeper than a few levels; a limit keeps the recursion below bounded.
-constexpr int kMaxJsonDepth = 64;
-
 // Every number is used as a 32-bit float: one finite as a double but beyond ±3.4e38 would
 // silently become infinite.
 void checkFloatRange(const json& v, const std::string& file, const std::string& ptr, int depth = 0) {
@@ -410,12 +510,12 @@ void checkFloatRange(const json& v, const std::string& file, const std::string& 
 
 std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::string& path,
                                            const SceneLoadOptions& options) {
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e400
-    throw InputError(path, "", std::string("malformed JSON: ") + e.what());
-  }
+  if (mitsuba::isMitsubaScenePath(path)) return mitsuba::loadMitsubaScene(text, path, options);
+  return loadSceneFromJson(parseJsonStrict(text, path), path, options);
+}
+
+std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& root, const std::string& path,
+                                         const SceneLoadOptions& options) {
   checkFloatRange(root, path, "");
   auto scene = std::make_unique<Scene>();
   scene->path = path;
@@ -434,14 +534,10 @@ std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::s
   return scene;
 }
 
+std::string readSceneFile(const std::string& path) { return readInputFile(path, "scene file", kMaxJsonFileBytes); }
+
 std::unique_ptr<Scene> loadScene(const std::string& path, const SceneLoadOptions& options) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "cannot open scene file (it is a directory)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open scene file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return loadSceneFromString(ss.str(), path, options);
+  return loadSceneFromString(readSceneFile(path), path, options);
 }
 
 }  // namespace kasha

@@ -1,6 +1,9 @@
 #pragma once
 // Loading scenes from JSON (the format is documented in docs/scene-format.md). Every problem is an
 // InputError naming the file, the JSON pointer and the reason.
+#include <nlohmann/json_fwd.hpp>
+
+#include <iostream>
 #include <memory>
 #include <string>
 
@@ -9,14 +12,23 @@
 namespace kasha {
 
 struct SceneLoadOptions {
-  // A mesh whose estimated memory (about 6 times its file size) exceeds this is refused before it
-  // is read (a MemoryLimitError naming the file).
+  // A mesh whose estimated memory (about 7 times its file size) or an image whose decoded pixels
+  // exceed this is refused before it is read or decoded (an InputError naming the file).
   uint64_t memoryLimit = kDefaultMemoryLimit;
+  // Where the Mitsuba importer reports its approximations, one line each; nullptr: nowhere.
+  std::ostream* notes = &std::cerr;
 };
 
+// The text of a scene file (core/input_file.h: a regular file of at most kMaxJsonFileBytes).
+std::string readSceneFile(const std::string& path);
+// Reads and loads a scene file.
+// A path ending in .xml is a Mitsuba 3 scene (scene/mitsuba/mitsuba_scene.h), anything else kasha JSON.
 std::unique_ptr<Scene> loadScene(const std::string& path, const SceneLoadOptions& options = {});
 // Same, from JSON text; `path` names it in messages and anchors relative file names.
 std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::string& path,
                                            const SceneLoadOptions& options = {});
+// Same, from parsed JSON (the Mitsuba importer's translation).
+std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& root, const std::string& path,
+                                         const SceneLoadOptions& options = {});
 
 }  // namespace kasha

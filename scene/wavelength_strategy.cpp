@@ -88,19 +88,20 @@ WavelengthSources::WavelengthSources(const Scene& scene) : range(scene.range) {
   std::vector<std::pair<float, const Spectrum*>> light, all;
   for (const auto& l : scene.lights) light.emplace_back(l->powerFactor() * l->scale(), &l->spectrum());
   lightPower = Spectrum::weightedSum(light);
-  for (size_t m = 0; m < scene.materials.size(); ++m)
-    if (auto f = scene.materials[m]->fluorophore()) {
-      Fluorophore fl{m, std::move(*f), 0.0f};
-      for (const Shape& s : scene.shapes)
-        if (s.material == m) fl.area += s.area;
-      fluorophores.push_back(std::move(fl));
-    } else if (scene.materials[m]->fluoresces()) {
-      opaqueFluorescent.push_back(m < scene.materialNames.size() ? scene.materialNames[m] : std::to_string(m));
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    std::optional<FluorophoreSpectra> f = scene.materials[m]->fluorophore();
+    if (!f) {
+      if (has(scene.materials[m]->flags(), BsdfFlags::Fluorescent))
+        throw std::logic_error("material " + scene.materialNames.at(m) + " fluoresces but gives no fluorophore spectra");
+      continue;
     }
+    Fluorophore fl{m, std::move(*f), 0.0f};
+    for (const Shape& s : scene.shapes)
+      if (s.material == m) fl.area += s.area;
+    fluorophores.push_back(std::move(fl));
+  }
   all.emplace_back(1.0f, &lightPower);
   for (const Fluorophore& f : fluorophores) all.emplace_back(1.0f, &f.spectra.reemitted);
-  const Spectrum anywhere = Spectrum::constant(1.0f);
-  if (!opaqueFluorescent.empty()) all.emplace_back(1.0f, &anywhere);
   reachable = Spectrum::weightedSum(all);
 }
 

@@ -50,14 +50,9 @@ struct WavelengthSources {
   WavelengthRange rangeOf(WavelengthSite site) const { return site == WavelengthSite::Sensor ? seen : range; }
   Spectrum lightPower;  // Σ_l Φ_l(λ)
   std::shared_ptr<const SpectralDistribution> colorMatching;  // x̄ + ȳ + z̄ over `seen`
-  std::vector<Fluorophore> fluorophores;
-  // Fluorescent materials that give no FluorophoreSpectra (measured, Zhdanov, coated, textured):
-  // their re-emission may reach any wavelength, and strategies that follow fluorophores cannot
-  // serve them.
-  std::vector<std::string> opaqueFluorescent;
+  std::vector<Fluorophore> fluorophores;  // every fluorescent material's (Material::fluorophore)
   // Light that can exist at λ anywhere in the scene: emitted by a light or re-emitted by a
-  // fluorophore (the whole range if some fluorescent material is opaque). A density must cover it
-  // wherever the integrand needs it.
+  // fluorophore. A density must cover it wherever the integrand needs it.
   Spectrum reachable;
 
   const Fluorophore* fluorophoreOf(size_t material) const;

@@ -130,10 +130,10 @@ TEST(ClosedForm, SingleScatteringSphereUnderEnvironment) {
   const JungBbrrdf& m = jung(*scene);
   const EnvironmentLight& env = *scene->environment();
   const Grid g(scene->range);
-  const double absorbed = g.integrate(g.sample([&](double l) { return m.c() * m.a(float(l)) * env.Le(float(l)); }));
+  const double absorbed = g.integrate(g.sample([&](double l) { return m.c() * m.a(float(l)) * env.Le(float(l), Vec3(0, 1, 0)); }));
   const std::vector<double> L = g.sample([&](double l) {
     const float lf = float(l);
-    return (1.0 - m.c() * m.a(lf)) * m.r(lf) * env.Le(lf) + m.q() * m.e(lf) * absorbed;
+    return (1.0 - m.c() * m.a(lf)) * m.r(lf) * env.Le(lf, Vec3(0, 1, 0)) + m.q() * m.e(lf) * absorbed;
   });
   // The worked example: 0.10 / 0.50 / 1.22 in the three bands.
   EXPECT_NEAR(L[size_t((425.0 - scene->range.min) / kStep)], 0.10, 1e-3);

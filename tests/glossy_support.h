@@ -43,8 +43,9 @@ inline double sphereQuadrature(int nCos, int nPhi, const std::function<double(co
   return sum * dc * dp;
 }
 
-inline DirectionChi2Result directionChi2(const Material& m, TransportMode mode, const Vec3& wKnown, float lambda,
+inline DirectionChi2Result directionChi2(const Material& material, TransportMode mode, const Vec3& wKnown, float lambda,
                                          uint64_t seed, const DirectionChi2Config& c = {}) {
+  const Bsdf m = localBsdf(material, lambda);
   const int nCells = c.nCos * c.nPhi;
   std::vector<double> observed(size_t(nCells), 0.0), expected(size_t(nCells), 0.0);
   DirectionChi2Result res;
@@ -80,7 +81,8 @@ inline DirectionChi2Result directionChi2(const Material& m, TransportMode mode, 
 
 // Mean sampled weight f·|cos θ_sampled|/pdf from (wKnown, λ) (failed samples count 0), with its
 // standard error over 20 batches of 5000: a Monte Carlo estimate of the directional albedo.
-inline BatchStats sampledAlbedo(const Material& m, TransportMode mode, const Vec3& wKnown, float lambda, uint64_t seed) {
+inline BatchStats sampledAlbedo(const Material& material, TransportMode mode, const Vec3& wKnown, float lambda, uint64_t seed) {
+  const Bsdf m = localBsdf(material, lambda);
   Rng rng(seed);
   std::vector<double> batches;
   for (int b = 0; b < 20; ++b) {
@@ -97,8 +99,9 @@ inline BatchStats sampledAlbedo(const Material& m, TransportMode mode, const Vec
 // Checks one elastic sample from (wKnown, λ) against pdf() both ways and eval(); returns its
 // weight f·|cos θ_sampled|/pdf. relRev: tolerance of the reverse density, recomputed from the
 // sampled side (rounding of the half vector).
-inline double expectConsistentSample(const Material& m, TransportMode mode, const Vec3& wKnown, float lambda,
+inline double expectConsistentSample(const Material& material, TransportMode mode, const Vec3& wKnown, float lambda,
                                      const ScatterSample& s, double relRev) {
+  const Bsdf m = localBsdf(material, lambda);
   EXPECT_FALSE(s.specular);
   EXPECT_EQ(s.lobe, SpectralLobe::Elastic);
   EXPECT_EQ(s.lambda, lambda);

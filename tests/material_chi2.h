@@ -1,8 +1,8 @@
 #pragma once
 // χ² goodness-of-fit machinery shared by the material tests (validation.md §3):
 // quadrature over the sphere, the physical order of a sampled event, and a
-// joint (lobe, direction, wavelength) χ² test of Material::sample against
-// Material::pdf.
+// joint (lobe, direction, wavelength) χ² test of Bsdf::sample against Bsdf::pdf,
+// through the Bsdf a material builds at a hit.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -79,8 +79,9 @@ inline int dirCell(const Chi2Config& c, const Vec3& w) {
   return ic * c.nPhi + ip;
 }
 
-inline Chi2Result jointChi2(const Material& m, TransportMode mode, const Vec3& wKnown, float lKnown, uint64_t seed,
-                            const Chi2Config& c = {}) {
+inline Chi2Result jointChi2(const Material& material, TransportMode mode, const Vec3& wKnown, float lKnown,
+                            uint64_t seed, const Chi2Config& c = {}) {
+  const Bsdf m = localBsdf(material, lKnown);
   const int nL = int(std::lround(c.range.width() / c.binNm));
   const int nDir = c.nCos * c.nPhi;
   // Layout: [fluorescent: dir * nL + l] [elastic: dir] [outside the range: 1]
@@ -121,7 +122,7 @@ inline Chi2Result jointChi2(const Material& m, TransportMode mode, const Vec3& w
           const Event ee = physical(mode, wKnown, lKnown, w, lKnown);
           expected[elasticBase + d] +=
               n * dw * m.pdf(mode, ee.wi, ee.wo, ee.lambdaIn, ee.lambdaOut, SpectralLobe::Elastic).pdf;
-          if (m.fluoresces())  // otherwise every fluorescent cell expects 0
+          if (m.has(BsdfFlags::Fluorescent))  // otherwise every fluorescent cell expects 0
             for (int l = 0; l < nL; ++l)
               for (int k = 0; k < c.subNm; ++k) {
                 const float lambda = float(c.range.min + l * double(c.binNm) + (k + 0.5) * subNm);

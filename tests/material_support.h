@@ -7,6 +7,7 @@
 
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "materials/material.h"
 
 namespace kasha::test {
 
@@ -21,6 +22,13 @@ inline Vec3 randomDirection(Rng& rng) {
     const Vec3 w = sampleUniformSphere(Vec2(rng.uniform(), rng.uniform()));
     if (std::abs(w.z) > 1e-3f) return w;
   }
+}
+
+// The Bsdf a material builds at a hit whose local frame is the world frame (so local directions
+// pass through unchanged), for a path at wavelength `lambda`.
+inline Bsdf localBsdf(const Material& m, float lambda = 550.0f) {
+  const Frame world{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  return m.bsdf(HitContext{Vec2(0.0f), world, world, {&lambda, 1}});
 }
 
 // |a − b| ≤ rel·max(|a|, |b|) + abs

@@ -1,7 +1,12 @@
 #pragma once
 // Independent batch renders of a scene, summed over image regions: the mean and standard error of
 // each region's X, Y and Z (validation.md §4's integrator agreement tests).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "scene/scene.h"
@@ -33,6 +38,21 @@ inline std::vector<BatchStats> regionBatches(const Scene& scene, const Integrato
   std::vector<BatchStats> stats;
   for (const std::vector<double>& s : samples) stats.push_back(batchStats(s));
   return stats;
+}
+
+// Expects every region and channel of `other` within k combined standard errors of `ref`, and the
+// comparison to have power: a combined standard error below rel·|value| + relBrightest·(the
+// brightest reference value).
+inline void expectRegionsAgree(std::span<const BatchStats> ref, std::span<const BatchStats> other, double k,
+                               double rel, double relBrightest) {
+  double brightest = 0.0;
+  for (const BatchStats& s : ref) brightest = std::max(brightest, std::abs(s.mean));
+  ASSERT_GT(brightest, 0.0);
+  for (size_t i = 0; i < ref.size(); ++i) {
+    const double sigma = std::hypot(ref[i].stderr_, other[i].stderr_);
+    EXPECT_LT(sigma, rel * std::abs(ref[i].mean) + relBrightest * brightest) << "too noisy to compare, region/channel " << i;
+    EXPECT_NEAR(other[i].mean, ref[i].mean, k * sigma) << "region/channel " << i;
+  }
 }
 
 }  // namespace kasha::test

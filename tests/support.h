@@ -8,6 +8,14 @@ namespace kasha::test {
 
 inline std::string sourcePath(const std::string& rel) { return std::string(KASHA_SOURCE_DIR) + "/" + rel; }
 
+// A camera, one lambertian material and one emissive rectangle: the smallest valid scene (JSON).
+inline constexpr const char* kMinimalScene = R"({
+  "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0], "fov": 40, "resolution": [8, 8]},
+  "materials": {"white": {"type": "lambertian", "reflectance": 0.5}},
+  "shapes": [{"type": "rectangle", "center": [0, 0, 0], "u": [1, 0, 0], "v": [0, 1, 0],
+              "material": "white", "emission": {"radiance": 1}}]
+})";
+
 // Mean and standard error of the mean of independent batch estimates.
 struct BatchStats {
   double mean = 0.0, stderr_ = 0.0;

@@ -29,6 +29,7 @@
 
 #include "core/checkpoint.h"
 #include "tests/process.h"
+#include "tests/expect_contains.h"
 
 namespace kasha {
 namespace {
@@ -36,9 +37,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using test::runKasha;
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "text: " << (haystack)
 
 // 32×32 pixels: 64 samples per pixel in a pass (at least 65536 samples per pass), so `kSpp` makes
 // kSpp / 64 passes. A fluorescent sphere on a floor under an area light: camera paths and light
@@ -285,8 +283,11 @@ TEST_P(CheckpointCli, MismatchedOrDamagedCheckpointsAreRefused) {
   flipped[bytes.size() / 2] ^= 0x10;
   std::ofstream(dir + "/corrupted.ckpt", std::ios::binary) << flipped;
   expectRefused({"--resume", dir + "/corrupted.ckpt"}, "corrupted");
-  // A checkpoint directory that does not exist is an error before rendering.
-  expectRefused({"--checkpoint", dir + "/no/such/dir.ckpt"}, "output directory does not exist");
+  // A checkpoint directory that does not exist is a command-line mistake found before rendering.
+  const auto noDir = runKasha(renderArgs("resumed", {"--checkpoint", dir + "/no/such/dir.ckpt"}), dir + "/resumed");
+  EXPECT_EQ(noDir.code, 2) << noDir.err;
+  EXPECT_CONTAINS(noDir.err, dir + "/no/such/dir.ckpt: --checkpoint: directory '" + dir + "/no/such' does not exist");
+  EXPECT_FALSE(fs::exists(dir + "/resumed.exr"));
 
   // The same settings resume; a finished render can be continued to more samples.
   r = runKasha(renderArgs("more", {"--resume", ckpt, "--spp", "128"}), dir + "/more");

@@ -16,15 +16,13 @@
 #include <nlohmann/json.hpp>
 
 #include "core/spectrum_csv.h"
+#include "tests/expect_contains.h"
 
 namespace kasha {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "text: " << (haystack)
 
 const std::string kKasha = KASHA_BINARY_DIR "/kasha";
 
@@ -252,9 +250,13 @@ TEST_F(Cli, MatrixRowsConserveEnergy) {
 
 TEST_F(Cli, MatrixBadMaterial) {
   const std::string scene = write("tiny.json", kTinyScene);
-  expectInputError(kasha("matrix '" + scene + "' --material white"), scene,
-                   "/materials/white: not a jung_fluorescent material");
-  expectInputError(kasha("matrix '" + scene + "' --material nothing"), scene, "/materials/nothing: no such material");
+  // The option's value is the mistake: exit code 2, the option and the scene named.
+  Outcome r = kasha("matrix '" + scene + "' --material white");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_CONTAINS(r.err, "kasha: error: --material: white: not a jung_fluorescent material in " + scene);
+  r = kasha("matrix '" + scene + "' --material nothing");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_CONTAINS(r.err, "kasha: error: --material: nothing: no material of that name in " + scene);
 }
 
 }  // namespace

@@ -7,14 +7,12 @@
 #include <fstream>
 
 #include "tests/process.h"
+#include "tests/expect_contains.h"
 
 namespace kasha {
 namespace {
 
 namespace fs = std::filesystem;
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "text: " << (haystack)
 
 class CliOptions : public ::testing::Test {
  protected:

@@ -141,7 +141,7 @@ TEST(LambertianSampling, DensityIntegratesToOne) {
 
 TEST(LambertianEval, ValueIsReflectanceOverPiAndNoTransmission) {
   const Lambertian m(steppedReflectance());
-  EXPECT_FALSE(m.fluoresces());
+  EXPECT_EQ(m.flags(), BsdfFlags::None);
   // By hand: r(450) = 0.2 + 0.6·(50/100) = 0.5; r(500) = 0.4 (right value of the step);
   // r(600) = 0.4 + 0.2·(100/200) = 0.5; r(800) = 0.
   const Vec3 up1 = glm::normalize(Vec3(0.1f, 0.2f, 0.9f)), up2 = glm::normalize(Vec3(-0.6f, 0.3f, 0.2f));

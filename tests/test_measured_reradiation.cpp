@@ -48,7 +48,7 @@ BispectralData synthetic() {
 TEST(MeasuredReradiation, NoiseIsClampedAndBandsBecomeDensities) {
   const BispectralData d = synthetic();
   const MeasuredReradiation m(d, {}, kRange);
-  EXPECT_TRUE(m.fluoresces());
+  EXPECT_TRUE(has(m.flags(), BsdfFlags::Fluorescent));
   // Anti-Stokes and negative values are gone; at the knots F = value / 25 nm.
   EXPECT_EQ(m.F(400.0f, 450.0f), 0.0f);
   EXPECT_EQ(m.F(425.0f, 700.0f), 0.0f);
@@ -59,7 +59,7 @@ TEST(MeasuredReradiation, NoiseIsClampedAndBandsBecomeDensities) {
               f11 = m.F(575.0f, 425.0f);
   EXPECT_TRUE(close(m.F(560.0f, 410.0f), 0.6 * 0.6 * f00 + 0.6 * 0.4 * f01 + 0.4 * 0.6 * f10 + 0.4 * 0.4 * f11, 1e-5));
   // A floor above the band's values removes the fluorescence.
-  EXPECT_FALSE(MeasuredReradiation(d, {0.05f, false}, kRange).fluoresces());
+  EXPECT_FALSE(has(MeasuredReradiation(d, {0.05f, false}, kRange).flags(), BsdfFlags::Fluorescent));
 }
 
 TEST(MeasuredReradiation, Chi2BothModes) {
@@ -144,7 +144,7 @@ TEST(MeasuredReradiation, PostItMeasurementsLoadWithinEnergy) {
     EXPECT_EQ(d.in.size(), 49u);
     EXPECT_EQ(d.out.size(), 41u);
     const MeasuredReradiation m(d, {}, WavelengthRange{300.0f, 830.0f});
-    EXPECT_TRUE(m.fluoresces()) << name;
+    EXPECT_TRUE(has(m.flags(), BsdfFlags::Fluorescent)) << name;
     for (float l = 300.0f; l <= 780.0f; l += 10.0f) EXPECT_LE(m.diagonal(l) + m.A(l), 1.0f + kEnergyTolerance);
   }
 }
@@ -201,7 +201,7 @@ TEST(BispectralFiles, SceneMaterialErrorsNameTheField) {
   for (const auto& [name, text, expected] :
        std::vector<std::tuple<std::string, std::string, std::string>>{
            {"kasha_no_such_material.json", "", "/materials/m/file"},
-           {"kasha_bad_material.json", "{\"type\": ", "not valid JSON"},
+           {"kasha_bad_material.json", "{\"type\": ", "malformed JSON"},
            {"kasha_bad_field.json", "{\"type\": \"zhdanov\", \"passive\": 0.5, \"excitation\": 0, \"emission\": 1, "
                                     "\"gloss\": 2}", "gloss"}}) {
     const std::string path = text.empty() ? name : writeTemp(name, text);

@@ -15,15 +15,13 @@
 #include "core/memory_budget.h"
 #include "scene/scene_loader.h"
 #include "tests/process.h"
+#include "tests/expect_contains.h"
 
 namespace kasha {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "text: " << (haystack)
 
 TEST(MemoryBudget, ParsesSizes) {
   EXPECT_EQ(parseByteSize("65536"), 65536u);

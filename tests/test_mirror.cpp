@@ -65,8 +65,8 @@ TEST(MirrorSampling, ReflectsWithProbabilityOneAndWeightR) {
 
 TEST(MirrorEval, DeltaCoefficientAtTheMirrorDirectionOnly) {
   const Mirror m(reflectance());
-  EXPECT_TRUE(m.purelySpecular());
-  EXPECT_FALSE(m.fluoresces());
+  EXPECT_TRUE(has(m.flags(), BsdfFlags::DeltaDirection));
+  EXPECT_FALSE(has(m.flags(), BsdfFlags::Fluorescent));
   Rng rng(5);
   for (int i = 0; i < 2000; ++i) {
     const Vec3 a = randomDirection(rng), other = randomDirection(rng);

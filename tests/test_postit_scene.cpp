@@ -46,14 +46,8 @@ TEST_P(PostIt, IntegratorsAgreeWithTheLightTracerSlow) {
   const bool uvPt = std::string(sceneName) == "postit_uv.json" && std::string(integratorName) != "bdpt-independent";
   const Estimate other = estimate(*scene, integratorName, uvPt ? 1024 : 128, 12);
   // Precise enough to mean something: 10% of the value, or 2% of the brightest one for dim notes.
-  double brightest = 0.0;
-  for (const test::BatchStats& s : ref) brightest = std::max(brightest, std::abs(s.mean));
-  for (size_t i = 0; i < ref.size(); ++i) {
-    const double sigma = std::hypot(ref[i].stderr_, other[i].stderr_);
-    EXPECT_LT(sigma, 0.1 * std::abs(ref[i].mean) + 0.02 * brightest) << "too noisy to compare, quadrant/channel " << i;
-    // 12 comparisons per pair: 4.5σ keeps the chance of a false alarm below 1e-4.
-    EXPECT_NEAR(other[i].mean, ref[i].mean, 4.5 * sigma) << "quadrant/channel " << i;
-  }
+  // 12 comparisons per pair: 4.5σ keeps the chance of a false alarm below 1e-4.
+  test::expectRegionsAgree(ref, other, 4.5, 0.1, 0.02);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, PostIt,

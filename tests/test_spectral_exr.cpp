@@ -3,6 +3,7 @@
 // wavelength spellings, integration to XYZ, checkpoints with spectral sums, and the CLI
 // (--spectral-bins / --spectral-step, metrics against a spectral-only reference, resume).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <ImfChannelList.h>
@@ -12,6 +13,7 @@
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +29,7 @@
 #include "core/spectral_exr.h"
 #include "core/spectral_film.h"
 #include "integrators/comparison.h"
+#include "tests/expect_contains.h"
 #include "tests/process.h"
 
 namespace kasha {
@@ -189,6 +192,39 @@ TEST_F(SpectralExr, BadFilesNameTheFileAndChannel) {
   }
 }
 
+// Issue 15's rules for every file read: regular files only (a FIFO neither blocks nor is read),
+// the decoded channels counted against the memory limit before decoding, non-finite values refused.
+TEST_F(SpectralExr, ReaderFollowsTheFileRules) {
+  const auto message = [](const auto& read) -> std::string {
+    try {
+      read();
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  const std::string fifo = dir + "/fifo.exr";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_CONTAINS(message([&] { readSpectralExr(fifo); }), "fifo.exr: cannot open image file");
+  EXPECT_CONTAINS(message([&] { readExrXyz(fifo); }), "not a regular file");
+
+  const std::string big = dir + "/big.exr";  // 100 channels of 4x4 pixels: 16·(400 + 12) bytes
+  std::vector<std::string> names;
+  for (int l = 400; l < 500; ++l) names.push_back(emissiveChannelName(float(l)));
+  writeChannels(big, names, std::vector<float>(16, 1.0f), 4);
+  EXPECT_EQ(readSpectralExr(big, 16 * 412).wavelengths.size(), 100u);
+  EXPECT_CONTAINS(message([&] { readSpectralExr(big, 16 * 412 - 1); }), "big.exr: ");
+  EXPECT_CONTAINS(message([&] { readExrXyz(big, 16 * 412 - 1); }), "memory limit");
+
+  const std::string nan = dir + "/nan.exr";
+  writeChannels(nan, {"S0.500nm"}, {1.0f, std::nanf(""), 1.0f, 1.0f}, 2);
+  EXPECT_EQ(message([&] { readExrXyz(nan); }), nan + ": S0.500nm: pixel (1, 0) is not finite");
+  // Finite radiance whose integral is not: z̄ integrates to a little more than ȳ (the normalisation).
+  const std::string huge = dir + "/huge.exr";
+  writeChannels(huge, {"S0.360nm", "S0.830nm"}, {std::numeric_limits<float>::max()});
+  EXPECT_EQ(message([&] { readExrXyz(huge); }), huge + ": pixel (0, 0) integrates to a non-finite XYZ");
+}
+
 TEST_F(SpectralExr, CheckpointKeepsTheSpectralSums) {
   const Films f(3);
   const std::string path = dir + "/c.ckpt";
@@ -231,7 +267,7 @@ TEST_F(SpectralExr, CommandLine) {
   EXPECT_NE(r.err.find("spectral_bins"), std::string::npos) << r.err;
 
   r = test::runKasha({"render", scene, "-q", "--no-png", "--spectral-step", "7", "-o", part}, dir + "/e1");
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 2);  // a command-line mistake
   EXPECT_NE(r.err.find("--spectral-step: spectral step: 7 nm does not divide"), std::string::npos) << r.err;
   r = test::runKasha({"render", scene, "-q", "--no-png", "--spectral-bins", "100", "--memory-limit", "16K", "-o", part},
                      dir + "/e3");

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/spectrum.h"
 #include "core/spectrum_csv.h"
+#include "tests/expect_contains.h"
 
 namespace kasha {
 namespace {
@@ -64,9 +65,6 @@ std::string csvError(const std::string& text, const std::string& column, std::st
   *path = writeFile("bad.csv", text);
   return inputError([&] { spectrumFromTable(readSpectralCsv(*path), column); });
 }
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "message: " << (haystack)
 
 // ---------------------------------------------------------------------------------------------
 // Good files
@@ -149,7 +147,7 @@ TEST(SpectralCsvErrors, MissingFile) {
   const std::string path = tempDir() + "/does_not_exist.csv";
   const std::string msg = inputError([&] { readSpectralCsv(path); });
   EXPECT_EQ(msg.rfind(path, 0), 0u) << msg;
-  EXPECT_CONTAINS(msg, "cannot open file");
+  EXPECT_CONTAINS(msg, "cannot open spectrum file (No such file or directory)");
 }
 
 TEST(SpectralCsvErrors, NoHeader) {

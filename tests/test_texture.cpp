@@ -6,11 +6,13 @@
 
 #include <ImfRgbaFile.h>
 #include <png.h>
+#include <zlib.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "scene/scene_loader.h"
 #include "core/texture.h"
 #include "integrators/integrator_factory.h"
@@ -18,19 +20,16 @@
 #include "materials/jung_bbrrdf.h"
 #include "materials/material_json.h"
 #include "materials/textured_jung.h"
+#include "temp_dir.h"
 
 namespace kasha {
 namespace {
 
 namespace fs = std::filesystem;
 
-class TextureFiles : public ::testing::Test {
+class TextureFiles : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir = (fs::path(::testing::TempDir()) / ("kasha_texture." + std::to_string(getpid()))).string();
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
+  TextureFiles() : TempDirTest("texture") {}
 
   // RGBA bytes, row 0 at the top.
   std::string writePng(const std::string& name, int w, int h, const std::vector<unsigned char>& rgba) {
@@ -58,28 +57,85 @@ class TextureFiles : public ::testing::Test {
     return dir + "/" + name;
   }
 
-  std::string dir;
 };
 
 // ---------------------------------------------------------------------------------------------
 // Lookup
 
+// The centre of texel (x, y) of a w×h image.
+Vec2 centre(int x, int y, int w, int h) { return Vec2((x + 0.5f) / float(w), 1.0f - (y + 0.5f) / float(h)); }
+
 TEST(TextureLookup, NearestTexelOrientationAndRepeat) {
   // 3×2: row 0 (top) = 0.1 0.2 0.3, row 1 (bottom) = 0.4 0.5 0.6
-  const ScalarTexture t(3, 2, {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f});
+  const ImageTexture t(3, 2, 1, {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f}, TextureWrap::Repeat, TextureFilter::Nearest);
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 3; ++x) {
-      const Vec2 centre((x + 0.5f) / 3.0f, 1.0f - (y + 0.5f) / 2.0f);
+      const Vec2 c = centre(x, y, 3, 2);
       const float expect = 0.1f * float(1 + x + 3 * y);
-      EXPECT_FLOAT_EQ(t.lookup(centre), expect) << x << ", " << y;
+      EXPECT_FLOAT_EQ(t.scalar(c), expect) << x << ", " << y;
       // Anywhere inside the texel, and repeated by whole periods in both directions.
-      EXPECT_FLOAT_EQ(t.lookup(centre + Vec2(0.16f, -0.24f)), expect);
-      EXPECT_FLOAT_EQ(t.lookup(centre + Vec2(2.0f, -3.0f)), expect);
-      EXPECT_FLOAT_EQ(t.lookup(centre + Vec2(-1.0f, 5.0f)), expect);
+      EXPECT_FLOAT_EQ(t.scalar(c + Vec2(0.16f, -0.24f)), expect);
+      EXPECT_FLOAT_EQ(t.scalar(c + Vec2(2.0f, -3.0f)), expect);
+      EXPECT_FLOAT_EQ(t.scalar(c + Vec2(-1.0f, 5.0f)), expect);
     }
-  EXPECT_FLOAT_EQ(t.lookup(Vec2(0.0f, 0.0f)), 0.4f) << "(0, 0) is the bottom-left corner";
-  EXPECT_FLOAT_EQ(t.lookup(Vec2(0.999f, 0.999f)), 0.3f) << "(1, 1) is the top-right corner";
-  EXPECT_FLOAT_EQ(t.lookup(Vec2(std::nanf(""), 0.7f)), t.lookup(Vec2(0.0f))) << "non-finite uv: no crash";
+  EXPECT_FLOAT_EQ(t.scalar(Vec2(0.0f, 0.0f)), 0.4f) << "(0, 0) is the bottom-left corner";
+  EXPECT_FLOAT_EQ(t.scalar(Vec2(0.999f, 0.999f)), 0.3f) << "(1, 1) is the top-right corner";
+  EXPECT_FLOAT_EQ(t.scalar(Vec2(std::nanf(""), 0.7f)), t.scalar(Vec2(0.0f))) << "non-finite uv: no crash";
+}
+
+// Bilinear filtering reproduces texel values at texel centres and a function linear in (x, y)
+// exactly everywhere between the centres (the closed form of bilinear interpolation).
+TEST(TextureLookup, BilinearIsExactOnLinearFunctions) {
+  const int w = 5, h = 4;
+  const auto f = [](float x, float y) { return 0.1f + 0.1f * x + 0.05f * y; };  // x, y in texel units
+  std::vector<float> texels;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) texels.push_back(f(float(x), float(y)));
+  const ImageTexture t(w, h, 1, texels, TextureWrap::Clamp, TextureFilter::Bilinear);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) EXPECT_FLOAT_EQ(t.scalar(centre(x, y, w, h)), f(float(x), float(y)));
+  for (const Vec2 p : {Vec2(1.3f, 2.7f), Vec2(0.5f, 0.5f), Vec2(3.99f, 0.01f), Vec2(2.25f, 1.75f)}) {
+    const Vec2 uv((p.x + 0.5f) / w, 1.0f - (p.y + 0.5f) / h);
+    EXPECT_NEAR(t.scalar(uv), f(p.x, p.y), 1e-6f) << p.x << ", " << p.y;
+  }
+  // Half-way between two texels, the mean; at a corner of four, the mean of four.
+  const ImageTexture q(2, 2, 1, {0.0f, 0.2f, 0.4f, 1.0f}, TextureWrap::Clamp, TextureFilter::Bilinear);
+  EXPECT_FLOAT_EQ(q.scalar(Vec2(0.5f, 0.75f)), 0.1f);
+  EXPECT_FLOAT_EQ(q.scalar(Vec2(0.5f, 0.5f)), 0.4f);
+}
+
+// Wrap modes on a 4×1 strip 0.1 0.2 0.3 0.4: texel index −1, 4 and 5, and the seam at u = 0.
+TEST(TextureLookup, WrapModes) {
+  const std::vector<float> strip = {0.1f, 0.2f, 0.3f, 0.4f};
+  const auto at = [&](TextureWrap w, TextureFilter f, float u) { return ImageTexture(4, 1, 1, strip, w, f).scalar(Vec2(u, 0.5f)); };
+  const float left = -0.125f, right = 1.125f, right2 = 1.375f;  // centres of texels −1, 4, 5
+  for (const TextureFilter f : {TextureFilter::Nearest, TextureFilter::Bilinear}) {
+    EXPECT_FLOAT_EQ(at(TextureWrap::Repeat, f, left), 0.4f);
+    EXPECT_FLOAT_EQ(at(TextureWrap::Repeat, f, right), 0.1f);
+    EXPECT_FLOAT_EQ(at(TextureWrap::Repeat, f, right2), 0.2f);
+    EXPECT_FLOAT_EQ(at(TextureWrap::Clamp, f, left), 0.1f);
+    EXPECT_FLOAT_EQ(at(TextureWrap::Clamp, f, right), 0.4f);
+    EXPECT_FLOAT_EQ(at(TextureWrap::Clamp, f, right2), 0.4f);
+    EXPECT_FLOAT_EQ(at(TextureWrap::Mirror, f, left), 0.1f);
+    EXPECT_FLOAT_EQ(at(TextureWrap::Mirror, f, right), 0.4f);
+    EXPECT_FLOAT_EQ(at(TextureWrap::Mirror, f, right2), 0.3f);
+    EXPECT_FLOAT_EQ(at(TextureWrap::Mirror, f, -1.375f), 0.3f) << "period 8 texels: texel −6 is texel 2";
+    EXPECT_FLOAT_EQ(at(TextureWrap::Repeat, f, 1024.375f), 0.2f) << "large uv";
+    EXPECT_FLOAT_EQ(at(TextureWrap::Mirror, f, -1023.375f), 0.3f) << "large uv";
+  }
+  // At u = 0 bilinear filtering blends texel 0 with texel −1, which the wrap mode decides.
+  EXPECT_FLOAT_EQ(at(TextureWrap::Repeat, TextureFilter::Bilinear, 0.0f), 0.25f);
+  EXPECT_FLOAT_EQ(at(TextureWrap::Clamp, TextureFilter::Bilinear, 0.0f), 0.1f);
+  EXPECT_FLOAT_EQ(at(TextureWrap::Mirror, TextureFilter::Bilinear, 0.0f), 0.1f);
+}
+
+TEST(TextureLookup, RgbTexelsFilterPerChannel) {
+  const ImageTexture t(2, 1, 3, {1.0f, 0.0f, 0.2f, 0.0f, 1.0f, 0.4f}, TextureWrap::Clamp, TextureFilter::Bilinear);
+  const Vec3 mid = t.rgb(Vec2(0.5f, 0.5f));
+  EXPECT_FLOAT_EQ(mid.x, 0.5f);
+  EXPECT_FLOAT_EQ(mid.y, 0.5f);
+  EXPECT_FLOAT_EQ(mid.z, 0.3f);
+  EXPECT_EQ(t.rgb(Vec2(0.25f, 0.5f)), Vec3(1.0f, 0.0f, 0.2f));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -88,27 +144,70 @@ TEST(TextureLookup, NearestTexelOrientationAndRepeat) {
 TEST_F(TextureFiles, PngChannelsAreDataValues) {
   // 2×1: (255, 0, 51, 255) (0, 102, 204, 0)
   const std::string p = writePng("a.png", 2, 1, {255, 0, 51, 255, 0, 102, 204, 0});
-  const auto at = [&](TextureChannel c, int x) { return ScalarTexture::load(p, c).lookup(Vec2((x + 0.5f) / 2, 0.5f)); };
+  TextureLoader loader(kDefaultMemoryLimit);
+  const auto at = [&](TextureChannel c, int x) {
+    return loader.load(p, c, TextureWrap::Repeat, TextureFilter::Nearest)->scalar(Vec2((x + 0.5f) / 2, 0.5f));
+  };
   EXPECT_FLOAT_EQ(at(TextureChannel::R, 0), 1.0f);
   EXPECT_FLOAT_EQ(at(TextureChannel::G, 1), 0.4f);
   EXPECT_FLOAT_EQ(at(TextureChannel::B, 0), 0.2f);
   EXPECT_FLOAT_EQ(at(TextureChannel::A, 1), 0.0f);
   EXPECT_FLOAT_EQ(at(TextureChannel::Mean, 1), (0.0f + 0.4f + 0.8f) / 3.0f);
-  EXPECT_EQ(ScalarTexture::load(p, TextureChannel::R).width(), 2);
+  const auto rgb = loader.load(p, TextureChannel::Rgb, TextureWrap::Repeat, TextureFilter::Nearest);
+  EXPECT_EQ(rgb->channels(), 3);
+  EXPECT_EQ(rgb->rgb(Vec2(0.75f, 0.5f)), Vec3(0.0f, 0.4f, 0.8f));
+  EXPECT_EQ(loader.load(p, TextureChannel::R, TextureWrap::Repeat, TextureFilter::Nearest).get(),
+            loader.load(p, TextureChannel::R, TextureWrap::Repeat, TextureFilter::Nearest).get())
+      << "the same texture is loaded once";
+  EXPECT_EQ(loader.bytes(), (5 * 2 + 3 * 2) * sizeof(float)) << "five one-channel textures and one RGB of 2 pixels";
 }
 
 TEST_F(TextureFiles, ExrValuesAndRange) {
   const std::string p = writeExr("a.exr", 2, 2, {0.0f, 0.25f, 0.5f, 1.0f});
-  const ScalarTexture t = ScalarTexture::load(p, TextureChannel::Mean);
-  EXPECT_FLOAT_EQ(t.lookup(Vec2(0.75f, 0.75f)), 0.25f);
-  EXPECT_FLOAT_EQ(t.lookup(Vec2(0.25f, 0.25f)), 0.5f);
+  TextureLoader loader(kDefaultMemoryLimit);
+  const auto t = loader.load(p, TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Nearest);
+  EXPECT_FLOAT_EQ(t->scalar(Vec2(0.75f, 0.75f)), 0.25f);
+  EXPECT_FLOAT_EQ(t->scalar(Vec2(0.25f, 0.25f)), 0.5f);
   const std::string bad = writeExr("bad.exr", 2, 1, {0.5f, 1.5f});
   try {
-    ScalarTexture::load(bad, TextureChannel::Mean);
+    loader.load(bad, TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Bilinear);
     ADD_FAILURE() << "no error";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()), "value 1.500000 at pixel (1, 0) is outside [0, 1]");
   }
+}
+
+// The memory limit is checked from the header, before decoding: a PNG whose header claims
+// 40000×40000 pixels (6.4 GB of RGB floats) but holds the data of one pixel is refused for its
+// size, not for its data. Several textures count together.
+TEST_F(TextureFiles, MemoryLimitFromTheHeader) {
+  const std::string p = writePng("big.png", 1, 1, {255, 255, 255, 255});
+  std::string bytes;
+  {
+    std::ifstream in(p, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  ASSERT_EQ(bytes.substr(12, 4), "IHDR");
+  for (int k = 0; k < 2; ++k) {  // width and height, big-endian
+    const uint32_t v = 40000;
+    for (int b = 0; b < 4; ++b) bytes[size_t(16 + 4 * k + b)] = char((v >> (24 - 8 * b)) & 0xff);
+  }
+  const uLong crc = crc32(0, reinterpret_cast<const Bytef*>(bytes.data() + 12), 17);  // type + data
+  for (int b = 0; b < 4; ++b) bytes[size_t(29 + b)] = char((crc >> (24 - 8 * b)) & 0xff);
+  std::ofstream(p, std::ios::binary) << bytes;
+  try {
+    TextureLoader(uint64_t(1) << 30).load(p, TextureChannel::Rgb, TextureWrap::Repeat, TextureFilter::Bilinear);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), p + ": decoding this texture (40000×40000 pixels) besides the scene's textures before it "
+                                     "(0 bytes) needs 23.8 GiB, more than the memory limit of 1.00 GiB (raise it with "
+                                     "--memory-limit)");
+  }
+  // Two 64×64 textures of 16 KiB (+ 16 KiB while decoding) each fit 40 KiB one by one, not together.
+  const std::string a = writePng("a.png", 64, 64, std::vector<unsigned char>(64 * 64 * 4, 128));
+  TextureLoader loader(40 << 10);
+  EXPECT_NO_THROW(loader.load(a, TextureChannel::R, TextureWrap::Repeat, TextureFilter::Bilinear));
+  EXPECT_THROW(loader.load(a, TextureChannel::G, TextureWrap::Repeat, TextureFilter::Bilinear), InputError);
 }
 
 // Errors in a scene's material name the scene file, the field and the image file.
@@ -126,14 +225,12 @@ TEST_F(TextureFiles, ClearErrors) {
     return "no error";
   };
   const std::string at = "scene.json: /materials/ink/";
-  EXPECT_EQ(error({{"c_texture", "missing.png"}}).rfind(at + "c_texture: '" + dir + "/missing.png': cannot read PNG", 0),
-            0u);
+  EXPECT_EQ(error({{"c_texture", "missing.png"}}),
+            at + "c_texture: " + dir + "/missing.png: cannot open texture (No such file or directory)");
   writeText("garbage.png", "not an image");
-  EXPECT_EQ(error({{"c_texture", "garbage.png"}}).rfind(at + "c_texture: '" + dir + "/garbage.png': cannot read PNG", 0),
-            0u);
+  EXPECT_EQ(error({{"c_texture", "garbage.png"}}).rfind(at + "c_texture: " + dir + "/garbage.png: cannot read PNG", 0), 0u);
   writeText("garbage.exr", "not an image");
-  EXPECT_EQ(error({{"Q_texture", "garbage.exr"}}).rfind(at + "Q_texture: '" + dir + "/garbage.exr': cannot read OpenEXR", 0),
-            0u);
+  EXPECT_EQ(error({{"Q_texture", "garbage.exr"}}).rfind(at + "Q_texture: " + dir + "/garbage.exr: cannot read OpenEXR", 0), 0u);
   EXPECT_EQ(error({{"c_texture", "ink.jpg"}}),
             at + "c_texture: '" + dir + "/ink.jpg': unknown image format '.jpg' (expected .png or .exr)");
   writePng("two.png", 2, 1, std::vector<unsigned char>(8, 255));
@@ -207,6 +304,26 @@ TEST_F(TextureFiles, MeshWithoutTextureCoordinatesIsAnError) {
   EXPECT_TRUE(scene->materials[0]->textured());
 }
 
+// A scene's textures count against `--memory-limit` (SceneLoadOptions::memoryLimit): the error
+// names the scene, the field and the image.
+TEST_F(TextureFiles, SceneMemoryLimit) {
+  writePng("ink.png", 64, 64, std::vector<unsigned char>(64 * 64 * 4, 128));
+  writeText("ink.json", sceneJson(kJung + R"(, "c_texture": "ink.png"})", kRectangle));
+  SceneLoadOptions options;
+  options.memoryLimit = 16 << 10;
+  try {
+    loadScene(dir + "/ink.json", options);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + "/ink.json: /materials/paper/c_texture: " + dir +
+                                         "/ink.png: decoding this texture (64×64 pixels) besides the scene's textures "
+                                         "before it (0 bytes) needs 32.0 KiB, more than the memory limit of 16.0 KiB "
+                                         "(raise it with --memory-limit)");
+  }
+  options.memoryLimit = 32 << 10;
+  EXPECT_NO_THROW(loadScene(dir + "/ink.json", options));
+}
+
 std::vector<Vec3> renderFilm(const std::string& path, const std::string& integratorName) {
   const auto scene = loadScene(path);
   const std::unique_ptr<Integrator> integrator = makeIntegrator(integratorName, *scene, scene->render);
@@ -260,7 +377,7 @@ TEST(FluorescentInkScene, InkAndPaperResolveAtHits) {
     const Vec3 p(-0.45f + 0.4f * u, -0.1f + 0.2f * v, 1.0f);  // the left sheet spans 0.4 × 0.2
     const std::optional<Hit> h = scene->accel->intersect(Ray{p, Vec3(0, 0, -1)});
     EXPECT_TRUE(h);
-    const auto* j = dynamic_cast<const JungBbrrdf*>(&scene->material(*h));
+    const auto* j = dynamic_cast<const JungBbrrdf*>(&scene->bsdf(*h, {}).model());
     EXPECT_NE(j, nullptr);
     return j ? j->c() : -1.0f;
   };

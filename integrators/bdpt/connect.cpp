@@ -24,10 +24,10 @@ double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathV
 // `camNext`: the spectral event (lobe, λ_in given λ_out) and the direction.
 double cameraSide(const Scene& scene, const PathVertex& at, const PathVertex& camNext, const PathVertex& target,
                   SpectralLobe lobe, float lambdaIn, float lambdaOut) {
-  const Frame f = Frame::fromNormal(at.n);
+  const Bsdf& f = *at.bsdf;
   const Vec3 wo = f.toLocal(towards(at, camNext)), wi = f.toLocal(towards(at, target));
-  const float pdf = at.material->spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe) *
-                    at.material->directionPdf(TransportMode::Radiance, wo, wi, lobe, lambdaIn, lambdaOut);
+  const float pdf = at.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe) *
+                    at.bsdf->directionPdf(TransportMode::Radiance, wo, wi, lobe, lambdaIn, lambdaOut);
   return toArea(scene, pdf, at, target);
 }
 
@@ -35,10 +35,10 @@ double cameraSide(const Scene& scene, const PathVertex& at, const PathVertex& ca
 // `lightPrev`.
 double lightSide(const Scene& scene, const PathVertex& at, const PathVertex& lightPrev, const PathVertex& target,
                  SpectralLobe lobe, float lambdaIn, float lambdaOut) {
-  const Frame f = Frame::fromNormal(at.n);
+  const Bsdf& f = *at.bsdf;
   const Vec3 wi = f.toLocal(towards(at, lightPrev)), wo = f.toLocal(towards(at, target));
-  const float pdf = at.material->spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe) *
-                    at.material->directionPdf(TransportMode::Importance, wi, wo, lobe, lambdaIn, lambdaOut);
+  const float pdf = at.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe) *
+                    at.bsdf->directionPdf(TransportMode::Importance, wi, wo, lobe, lambdaIn, lambdaOut);
   return toArea(scene, pdf, at, target);
 }
 
@@ -79,14 +79,14 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
 
 // Camera-side spectral density of x_1's event (needed by next-event estimation's density).
 double specCamera(const PathVertex& x1, SpectralLobe lobe, float lambda0, float lambda1) {
-  return x1.material->spectralPdf(TransportMode::Radiance, lambda1, lambda0, lobe);
+  return x1.bsdf->spectralPdf(TransportMode::Radiance, lambda1, lambda0, lobe);
 }
 
 // Light-side spectral density of x_{k−1}'s event, which the t = 1 strategy samples: x_{k−1} is
 // the camera subpath's first hit C[1], with its own sampled event unless it is a connection
 // vertex (then `lobe`/`lambdaIn` give the connection's).
 double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn) {
-  return c1.material->spectralPdf(TransportMode::Importance, lambdaIn, c1.lambda, lobe);
+  return c1.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, c1.lambda, lobe);
 }
 
 // Records a strategy's share of the sample at the camera sample's pixel (strategies with t ≥ 2).
@@ -113,7 +113,7 @@ float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
   if (e.light < 0) return 0.0f;
   const PathVertex& next = C[size_t(t - 2)];
   const float Le = e.kind == Kind::Infinite
-                       ? c.scene.environment()->Le(e.lambda)
+                       ? c.scene.environment()->Le(e.lambda, -e.dir)
                        : static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission->eval(
                              e.lambda, e.n, towards(e, next));
   if (!(Le > 0.0f)) return 0.0f;
@@ -153,10 +153,10 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampl
     x0.p = x1.p + ls->wi * ls->dist;
     x0.n = ls->n;
   }
-  const Frame f = Frame::fromNormal(x1.n);
+  const Bsdf& f = *x1.bsdf;
   const PathVertex& x2 = C[size_t(t - 2)];
   const Vec3 wi = f.toLocal(ls->wi), wo = f.toLocal(towards(x1, x2));
-  const float fx = x1.material->eval(TransportMode::Radiance, wi, wo, lambda0, x1.lambda, x1.lobe);
+  const float fx = x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda0, x1.lambda, x1.lobe);
   if (!(fx > 0.0f) || !visible(c, x1, x0)) return 0.0f;
   FullPath fp = layout(c, nullptr, 0, C, t);  // x_1 … x_k; prepend x_0
   fp.v.insert(fp.v.begin(), FullVertex{});
@@ -174,7 +174,7 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampl
 float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t) {
   const PathVertex& a = L[0];
   const PathVertex& b = C[size_t(t - 1)];
-  if (a.kind != Kind::Light || b.kind != Kind::Surface || !b.connectible() || !b.material->fluoresces()) return 0.0f;
+  if (a.kind != Kind::Light || b.kind != Kind::Surface || !b.connectible() || !b.bsdf->has(BsdfFlags::Fluorescent)) return 0.0f;
   const PathVertex& bNext = C[size_t(t - 2)];
   const Vec3 d = b.p - a.p;
   const float dist2 = glm::dot(d, d);
@@ -182,10 +182,10 @@ float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, con
   const Vec3 w = d / std::sqrt(dist2);
   const float Le = c.scene.lights[size_t(a.light)]->emittedTowards(a.lambda, a.n, w);
   if (!(Le > 0.0f)) return 0.0f;
-  const Frame fb = Frame::fromNormal(b.n);
+  const Bsdf& fb = *b.bsdf;
   const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
   // x_1 bridges the light's wavelength to the camera's with its fluorescent lobe.
-  const float f = b.material->eval(TransportMode::Radiance, bWi, bWo, a.lambda, b.lambda, SpectralLobe::Fluorescent);
+  const float f = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, a.lambda, b.lambda, SpectralLobe::Fluorescent);
   if (!(f > 0.0f)) return 0.0f;
   const float cosA = glm::dot(a.n, a.n) > 0.0f ? std::abs(glm::dot(a.n, w)) : 1.0f;
   const float G = cosA * std::abs(bWi.z) / dist2;
@@ -216,7 +216,7 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.0f)) return 0.0f;
   const Vec3 w = d / std::sqrt(dist2);  // from a to b
-  const Frame fa = Frame::fromNormal(a.n), fb = Frame::fromNormal(b.n);
+  const Bsdf &fa = *a.bsdf, &fb = *b.bsdf;
   const Vec3 aWi = fa.toLocal(towards(a, aPrev)), aWo = fa.toLocal(w);
   const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
   const float G = std::abs(aWo.z) * std::abs(bWi.z) / dist2;
@@ -234,9 +234,9 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
   if (c.walk.mode == WavelengthMode::Shared) {
     pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, c.lambdaCamera, c.lambdaCamera, Variant::kStandard};
   } else {
-    if (a.material->fluoresces())
+    if (a.bsdf->has(BsdfFlags::Fluorescent))
       pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, b.lambda, b.lambda, Variant::kStandard};
-    if (b.material->fluoresces())
+    if (b.bsdf->has(BsdfFlags::Fluorescent))
       pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda, a.lambda, Variant::kStandard};
     if (c.bandwidth > 0.0f && std::abs(a.lambda - b.lambda) < c.bandwidth)
       pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kMollified};
@@ -245,8 +245,8 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
   bool checked = false, unoccluded = false;
   for (int i = 0; i < n; ++i) {
     const Pair& p = pairs[i];
-    const float fA = a.material->eval(TransportMode::Importance, aWi, aWo, a.lambda, p.lambdaA, p.la);
-    const float fB = b.material->eval(TransportMode::Radiance, bWi, bWo, p.lambdaB, b.lambda, p.lb);
+    const float fA = a.bsdf->eval(TransportMode::Importance, aWi, aWo, a.lambda, p.lambdaA, p.la);
+    const float fB = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, p.lambdaB, b.lambda, p.lb);
     if (!(fA > 0.0f && fB > 0.0f)) continue;
     FullPath fp = layout(c, &L, s, C, t);
     fp.v[size_t(s - 1)].lobe = p.la;
@@ -314,9 +314,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
     // responds at the wavelength it chose.
     if (!a.eventSampled) return;
     const PathVertex& aPrev = L[size_t(s - 2)];
-    const Frame f = Frame::fromNormal(a.n);
+    const Bsdf& f = *a.bsdf;
     const Vec3 wi = f.toLocal(towards(a, aPrev)), wo = f.toLocal(conn->wi);
-    const float fa = a.material->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, a.lobe);
+    const float fa = a.bsdf->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, a.lobe);
     if (!(fa > 0.0f)) return;
     value = a.beta * fa * std::abs(wo.z) / a.spectralPdf;
     fp.v[size_t(k - 1)].lobe = a.lobe;

@@ -4,8 +4,10 @@
 // other subpath would have; both include the spectral event at the neighbour that sampled it
 // (lobe probability, and the per-nm density when that lobe is fluorescent), and are per unit
 // area (per steradian for a light at infinity).
+#include <optional>
+
 #include "core/math.h"
-#include "materials/material.h"
+#include "materials/bsdf.h"
 
 namespace kasha::bdpt {
 
@@ -14,7 +16,7 @@ struct PathVertex {
   Vec3 p{0.0f};
   Vec3 n{0.0f};            // geometric normal; zero for the camera and point/spot lights
   Vec3 dir{0.0f};          // Infinite vertices: the direction light travels
-  const Material* material = nullptr;
+  std::optional<Bsdf> bsdf;  // surface vertices: the scattering function there
   int light = -1;          // index of the light this vertex lies on (light vertex, or an emitter hit)
   float beta = 0.0f;       // subpath throughput up to this vertex, its own scattering excluded
   // The subpath's wavelength at this vertex: arriving from the previous light-subpath vertex, or
@@ -32,7 +34,7 @@ struct PathVertex {
 
   bool onSurface() const { return kind == Kind::Surface; }
   // Whether a connection can end here: surfaces with a non-delta lobe, lights, the camera.
-  bool connectible() const { return kind != Kind::Surface || !material->purelySpecular(); }
+  bool connectible() const { return kind != Kind::Surface || !bsdf->has(BsdfFlags::DeltaDirection); }
 };
 
 // Area density at `to` of a solid-angle density at `from` (|cos| at `to` / d²); a vertex without a

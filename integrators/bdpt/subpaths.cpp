@@ -32,7 +32,7 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     v.kind = PathVertex::Kind::Surface;
     v.p = hit->p;
     v.n = hit->ng;
-    v.material = &scene.material(*hit);
+    v.bsdf = scene.bsdf(*hit, {&lambda, 1});
     v.light = scene.shapeLight[hit->shape];
     v.beta = beta;
     v.lambda = lambda;
@@ -45,9 +45,9 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     // emitter hit), light vertices while a path through the next one can end within maxDepth.
     if (surfaces > ws.maxDepth) return;
     PathVertex& cur = path.back();
-    const Frame frame = Frame::fromNormal(cur.n);
-    const Vec3 wKnown = frame.toLocal(-ray.d);
-    const SpectralChoice sc = cur.material->sampleSpectral(mode, lambda, rng.uniform());
+    const Bsdf& bsdf = *cur.bsdf;
+    const Vec3 wKnown = bsdf.toLocal(-ray.d);
+    const SpectralChoice sc = bsdf.sampleSpectral(mode, lambda, rng.uniform());
     if (sc.pdf <= 0.0f) return;
     cur.lobe = sc.lobe;
     cur.lambdaNext = sc.lambda;
@@ -57,14 +57,14 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     if (!camera && ws.mode == WavelengthMode::Shared && sc.lobe == SpectralLobe::Fluorescent) return;
     const float lambdaIn = camera ? sc.lambda : lambda, lambdaOut = camera ? lambda : sc.lambda;
     const std::optional<DirectionSample> ds =
-        cur.material->sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, rng.uniform2());
+        bsdf.sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) return;
     const Vec3 wi = camera ? ds->w : wKnown, wo = camera ? wKnown : ds->w;
-    const float f = cur.material->eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
+    const float f = bsdf.eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
     cur.specular = ds->specular;
     const float pdfFwd = sc.pdf * ds->pdf;
-    const float pdfRev = cur.material->spectralPdf(flip(mode), sc.lambda, lambda, sc.lobe) *
-                         cur.material->directionPdf(flip(mode), ds->w, wKnown, sc.lobe, lambdaIn, lambdaOut);
+    const float pdfRev = bsdf.spectralPdf(flip(mode), sc.lambda, lambda, sc.lobe) *
+                         bsdf.directionPdf(flip(mode), ds->w, wKnown, sc.lobe, lambdaIn, lambdaOut);
     // The other side's density of the previous vertex. A delta light or the pinhole cannot be
     // reached by the other side at all.
     PathVertex& before = path[path.size() - 2];
@@ -77,7 +77,7 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     if (!(beta > 0.0f)) return;
     lambda = sc.lambda;
     pdfSA = pdfFwd;
-    const Vec3 w = frame.toWorld(ds->w);
+    const Vec3 w = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(cur.p, cur.n, w), w};
     if (surfaces >= ws.rrDepth) {  // Russian roulette against the starting throughput
       const float q = std::min(1.0f, beta / beta0);

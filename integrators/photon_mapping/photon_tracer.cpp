@@ -31,19 +31,18 @@ void tracePath(const Scene& scene, const PhotonTracing& s, Sampler& rng, std::ve
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++counter.closest;
     if (!hit) break;
-    const Material& mat = scene.material(*hit);
-    const Frame frame = Frame::fromNormal(hit->ng);
-    const Vec3 wi = frame.toLocal(-ray.d);
-    if (!mat.purelySpecular()) out.push_back({{hit->p.x, hit->p.y, hit->p.z}, {wi.x, wi.y, wi.z}, lambda, beta, uint32_t(depth)});
+    const Bsdf bsdf = scene.bsdf(*hit, {&lambda, 1});
+    const Vec3 wi = bsdf.toLocal(-ray.d);
+    if (!bsdf.has(BsdfFlags::DeltaDirection)) out.push_back({{hit->p.x, hit->p.y, hit->p.z}, {wi.x, wi.y, wi.z}, lambda, beta, uint32_t(depth)});
     if (depth == s.maxDepth) break;
     // Both stages in Importance mode: lobe and λ_o (Jung18 eq. 6), then the direction.
     const std::optional<ScatterSample> ss =
-        mat.sample(TransportMode::Importance, wi, lambda, rng.uniform3());
+        bsdf.sample(TransportMode::Importance, wi, lambda, rng.uniform3());
     if (!ss) break;
     beta *= ss->f * std::abs(ss->w.z) / ss->pdf;
     if (!(beta > 0.0f)) break;
     lambda = ss->lambda;
-    const Vec3 w = frame.toWorld(ss->w);
+    const Vec3 w = bsdf.toWorld(ss->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
     if (depth >= s.rrDepth) {
       const float q = std::min(1.0f, beta / beta0);

@@ -28,7 +28,7 @@ struct PhotonPass final : PassData {
 // `bounces` is the number of specular vertices before it. With `exactElastic` (at the first
 // vertex) the elastic lobe is instead seen at each photon's own wavelength: those contributions
 // go straight to the sensor (sensorResponse) and are added to `photonXyz`.
-float gather(const PhotonPass& pass, const Material& mat, const Vec3& p, const Vec3& wo, float lambda, int bounces,
+float gather(const PhotonPass& pass, const Bsdf& bsdf, const Vec3& p, const Vec3& wo, float lambda, int bounces,
              int maxDepth, bool exactElastic, SampleContext& ctx, Vec3& photonXyz) {
   float sum = 0.0f;
   for (const size_t i : pass.map.within(p, pass.radius)) {
@@ -36,9 +36,9 @@ float gather(const PhotonPass& pass, const Material& mat, const Vec3& p, const V
     if (int(ph.depth) + bounces > maxDepth) continue;
     const Vec3 wi(ph.wi[0], ph.wi[1], ph.wi[2]);  // the photon's direction in its own surface frame
     // Fluorescent lobe: exact for any pair of wavelengths (transport.md §4).
-    if (mat.fluoresces())
-      sum += mat.eval(TransportMode::Radiance, wi, wo, ph.lambda, lambda, SpectralLobe::Fluorescent) * ph.power;
-    const float fe = mat.eval(TransportMode::Radiance, wi, wo, ph.lambda, ph.lambda, SpectralLobe::Elastic) * ph.power;
+    if (bsdf.has(BsdfFlags::Fluorescent))
+      sum += bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, lambda, SpectralLobe::Fluorescent) * ph.power;
+    const float fe = bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, ph.lambda, SpectralLobe::Elastic) * ph.power;
     if (fe <= 0.0f) continue;
     if (exactElastic)
       photonXyz += sensorResponse(ctx, ph.lambda, fe * pass.density);  // the sensor at the photon's own wavelength
@@ -109,25 +109,24 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++ctx.counter.closest;
     if (!hit) {
-      if (const EnvironmentLight* env = scene.environment()) L += beta * env->Le(lambda);
+      if (const EnvironmentLight* env = scene.environment()) L += beta * env->Le(lambda, ray.d);
       break;
     }
     const Shape& shape = scene.shapes[hit->shape];
     if (shape.emission) L += beta * shape.emission->eval(lambda, hit->ng, -ray.d);
     if (bounces >= maxDepth_) break;
-    const Material& mat = scene.material(*hit);
-    const Frame frame = Frame::fromNormal(hit->ng);
-    const Vec3 wo = frame.toLocal(-ray.d);
-    if (!mat.purelySpecular())
-      L += beta * gather(pass, mat, hit->p, wo, lambda, bounces, maxDepth_, bounces == 0 && !alwaysKernel_, ctx, xyz);
+    const Bsdf bsdf = scene.bsdf(*hit, {&lambda, 1});
+    const Vec3 wo = bsdf.toLocal(-ray.d);
+    if (!bsdf.has(BsdfFlags::DeltaDirection))
+      L += beta * gather(pass, bsdf, hit->p, wo, lambda, bounces, maxDepth_, bounces == 0 && !alwaysKernel_, ctx, xyz);
     // The gather covers every non-specular lobe; a sampled specular lobe continues the path.
     const std::optional<ScatterSample> ss =
-        mat.sample(TransportMode::Radiance, wo, lambda, rng.uniform3());
+        bsdf.sample(TransportMode::Radiance, wo, lambda, rng.uniform3());
     if (!ss || !ss->specular) break;
     beta *= ss->f * std::abs(ss->w.z) / ss->pdf;
     if (!(beta > 0.0f)) break;
     lambda = ss->lambda;
-    const Vec3 w = frame.toWorld(ss->w);
+    const Vec3 w = bsdf.toWorld(ss->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
   }
   // W(λ)/p(λ) at the camera sample's wavelength (transport.md §1).

@@ -5,6 +5,8 @@
 // whatever a valid scene holds, rendering it must not crash or reach undefined behaviour, and
 // no non-finite value may reach the film.
 // Relative file names resolve in tests/fuzz/data/, which holds a spectrum, a matrix and a mesh.
+// Built twice: fuzz_scene reads the text as kasha JSON (fuzz.json), fuzz_mitsuba as Mitsuba XML
+// (fuzz.xml, through scene/mitsuba/).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -21,9 +23,10 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace kasha;
-  static const std::string path = std::string(KASHA_FUZZ_DATA_DIR) + "/fuzz.json";
+  static const std::string path = std::string(KASHA_FUZZ_DATA_DIR) + "/" KASHA_FUZZ_SCENE_FILE;
   SceneLoadOptions options;
   options.memoryLimit = uint64_t(64) << 20;  // any file of the machine can be named: refuse large ones
+  options.notes = nullptr;                   // the Mitsuba importer's approximations: not findings
   std::unique_ptr<Scene> scene;
   try {
     scene = loadSceneFromString(std::string(reinterpret_cast<const char*>(data), size), path, options);

@@ -1,10 +1,10 @@
-#include "materials/material.h"
+#include "materials/bsdf_model.h"
 
 namespace kasha {
 
 const char* toString(TransportMode m) { return m == TransportMode::Radiance ? "radiance" : "importance"; }
 
-std::optional<ScatterSample> Material::sample(TransportMode mode, const Vec3& wKnown, float lambdaKnown, Vec3 u) const {
+std::optional<ScatterSample> BsdfModel::sample(TransportMode mode, const Vec3& wKnown, float lambdaKnown, Vec3 u) const {
   const SpectralChoice sc = sampleSpectral(mode, lambdaKnown, u.x);
   if (sc.pdf <= 0.0f) return std::nullopt;
   const bool radiance = mode == TransportMode::Radiance;
@@ -26,7 +26,7 @@ std::optional<ScatterSample> Material::sample(TransportMode mode, const Vec3& wK
   return s;
 }
 
-ScatterDensity Material::pdf(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+ScatterDensity BsdfModel::pdf(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
                              SpectralLobe lobe) const {
   const bool radiance = mode == TransportMode::Radiance;
   const Vec3& wKnown = radiance ? wo : wi;

@@ -1,0 +1,95 @@
+#pragma once
+// The scattering function at one hit, as integrators use it: a small value (no heap allocation)
+// that a Material builds from the hit's context (materials/material.h). Directions passed to it
+// are local to its shading frame (toLocal/toWorld); the physical order, transport modes, two
+// sampling stages and densities are those of BsdfModel (materials/bsdf_model.h).
+#include <span>
+
+#include "materials/bsdf_model.h"
+#include "materials/shading_normal.h"
+
+namespace kasha {
+
+// What a material may depend on at a hit; read while the Bsdf is built (a Bsdf keeps the frames only).
+struct HitContext {
+  Vec2 uv{0.0f};        // texture coordinates (computed for textured materials only, else 0)
+  Frame geometric{};    // world frame of the geometric normal (z = n_g)
+  Frame shading{};      // world frame of the shading normal; the geometric one until shading normals exist
+  std::span<const float> wavelengths;  // the path's wavelengths here (hero: every lane; else one)
+};
+
+class Bsdf {
+ public:
+  // `model` must outlive the Bsdf (the material's own, or its palette entry).
+  Bsdf(const BsdfModel& model, const HitContext& ctx)
+      : model_(&model), geometric_(ctx.geometric), shading_(ctx.shading), correction_(ctx.geometric, ctx.shading),
+        flags_(model.flags()) {}
+
+  // DeltaDirection, Fluorescent, WavelengthDependentDirection: known before anything is sampled.
+  BsdfFlags flags() const { return flags_; }
+  bool has(BsdfFlags f) const { return kasha::has(flags_, f); }
+  const Frame& geometricFrame() const { return geometric_; }
+  // The model it evaluates (for tests and tools that inspect parameters).
+  const BsdfModel& model() const { return *model_; }
+  // World ↔ the local (shading) frame every query below uses.
+  Vec3 toLocal(const Vec3& world) const { return shading_.toLocal(world); }
+  Vec3 toWorld(const Vec3& local) const { return shading_.toWorld(local); }
+
+  // f in physical order (ω_i, λ_i → ω_o, λ_o) of one lobe; per nm if fluorescent, deltas left out.
+  // With a shading normal, f·|cos θ_s| of the sampled direction is Veach's f_s (shading_normal.h).
+  float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+             SpectralLobe lobe) const {
+    const float c = correction_.factor(mode, wi, wo);
+    return c > 0.0f ? c * model_->eval(mode, wi, wo, lambdaIn, lambdaOut, lobe) : 0.0f;
+  }
+  // Spectral stage: from the known wavelength, the lobe (fluorescent exactly when u < P) and the
+  // unknown wavelength; pdf is the lobe's probability × (fluorescent) its per-nm density.
+  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
+    return model_->sampleSpectral(mode, lambdaKnown, u);
+  }
+  // That stage's density of (lobe, lambdaOther): a probability (elastic) or per nm (fluorescent).
+  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
+    return model_->spectralPdf(mode, lambdaKnown, lambdaOther, lobe);
+  }
+  // Probability of the fluorescent lobe given the known wavelength (the model's own, never a
+  // default): 1 − spectralPdf(mode, λ, λ, Elastic) wherever anything scatters.
+  float fluorescenceProbability(TransportMode mode, float lambdaKnown) const {
+    return model_->fluorescenceProbability(mode, lambdaKnown);
+  }
+  // Directional stage given the lobe and both wavelengths: the unknown direction, its density
+  // per steradian (a probability if specular).
+  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
+                                                 float lambdaIn, float lambdaOut, Vec2 u) const {
+    if (!correction_.consistent(wKnown)) return std::nullopt;
+    std::optional<DirectionSample> ds = model_->sampleDirection(mode, wKnown, lobe, lambdaIn, lambdaOut, u);
+    if (ds && !correction_.consistent(ds->w)) return std::nullopt;
+    return ds;
+  }
+  // That stage's density of wSampled, per steradian.
+  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
+                     float lambdaOut) const {
+    return model_->directionPdf(mode, wKnown, wSampled, lobe, lambdaIn, lambdaOut);
+  }
+  // Both stages (u.x spectral, u.y/u.z direction): value, density in this mode and the reverse.
+  std::optional<ScatterSample> sample(TransportMode mode, const Vec3& wKnown, float lambdaKnown, Vec3 u) const {
+    if (!correction_.consistent(wKnown)) return std::nullopt;
+    std::optional<ScatterSample> s = model_->sample(mode, wKnown, lambdaKnown, u);
+    if (!s || !correction_.active) return s;
+    const bool radiance = mode == TransportMode::Radiance;
+    s->f *= correction_.factor(mode, radiance ? s->w : wKnown, radiance ? wKnown : s->w);
+    return s->f > 0.0f ? s : std::nullopt;
+  }
+  // Both densities (this mode, reverse) of an event in physical order: spectral × directional.
+  ScatterDensity pdf(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+                     SpectralLobe lobe) const {
+    return model_->pdf(mode, wi, wo, lambdaIn, lambdaOut, lobe);
+  }
+
+ private:
+  const BsdfModel* model_;
+  Frame geometric_, shading_;
+  ShadingCorrection correction_;
+  BsdfFlags flags_;
+};
+
+}  // namespace kasha

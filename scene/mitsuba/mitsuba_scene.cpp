@@ -1,0 +1,112 @@
+#include "scene/mitsuba/mitsuba_scene.h"
+
+
+#include "scene/mitsuba/xml_bsdf.h"
+#include "scene/mitsuba/xml_emitter.h"
+#include "scene/mitsuba/xml_sensor.h"
+#include "scene/mitsuba/xml_shape.h"
+
+namespace kasha::mitsuba {
+namespace {
+
+using nlohmann::json;
+
+// A scene's children in order, descending into <include>d files.
+void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
+  if (depth > 16) xml.fail(scene, "<include>s nested more than 16 deep");
+  for (pugi::xml_node c : scene.children()) {
+    if (c.type() != pugi::node_element) continue;
+    const std::string tag = c.name();
+    if (tag == "default") {
+      continue;  // read before (parameters may be used anywhere)
+    } else if (tag == "include") {
+      const pugi::xml_document& doc = xml.include(xml.resolve(c, xml.attribute(c, "filename")), c);
+      visit(xml, doc.document_element(), out, depth + 1);
+      xml.endInclude();
+    } else if (tag == "integrator") {
+      addIntegrator(xml, c, out);
+    } else if (tag == "sensor") {
+      addSensor(xml, c, out);
+    } else if (tag == "bsdf") {
+      if (!c.attribute("id")) xml.fail(c, "a top-level <bsdf> needs an id to be referred to");
+      out.addMaterial(xml, c, bsdfMaterial(xml, c));
+    } else if (tag == "shape") {
+      addShape(xml, c, out);
+    } else if (tag == "emitter") {
+      addEmitter(xml, c, out);
+    } else {
+      xml.fail(c, "unsupported element <" + tag + "> (kasha reads default, include, integrator, sensor, bsdf, shape, emitter)");
+    }
+  }
+}
+
+void readDefaults(XmlImport& xml, pugi::xml_node scene) {
+  for (pugi::xml_node d : scene.children("default")) {
+    for (pugi::xml_attribute a : d.attributes())
+      if (std::string(a.name()) != "name" && std::string(a.name()) != "value")
+        xml.fail(d, std::string("unexpected attribute '") + a.name() + "'");
+    xml.setDefault(xml.attribute(d, "name"), xml.attribute(d, "value"));
+  }
+}
+
+// "path: /shapes/3/emission: reason" from the JSON loader, at the XML element /shapes/3 came from.
+[[noreturn]] void rethrowAtOrigin(const InputError& e, const std::string& path, const SceneJson& sj) {
+  std::string msg = e.what();
+  if (msg.rfind(path + ": ", 0) == 0) msg = msg.substr(path.size() + 2);
+  const std::string pointer = msg.substr(0, msg.find(": "));
+  const std::pair<std::string, std::string>* best = nullptr;
+  size_t bestLen = 0;
+  for (const auto& [ptr, where] : sj.origins)
+    if (pointer.rfind(ptr, 0) == 0 && (pointer.size() == ptr.size() || pointer[ptr.size()] == '/') && ptr.size() > bestLen) {
+      best = &where;
+      bestLen = ptr.size();
+    }
+  if (!best) throw e;
+  throw InputError(best->first, best->second, "in kasha's translation " + msg);
+}
+
+}  // namespace
+
+std::string SceneJson::addMaterial(const XmlImport& xml, pugi::xml_node bsdf, json material) {
+  const std::string id = bsdf.attribute("id") ? xml.attribute(bsdf, "id") : "";
+  std::string name = id.empty() ? xml.label(bsdf) : id;
+  for (int k = 2; id.empty() && root["materials"].contains(name); ++k) name = xml.label(bsdf) + "#" + std::to_string(k);
+  if (root["materials"].contains(name)) xml.fail(bsdf, "a second <bsdf> with id '" + id + "'");
+  root["materials"][name] = std::move(material);
+  origin("/materials/" + name, xml, bsdf);
+  if (!id.empty()) bsdfIds[id] = name;
+  return name;
+}
+
+bool isMitsubaScenePath(const std::string& path) { return path.size() >= 4 && path.ends_with(".xml"); }
+
+// Reads the scene into `out`; the notes stay in `xml`.
+static void build(XmlImport& xml, SceneJson& out, const std::string& text, const std::string& path) {
+  const pugi::xml_node scene = xml.parse(text, path).document_element();
+  readDefaults(xml, scene);
+  visit(xml, scene, out, 0);
+  if (!out.root.contains("camera")) throw InputError(path, "", "the scene has no <sensor>");
+  if (!out.root.contains("shapes")) throw InputError(path, "", "the scene has no <shape>");
+}
+
+Translation translateMitsubaScene(const std::string& text, const std::string& path) {
+  XmlImport xml;
+  SceneJson out;
+  build(xml, out, text, path);
+  return {std::move(out.root), xml.notes()};
+}
+
+std::unique_ptr<Scene> loadMitsubaScene(const std::string& text, const std::string& path, const SceneLoadOptions& options) {
+  XmlImport xml;
+  SceneJson out;
+  build(xml, out, text, path);
+  if (options.notes)
+    for (const std::string& n : xml.notes()) *options.notes << "kasha: note: " << n << "\n";
+  try {
+    return loadSceneFromJson(out.root, path, options);
+  } catch (const InputError& e) {
+    rethrowAtOrigin(e, path, out);
+  }
+}
+
+}  // namespace kasha::mitsuba

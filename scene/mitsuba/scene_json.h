@@ -1,0 +1,26 @@
+#pragma once
+// The kasha scene JSON (docs/scene-format.md) a Mitsuba import builds, and where in the XML each
+// of its parts came from, so errors the JSON loader finds later still name the XML file and line.
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <string>
+
+#include "scene/mitsuba/xml_plugin.h"
+
+namespace kasha::mitsuba {
+
+struct SceneJson {
+  nlohmann::json root = nlohmann::json::object();
+  // JSON pointer ("/shapes/3", "/materials/wall") → "file:line" and the plugin.
+  std::map<std::string, std::pair<std::string, std::string>> origins;
+  std::map<std::string, std::string> bsdfIds;  // XML id → material name
+
+  void origin(const std::string& pointer, const XmlImport& xml, pugi::xml_node n) {
+    origins[pointer] = {xml.where(n), XmlImport::describe(n)};
+  }
+  // Adds a material under a unique name and returns the name.
+  std::string addMaterial(const XmlImport& xml, pugi::xml_node bsdf, nlohmann::json material);
+};
+
+}  // namespace kasha::mitsuba

@@ -1,0 +1,174 @@
+#include "scene/mitsuba/xml_bsdf.h"
+
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "core/math.h"
+#include "core/spectrum_json.h"
+#include "scene/mitsuba/xml_spectrum.h"
+
+namespace kasha::mitsuba {
+namespace {
+
+using nlohmann::json;
+
+// Refractive indices Mitsuba accepts by name, at the sodium D line (589 nm; CRC Handbook of
+// Chemistry and Physics). Glasses with a kasha dispersion preset map to it.
+json namedIor(Plugin& b, pugi::xml_node p, const std::string& name) {
+  static const std::map<std::string, float> constants = {
+      {"vacuum", 1.0f},       {"air", 1.000277f},          {"water", 1.3330f},        {"ethanol", 1.361f},
+      {"diamond", 2.419f},    {"acrylic glass", 1.49f},    {"polypropylene", 1.49f},  {"water ice", 1.31f},
+      {"pet", 1.575f},        {"sodium chloride", 1.544f}, {"glycerol", 1.4729f},     {"benzene", 1.501f}};
+  if (name == "bk7") {
+    b.note("int_ior 'bk7': kasha's dispersive BK7 (Sellmeier, n = 1.5168 at 587.6 nm) for Mitsuba's constant 1.5046");
+    return "BK7";
+  }
+  if (name == "fused quartz" || name == "fused silica") return "fused_silica";
+  const auto it = constants.find(name);
+  if (it == constants.end()) b.fail(p, "unknown index of refraction name '" + name + "'");
+  return it->second;
+}
+
+// int_ior / ext_ior: a number or a name.
+json iorProperty(Plugin& b, const std::string& key, const std::string& fallback) {
+  const pugi::xml_node p = b.property(key);
+  if (!p) return namedIor(b, b.node(), fallback);
+  if (std::string(p.name()) == "string") return namedIor(b, p, b.xml().attribute(p, "value"));
+  const auto v = parseNumbers(b.xml().attribute(p, "value"));
+  if (!v || v->size() != 1 || !(v->front() >= 1.0f)) b.fail(p, "expected a number >= 1 or a material name");
+  return v->front();
+}
+
+// kasha takes the outside to be vacuum: a numeric int_ior becomes int/ext (the same relative
+// index, hence the same directions and Fresnel terms); a dispersive preset needs ext ≈ 1.
+json relativeIor(Plugin& b, const std::string& intKey, const std::string& intDefault) {
+  const json in = iorProperty(b, intKey, intDefault), ext = iorProperty(b, "ext_ior", "air");
+  const float e = ext.is_number() ? ext.get<float>() : 0.0f;
+  if (!ext.is_number() || e > 1.001f) {
+    if (!in.is_number()) b.fail("a named dispersive int_ior needs ext_ior air or vacuum (give numbers instead)");
+    if (!ext.is_number()) b.fail("ext_ior must be a constant when the outside is not air");
+  }
+  if (in.is_number()) return in.get<float>() / e;
+  return in;
+}
+
+json roughness(Plugin& b) {
+  const std::string dist = b.string("distribution", "beckmann");
+  if (dist != "ggx" && dist != "beckmann") b.fail("unknown microfacet distribution '" + dist + "'");
+  if (dist == "beckmann") b.note("Beckmann roughness taken as GGX alpha of the same value (kasha has GGX only)");
+  b.boolean("sample_visible", true);  // kasha samples visible normals always
+  if (b.has("alpha_u") || b.has("alpha_v")) return json::array({b.number("alpha_u", 0.1f), b.number("alpha_v", 0.1f)});
+  return b.number("alpha", 0.1f);
+}
+
+// Normal-incidence Fresnel reflectance of a conductor, F0 = ((η−1)² + k²)/((η+1)² + k²), times
+// specular_reflectance, tabulated every nm over 360–830 nm.
+json conductorF0(Plugin& b) {
+  const std::string material = b.string("material", b.has("eta") ? "" : "none");
+  if (!material.empty() && material != "none")
+    b.fail("named conductor '" + material + "' is not available in kasha (no η/k tables); give <spectrum name=\"eta\"> "
+           "and <spectrum name=\"k\">");
+  const SpectrumContext ctx(b.xml().where(b.node()), b.xml().baseDir(b.node()));
+  const json specular = spectrumProperty(b, "specular_reflectance", 1.0);
+  const Spectrum s = parseSpectrum(specular, ctx, "specular_reflectance");
+  if (material == "none") return specular;  // η = 0, k = 1: a perfect mirror
+  const Spectrum eta = parseSpectrum(spectrumProperty(b, "eta"), ctx, "eta");
+  const Spectrum k = parseSpectrum(spectrumProperty(b, "k"), ctx, "k");
+  std::vector<float> wl, v;
+  for (int nm = 360; nm <= 830; ++nm) {
+    const float n = eta(float(nm)), kk = k(float(nm));
+    wl.push_back(float(nm));
+    v.push_back(s(float(nm)) * (kasha::sqr(n - 1.0f) + kk * kk) / (kasha::sqr(n + 1.0f) + kk * kk));
+  }
+  b.note("conductor reflectance from η, k at normal incidence (F0), with Schlick's angular dependence in kasha");
+  return {{"type", "tabulated"}, {"wavelengths", wl}, {"values", v}};
+}
+
+void requireUnitSpecular(Plugin& b, const char* key) {
+  const json s = spectrumProperty(b, key, 1.0);
+  if (!(s.is_number() && s.get<float>() == 1.0f)) b.fail(std::string("'") + key + "' other than 1 is not supported");
+}
+
+// The kasha material types a scene may use directly; each property becomes the JSON field of
+// its name.
+json kashaMaterial(Plugin& b) {
+  json m = {{"type", b.type()}};
+  for (pugi::xml_node p : b.node().children()) {
+    if (p.type() != pugi::node_element) continue;
+    const std::string key = b.xml().attribute(p, "name"), tag = p.name();
+    b.markRead(p);
+    if (tag == "boolean") {
+      m[key] = b.boolean(key, false);
+    } else if (tag == "string") {
+      const std::string v = b.xml().attribute(p, "value");
+      const bool path = key == "file" || key.ends_with("_texture");
+      m[key] = path ? b.xml().resolve(p, v) : v;
+    } else if (tag == "integer") {
+      m[key] = b.integer(key, 0);
+    } else {
+      m[key] = spectrumElement(b.xml(), p);  // numbers (<float>) and spectra
+    }
+  }
+  return m;
+}
+
+json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
+  Plugin b(xml, node);
+  const std::string& t = b.type();
+  json m;
+  const auto oneSided = [&] {
+    if (!insideTwosided) b.note("one-sided in Mitsuba (black from behind); kasha's material reflects on both sides");
+  };
+  if (t == "twosided") {
+    const std::vector<pugi::xml_node> inner = b.nested("bsdf");
+    if (inner.size() != 1) b.fail("expected exactly one nested <bsdf> (two different sides are not supported)");
+    m = translate(xml, inner.front(), true);
+  } else if (t == "diffuse") {
+    oneSided();
+    m = {{"type", "lambertian"}, {"reflectance", spectrumProperty(b, "reflectance", 0.5)}};
+  } else if (t == "conductor") {
+    oneSided();
+    m = {{"type", "mirror"}, {"reflectance", conductorF0(b)}};
+  } else if (t == "roughconductor") {
+    oneSided();
+    m = {{"type", "rough_conductor"}, {"reflectance", conductorF0(b)}};
+    m["alpha"] = roughness(b);
+  } else if (t == "dielectric" || t == "roughdielectric") {
+    requireUnitSpecular(b, "specular_reflectance");
+    requireUnitSpecular(b, "specular_transmittance");
+    m = {{"type", t == "dielectric" ? "dielectric" : "rough_dielectric"}, {"ior", relativeIor(b, "int_ior", "bk7")}};
+    if (t == "roughdielectric") m["alpha"] = roughness(b);
+  } else if (t == "plastic" || t == "roughplastic") {
+    oneSided();
+    requireUnitSpecular(b, "specular_reflectance");
+    if (b.boolean("nonlinear", false)) b.fail("nonlinear = true is not supported");
+    m = {{"type", "coated_fluorescent"}, {"absorption", 0.0}, {"emission", 1.0}, {"c", 0.0}, {"Q", 0.0},
+         {"reflectance", spectrumProperty(b, "diffuse_reflectance", 0.5)},
+         {"coat_ior", relativeIor(b, "int_ior", "polypropylene")}};
+    if (t == "roughplastic") {
+      m["coat_alpha"] = roughness(b);
+    } else {
+      m["coat_alpha"] = 0.001;
+      b.note("smooth coat as GGX alpha 0.001");
+    }
+    b.note("plastic approximated by kasha's coated_fluorescent with c = 0: a Lambertian base under a GGX coat, "
+           "without the light the coat reflects back onto the base");
+  } else if (t == "jung_fluorescent" || t == "zhdanov" || t == "coated_fluorescent" || t == "measured_reradiation") {
+    m = kashaMaterial(b);
+  } else if (t == "thindielectric") {
+    b.fail("thindielectric has no kasha equivalent (a surface that refracts without bending); model the slab's "
+           "two faces with dielectric");
+  } else {
+    b.fail("unsupported BSDF plugin (diffuse, conductor, roughconductor, dielectric, roughdielectric, plastic, "
+           "roughplastic, twosided; kasha's jung_fluorescent, zhdanov, coated_fluorescent, measured_reradiation)");
+  }
+  b.finish();
+  return m;
+}
+
+}  // namespace
+
+json bsdfMaterial(XmlImport& xml, pugi::xml_node bsdf) { return translate(xml, bsdf, false); }
+
+}  // namespace kasha::mitsuba

@@ -1,0 +1,93 @@
+#include "scene/mitsuba/xml_sensor.h"
+
+#include <cmath>
+
+#include "scene/mitsuba/xml_transform.h"
+
+namespace kasha::mitsuba {
+namespace {
+
+using nlohmann::json;
+
+json vec(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+std::optional<float> verticalFov(float fov, const std::string& axis, int width, int height) {
+  const float w = float(width), h = float(height);
+  std::string a = axis;
+  if (a == "smaller") a = width < height ? "x" : "y";
+  if (a == "larger") a = width > height ? "x" : "y";
+  const float t = std::tan(glm::radians(fov) * 0.5f);
+  float ty = 0.0f;  // tan of half the vertical angle: the film's half-extents scale with its sides
+  if (a == "x") ty = t * h / w;
+  else if (a == "y") ty = t;
+  else if (a == "diagonal") ty = t * h / std::sqrt(w * w + h * h);
+  else return std::nullopt;
+  return glm::degrees(2.0f * std::atan(ty));
+}
+
+void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
+  Plugin s(xml, node);
+  if (s.type() != "perspective") s.fail("unsupported sensor plugin (perspective)");
+  if (out.root.contains("camera")) s.fail("a second <sensor> (kasha renders one camera)");
+  int width = 768, height = 576;
+  for (pugi::xml_node f : s.nested("film")) {
+    Plugin film(xml, f);
+    if (film.type() != "hdrfilm") film.fail("unsupported film plugin (hdrfilm)");
+    width = film.integer("width", width);
+    height = film.integer("height", height);
+    for (const char* ignored : {"pixel_format", "component_format", "file_format"})
+      if (film.has(ignored)) film.note(std::string("'") + ignored + "' ignored: kasha writes its own EXR and PNG");
+    film.string("pixel_format", "");
+    film.string("component_format", "");
+    film.string("file_format", "");
+    for (pugi::xml_node r : film.nested("rfilter")) {
+      film.note("reconstruction filter ignored: kasha averages the samples of each pixel (box filter)");
+      (void)r;
+    }
+    film.finish();
+  }
+  for (pugi::xml_node smp : s.nested("sampler")) {
+    Plugin sampler(xml, smp);
+    out.root["render"]["spp"] = sampler.integer("sample_count", 4);
+    sampler.note("sampler type ignored: kasha draws from its own per-sample random streams");
+    sampler.integer("seed", 0);
+    sampler.finish();
+  }
+  const float fov = s.number("fov");
+  const std::string axis = s.string("fov_axis", "x");
+  const std::optional<float> fovY = verticalFov(fov, axis, width, height);
+  if (!fovY) s.fail("unknown fov_axis '" + axis + "' (x, y, diagonal, smaller, larger)");
+  if (s.has("near_clip") || s.has("far_clip")) s.note("near_clip and far_clip ignored (kasha does not clip)");
+  s.number("near_clip", 0.0f);
+  s.number("far_clip", 0.0f);
+  const Mat4 m = toWorld(s);
+  if (glm::determinant(glm::mat3(m)) < 0.0f)
+    s.fail("to_world mirrors the image (a negative scale); kasha's camera cannot be mirrored");
+  const Vec3 pos = transformPoint(m, Vec3(0.0f));
+  out.root["camera"] = {{"position", vec(pos)},
+                        {"look_at", vec(pos + glm::normalize(transformVector(m, Vec3(0, 0, 1))))},
+                        {"up", vec(transformVector(m, Vec3(0, 1, 0)))},
+                        {"fov", *fovY},
+                        {"resolution", {width, height}}};
+  out.origin("/camera", xml, node);
+  s.finish();
+}
+
+void addIntegrator(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
+  Plugin it(xml, node);
+  if (it.type() != "path") it.fail("unsupported integrator plugin (path; choose kasha's integrator with --integrator)");
+  // Mitsuba counts path depth in vertices after the camera (1: emitters seen directly), kasha in
+  // scattering events: one less. Mitsuba's −1 (unbounded) keeps kasha's default.
+  const int maxDepth = it.integer("max_depth", -1), rrDepth = it.integer("rr_depth", 5);
+  if (maxDepth == 0 || maxDepth < -1) it.fail("max_depth must be -1 or at least 1");
+  if (rrDepth < 1) it.fail("rr_depth must be at least 1");
+  if (maxDepth > 0) out.root["render"]["max_depth"] = maxDepth - 1;
+  out.root["render"]["rr_depth"] = rrDepth - 1;
+  if (it.boolean("hide_emitters", false)) it.fail("hide_emitters = true is not supported");
+  out.origin("/render", xml, node);
+  it.finish();
+}
+
+}  // namespace kasha::mitsuba

@@ -1,0 +1,126 @@
+#include "scene/mitsuba/xml_shape.h"
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "core/affine.h"
+#include "scene/mitsuba/xml_bsdf.h"
+#include "scene/mitsuba/xml_spectrum.h"
+#include "scene/mitsuba/xml_transform.h"
+
+namespace kasha::mitsuba {
+namespace {
+
+using nlohmann::json;
+
+// Four transformed corners of a planar face, ordered so that kasha's normal (p1 − p0) × (p2 − p0)
+// points where Mitsuba's does: the local normal transformed by the inverse transpose (flipped by
+// flip_normals).
+json faceCorners(const Mat4& m, std::array<Vec3, 4> local, Vec3 localNormal, bool flip) {
+  std::array<Vec3, 4> w;
+  for (size_t i = 0; i < 4; ++i) w[i] = transformPoint(m, local[i]);
+  const Vec3 mitsubaNormal = glm::transpose(glm::inverse(glm::mat3(m))) * localNormal * (flip ? -1.0f : 1.0f);
+  if (glm::dot(glm::cross(w[1] - w[0], w[2] - w[0]), mitsubaNormal) < 0.0f) std::swap(w[1], w[3]);
+  json c = json::array();
+  for (const Vec3& p : w) c.push_back({p.x, p.y, p.z});
+  return c;
+}
+
+std::string material(Plugin& s, SceneJson& out) {
+  const std::vector<pugi::xml_node> bsdfs = s.nested("bsdf"), refs = s.nested("ref");
+  if (bsdfs.size() + refs.size() > 1) s.fail("more than one BSDF");
+  if (!bsdfs.empty()) return out.addMaterial(s.xml(), bsdfs[0], bsdfMaterial(s.xml(), bsdfs[0]));
+  if (!refs.empty()) {
+    const std::string id = s.xml().attribute(refs[0], "id");
+    const auto it = out.bsdfIds.find(id);
+    if (it == out.bsdfIds.end()) s.fail(refs[0], "no <bsdf id=\"" + id + "\"> before this reference");
+    return it->second;
+  }
+  // Mitsuba's default BSDF: diffuse with reflectance 0.5 (one-sided).
+  s.note("no BSDF: Mitsuba's default diffuse 0.5, reflecting on both sides in kasha");
+  return out.addMaterial(s.xml(), s.node(), {{"type", "lambertian"}, {"reflectance", 0.5}});
+}
+
+json emission(Plugin& s) {
+  const std::vector<pugi::xml_node> emitters = s.nested("emitter");
+  if (emitters.empty()) return nullptr;
+  if (emitters.size() > 1) s.fail(emitters[1], "more than one emitter in a shape");
+  Plugin e(s.xml(), emitters[0]);
+  if (e.type() != "area") e.fail("only an 'area' emitter can be attached to a shape");
+  json em = {{"radiance", spectrumProperty(e, "radiance", nullptr, SpectrumUse::Emission)}};
+  e.finish();
+  return em;
+}
+
+std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
+  const std::string& t = s.type();
+  if (t == "obj" || t == "ply") {
+    if (!s.has("filename")) s.fail("missing property 'filename'");
+    json mesh = {{"type", "mesh"}, {"file", s.xml().resolve(s.node(), s.string("filename", ""))},
+                 {"transform", matrixJson(m)}, {"flip_normals", flip}};
+    if (!s.boolean("face_normals", false))
+      s.note("shaded with the triangles' own normals (kasha has no vertex normals): Mitsuba's face_normals = true");
+    s.boolean("flip_tex_coords", true);  // kasha reads OBJ's vt as Mitsuba's flipped default does
+    return {mesh};
+  }
+  if (t == "rectangle")
+    return {{{"type", "rectangle"},
+             {"corners", faceCorners(m, {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}, Vec3(0, 0, 1), flip)}}};
+  if (t == "cube") {
+    std::vector<json> faces;
+    for (int axis = 0; axis < 3; ++axis)
+      for (float side : {-1.0f, 1.0f}) {
+        // The face at x_axis = side; (u, v) span the other two axes, in order around the face.
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        std::array<Vec3, 4> c;
+        const float uv[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+        for (int i = 0; i < 4; ++i) {
+          c[size_t(i)][axis] = side;
+          c[size_t(i)][u] = uv[i][0];
+          c[size_t(i)][v] = uv[i][1];
+        }
+        Vec3 n(0.0f);
+        n[axis] = side;
+        faces.push_back({{"type", "rectangle"}, {"corners", faceCorners(m, c, n, flip)}});
+      }
+    return faces;
+  }
+  if (t == "sphere") {
+    if (flip) s.fail("flip_normals on a sphere is not supported (kasha's sphere normals point outwards)");
+    const pugi::xml_node c = s.property("center");
+    const Vec3 center = transformPoint(m, c ? parsePointProperty(s.xml(), c) : Vec3(0.0f));
+    const float scale = uniformScale(glm::mat3(m));
+    if (!(scale > 0.0f)) s.fail("a sphere's to_world may only rotate, translate and scale uniformly");
+    return {{{"type", "sphere"}, {"center", {center.x, center.y, center.z}}, {"radius", s.number("radius", 1.0f) * scale}}};
+  }
+  if (t == "disk") {
+    s.note("disk tessellated into a polygon of 256 triangles (area 0.01% below the disk's)");
+    return {{{"type", "disk"}, {"transform", matrixJson(m)}, {"flip_normals", flip}}};
+  }
+  s.fail("unsupported shape plugin (obj, ply, rectangle, cube, sphere, disk)");
+}
+
+}  // namespace
+
+void addShape(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
+  Plugin s(xml, node);
+  const Mat4 m = toWorld(s);
+  const bool flip = s.boolean("flip_normals", false);
+  std::vector<json> parts = geometry(s, m, flip);
+  const std::string mat = material(s, out);
+  const json em = emission(s);
+  const std::string base = node.attribute("id") ? xml.attribute(node, "id") : xml.label(node);
+  json& shapes = out.root["shapes"];
+  for (size_t i = 0; i < parts.size(); ++i) {
+    json& p = parts[i];
+    p["name"] = parts.size() == 1 ? base : base + "/" + std::to_string(i);
+    p["material"] = mat;
+    if (!em.is_null()) p["emission"] = em;
+    out.origin("/shapes/" + std::to_string(shapes.size()), xml, node);
+    shapes.push_back(std::move(p));
+  }
+  s.finish();
+}
+
+}  // namespace kasha::mitsuba

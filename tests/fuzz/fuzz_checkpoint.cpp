@@ -1,0 +1,35 @@
+// libFuzzer target: the checkpoint reader (core/checkpoint.h) on arbitrary bytes. A checkpoint is
+// refused with an InputError naming the file (truncated, corrupted, foreign, another byte order),
+// or it is read whole: a film of the size its header states, every sum finite. Buffers are
+// allocated only once the file's size matches the header, so no input may allocate more than it
+// holds (-rss_limit_mb). Anything else is a finding.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "core/checkpoint.h"
+#include "core/error.h"
+#include "tests/fuzz/fuzz_support.h"
+
+namespace {
+
+// A broken promise is a finding.
+void require(bool ok, const char* what) { kasha::fuzz::require(ok, "fuzz_checkpoint", what); }
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace kasha;
+  const std::string path = fuzz::writeInput("fuzz.ckpt", data, size);
+  try {
+    const CheckpointData d = readCheckpoint(path);
+    const size_t pixels = size_t(d.width) * size_t(d.height);
+    require(d.sums.size() == pixels && d.splats.size() == pixels, "a film of the stated size");
+    for (const auto* b : {&d.sums, &d.splats})
+      for (const auto& v : *b) require(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z), "finite sums");
+  } catch (const InputError& e) {
+    require(std::string(e.what()).rfind(path, 0) == 0, "the message names the file");
+  }
+  return 0;
+}

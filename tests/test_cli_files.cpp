@@ -1,0 +1,180 @@
+// `kasha` on the files a user can give it (issue 15), as a separate process: one case per class of
+// problem, each with its exit code (1 bad input, 2 a command-line mistake) and its one-line
+// message, and nothing written (no output, no temporary file) when it refuses.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/process.h"
+#include "tests/expect_contains.h"
+
+namespace kasha {
+namespace {
+
+namespace fs = std::filesystem;
+
+// 8×8 pixels, 1 sample: a lambertian floor under an emissive rectangle, its reflectance from a CSV.
+const char* kScene = R"({
+  "render": {"spp": 1, "max_depth": 2},
+  "camera": {"position": [0, 1, -4], "look_at": [0, 1, 0], "fov": 50, "resolution": [8, 8]},
+  "materials": {"white": {"type": "lambertian", "reflectance": {"type": "file", "file": "grey.csv", "outside": "clamp"}}},
+  "shapes": [
+    {"type": "rectangle", "center": [0, 0, 0], "u": [0, 0, 2], "v": [2, 0, 0], "material": "white"},
+    {"type": "rectangle", "center": [0, 1.5, 2], "u": [1, 0, 0], "v": [0, 1, 0], "material": "white",
+     "emission": {"radiance": "D65", "two_sided": true}}
+  ]
+})";
+
+class CliFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir = (fs::path(::testing::TempDir()) / ("kasha_cli_files." + std::to_string(getpid())) / info->name()).string();
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    scene = write("scene.json", kScene);
+    csv = write("grey.csv", "wavelength,r\n380,0.5\n780,0.5\n");
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(fs::path(dir).parent_path());
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir + "/" + name, std::ios::binary) << text;
+    return dir + "/" + name;
+  }
+  test::Finished run(const std::vector<std::string>& args) const {
+    return test::runKasha(args, dir + "/../" + std::to_string(++runs_), 60.0);
+  }
+  // `kasha args` exits with `code` and one line "kasha: error: ..." containing `message`.
+  void expectRefused(const std::vector<std::string>& args, int code, const std::string& message) const {
+    const test::Finished r = run(args);
+    EXPECT_EQ(r.code, code) << r.err;
+    const std::vector<std::string> lines = test::textLines(r.err);
+    ASSERT_EQ(lines.size(), 1u) << r.err;
+    EXPECT_EQ(lines[0].rfind("kasha: error: ", 0), 0u) << lines[0];
+    EXPECT_CONTAINS(lines[0], message);
+  }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> v;
+    for (const auto& e : fs::directory_iterator(dir)) v.push_back(e.path().filename().string());
+    std::sort(v.begin(), v.end());
+    return v;
+  }
+  std::string dir, scene, csv;
+  mutable int runs_ = 0;
+};
+
+TEST_F(CliFiles, NonRegularInputsAreRefusedAtOnce) {
+  const std::string fifo = dir + "/fifo.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // Each would block forever reading a FIFO nobody writes to (run() kills it after 60 s).
+  expectRefused({"render", fifo, "-q"}, 1, fifo + ": cannot open scene file (a FIFO, not a regular file)");
+  expectRefused({"metrics", fifo, fifo}, 1, fifo + ": cannot open image file (a FIFO, not a regular file)");
+  expectRefused({"render", "/dev/zero", "-q"}, 1, "/dev/zero: cannot open scene file (a character device, not a regular file)");
+  nlohmann::json j = nlohmann::json::parse(kScene);
+  j["materials"]["white"] = {{"type", "file"}, {"file", "fifo.json"}};
+  write("mat.json", j.dump());
+  expectRefused({"render", dir + "/mat.json", "-q"}, 1, fifo + ": cannot open material file (a FIFO, not a regular file)");
+}
+
+TEST_F(CliFiles, OutputProblemsAreFoundBeforeTheFirstSample) {
+  fs::create_directories(dir + "/folder");
+  fs::create_directories(dir + "/dir.exr");
+  const std::vector<std::string> before = entries();
+  expectRefused({"render", scene, "-q", "-o", dir + "/folder"}, 2, dir + "/folder: -o: must end in .exr");
+  expectRefused({"render", scene, "-q", "-o", dir + "/folder.exr/x.exr"}, 2, "does not exist");
+  expectRefused({"render", scene, "-q", "-o", dir + "/dir.exr"}, 2, dir + "/dir.exr: -o: is a directory");
+  // -o x.png used to write the EXR to x.png and then the PNG over it.
+  expectRefused({"render", scene, "-q", "-o", dir + "/x.png"}, 2, dir + "/x.png: -o: must end in .exr");
+  expectRefused({"render", scene, "-q", "-o", dir + "/x.exr", "--png", dir + "/x.exr"}, 2,
+                dir + "/x.exr: --png: must end in .png");
+  expectRefused({"render", scene, "-q", "-o", dir + "/x.exr", "--png", dir + "/x.stats.json"}, 2, "must end in .png");
+  // Outputs that name an input of the render, or each other.
+  expectRefused({"render", scene, "-q", "-o", dir + "/scene.exr", "--png", csv}, 2, csv + ": --png: must end in .png");
+  const std::string png = write("grey.png", "");
+  fs::remove(png);
+  fs::create_symlink(csv, png);
+  expectRefused({"render", scene, "-q", "-o", dir + "/y.exr", "--png", png}, 2,
+                png + ": --png: is one of the inputs; it would be overwritten");
+  fs::remove(png);
+  expectRefused({"render", scene, "-q", "-o", dir + "/y.exr", "--checkpoint", scene}, 2,
+                scene + ": --checkpoint: is one of the inputs; it would be overwritten");
+  expectRefused({"render", scene, "-q", "-o", dir + "/y.exr", "--checkpoint", dir + "/y.png"}, 2,
+                dir + "/y.png: --checkpoint: is also the output of -o (its PNG); each output needs its own file");
+  expectRefused({"render", scene, "-q", "-o", dir + "/y.exr", "--checkpoint", dir + "/folder"}, 2,
+                dir + "/folder: --checkpoint: is a directory");
+  EXPECT_EQ(entries(), before);  // nothing written, no temporary file
+}
+
+TEST_F(CliFiles, AFullDiskFailsTheRenderAndLeavesNoFile) {
+  // The file size limit stands in for a full disk: write() fails with EFBIG. One block (512 bytes
+  // in /bin/sh, dash) holds the one-line message but not the EXR.
+  const std::string err = dir + "/../full.stderr";
+  const std::string sh = "trap '' XFSZ; ulimit -f 1; exec '" + test::kKashaBinary + "' render '" + scene + "' -q -o '" +
+                         dir + "/full.exr' 2>'" + err + "'";
+  const std::vector<std::string> before = entries();
+  const int status = std::system(sh.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_EQ(test::readTextFile(err), "kasha: error: cannot write '" + dir + "/full.exr': write failed (File too large)\n");
+  std::vector<std::string> after = entries();
+  // The EXR (over 512 bytes) failed; nothing else was written after it, nothing is left half.
+  EXPECT_EQ(after, before);
+}
+
+TEST_F(CliFiles, ConcurrentRendersToOneNameLeaveOneWholeFile) {
+  const std::string out = dir + "/same.exr";
+  const test::Child a = test::spawnKasha({"render", scene, "-q", "-o", out, "--spp", "4"}, dir + "/../a");
+  const test::Child b = test::spawnKasha({"render", scene, "-q", "-o", out, "--spp", "4", "--seed", "9"}, dir + "/../b");
+  EXPECT_EQ(test::waitChild(a, 60.0), 0);
+  EXPECT_EQ(test::waitChild(b, 60.0), 0);
+  // One of the two, whole: kasha metrics reads it against itself.
+  const test::Finished m = run({"metrics", out, out});
+  EXPECT_EQ(m.code, 0) << m.err;
+  EXPECT_CONTAINS(m.out, "\"rmse\":0.0");
+  EXPECT_EQ(entries(), (std::vector<std::string>{"grey.csv", "same.exr", "same.png", "same.stats.json", "scene.json"}));
+}
+
+TEST_F(CliFiles, CommandLineMistakesExitWith2) {
+  expectRefused({"render", scene, "-q", "--integrator", "foo"}, 2, "unknown integrator 'foo'");
+  expectRefused({"render", scene, "-q", "--light-sampling", "uniform"}, 2, "--light-sampling: ");
+  expectRefused({"render", scene, "-q", "--integrator", "lt", "--hero", "4"}, 2, "--hero: hero wavelengths (4)");
+  expectRefused({"render", scene, "-q", "--seed", "3000000000"}, 2, "--seed: must be at most 2147483647, got '3000000000'");
+  expectRefused({"compare", scene, "--reference", dir + "/ref.exr"}, 2, "give a time budget or a sample count");
+  expectRefused({"compare", scene, "--reference", dir + "/ref.exr", "--spp", "1", "--integrators", "pt,foo"}, 2,
+                "unknown integrator 'foo'");
+  expectRefused({"matrix", scene, "--material", "none"}, 2, "--material: none: no material of that name");
+}
+
+TEST_F(CliFiles, ExtractNeverOverwritesItsOwnInput) {
+  const std::string sample = write("m_spectra.csv", "wavelength,ex_400,ex_450\n400,0.5,0\n450,0.1,0.5\n500,0.05,0.1\n");
+  const std::string before = test::readTextFile(sample);
+  expectRefused({"extract", "--sample", sample, "-o", dir + "/m.json"}, 2,
+                sample + ": -o (its spectra): is one of the inputs; it would be overwritten");
+  EXPECT_EQ(test::readTextFile(sample), before);
+}
+
+TEST_F(CliFiles, BadInputFilesExitWith1) {
+  // Duplicate keys, a mesh with a non-number, an image with NaN pixels.
+  write("dup.json", std::string(kScene).insert(1, "\n  \"render\": {\"spp\": 4},"));
+  expectRefused({"render", dir + "/dup.json", "-q"}, 1, dir + "/dup.json: /render: duplicate key 'render'");
+  write("m.obj", "v 0 0 0\nv a b c\nv 0 1 0\nf 1 2 3\n");
+  std::string mesh = kScene;
+  mesh.insert(mesh.find("\"shapes\": [") + 11, "{\"type\": \"mesh\", \"file\": \"m.obj\", \"material\": \"white\"},");
+  write("mesh.json", mesh);
+  expectRefused({"render", dir + "/mesh.json", "-q"}, 1,
+                dir + "/mesh.json: /shapes/0/file: " + dir + "/m.obj:2: 'a' is not a finite number (v component 1)");
+  expectRefused({"extract", "--sample", dir + "/none.csv", "-o", dir + "/m.json"}, 1,
+                dir + "/none.csv: cannot open spectrum file (No such file or directory)");
+}
+
+}  // namespace
+}  // namespace kasha

@@ -1,0 +1,444 @@
+// Mitsuba 3 XML import (mitsuba/): every supported plugin parses into the kasha scene it should,
+// transforms move hand-computed points where they belong, and unsupported plugins, unknown
+// properties and malformed XML are InputErrors naming the file, the line and the plugin.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <ImfRgbaFile.h>
+
+#include "core/color.h"
+#include "core/envmap_light.h"
+#include "core/error.h"
+#include "scene/scene_loader.h"
+#include "scene/mitsuba/mitsuba_scene.h"
+#include "scene/mitsuba/xml_sensor.h"
+#include "scene/mitsuba/xml_spectrum.h"
+#include "scene/mitsuba/xml_transform.h"
+
+namespace kasha {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// The message contains `part` (testing::HasSubstr without gmock).
+::testing::AssertionResult contains(const std::string& message, const std::string& part) {
+  if (message.find(part) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "'" << part << "' is not in the message: " << message;
+}
+
+// A camera and one light: the smallest scene around the element under test.
+const char* kSensor = R"(
+  <sensor type="perspective">
+    <float name="fov" value="45"/>
+    <transform name="to_world"><lookat origin="0, 0, -5" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+  </sensor>)";
+const char* kLight = R"(<emitter type="point"><point name="position" x="0" y="3" z="0"/><spectrum name="intensity" value="1"/></emitter>)";
+const char* kFloor = R"(<shape type="rectangle"><bsdf type="diffuse"/></shape>)";
+
+class MitsubaImport : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir = fs::path(::testing::TempDir()) / ("kasha_mitsuba." + std::to_string(getpid())) / info->name();
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir.parent_path());
+  }
+  std::string write(const std::string& rel, const std::string& text) const {
+    const fs::path p = dir / rel;
+    std::ofstream(p, std::ios::binary) << text;
+    return p.string();
+  }
+  // A scene file holding kSensor and `body`.
+  std::string scene(const std::string& body, const std::string& name = "scene.xml") const {
+    return write(name, std::string("<scene version=\"3.0.0\">") + kSensor + body + "</scene>");
+  }
+  mitsuba::Translation translate(const std::string& body) const {
+    const std::string path = scene(body);
+    std::ifstream in(path);
+    return mitsuba::translateMitsubaScene(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  }
+  std::unique_ptr<Scene> load(const std::string& body) const { return loadScene(scene(body)); }
+  // The message of the InputError loading `body` throws ("" and a test failure if none).
+  std::string error(const std::string& body) const {
+    try {
+      load(body);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    ADD_FAILURE() << "loaded, expected an InputError";
+    return "";
+  }
+  std::string file() const { return (dir / "scene.xml").string(); }
+
+  fs::path dir;
+};
+
+void expectNear(const Vec3& a, const Vec3& b, float tol = 1e-4f) {
+  EXPECT_NEAR(a.x, b.x, tol);
+  EXPECT_NEAR(a.y, b.y, tol);
+  EXPECT_NEAR(a.z, b.z, tol);
+}
+
+// ---- transforms against hand-computed points ------------------------------------------------
+
+mitsuba::Mat4 transformOf(const std::string& ops) {
+  mitsuba::XmlImport xml;
+  const pugi::xml_document& doc = xml.parse("<scene><transform name=\"to_world\">" + ops + "</transform></scene>", "t.xml");
+  return mitsuba::parseTransform(xml, doc.document_element().child("transform"));
+}
+
+TEST_F(MitsubaImport, TransformsComposeInOrderOfApplication) {
+  // (1, 0, 0) → translate (1, 2, 3) → (2, 2, 3) → rotate 90° about +y: (x, y, z) → (z, y, −x) =
+  // (3, 2, −2) → scale 2 → (6, 4, −4).
+  const mitsuba::Mat4 m = transformOf(R"(<translate x="1" y="2" z="3"/><rotate y="1" angle="90"/><scale value="2"/>)");
+  expectNear(mitsuba::transformPoint(m, Vec3(1, 0, 0)), Vec3(6, 4, -4));
+  // Vectors ignore the translation: (0, 0, 1) → (1, 0, 0) → (2, 0, 0).
+  expectNear(mitsuba::transformVector(m, Vec3(0, 0, 1)), Vec3(2, 0, 0));
+}
+
+TEST_F(MitsubaImport, MatrixIsRowMajorAndScaleTakesThreeValues) {
+  const mitsuba::Mat4 m = transformOf(R"(<matrix value="1 0 0 5  0 2 0 6  0 0 1 7  0 0 0 1"/>)");
+  expectNear(mitsuba::transformPoint(m, Vec3(1, 1, 1)), Vec3(6, 8, 8));
+  const mitsuba::Mat4 s = transformOf(R"(<scale value="1, 2, 3"/><translate value="0 0 1"/>)");
+  expectNear(mitsuba::transformPoint(s, Vec3(1, 1, 1)), Vec3(1, 2, 4));
+}
+
+TEST_F(MitsubaImport, LookAtFrame) {
+  // Looking from (1, 2, 3) towards (1, 2, 4) with +y up: z → +z, y → +y, x = up × z = +x.
+  const mitsuba::Mat4 m = transformOf(R"(<lookat origin="1, 2, 3" target="1, 2, 4" up="0, 1, 0"/>)");
+  expectNear(mitsuba::transformPoint(m, Vec3(0, 0, 0)), Vec3(1, 2, 3));
+  expectNear(mitsuba::transformVector(m, Vec3(1, 0, 0)), Vec3(1, 0, 0));
+  expectNear(mitsuba::transformVector(m, Vec3(0, 0, 1)), Vec3(0, 0, 1));
+  // Rotated: looking along −x, z maps to −x and "left" x = up × dir = (0, 1, 0) × (−1, 0, 0) = (0, 0, 1).
+  const mitsuba::Mat4 r = transformOf(R"(<lookat origin="0, 0, 0" target="-3, 0, 0" up="0, 1, 0"/>)");
+  expectNear(mitsuba::transformVector(r, Vec3(0, 0, 1)), Vec3(-1, 0, 0));
+  expectNear(mitsuba::transformVector(r, Vec3(1, 0, 0)), Vec3(0, 0, 1));
+}
+
+TEST_F(MitsubaImport, RectangleCornersAndNormalFollowTheTransform) {
+  // [−1, 1]² scaled by (2, 3), rotated −90° about x (z → +y) and moved up by 5: corners
+  // (±2, 5, ∓3)... and the normal +y.
+  const auto s = load(std::string(kLight) + R"(<shape type="rectangle"><transform name="to_world">
+      <scale x="2" y="3"/><rotate x="1" angle="-90"/><translate y="5"/></transform></shape>)");
+  const Shape& r = s->shapes.at(0);
+  ASSERT_EQ(r.positions.size(), 4u);
+  expectNear(r.positions[0], Vec3(-2, 5, 3));
+  expectNear(r.positions[2], Vec3(2, 5, -3));
+  expectNear(r.triangleNormal(0), Vec3(0, 1, 0));
+  EXPECT_NEAR(r.area, 24.0f, 1e-3f);
+  // flip_normals turns it over.
+  const auto f = load(std::string(kLight) + R"(<shape type="rectangle"><boolean name="flip_normals" value="true"/></shape>)");
+  expectNear(f->shapes.at(0).triangleNormal(0), Vec3(0, 0, -1));
+}
+
+TEST_F(MitsubaImport, SphereAndObjTransforms) {
+  write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const auto s = load(std::string(kLight) + R"(
+    <shape type="sphere"><float name="radius" value="0.5"/>
+      <transform name="to_world"><scale value="2"/><translate x="1" y="2" z="3"/></transform></shape>
+    <shape type="obj"><string name="filename" value="tri.obj"/>
+      <transform name="to_world"><rotate z="1" angle="90"/><translate x="10"/></transform></shape>)");
+  EXPECT_EQ(s->shapes.at(0).kind, Shape::Kind::Sphere);
+  expectNear(s->shapes[0].center, Vec3(1, 2, 3));
+  EXPECT_NEAR(s->shapes[0].radius, 1.0f, 1e-5f);
+  // Rotating 90° about z: (1, 0, 0) → (0, 1, 0), (0, 1, 0) → (−1, 0, 0); then x + 10.
+  const Shape& t = s->shapes.at(1);
+  expectNear(t.positions[1], Vec3(10, 1, 0));
+  expectNear(t.positions[2], Vec3(9, 0, 0));
+  EXPECT_NE(error(std::string(kLight) + R"(<shape type="sphere"><transform name="to_world"><scale x="2"/></transform></shape>)")
+                .find("uniformly"),
+            std::string::npos);
+}
+
+// ---- one parse test per plugin ---------------------------------------------------------------
+
+TEST_F(MitsubaImport, PerspectiveSensorFilmSamplerAndIntegrator) {
+  const auto t = translate(R"(
+    <integrator type="path"><integer name="max_depth" value="6"/><integer name="rr_depth" value="3"/></integrator>)" +
+                           std::string(kLight) + kFloor);
+  EXPECT_EQ(t.scene["render"]["max_depth"], 5);  // Mitsuba's path depth counts the emitter vertex
+  EXPECT_EQ(t.scene["render"]["rr_depth"], 2);
+  const json& cam = t.scene["camera"];
+  EXPECT_EQ(cam["resolution"], json({8, 8}));
+  EXPECT_NEAR(cam["fov"].get<float>(), 45.0f, 1e-4f);  // square film: x and y angles agree
+  EXPECT_NEAR(cam["position"][2].get<float>(), -5.0f, 1e-6f);
+  // fov along x of a 200 × 100 film: tan(fov_y/2) = tan(45°)·100/200 → fov_y = 2·atan(0.5) = 53.130°.
+  EXPECT_NEAR(*mitsuba::verticalFov(90, "x", 200, 100), 53.1301f, 1e-3f);
+  EXPECT_NEAR(*mitsuba::verticalFov(90, "y", 200, 100), 90.0f, 1e-4f);
+  EXPECT_NEAR(*mitsuba::verticalFov(90, "smaller", 200, 100), 90.0f, 1e-4f);
+  // diagonal: tan(fov_y/2) = tan(45°)·100/√(200² + 100²) → 2·atan(1/√5) = 48.190°.
+  EXPECT_NEAR(*mitsuba::verticalFov(90, "diagonal", 200, 100), 48.1897f, 1e-3f);
+  const std::string path = write("sampler.xml", std::string("<scene version=\"3.0.0\">") + R"(
+  <sensor type="perspective"><float name="fov" value="30"/><string name="fov_axis" value="x"/>
+    <sampler type="independent"><integer name="sample_count" value="7"/></sampler>
+    <film type="hdrfilm"><integer name="width" value="40"/><integer name="height" value="20"/></film>
+  </sensor>)" + kLight + kFloor + "</scene>");
+  const auto s = loadScene(path);
+  EXPECT_EQ(s->render.spp, 7);
+  EXPECT_EQ(s->camera.width(), 40);
+  EXPECT_NEAR(s->camera.fovYDegrees(), 2.0f * std::atan(std::tan(glm::radians(15.0f)) * 0.5f) * 180.0f / kPi, 1e-3f);
+}
+
+TEST_F(MitsubaImport, ShapesObjPlyRectangleCubeSphereDisk) {
+  write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  write("tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n2 0 0\n0 2 0\n3 0 1 2\n");
+  const auto s = load(std::string(kLight) + R"(
+    <shape type="obj"><string name="filename" value="quad.obj"/></shape>
+    <shape type="ply"><string name="filename" value="tri.ply"/></shape>
+    <shape type="rectangle"/>
+    <shape type="cube"/>
+    <shape type="sphere"/>
+    <shape type="disk"/>)");
+  ASSERT_EQ(s->shapes.size(), 1u + 1u + 1u + 6u + 1u + 1u);
+  EXPECT_NEAR(s->shapes[0].area, 1.0f, 1e-5f);  // the OBJ quad
+  EXPECT_NEAR(s->shapes[1].area, 2.0f, 1e-5f);  // the PLY triangle
+  EXPECT_NEAR(s->shapes[2].area, 4.0f, 1e-5f);  // [−1, 1]²
+  float cube = 0.0f;
+  for (int i = 3; i < 9; ++i) {
+    cube += s->shapes[size_t(i)].area;
+    // Outward normals: the face centre and its normal point the same way.
+    const Shape& f = s->shapes[size_t(i)];
+    const Vec3 c = (f.positions[0] + f.positions[2]) * 0.5f;
+    EXPECT_NEAR(glm::dot(c, f.triangleNormal(0)), 1.0f, 1e-5f) << "cube face " << i - 3;
+  }
+  EXPECT_NEAR(cube, 24.0f, 1e-4f);
+  EXPECT_EQ(s->shapes[9].kind, Shape::Kind::Sphere);
+  EXPECT_NEAR(s->shapes[9].radius, 1.0f, 0.0f);
+  // The 256-gon inscribed in the unit circle: 128·sin(2π/256).
+  EXPECT_NEAR(s->shapes[10].area, 128.0 * std::sin(2.0 * M_PI / 256.0), 1e-4);
+  expectNear(s->shapes[10].triangleNormal(0), Vec3(0, 0, 1));
+}
+
+TEST_F(MitsubaImport, AreaEmitterInsideAShape) {
+  const auto s = load(R"(<shape type="rectangle"><emitter type="area"><spectrum name="radiance" value="2"/></emitter></shape>)");
+  ASSERT_TRUE(s->shapes.at(0).emission.has_value());
+  EXPECT_FLOAT_EQ(s->shapes[0].emission->eval(550.0f, Vec3(0, 0, 1), Vec3(0, 0, 1)), 2.0f);
+  EXPECT_FLOAT_EQ(s->shapes[0].emission->eval(550.0f, Vec3(0, 0, 1), Vec3(0, 0, -1)), 0.0f);  // one-sided
+  EXPECT_EQ(s->lights.size(), 1u);
+}
+
+TEST_F(MitsubaImport, Emitters) {
+  const auto s = load(std::string(kFloor) + R"(
+    <emitter type="point"><spectrum name="intensity" value="3"/>
+      <transform name="to_world"><translate x="1" y="2" z="3"/></transform></emitter>
+    <emitter type="spot"><float name="cutoff_angle" value="30"/><spectrum name="intensity" value="1"/>
+      <transform name="to_world"><lookat origin="0, 4, 0" target="0, 0, 0" up="0, 0, 1"/></transform></emitter>
+    <emitter type="directional"><vector name="direction" x="0" y="-1" z="0"/><spectrum name="irradiance" value="2"/></emitter>
+    <emitter type="constant"><spectrum name="radiance" value="0.5"/></emitter>)");
+  ASSERT_EQ(s->lights.size(), 4u);
+  const auto* point = dynamic_cast<const PointLight*>(s->lights[0].get());
+  ASSERT_NE(point, nullptr);
+  expectNear(point->position(), Vec3(1, 2, 3));
+  EXPECT_FLOAT_EQ(point->intensity(500.0f), 3.0f);
+  const auto* spot = dynamic_cast<const SpotLight*>(s->lights[1].get());
+  ASSERT_NE(spot, nullptr);
+  EXPECT_GT(spot->emittedTowards(500.0f, Vec3(0), Vec3(0, -1, 0)), 0.9f);   // along the axis (down)
+  EXPECT_EQ(spot->emittedTowards(500.0f, Vec3(0), glm::normalize(Vec3(1, -1, 0))), 0.0f);  // 45° > 30°
+  const auto* distant = dynamic_cast<const DistantLight*>(s->lights[2].get());
+  ASSERT_NE(distant, nullptr);
+  expectNear(distant->direction(), Vec3(0, -1, 0));
+  ASSERT_NE(s->environment(), nullptr);
+  EXPECT_FLOAT_EQ(s->environment()->Le(500.0f, Vec3(0, 1, 0)), 0.5f);
+}
+
+TEST_F(MitsubaImport, Bsdfs) {
+  const auto t = translate(std::string(kLight) + R"(
+    <bsdf type="diffuse" id="d"><spectrum name="reflectance" value="0.25"/></bsdf>
+    <bsdf type="conductor" id="c"><spectrum name="eta" value="1.5"/><spectrum name="k" value="0"/></bsdf>
+    <bsdf type="conductor" id="none"/>
+    <bsdf type="roughconductor" id="rc"><float name="alpha" value="0.3"/><string name="distribution" value="ggx"/></bsdf>
+    <bsdf type="dielectric" id="g"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1.0"/></bsdf>
+    <bsdf type="dielectric" id="w"><string name="int_ior" value="water"/><string name="ext_ior" value="vacuum"/></bsdf>
+    <bsdf type="roughdielectric" id="rg"><float name="alpha" value="0.2"/><float name="int_ior" value="1.5"/><float name="ext_ior" value="1.25"/></bsdf>
+    <bsdf type="plastic" id="p"><spectrum name="diffuse_reflectance" value="0.4"/></bsdf>
+    <bsdf type="roughplastic" id="rp"><float name="alpha" value="0.05"/><string name="distribution" value="ggx"/></bsdf>
+    <bsdf type="twosided" id="two"><bsdf type="diffuse"/></bsdf>
+    <bsdf type="jung_fluorescent" id="j">
+      <spectrum name="absorption" value="400:0.8, 500:0"/><spectrum name="emission" value="500:0, 550:1, 600:0"/>
+      <spectrum name="reflectance" value="0.5"/><float name="c" value="0.5"/><float name="Q" value="0.9"/></bsdf>
+    <shape type="rectangle"><ref id="j"/></shape>)");
+  const json& m = t.scene["materials"];
+  EXPECT_EQ(m["d"], json({{"type", "lambertian"}, {"reflectance", 0.25}}));
+  EXPECT_EQ(m["c"]["type"], "mirror");
+  EXPECT_NEAR(m["c"]["reflectance"]["values"][0].get<float>(), 0.04f, 1e-6f);  // ((1.5−1)/(1.5+1))²
+  EXPECT_EQ(m["none"]["reflectance"], 1.0);
+  EXPECT_EQ(m["rc"]["type"], "rough_conductor");
+  EXPECT_EQ(m["rc"]["alpha"], 0.3f);
+  EXPECT_EQ(m["g"], json({{"type", "dielectric"}, {"ior", 1.5f}}));
+  EXPECT_NEAR(m["w"]["ior"].get<float>(), 1.333f, 1e-6f);
+  EXPECT_EQ(m["rg"]["type"], "rough_dielectric");
+  EXPECT_NEAR(m["rg"]["ior"].get<float>(), 1.2f, 1e-6f);  // relative index int/ext
+  EXPECT_EQ(m["p"]["type"], "coated_fluorescent");
+  EXPECT_EQ(m["p"]["c"], 0.0);
+  EXPECT_EQ(m["p"]["reflectance"], 0.4f);
+  EXPECT_NEAR(m["p"]["coat_ior"].get<float>(), 1.49f / 1.000277f, 1e-6f);
+  EXPECT_EQ(m["rp"]["coat_alpha"], 0.05f);
+  EXPECT_EQ(m["two"]["type"], "lambertian");
+  EXPECT_EQ(m["two"]["reflectance"], 0.5);  // Mitsuba's default
+  EXPECT_EQ(m["j"]["type"], "jung_fluorescent");
+  EXPECT_EQ(m["j"]["c"], 0.5f);
+  // Every approximation is reported: plastic, Beckmann, one-sided BSDFs.
+  int plastic = 0;
+  for (const std::string& n : t.notes) plastic += n.find("coated_fluorescent") != std::string::npos;
+  EXPECT_EQ(plastic, 2);
+  // The whole scene loads (the JSON loader accepts every translation).
+  EXPECT_NO_THROW(load(std::string(kLight) + R"(
+    <shape type="rectangle"><bsdf type="plastic"/></shape>
+    <shape type="sphere"><bsdf type="roughdielectric"/></shape>
+    <shape type="cube"><bsdf type="roughconductor"/></shape>)"));
+}
+
+TEST_F(MitsubaImport, Spectra) {
+  write("s.spd", "# wavelength value\n400 0.1\n500 0.5\n\n600 0.2\n");
+  const auto t = translate(std::string(kLight) + R"(
+    <bsdf type="diffuse" id="a"><spectrum name="reflectance" value="400:0.1, 700:0.9"/></bsdf>
+    <bsdf type="diffuse" id="b"><spectrum name="reflectance" filename="s.spd"/></bsdf>
+    <bsdf type="diffuse" id="c"><float name="reflectance" value="0.3"/></bsdf>
+    <bsdf type="diffuse" id="d"><spectrum name="reflectance" type="irregular">
+      <string name="wavelengths" value="400, 500"/><string name="values" value="0.2, 0.4"/></spectrum></bsdf>
+    <shape type="rectangle"><emitter type="area"><blackbody name="radiance" temperature="5000K"/></emitter></shape>)");
+  const json& m = t.scene["materials"];
+  EXPECT_EQ(m["a"]["reflectance"]["wavelengths"], json({400.0f, 700.0f}));
+  EXPECT_EQ(m["b"]["reflectance"]["values"], json({0.1f, 0.5f, 0.2f}));
+  EXPECT_EQ(m["c"]["reflectance"], 0.3f);
+  EXPECT_EQ(m["d"]["reflectance"]["values"], json({0.2f, 0.4f}));
+  // Blackbody: kasha's peak-normalised shape scaled to Planck's radiance at the peak (W·m⁻²·sr⁻¹·nm⁻¹):
+  // 5000 K peaks at 2.8978e6/5000 = 579.6 nm. At 580 nm: hc/(λkT) = 0.0143878/(580e-9·5000) = 4.9613,
+  // 2hc²/λ⁵ = 1.19104e-16/6.56357e-32 = 1.81463e15, / (e^4.9613 − 1 = 141.77) = 1.2800e13 per m = 1.2800e4 per nm.
+  const json& bb = t.scene["shapes"][0]["emission"]["radiance"];
+  EXPECT_EQ(bb["kelvin"], 5000.0f);
+  EXPECT_NEAR(bb["scale"].get<double>(), 1.2800e4, 0.001e4);
+  EXPECT_NEAR(mitsuba::planckRadiance(580.0, 5000.0), 1.2800e4, 0.001e4);
+}
+
+TEST_F(MitsubaImport, RgbColours) {
+  const auto t = translate(R"(
+    <bsdf type="diffuse" id="a"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf>
+    <shape type="rectangle"><ref id="a"/><emitter type="area"><rgb name="radiance" value="3, 2, 1"/></emitter></shape>)");
+  // A reflectance stays kasha's rgb spectrum (Jakob–Hanika, upsampled by the JSON loader).
+  EXPECT_EQ(t.scene["materials"]["a"]["reflectance"], json({{"type", "rgb"}, {"value", {0.2f, 0.5f, 0.8f}}}));
+  // An emission is tabulated; on kasha's film (XYZ by the CIE observer) it has the colour given.
+  const json& e = t.scene["shapes"][0]["emission"]["radiance"];
+  Vec3 xyz(0.0f);
+  for (size_t i = 0; i + 1 < e["wavelengths"].size(); ++i) {
+    const float a = e["wavelengths"][i], b = e["wavelengths"][i + 1];
+    const float mid = 0.5f * (a + b), v = 0.5f * (e["values"][i].get<float>() + e["values"][i + 1].get<float>());
+    xyz += Observer::cie1931().weight(mid) * v * (b - a);
+  }
+  const Vec3 rgb = xyzToLinearSrgb(xyz);
+  EXPECT_NEAR(rgb.x, 3.0f, 0.03f);
+  EXPECT_NEAR(rgb.y, 2.0f, 0.02f);
+  EXPECT_NEAR(rgb.z, 1.0f, 0.01f);
+  EXPECT_NO_THROW(load(R"(<shape type="rectangle"><bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf>
+      <emitter type="area"><rgb name="radiance" value="3, 2, 1"/></emitter></shape>)"));
+}
+
+TEST_F(MitsubaImport, EnvmapEmitter) {
+  std::vector<Imf::Rgba> px(8, Imf::Rgba(1.0f, 0.5f, 0.25f, 1.0f));
+  {
+    Imf::RgbaOutputFile out((dir / "sky.exr").c_str(), 4, 2, Imf::WRITE_RGBA);
+    out.setFrameBuffer(px.data(), 1, 4);
+    out.writePixels(2);
+  }
+  const auto s = load(std::string(kFloor) + R"(<emitter type="envmap"><string name="filename" value="sky.exr"/>
+      <float name="scale" value="2"/><transform name="to_world"><rotate y="1" angle="90"/></transform></emitter>)");
+  const auto* env = dynamic_cast<const EnvMapLight*>(s->environment());
+  ASSERT_NE(env, nullptr);
+  // Rotating 90° about +y takes local +x (u = 1/4) to world −z.
+  EXPECT_NEAR(env->directionToUv(Vec3(0, 0, -1)).x, 0.25f, 1e-6f);
+  EXPECT_FLOAT_EQ(env->Le(550.0f, Vec3(0, 1, 0)), 2.0f * rgbIlluminant(Vec3(1.0f, 0.5f, 0.25f))(550.0f));
+}
+
+TEST_F(MitsubaImport, DefaultsRefsAndIncludes) {
+  write("materials.xml", R"(<scene version="3.0.0"><bsdf type="diffuse" id="grey"><float name="reflectance" value="$refl"/></bsdf></scene>)");
+  const auto t = translate(std::string(R"(<default name="refl" value="0.7"/><default name="w" value="2"/>)") + kLight + R"(
+    <include filename="materials.xml"/>
+    <shape type="rectangle" id="floor"><transform name="to_world"><scale x="$w" y="$w"/></transform><ref id="grey"/></shape>)");
+  EXPECT_EQ(t.scene["materials"]["grey"]["reflectance"], 0.7f);
+  EXPECT_EQ(t.scene["shapes"][0]["material"], "grey");
+  EXPECT_EQ(t.scene["shapes"][0]["name"], "floor");
+  EXPECT_EQ(t.scene["shapes"][0]["corners"][2], json({2.0f, 2.0f, 0.0f}));
+  // The same file may be included twice (not a cycle); here it defines the same id again.
+  write("plain.xml", "<scene version=\"3.0.0\"><bsdf type=\"diffuse\" id=\"grey\"/></scene>");
+  const std::string twice = write("twice.xml", "<scene version=\"3.0.0\"><include filename=\"plain.xml\"/>"
+                                               "<include filename=\"plain.xml\"/></scene>");
+  try {
+    loadScene(twice);
+    FAIL() << "loaded two bsdfs with one id";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), "a second <bsdf> with id 'grey'"));
+  }
+}
+
+TEST_F(MitsubaImport, ExampleSceneLoads) {
+  const auto s = loadScene(std::string(KASHA_SOURCE_DIR) + "/scenes/mitsuba/fluorescent_matpreview.xml");
+  EXPECT_EQ(s->shapes.size(), 1u + 1u + 1u + 1u + 6u);  // ground, coaster, sphere, icosphere, cube faces
+  EXPECT_EQ(s->lights.size(), 2u);                     // envmap and spot
+  ASSERT_NE(dynamic_cast<const EnvMapLight*>(s->environment()), nullptr);
+  EXPECT_EQ(s->shapes[3].indices.size(), 320u * 3u);   // the PLY icosphere
+  EXPECT_EQ(s->render.spp, 128);
+  EXPECT_EQ(s->camera.width(), 480);
+  size_t fluorescent = 0;
+  for (const auto& m : s->materials) fluorescent += has(m->flags(), BsdfFlags::Fluorescent);
+  EXPECT_EQ(fluorescent, 1u);  // FITC only: roughplastic became coated_fluorescent with c = 0
+}
+
+// ---- errors name the file, the line and the plugin ------------------------------------------
+
+TEST_F(MitsubaImport, UnsupportedPluginsAndPropertiesAreErrorsWithFileLineAndPlugin) {
+  // kSensor spans lines 1–6 of the file; the element under test starts on line 7.
+  const std::string prefix = "\n";
+  EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"hair\" id=\"h\"/>"), file() + ":7: bsdf 'hair': unsupported BSDF plugin"));
+  EXPECT_TRUE(contains(error(prefix + "<shape type=\"shapegroup\"/>"), file() + ":7: shape 'shapegroup': unsupported shape plugin"));
+  EXPECT_TRUE(contains(error(prefix + "<emitter type=\"sky\"/>"), file() + ":7: emitter 'sky': unsupported emitter plugin"));
+  EXPECT_TRUE(contains(error(prefix + "<integrator type=\"volpath\"/>"), file() + ":7: integrator 'volpath': unsupported"));
+  EXPECT_TRUE(contains(error(prefix + "<medium type=\"homogeneous\"/>"), file() + ":7: medium 'homogeneous': unsupported element <medium>"));
+  EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"thindielectric\" id=\"t\"/>"), "thindielectric has no kasha equivalent"));
+  // A property the plugin does not read: the line of the property, the plugin's name.
+  EXPECT_TRUE(contains(error(prefix + std::string(kLight) + "<shape type=\"sphere\">\n<float name=\"radiuss\" value=\"1\"/></shape>"),
+                  file() + ":8: shape 'sphere': unsupported property 'radiuss'"));
+  EXPECT_TRUE(contains(error(prefix + std::string(kLight) + "<shape type=\"rectangle\"><bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"1.5, 0.2, 0.2\"/></bsdf></shape>"),
+                  "reflectance colour component 1.500000 is outside [0, 1]"));
+  EXPECT_TRUE(contains(error(prefix + "<shape type=\"rectangle\"><ref id=\"nowhere\"/></shape>"), "no <bsdf id=\"nowhere\">"));
+  EXPECT_TRUE(contains(error(prefix + "<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>"),
+                  "parameter '$r' has no <default>"));
+  // Values the JSON loader rejects are reported at the XML element they came from.
+  EXPECT_TRUE(contains(error(prefix + std::string(kLight) + "\n<shape type=\"rectangle\"><bsdf type=\"diffuse\"><float name=\"reflectance\" value=\"1.5\"/></bsdf></shape>"),
+                  file() + ":8: bsdf 'diffuse': in kasha's translation /materials/"));
+  const std::string missingObj = error(prefix + "<shape type=\"obj\"><string name=\"filename\" value=\"missing.obj\"/></shape>");
+  EXPECT_TRUE(contains(missingObj, file() + ":7: shape 'obj': in kasha's translation /shapes/0/file: "));
+  EXPECT_TRUE(contains(missingObj, "missing.obj: cannot open mesh file"));
+}
+
+TEST_F(MitsubaImport, MalformedXmlNamesTheLine) {
+  const std::string path = write("bad.xml", "<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n</scene>\n");
+  try {
+    loadScene(path);
+    FAIL() << "loaded malformed XML";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), path + ":3: malformed XML"));
+  }
+  const std::string notScene = write("root.xml", "<shape type=\"sphere\"/>");
+  EXPECT_THROW(loadScene(notScene), InputError);
+  const std::string cycle = write("cycle.xml", "<scene version=\"3.0.0\"><include filename=\"cycle.xml\"/></scene>");
+  try {
+    loadScene(cycle);
+    FAIL() << "loaded a cycle of includes";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), "includes itself"));
+  }
+}
+
+}  // namespace
+}  // namespace kasha
