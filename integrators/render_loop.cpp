@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "integrators/render_setup.h"
+
 namespace kasha {
 
 int defaultSamplesPerPass(int width, int height) { return std::max(1, 65536 / std::max(1, width * height)); }
@@ -62,6 +64,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   if (opt.spectral) {
     if (opt.spectral->width() != w || opt.spectral->height() != h)
       throw std::invalid_argument("render: the spectral film's size differs from the film's");
+    requireSpectralBins(integrator, opt.spectral->bins());
     opt.spectral->setSamplesPerPixel(pass);
   }
   double lastCheckpoint = 0.0;

@@ -1,6 +1,7 @@
 #include "integrators/render_setup.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 #include "core/film.h"
@@ -25,6 +26,13 @@ void requirePassMemory(const Integrator& integrator, int width, int height, int 
       samplesPerPass > 0 ? samplesPerPass : std::min(defaultSamplesPerPass(width, height), integrator.maxSamplesPerPass());
   requireMemory(PassTracer::sampleBytes(width, height, perPass, spectral),
                 "the samples of one pass (" + std::to_string(perPass) + " per pixel)", limit);
+}
+
+void requireSpectralBins(const Integrator& integrator, const SpectralBins& bins) {
+  if (bins.enabled() && !integrator.keepsSpectralBins())
+    throw std::invalid_argument("spectral bins are not kept by " + integrator.name() +
+                                " with hero wavelengths (its lanes carry XYZ throughput, which mixes sensor "
+                                "wavelengths after a fluorescent event); render them with one wavelength per path");
 }
 
 RenderOptions renderOptions(const RenderSettings& settings, int threads) {

@@ -22,6 +22,10 @@ void requireFilmMemory(int width, int height, const SpectralBins& bins, bool res
 void requirePassMemory(const Integrator& integrator, int width, int height, int samplesPerPass, bool spectral,
                        uint64_t limit);
 
+// Throws std::invalid_argument if `bins` are enabled and the integrator cannot keep them
+// (Integrator::keepsSpectralBins: pt with hero wavelengths).
+void requireSpectralBins(const Integrator& integrator, const SpectralBins& bins);
+
 // The stop conditions (spp, time), seed and sampler of the settings, with `threads` (0: all cores).
 RenderOptions renderOptions(const RenderSettings& settings, int threads);
 
