@@ -181,7 +181,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   try {
     if (a.spectralBins > 0) bins = SpectralBins::fromCount(scene->range, a.spectralBins);
     if (a.spectralStep > 0.0f) bins = SpectralBins::fromStep(scene->range, a.spectralStep);
-    requireSpectralBins(*integrator, bins);
+    fitIntegratorToBins(integrator, a.integrator, *scene, r, bins);
   } catch (const std::invalid_argument& e) {
     throw UsageError(a.spectralBins > 0 ? "--spectral-bins" : "--spectral-step", "", e.what());
   }
@@ -213,7 +213,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
                                    {"fluorescence_sampling", r.wavelengths.fluorescence.text},
                                    {"light_sampling", r.wavelengths.light.text},
                                    {"nee_sampling", r.wavelengths.nee.text},
-                                   {"hero_wavelengths", r.heroWavelengths},
+                                   {"hero_wavelengths", integrator->lanes()},
                                    {"resolution", {width, height}},
                                    {"spectral_bins", bins.enabled() ? nlohmann::json{bins.min, bins.step, bins.count}
                                                                     : nlohmann::json(nullptr)}};
@@ -271,7 +271,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   if (!png.empty()) writePng(film, png, a.exposure);
   nlohmann::json j = toJson(st);
   j["scene"] = a.scene;
-  j.update(settingsRecord(r));
+  j.update(settingsRecord(r, *integrator));
   j["resolution"] = {film.width(), film.height()};
   j["first_non_finite_pixel"] = {film.firstNonFinitePixel().first, film.firstNonFinitePixel().second};
   if (!st.nonFiniteSamples) j.erase("first_non_finite_pixel");
@@ -454,8 +454,9 @@ int main(int argc, char** argv) {
                      "event's own) | absorption | light | uniform | yamamoto | mix:absorption,light")
       ->check(strategy);
   render->add_option("--hero", ra.hero,
-                     "Hero wavelength sampling (pt): wavelengths per path, 1 (off) to 16; ended at fluorescent "
-                     "and specular events")
+                     "Wavelength lanes (hero wavelength sampling, pt and lt): wavelengths per path, 1 (off) to 16; "
+                     "default 4 for pt and lt (1 for pt when --sensor-sampling is not one density or "
+                     "--nee-sampling is not 'event'), 1 for bdpt and ppm")
       ->check(CLI::Range(1, 16));
   render->add_option("--sampler", ra.sampler,
                      "Random numbers of every sample: sobol (Owen-scrambled Sobol, the default) | independent (PCG32)")

@@ -36,35 +36,6 @@ HeroPathTracer::HeroPathTracer(const Scene& scene, const RenderSettings& s)
                                 std::to_string(kMaxWavelengths) + "]");
 }
 
-float HeroPathTracer::lightSelectProbability(const Scene& scene, size_t light, const float* lambda, int n) const {
-  float mine = 0.0f, total = 0.0f;
-  for (size_t l = 0; l < scene.lights.size(); ++l)
-    for (int j = 0; j < n; ++j) {
-      const float p = scene.lights[l]->power(lambda[j]);
-      total += p;
-      if (l == light) mine += p;
-    }
-  return total > 0.0f ? mine / total : 0.0f;
-}
-
-std::pair<size_t, float> HeroPathTracer::selectLight(const Scene& scene, const float* lambda, int n, float u) const {
-  float total = 0.0f;
-  for (const auto& light : scene.lights)
-    for (int j = 0; j < n; ++j) total += light->power(lambda[j]);
-  if (!(total > 0.0f)) return {0, 0.0f};
-  float acc = 0.0f;
-  size_t last = 0;
-  for (size_t l = 0; l < scene.lights.size(); ++l) {
-    float p = 0.0f;
-    for (int j = 0; j < n; ++j) p += scene.lights[l]->power(lambda[j]);
-    if (p <= 0.0f) continue;
-    last = l;
-    acc += p;
-    if (u * total < acc) return {l, p / total};
-  }
-  return {last, lightSelectProbability(scene, last, lambda, n)};
-}
-
 Vec3 HeroPathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   const WavelengthDensity& p = sensor_.density();
   const float u = rng.uniform();
@@ -98,7 +69,7 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
       if (const EnvironmentLight* env = scene.environment()) {
         float w = 1.0f;
         if (!prevSpecular)
-          w = powerHeuristic(prevDirPdf, lightSelectProbability(scene, size_t(scene.environmentLight), prevLambda, prevN) *
+          w = powerHeuristic(prevDirPdf, laneLightProbability(scene, size_t(scene.environmentLight), {prevLambda, size_t(prevN)}) *
                                              env->pdfDirection(ray.d));
         for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (env->Le(lanes.lambda[j], ray.d) * w);
       }
@@ -109,7 +80,7 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
       float w = 1.0f;
       if (!prevSpecular) {
         const size_t li = size_t(scene.shapeLight[hit->shape]);
-        w = powerHeuristic(prevDirPdf, lightSelectProbability(scene, li, prevLambda, prevN) *
+        w = powerHeuristic(prevDirPdf, laneLightProbability(scene, li, {prevLambda, size_t(prevN)}) *
                                            scene.lights[li]->pdfLi(prevP, hit->p, hit->ng));
       }
       for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (shape.emission->eval(lanes.lambda[j], hit->ng, -ray.d) * w);
@@ -136,7 +107,7 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
     prevN = e.n;
     std::copy(e.lambda, e.lambda + e.n, prevLambda);
     if (!bsdf.has(BsdfFlags::DeltaDirection)) {
-      const auto [li, pSelect] = selectLight(scene, e.lambda, e.n, uLight);
+      const auto [li, pSelect] = selectLaneLight(scene, {e.lambda, size_t(e.n)}, uLight);
       const std::optional<LightSample> ls =
           pSelect > 0.0f ? scene.lights[li]->sampleLi(hit->p, e.lambda[0], uPos) : std::nullopt;
       if (ls && ls->pdf > 0.0f) {

@@ -34,6 +34,7 @@ class HeroPathTracer final : public Integrator {
   HeroPathTracer(const Scene& scene, const RenderSettings& settings);
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override { return "pt"; }
+  int lanes() const override { return n_; }
   // No: a lane's throughput is XYZ, which after a fluorescent event mixes the sensor wavelengths
   // of every lane before it, so no share belongs to one sensor wavelength.
   bool keepsSpectralBins() const override { return false; }
@@ -47,9 +48,6 @@ class HeroPathTracer final : public Integrator {
 
  private:
   Vec3 radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler& rng, RayCounter& counter) const;
-  // Probability of choosing light `light` for next-event estimation: ∝ Σ_j Φ_light(λ_j).
-  float lightSelectProbability(const Scene& scene, size_t light, const float* lambda, int n) const;
-  std::pair<size_t, float> selectLight(const Scene& scene, const float* lambda, int n, float u) const;
 
   WavelengthSources sources_;
   WavelengthStrategy sensor_;

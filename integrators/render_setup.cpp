@@ -7,6 +7,7 @@
 #include "core/film.h"
 #include "core/memory_budget.h"
 #include "core/sampler.h"
+#include "integrators/integrator_factory.h"
 #include "integrators/render_pass.h"
 
 namespace kasha {
@@ -35,6 +36,15 @@ void requireSpectralBins(const Integrator& integrator, const SpectralBins& bins)
                                 "wavelengths after a fluorescent event); render them with one wavelength per path");
 }
 
+void fitIntegratorToBins(std::unique_ptr<Integrator>& integrator, const std::string& name, const Scene& scene,
+                         RenderSettings& settings, const SpectralBins& bins) {
+  if (bins.enabled() && !integrator->keepsSpectralBins() && settings.heroWavelengths == kAutoLanes) {
+    settings.heroWavelengths = 1;
+    integrator = makeIntegrator(name, scene, settings);
+  }
+  requireSpectralBins(*integrator, bins);
+}
+
 RenderOptions renderOptions(const RenderSettings& settings, int threads) {
   RenderOptions opt;
   opt.spp = settings.spp;
@@ -45,14 +55,14 @@ RenderOptions renderOptions(const RenderSettings& settings, int threads) {
   return opt;
 }
 
-nlohmann::json settingsRecord(const RenderSettings& r) {
+nlohmann::json settingsRecord(const RenderSettings& r, const Integrator& integrator) {
   return {{"seed", r.seed},
           {"sampler", toString(r.sampler)},
           {"sensor_sampling", r.wavelengths.sensor.text},
           {"fluorescence_sampling", r.wavelengths.fluorescence.text},
           {"light_sampling", r.wavelengths.light.text},
           {"nee_sampling", r.wavelengths.nee.text},
-          {"hero_wavelengths", r.heroWavelengths},
+          {"hero_wavelengths", integrator.lanes()},
           {"max_depth", r.maxDepth}};
 }
 

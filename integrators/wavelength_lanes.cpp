@@ -68,6 +68,38 @@ LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const 
   return e;
 }
 
+float laneLightProbability(const Scene& scene, size_t light, std::span<const float> lambda) {
+  float sum = 0.0f;
+  for (const float x : lambda) {
+    float total = 0.0f;
+    for (const auto& l : scene.lights) total += l->power(x);
+    if (total > 0.0f) sum += scene.lights[light]->power(x) / total;
+  }
+  return sum / float(lambda.size());
+}
+
+std::pair<size_t, float> selectLaneLight(const Scene& scene, std::span<const float> lambda, float u) {
+  // A lane J chosen uniformly, then the light ∝ Φ_l(λ_J) with the rest of u.
+  const int n = int(lambda.size());
+  const int J = std::min(int(u * float(n)), n - 1);
+  const float v = std::min(u * float(n) - float(J), kBelowOne);
+  float total = 0.0f;
+  for (const auto& light : scene.lights) total += light->power(lambda[J]);
+  if (!(total > 0.0f)) return {0, 0.0f};
+  float acc = 0.0f;
+  size_t chosen = scene.lights.size();
+  for (size_t l = 0; l < scene.lights.size() && chosen == scene.lights.size(); ++l) {
+    const float p = scene.lights[l]->power(lambda[J]);
+    if (p <= 0.0f) continue;
+    acc += p;
+    if (v * total < acc) chosen = l;
+  }
+  if (chosen == scene.lights.size())  // rounding: the last light that emits at λ_J
+    for (size_t l = 0; l < scene.lights.size(); ++l)
+      if (scene.lights[l]->power(lambda[J]) > 0.0f) chosen = l;
+  return {chosen, laneLightProbability(scene, chosen, lambda)};
+}
+
 void keepOneLane(LaneEvent& e, float u) {
   if (e.n <= 1) return;
   const int j = std::min(int(u * float(e.n)), e.n - 1);

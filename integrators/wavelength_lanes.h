@@ -9,6 +9,7 @@
 
 #include "core/wavelength_density.h"
 #include "materials/bsdf.h"
+#include "scene/scene.h"
 
 namespace kasha {
 
@@ -52,6 +53,14 @@ T laneWeight(const Bsdf& bsdf, TransportMode mode, std::span<const float> known,
                                  : bsdf.eval(mode, wi, wo, known[j], e.lambda[k], e.lobe));
   return sum * e.scale[k];
 }
+
+// Light selection symmetric in the lanes: a lane J uniformly, then light l ∝ Φ_l(λ_J), so that
+// P(l) = (1/N)·Σ_k Φ_l(λ_k)/Σ_l' Φ_l'(λ_k) (the mixture over the N hero techniques). Each lane
+// gets its share of the choices, however different the lights' powers at the lanes are
+// (∝ Σ_k Φ_l(λ_k) would almost never pick a weak white light beside a strong UV one).
+float laneLightProbability(const Scene& scene, size_t light, std::span<const float> lambda);
+// The light chosen with u and its probability P(l) (0 if no light emits at the chosen lane).
+std::pair<size_t, float> selectLaneLight(const Scene& scene, std::span<const float> lambda, float u);
 
 // Ends the lanes in one, chosen uniformly with u, its weight times their number: an unbiased
 // one-sample estimate of the sum over the lanes, however they were drawn.

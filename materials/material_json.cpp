@@ -16,6 +16,7 @@
 #include "materials/mirror.h"
 #include "materials/rough_conductor.h"
 #include "materials/rough_dielectric.h"
+#include "materials/thin_dielectric.h"
 #include "materials/textured_jung.h"
 
 namespace kasha {
@@ -209,10 +210,11 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     Spectrum r = spectrumField(f, "reflectance", ctx);
     requireAlbedo(f, "reflectance", r, range, unphysical);
     m = std::make_unique<Mirror>(std::move(r));
-  } else if (type == "dielectric") {
+  } else if (type == "dielectric" || type == "thin_dielectric") {
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
-    m = std::make_unique<Dielectric>(std::move(ior), range);
+    if (type == "dielectric") m = std::make_unique<Dielectric>(std::move(ior), range);
+    else m = std::make_unique<ThinDielectric>(std::move(ior), range);
   } else if (type == "file") {
     m = parseMaterialFile(f, ctx, range);
   } else if (type == "zhdanov") {
@@ -241,7 +243,7 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     m = std::make_unique<CoatedFluorescent>(std::move(p), std::move(ior), a.x, a.y, range);
   } else {
     f.fail("type", "unknown material type '" + type +
-                       "' (lambertian, jung_fluorescent, mirror, dielectric, rough_conductor, rough_dielectric, "
+                       "' (lambertian, jung_fluorescent, mirror, dielectric, thin_dielectric, rough_conductor, rough_dielectric, "
                        "coated_fluorescent, zhdanov, measured_reradiation, file)");
   }
   f.finish();

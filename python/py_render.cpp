@@ -58,10 +58,10 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
   const Scene& scene = pyScene.load(withSettings(pyScene.json(), req), memoryLimit);
   RenderSettings settings = scene.render;
   settings.memoryLimit = memoryLimit;
-  const std::unique_ptr<Integrator> integrator = makeIntegrator(req.integrator, scene, settings);
+  std::unique_ptr<Integrator> integrator = makeIntegrator(req.integrator, scene, settings);
   const int w = scene.camera.width(), h = scene.camera.height();
   const SpectralBins bins = binsFor(scene, req);
-  requireSpectralBins(*integrator, bins);
+  fitIntegratorToBins(integrator, req.integrator, scene, settings, bins);
   // As on the command line, the output is checked before the first sample (core/output_file.h).
   if (!req.output.empty()) checkOutputs({{req.output, "output", ".exr", ""}});
   requireFilmMemory(w, h, bins, false, memoryLimit);
@@ -115,7 +115,7 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
   result["xyz"] = xyzArray(film);
   result["rgb"] = rgbArray(result["xyz"].cast<py::array_t<float>>());
   nlohmann::json st = toJson(stats);
-  st.update(settingsRecord(settings));
+  st.update(settingsRecord(settings, *integrator));
   result["stats"] = fromJson(st);
   if (spectral) {
     result["spectral"] = spectralArray(*spectral);
