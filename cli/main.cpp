@@ -201,7 +201,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
                                    {"fluorescence_sampling", r.wavelengths.fluorescence.text},
                                    {"light_sampling", r.wavelengths.light.text},
                                    {"nee_sampling", r.wavelengths.nee.text},
-                                   {"hero_wavelengths", r.heroWavelengths},
+                                   {"hero_wavelengths", integrator->lanes()},
                                    {"resolution", {width, height}}};
   if (a.integrator == "bdpt-mollified") settings["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
 
@@ -271,7 +271,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   j["fluorescence_sampling"] = r.wavelengths.fluorescence.text;
   j["light_sampling"] = r.wavelengths.light.text;
   j["nee_sampling"] = r.wavelengths.nee.text;
-  j["hero_wavelengths"] = r.heroWavelengths;
+  j["hero_wavelengths"] = integrator->lanes();
   j["max_depth"] = r.maxDepth;
   j["resolution"] = {film.width(), film.height()};
   j["first_non_finite_pixel"] = {film.firstNonFinitePixel().first, film.firstNonFinitePixel().second};
@@ -446,8 +446,9 @@ int main(int argc, char** argv) {
                      "event's own) | absorption | light | uniform | yamamoto | mix:absorption,light")
       ->check(strategy);
   render->add_option("--hero", ra.hero,
-                     "Hero wavelength sampling (pt): wavelengths per path, 1 (off) to 16; ended at fluorescent "
-                     "and specular events")
+                     "Wavelength lanes (hero wavelength sampling, pt and lt): wavelengths per path, 1 (off) to 16; "
+                     "default 4 for pt and lt (1 for pt when --sensor-sampling is not one density or "
+                     "--nee-sampling is not 'event'), 1 for bdpt and ppm")
       ->check(CLI::Range(1, 16));
   render->add_option("--sampler", ra.sampler,
                      "Random numbers of every sample: sobol (Owen-scrambled Sobol, the default) | independent (PCG32)")

@@ -27,6 +27,8 @@ class FluorescenceSampling {
   // The excitation wavelength alone, once the fluorescent lobe has been chosen: λ_i and its
   // density p(λ_i). Needs a strategy other than "material".
   WavelengthSample sampleExcitation(size_t materialIndex, float u) const;
+  // The density sampleExcitation draws from (needs draws(materialIndex)).
+  const WavelengthDensity& density(size_t materialIndex) const { return perMaterial_[materialIndex]->density(); }
   // Density of sample() choosing (lobe, lambdaIn) given lambdaOut.
   float pdf(const Bsdf& bsdf, size_t materialIndex, float lambdaOut, float lambdaIn, SpectralLobe lobe) const;
 

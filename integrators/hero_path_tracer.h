@@ -1,45 +1,50 @@
 #pragma once
-// Path tracing with hero wavelength sampling (Wilkie, Nawaz, Droske, Weidlich & Hanika 2014,
-// "Hero Wavelength Spectral Sampling"): each camera path carries N wavelengths, the hero λ_h drawn
-// from the sensor density p and N − 1 rotations λ_j = λ_min + (λ_h − λ_min + j·W/N) mod W over the
-// sensor's range of width W. Every choice along the path depends on the set of wavelengths, never
-// on which one is the hero — the lobe with the mean of the lanes' P_c (Jung18 eq. 7), the light in
-// proportion to Σ_j Φ_l(λ_j), directions only where their density is the same for every lane —
-// so each of the N "hero" techniques that can produce the path has the same path density, and the
-// balance heuristic over them (Wilkie14 eq. 8) divides every lane by Σ_k p(λ_k).
+// Path tracing with wavelength lanes (hero wavelength sampling, Wilkie, Nawaz, Droske, Weidlich &
+// Hanika 2014, with pbrt-v4's stratification and lanes that pass through fluorescent events;
+// docs/wavelength-sampling.md "Lanes"). Each camera path carries N wavelengths drawn from the
+// sensor density p at the stratified points (u + j/N) mod 1 of its inverse CDF, so that every lane
+// is distributed as p and the N lanes cover it evenly (a directly seen light converges to its colour
+// at once). Every choice along the path is symmetric in the lanes (the lobe with the mean of their
+// P_c, Jung18 eq. 7; the light ∝ Σ_j Φ_l(λ_j); directions where their density is the same for every
+// lane), so the balance heuristic over the N hero techniques (Wilkie14 eq. 8) weights every lane by
+// 1/(N·p(λ_j)). A lane carries its XYZ throughput (a 3-vector), not a scalar.
 //
-// At a fluorescent event, at a specular vertex, and before next-event estimation wherever the
-// Bsdf's direction sampling depends on λ (BsdfFlags::WavelengthDependentDirection: dispersion,
-// lobe choices weighted by a spectrum; next-event estimation would otherwise weight every lane
-// with the hero's direction density), the secondary wavelengths end and the hero continues alone (Mojzík,
-// Fichet & Wilkie 2018, "Handling fluorescence in a uni-directional spectral path tracer"): no other
-// technique can produce what follows, so from there on the hero is weighted by 1/p(λ_h) alone.
+// At a fluorescent event the lanes do not end. The event's value for lane j is the integral over
+// λ_i of f(λ_i → λ_o^j)·L(λ_i); the excitation density does not depend on which λ_o it serves (a
+// strategy's density, or the Bsdf's own given λ_o^j used as a mixture over the lanes), so a fresh
+// set of N excitation lanes λ_k serves every λ_o^j at once: lane k carries
+//   T_k = Σ_j T_j·f(λ_k → λ_o^j)·|cos θ| / (P_fl · pdf_dir · Σ_m n_m q_m(λ_k))
+// (Veach's multi-sample balance heuristic over the mixture components q_m, n_m samples of each).
+// Wherever the Bsdf's elastic direction sampling depends on λ (BsdfFlags::WavelengthDependentDirection)
+// the lanes end before next-event estimation, keeping one chosen uniformly at random with its weight
+// times N (one-sample estimate of the sum over lanes; pbrt-v4's TerminateSecondary keeps the hero,
+// which is unbiased only when each lane alone is, unlike the lanes after a mixture).
 #include "scene/wavelength_strategy.h"
 #include "integrators/fluorescence_sampling.h"
 #include "integrators/integrator.h"
+#include "integrators/wavelength_lanes.h"
 
 namespace kasha {
 
 class HeroPathTracer final : public Integrator {
  public:
-  static constexpr int kMaxWavelengths = 16;
+  static constexpr int kMaxWavelengths = kMaxLanes;
   // settings.heroWavelengths in [2, kMaxWavelengths]; the sensor strategy must be a density.
   // Throws std::invalid_argument (WavelengthStrategyError for a strategy) otherwise.
   HeroPathTracer(const Scene& scene, const RenderSettings& settings);
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override { return "pt"; }
+  int lanes() const override { return n_; }
+
+  // The lanes of a path segment: wavelength and XYZ throughput over the path density.
+  struct Lanes {
+    int n = 0;
+    float lambda[kMaxLanes];
+    Vec3 T[kMaxLanes];
+  };
 
  private:
-  struct Lanes {
-    int n = 0;                       // active lanes; lane 0 is the hero
-    float lambda[kMaxWavelengths];   // the wavelength of the current segment
-    float beta[kMaxWavelengths];     // throughput over the (shared) path density
-    float L[kMaxWavelengths];        // radiance gathered
-  };
-  void radiance(const Scene& scene, Ray ray, Lanes& lanes, float collapseFactor, Sampler& rng, RayCounter& counter) const;
-  // Probability of choosing light `light` for next-event estimation: ∝ Σ_j Φ_light(λ_j).
-  float lightSelectProbability(const Scene& scene, size_t light, const Lanes& lanes) const;
-  std::pair<size_t, float> selectLight(const Scene& scene, const Lanes& lanes, float u) const;
+  Vec3 radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler& rng, RayCounter& counter) const;
 
   WavelengthSources sources_;
   WavelengthStrategy sensor_;

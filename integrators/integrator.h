@@ -57,6 +57,8 @@ class Integrator {
   // to other pixels go to ctx.splats, in units where the film divides by samples per pixel.
   virtual Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const = 0;
   virtual std::string name() const = 0;
+  // Wavelengths each path carries (wavelength lanes; 1 without them).
+  virtual int lanes() const { return 1; }
 
   // Called by the render loop before each pass, which takes samples [firstSample, firstSample +
   // count) of every pixel; seed is the render's seed. Rays traced here count in `counter`. The

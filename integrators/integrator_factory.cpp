@@ -25,7 +25,17 @@ void requireUnused(const WavelengthSpec& spec, const WavelengthSpec& fallback, W
 
 std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent", "bdpt-mollified", "ppm"}; }
 
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& s) {
+int defaultLanes(const std::string& name, const RenderSettings& s) {
+  if (name == "lt") return kDefaultLanes;
+  // The path tracer's lanes need one sensor density and the event's own excitation for NEE.
+  if (name == "pt" && s.wavelengths.sensor.isDensity() && s.wavelengths.nee.uses(WavelengthSpec::Kind::Event))
+    return kDefaultLanes;
+  return 1;
+}
+
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& requested) {
+  RenderSettings s = requested;
+  if (s.heroWavelengths == kAutoLanes) s.heroWavelengths = defaultLanes(name, s);
   const WavelengthSettings& w = s.wavelengths;
   const WavelengthSettings defaults;
   const bool mollified = name == "bdpt-mollified";
@@ -35,9 +45,9 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
     if (s.heroWavelengths > 1) return std::make_unique<HeroPathTracer>(scene, s);
     return std::make_unique<PathTracer>(scene, s);
   }
-  if (s.heroWavelengths != 1)
+  if (s.heroWavelengths != 1 && name != "lt")
     throw std::invalid_argument("hero wavelengths (" + std::to_string(s.heroWavelengths) +
-                                ") are implemented by the path tracer only (--integrator pt)");
+                                ") are implemented by the path and light tracers only (--integrator pt or lt)");
   if (name != "lt" && name != "ppm" && !bdpt) {
     std::string known;
     for (const std::string& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;

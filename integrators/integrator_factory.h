@@ -12,7 +12,14 @@ namespace kasha {
 // wavelength family; "bdpt" is the independent one), "bdpt-mollified" (independent, with spectral
 // mollification of elastic connections), "ppm" (progressive photon mapping). Throws
 // std::invalid_argument otherwise.
+// settings.heroWavelengths = kAutoLanes becomes defaultLanes(name, settings).
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& settings);
 std::vector<std::string> integratorNames();
+
+// Wavelength lanes of an integrator when the settings leave them to it: kDefaultLanes for lt, and
+// for pt when its sensor strategy is one density and next-event estimation shares the event's
+// excitation wavelength (what lanes need); 1 otherwise (bdpt, ppm: no lanes yet).
+inline constexpr int kDefaultLanes = 4;
+int defaultLanes(const std::string& name, const RenderSettings& settings);
 
 }  // namespace kasha

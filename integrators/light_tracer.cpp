@@ -1,16 +1,13 @@
 #include "integrators/light_tracer.h"
 
 #include "core/color.h"
+#include "integrators/wavelength_lanes.h"
 
 namespace kasha {
 namespace {
 
-// Splats beta·(f·|cos|)·W/(w·h): the film divides by samples per pixel, and there are w·h light
-// subpaths per sample per pixel.
-void splatToCamera(const Scene& scene, const Camera::Connection& c, float value, float lambda, SampleContext& ctx) {
-  const float perPath = 1.0f / (float(scene.camera.width()) * float(scene.camera.height()));
-  ctx.splats.push_back({c.pixel, Observer::cie1931().weight(lambda) * (value * c.importance * perPath)});
-}
+// The film divides by samples per pixel, and there are w·h light subpaths per sample per pixel.
+float perPath(const Scene& scene) { return 1.0f / (float(scene.camera.width()) * float(scene.camera.height())); }
 
 bool visible(const Scene& scene, const Vec3& p, const Vec3& n, const Camera::Connection& c, SampleContext& ctx) {
   ++ctx.counter.shadow;
@@ -18,73 +15,113 @@ bool visible(const Scene& scene, const Vec3& p, const Vec3& n, const Camera::Con
   return !scene.accel->occluded(origin, c.wi, c.dist * (1.0f - 1e-4f) - rayEpsilon(p));
 }
 
+float magnitude(const float* beta, int n) {
+  float m = 0.0f;
+  for (int j = 0; j < n; ++j) m += beta[j];
+  return m;
+}
+
 }  // namespace
 
 LightTracer::LightTracer(const Scene& scene, const RenderSettings& s)
     : wavelengths_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
+      lanes_(s.heroWavelengths),
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth) {
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "for light subpaths");
+  if (lanes_ < 1 || lanes_ > kMaxLanes)
+    throw std::invalid_argument("wavelength lanes: " + std::to_string(lanes_) + " is outside [1, " +
+                                std::to_string(kMaxLanes) + "]");
 }
 
 Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleContext& ctx) const {
-  const LightSelector::LightWavelength lw =
-      scene.lightSelector->sampleLightAndWavelength(wavelengths_.density(), rng.uniform(), rng.uniform());
-  if (lw.pdf <= 0.0f) return Vec3(0.0f);
-  const Light& light = *scene.lights[lw.light];
+  const Observer& observer = Observer::cie1931();
+  const int n = lanes_;
+  // Lanes at the strata of the light-start density; the light ∝ Σ_j Φ_l(λ_j), symmetric in them.
+  const float uLambda = rng.uniform(), uLight = rng.uniform();
   const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
-  const std::optional<EmissionSample> es = light.sampleEmission(lw.lambda, uPos, uDir);
+  float lambda[kMaxLanes], pdf[kMaxLanes];
+  for (int j = 0; j < n; ++j) {
+    const WavelengthSample s = wavelengths_.density().sample(laneStratum(uLambda, j, n));
+    lambda[j] = s.lambda;
+    pdf[j] = s.pdf;
+  }
+  const auto [li, pSelect] = selectLaneLight(scene, {lambda, size_t(n)}, uLight);
+  if (!(pSelect > 0.0f)) return Vec3(0.0f);
+  const Light& light = *scene.lights[li];
+  // The emission's geometry does not depend on λ: the same point and direction for every lane.
+  const std::optional<EmissionSample> es = light.sampleEmission(lambda[0], uPos, uDir);
   if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return Vec3(0.0f);
+  // Lane j's start weight 1/(N·p(λ_j)·P(light)), the balance heuristic over the lanes.
+  float start[kMaxLanes], beta[kMaxLanes];
+  for (int j = 0; j < n; ++j) {
+    const std::optional<EmissionSample> ej = j == 0 ? es : light.sampleEmission(lambda[j], uPos, uDir);
+    start[j] = ej && pdf[j] > 0.0f ? 1.0f / (float(n) * pdf[j] * pSelect) : 0.0f;
+    beta[j] = start[j] > 0.0f ? ej->Le * start[j] * es->cosOrigin / (es->pdfPos * es->pdfDir) : 0.0f;
+  }
 
   // The emitter seen directly (area lights; delta lights are not visible to a pinhole).
   if (!es->deltaPos && !es->deltaDir && glm::dot(es->n, es->n) > 0.0f) {
     if (const auto c = scene.camera.connect(es->p)) {
       const auto& area = static_cast<const AreaLight&>(light);
-      const float Le = area.shape().emission->eval(lw.lambda, es->n, c->wi);
-      if (Le > 0.0f && visible(scene, es->p, es->n, *c, ctx))
-        splatToCamera(scene, *c, Le * std::abs(glm::dot(es->n, c->wi)) / (es->pdfPos * lw.pdf), lw.lambda, ctx);
+      Vec3 xyz(0.0f);
+      for (int j = 0; j < n; ++j)
+        xyz += observer.weight(lambda[j]) * (area.shape().emission->eval(lambda[j], es->n, c->wi) * start[j]);
+      if (xyz != Vec3(0.0f) && visible(scene, es->p, es->n, *c, ctx))
+        ctx.splats.push_back({c->pixel, xyz * (std::abs(glm::dot(es->n, c->wi)) / es->pdfPos * c->importance * perPath(scene))});
     }
   }
 
-  float beta = es->Le * es->cosOrigin / (es->pdfPos * es->pdfDir * lw.pdf);
-  if (!(beta > 0.0f)) return Vec3(0.0f);
-  const float beta0 = beta;  // Russian roulette compares the throughput with the emitted weight
-  float lambda = lw.lambda;
+  const float magnitude0 = magnitude(beta, n);  // Russian roulette compares the throughput with this
+  if (!(magnitude0 > 0.0f)) return Vec3(0.0f);
+  int lanes = n;
   Ray ray{glm::dot(es->n, es->n) > 0.0f ? offsetPoint(es->p, es->n, es->w) : es->p, es->w};
+  const uint32_t firstDimension = rng.dimension();
   for (int depth = 1; depth <= maxDepth_; ++depth) {
+    rng.startVertex(firstDimension, depth - 1);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++ctx.counter.closest;
     if (!hit) break;
-    const Bsdf bsdf = scene.bsdf(*hit, {&lambda, 1});
+    const Bsdf bsdf = scene.bsdf(*hit, {lambda, size_t(lanes)});
     const Vec3 wi = bsdf.toLocal(-ray.d);
-    // Spectral stage (Importance): the lobe and the wavelength leaving this vertex.
-    const SpectralChoice sc = bsdf.sampleSpectral(TransportMode::Importance, lambda, rng.uniform());
-    if (sc.pdf <= 0.0f) break;
-    const float lambdaOut = sc.lambda;
+    // Spectral stage (Importance) of every lane: the lobe and the wavelengths leaving this vertex.
+    const std::span<const float> known(lambda, size_t(lanes));
+    const float uLobe = rng.uniform(), uLane = rng.uniform();
+    LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Importance, known, n, uLobe);
+    if (e.n == 0) break;
+    if (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection)) keepOneLane(e, uLane);
 
     if (!bsdf.has(BsdfFlags::DeltaDirection)) {
       if (const auto c = scene.camera.connect(hit->p)) {
         const Vec3 wo = bsdf.toLocal(c->wi);
-        const float f = bsdf.eval(TransportMode::Importance, wi, wo, lambda, lambdaOut, sc.lobe);
-        if (f > 0.0f && visible(scene, hit->p, hit->ng, *c, ctx))
-          splatToCamera(scene, *c, beta * f * std::abs(wo.z) / sc.pdf, lambdaOut, ctx);
+        Vec3 xyz(0.0f);
+        for (int k = 0; k < e.n; ++k)
+          xyz += observer.weight(e.lambda[k]) * (laneWeight(bsdf, TransportMode::Importance, known, beta, e, k, wo, wi) * std::abs(wo.z));
+        if (xyz != Vec3(0.0f) && visible(scene, hit->p, hit->ng, *c, ctx))
+          ctx.splats.push_back({c->pixel, xyz * (c->importance * perPath(scene))});
       }
     }
     if (depth == maxDepth_) break;
 
+    // Direction at lane 0's wavelengths; every lane has the same density.
+    const float lambdaIn0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lambda[0];
     const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(TransportMode::Importance, wi, sc.lobe, lambda, lambdaOut, rng.uniform2());
+        bsdf.sampleDirection(TransportMode::Importance, wi, e.lobe, lambdaIn0, e.lambda[0], rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
-    const float f = bsdf.eval(TransportMode::Importance, wi, ds->w, lambda, lambdaOut, sc.lobe);
-    beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);
-    if (!(beta > 0.0f)) break;
-    lambda = lambdaOut;
+    float next[kMaxLanes];
+    for (int k = 0; k < e.n; ++k)
+      next[k] = laneWeight(bsdf, TransportMode::Importance, known, beta, e, k, ds->w, wi) * std::abs(ds->w.z) / ds->pdf;
+    lanes = e.n;
+    std::copy(next, next + lanes, beta);
+    std::copy(e.lambda, e.lambda + lanes, lambda);
+    const float m = magnitude(beta, lanes);
+    if (!(m > 0.0f)) break;
     const Vec3 w = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
     if (depth >= rrDepth_) {
-      const float q = std::min(1.0f, beta / beta0);
+      const float q = std::min(1.0f, m / magnitude0);
       if (rng.uniform() >= q) break;
-      beta /= q;
+      for (int j = 0; j < lanes; ++j) beta[j] /= q;
     }
   }
   return Vec3(0.0f);

@@ -1,10 +1,12 @@
 #pragma once
 // Light tracing: subpaths from the lights in Importance mode, each connected to the pinhole at
-// every non-specular vertex and splatted into the pixel it lands on. The first wavelength comes
-// from the light-start strategy (by default the scene's emitted power spectrum) and the light in
-// proportion to its power there (p(light, λ) = p(λ)·Φ_light(λ)/Σ_l Φ_l(λ)); at each vertex the material's spectral stage picks the lobe and the outgoing
-// wavelength (Jung18 eq. 6 and λ_o ∝ e), which the camera connection and the continued path
-// share; the sensor responds at the wavelength that arrives at it.
+// every non-specular vertex and splatted into the pixel it lands on. A subpath carries N wavelength
+// lanes (docs/wavelength-sampling.md "Hero wavelengths"; N = 1 is classic light tracing) at the
+// strata of the light-start strategy's density (by default the scene's emitted power spectrum),
+// the light chosen ∝ Σ_j Φ_light(λ_j). At each vertex the lanes' spectral event picks the lobe
+// (Jung18 eq. 6 with the lanes' mean P_l) and the outgoing wavelengths (elastic: each its own;
+// fluorescent: N fresh lanes ∝ e serving every lane before), which the camera connection and the
+// continued path share; the sensor responds at the wavelength that arrives at it.
 #include "scene/wavelength_strategy.h"
 #include "integrators/integrator.h"
 
@@ -18,10 +20,11 @@ class LightTracer final : public Integrator {
   // its contributions are splats.
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override { return "lt"; }
+  int lanes() const override { return lanes_; }
 
  private:
   WavelengthStrategy wavelengths_;
-  int maxDepth_, rrDepth_;
+  int lanes_, maxDepth_, rrDepth_;
 };
 
 }  // namespace kasha

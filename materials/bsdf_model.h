@@ -42,6 +42,8 @@ enum class BsdfFlags : uint8_t {
   // The direction sampled for an elastic event (or its density) depends on the wavelength (a
   // dispersive index, a lobe choice weighted by a spectrum): a direction drawn for one wavelength
   // is not one drawn for another, so hero wavelengths end their secondaries before it.
+  // (A fluorescent lobe's direction density never depends on the wavelengths: every model's is
+  // diffuse, and wavelength lanes rely on it.)
   WavelengthDependentDirection = 1 << 2,
 };
 constexpr BsdfFlags operator|(BsdfFlags a, BsdfFlags b) { return BsdfFlags(uint8_t(a) | uint8_t(b)); }

@@ -34,6 +34,8 @@ struct WavelengthSettings {
   WavelengthSpec nee = parseWavelengthSpec("event");                 // λ_i of next-event estimation at a fluorescent event (pt)
 };
 
+inline constexpr int kAutoLanes = 0;
+
 struct RenderSettings {
   int spp = 16;                 // samples per pixel (a stop condition)
   double timeBudgetSeconds = 0; // > 0: also stop after this long (whole passes only)
@@ -42,7 +44,10 @@ struct RenderSettings {
   uint64_t seed = 1;
   SamplerKind sampler = SamplerKind::Sobol;  // random numbers of every sample (core/sampler.h)
   WavelengthSettings wavelengths;
-  int heroWavelengths = 1;      // > 1: hero wavelength sampling with this many wavelengths per path (pt)
+  // Wavelength lanes per path (hero wavelength sampling, pt and lt): 1 to 16, or kAutoLanes for the
+  // integrator's default (integrators/integrator_factory.h: 4 where the integrator and its
+  // wavelength strategies carry lanes, else 1).
+  int heroWavelengths = kAutoLanes;
   // Largest buffer an integrator may allocate (photon maps, ...): check with requireMemory()
   // before allocating. Set by `kasha render --memory-limit`; not a scene-file setting.
   uint64_t memoryLimit = kDefaultMemoryLimit;

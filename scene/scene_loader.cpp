@@ -141,7 +141,8 @@ struct Loader {
     wavelengthSpec(f, "light_sampling", r.wavelengths.light);
     wavelengthSpec(f, "nee_sampling", r.wavelengths.nee);
     r.heroWavelengths = f.integer("hero_wavelengths", r.heroWavelengths);
-    if (r.heroWavelengths < 1 || r.heroWavelengths > 16) f.fail("hero_wavelengths", "must be in [1, 16]");
+    if (r.heroWavelengths < 0 || r.heroWavelengths > 16)
+      f.fail("hero_wavelengths", "must be in [1, 16], or 0 for the integrator's default");
     photonMapping(f);
     mollification(f);
     f.finish();

@@ -129,27 +129,54 @@ TEST(BsdfInterface, FluorescentEventProbabilityIsOneMinusTheElasticDensity) {
       }
 }
 
+// Calls fn(mode, wKnown, wSampled) for 200 random direction pairs per transport mode, the known
+// direction above the surface.
+template <class Fn>
+void forRandomDirections(Rng& rng, Fn fn) {
+  for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance})
+    for (int k = 0; k < 200; ++k) {
+      Vec3 wKnown = test::randomDirection(rng);
+      wKnown.z = std::abs(wKnown.z);
+      fn(mode, wKnown, test::randomDirection(rng));
+    }
+}
+
 TEST(BsdfInterface, FlagsTellTheTruth) {
   Rng rng(17, 0);
   for (const Subject& s : subjects()) {
     EXPECT_EQ(uint8_t(s.bsdf.flags()) & ~uint8_t(s.material->flags()), 0) << s.name << ": not in the material's flags";
     if (s.bsdf.has(BsdfFlags::DeltaDirection)) continue;
     bool differs = false;
-    for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance})
-      for (int k = 0; k < 200; ++k) {
-        Vec3 wKnown = test::randomDirection(rng);
-        wKnown.z = std::abs(wKnown.z);
-        const Vec3 wSampled = test::randomDirection(rng);
-        const float base = s.bsdf.directionPdf(mode, wKnown, wSampled, SpectralLobe::Elastic, 550.0f, 550.0f);
-        for (float l : {420.0f, 480.0f, 620.0f, 700.0f}) {
-          const float p = s.bsdf.directionPdf(mode, wKnown, wSampled, SpectralLobe::Elastic, l, l);
-          if (std::abs(p - base) > 1e-5f * std::max(p, base)) differs = true;
-        }
+    forRandomDirections(rng, [&](TransportMode mode, const Vec3& wKnown, const Vec3& wSampled) {
+      const float base = s.bsdf.directionPdf(mode, wKnown, wSampled, SpectralLobe::Elastic, 550.0f, 550.0f);
+      for (float l : {420.0f, 480.0f, 620.0f, 700.0f}) {
+        const float p = s.bsdf.directionPdf(mode, wKnown, wSampled, SpectralLobe::Elastic, l, l);
+        if (std::abs(p - base) > 1e-5f * std::max(p, base)) differs = true;
       }
+    });
     if (!s.bsdf.has(BsdfFlags::WavelengthDependentDirection))
       EXPECT_FALSE(differs) << s.name << ": its direction density depends on λ but it is not flagged";
     if (kWavelengthDependent.count(s.name))
       EXPECT_TRUE(differs && s.bsdf.has(BsdfFlags::WavelengthDependentDirection)) << s.name;
+  }
+}
+
+// The contract wavelength lanes rely on (docs/wavelength-sampling.md): a fluorescent lobe's
+// direction density is the same for every pair of wavelengths, so one direction serves every lane.
+TEST(BsdfInterface, FluorescentDirectionDensityIgnoresTheWavelengths) {
+  Rng rng(23, 0);
+  for (const Subject& s : subjects()) {
+    if (!s.bsdf.has(BsdfFlags::Fluorescent)) continue;
+    int compared = 0;
+    forRandomDirections(rng, [&](TransportMode mode, const Vec3& wKnown, const Vec3& wSampled) {
+      const float base = s.bsdf.directionPdf(mode, wKnown, wSampled, SpectralLobe::Fluorescent, 400.0f, 550.0f);
+      for (const auto& [li, lo] : {std::pair{380.0f, 700.0f}, {450.0f, 460.0f}, {520.0f, 640.0f}}) {
+        const float p = s.bsdf.directionPdf(mode, wKnown, wSampled, SpectralLobe::Fluorescent, li, lo);
+        EXPECT_NEAR(p, base, 1e-6f * std::max(p, base)) << s.name << " " << toString(mode);
+        compared += base > 0.0f;
+      }
+    });
+    EXPECT_GT(compared, 100) << s.name << ": the test saw no positive density";
   }
 }
 

@@ -82,6 +82,8 @@ INSTANTIATE_TEST_SUITE_P(
                       StrategyCase{"pt", "cmf", "yamamoto=0.3"}, StrategyCase{"pt", "cmf", "mix:absorption,uniform@0.5"},
                       StrategyCase{"lt", "cmf", "material", "uniform", "", 8},
                       StrategyCase{"lt", "cmf", "material", "mix:light,absorption", "", 16},
+                      StrategyCase{"lt", "cmf", "material", "light", "", 8, 4},
+                      StrategyCase{"lt", "cmf", "material", "mix:light,absorption", "", 16, 3},
                       StrategyCase{"bdpt-independent", "uniform", "material", "yamamoto"},
                       StrategyCase{"bdpt-independent", "mix:cmf,light", "material", "uniform"},
                       StrategyCase{"ppm", "mix:cmf,uniform", "material", "mix:light,uniform"},

@@ -1,0 +1,112 @@
+#include "integrators/wavelength_lanes.h"
+
+#include <algorithm>
+
+namespace kasha {
+namespace {
+constexpr float kBelowOne = 0x1.fffffep-1f;
+}  // namespace
+
+float laneStratum(float u, int k, int n) {
+  const float x = u + float(k) / float(n);
+  return std::min(x < 1.0f ? x : x - 1.0f, kBelowOne);
+}
+
+LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, int fresh, float u,
+                          const WavelengthDensity* strategy) {
+  const int n = int(known.size());
+  // The fluorescent lobe with the mean of the lanes' probabilities: symmetric in the lanes.
+  float p[kMaxLanes];
+  float pFluor = 0.0f;
+  for (int j = 0; j < n; ++j) {
+    p[j] = bsdf.has(BsdfFlags::Fluorescent) ? bsdf.fluorescenceProbability(mode, known[j]) : 0.0f;
+    pFluor += p[j];
+  }
+  pFluor /= float(n);
+  LaneEvent e;
+  if (!(u < pFluor)) {
+    if (!(pFluor < 1.0f)) return e;
+    e.n = n;
+    for (int j = 0; j < n; ++j) {
+      e.lambda[j] = known[j];
+      e.source[j] = j;
+      e.scale[j] = 1.0f / (1.0f - pFluor);
+    }
+    return e;
+  }
+  // A fresh set of lanes at the strata of v.
+  e.lobe = SpectralLobe::Fluorescent;
+  e.n = fresh;
+  const float v = std::min(u / pFluor, kBelowOne);
+  if (strategy) {
+    for (int k = 0; k < e.n; ++k) {
+      const WavelengthSample s = strategy->sample(laneStratum(v, k, e.n));
+      e.lambda[k] = s.lambda;
+      e.scale[k] = s.pdf > 0.0f ? 1.0f / (pFluor * float(e.n) * s.pdf) : 0.0f;
+    }
+    return e;
+  }
+  // The Bsdf's own density given lane m's wavelength, q_m = spectralPdf / P(λ_m), for the lanes
+  // that can fluoresce: lane k is drawn from component k mod V, and the multi-sample balance
+  // heuristic (Veach97 §9.2.2) divides it by Σ_m n_m·q_m(λ_k).
+  int valid[kMaxLanes], count[kMaxLanes];
+  int nValid = 0;
+  for (int j = 0; j < n; ++j)
+    if (p[j] > 0.0f) valid[nValid++] = j;
+  for (int m = 0; m < nValid; ++m) count[m] = e.n / nValid + (m < e.n % nValid ? 1 : 0);
+  for (int k = 0; k < e.n; ++k) {
+    const int j = valid[k % nValid];
+    const SpectralChoice c = bsdf.sampleSpectral(mode, known[j], laneStratum(v, k, e.n) * p[j]);
+    e.lambda[k] = c.lambda;
+    e.scale[k] = 0.0f;
+    if (c.lobe != SpectralLobe::Fluorescent || !(c.pdf > 0.0f)) continue;
+    float density = 0.0f;
+    for (int m = 0; m < nValid; ++m)
+      density += float(count[m]) * bsdf.spectralPdf(mode, known[valid[m]], c.lambda, c.lobe) / p[valid[m]];
+    e.scale[k] = density > 0.0f ? 1.0f / (pFluor * density) : 0.0f;
+  }
+  return e;
+}
+
+float laneLightProbability(const Scene& scene, size_t light, std::span<const float> lambda) {
+  float sum = 0.0f;
+  for (const float x : lambda) {
+    float total = 0.0f;
+    for (const auto& l : scene.lights) total += l->power(x);
+    if (total > 0.0f) sum += scene.lights[light]->power(x) / total;
+  }
+  return sum / float(lambda.size());
+}
+
+std::pair<size_t, float> selectLaneLight(const Scene& scene, std::span<const float> lambda, float u) {
+  // A lane J chosen uniformly, then the light ∝ Φ_l(λ_J) with the rest of u.
+  const int n = int(lambda.size());
+  const int J = std::min(int(u * float(n)), n - 1);
+  const float v = std::min(u * float(n) - float(J), kBelowOne);
+  float total = 0.0f;
+  for (const auto& light : scene.lights) total += light->power(lambda[J]);
+  if (!(total > 0.0f)) return {0, 0.0f};
+  float acc = 0.0f;
+  size_t chosen = scene.lights.size();
+  for (size_t l = 0; l < scene.lights.size() && chosen == scene.lights.size(); ++l) {
+    const float p = scene.lights[l]->power(lambda[J]);
+    if (p <= 0.0f) continue;
+    acc += p;
+    if (v * total < acc) chosen = l;
+  }
+  if (chosen == scene.lights.size())  // rounding: the last light that emits at λ_J
+    for (size_t l = 0; l < scene.lights.size(); ++l)
+      if (scene.lights[l]->power(lambda[J]) > 0.0f) chosen = l;
+  return {chosen, laneLightProbability(scene, chosen, lambda)};
+}
+
+void keepOneLane(LaneEvent& e, float u) {
+  if (e.n <= 1) return;
+  const int j = std::min(int(u * float(e.n)), e.n - 1);
+  e.lambda[0] = e.lambda[j];
+  e.source[0] = e.source[j];
+  e.scale[0] = e.scale[j] * float(e.n);
+  e.n = 1;
+}
+
+}  // namespace kasha

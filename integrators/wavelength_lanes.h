@@ -1,0 +1,69 @@
+#pragma once
+// Wavelength lanes (docs/wavelength-sampling.md "Hero wavelengths"): a path carries N wavelengths
+// at once. These are the pieces every lane-carrying integrator shares, in either transport mode:
+// the spectral event of all lanes at a vertex — elastic (each lane keeps its wavelength) or
+// fluorescent (a fresh set of N lanes at the sampled side's wavelength, each serving every lane
+// before it, Veach's multi-sample balance heuristic over the lanes' densities) — each new lane's
+// weight through that event for a direction, and ending the lanes in one chosen at random.
+#include <span>
+
+#include "core/wavelength_density.h"
+#include "materials/bsdf.h"
+#include "scene/scene.h"
+
+namespace kasha {
+
+inline constexpr int kMaxLanes = 16;
+
+// The k-th of n stratified points from u in [0, 1): (u + k/n) mod 1.
+float laneStratum(float u, int k, int n);
+
+// The spectral event at a vertex for every lane. "Known" wavelengths are the lanes' before the
+// event (λ_o in Radiance mode, λ_i in Importance mode); lambda[k] is lane k's on the sampled side.
+struct LaneEvent {
+  SpectralLobe lobe = SpectralLobe::Elastic;
+  int n = 0;                  // lanes after the event; 0 if nothing scatters
+  float lambda[kMaxLanes];    // the sampled side's wavelength of each lane
+  float scale[kMaxLanes];     // 1 / the event's spectral density for this lane
+  int source[kMaxLanes];      // elastic: the lane before the event that this one continues
+};
+
+// Chooses the lobe for every lane at once — fluorescent with the mean of the lanes' probabilities
+// (Jung18 eqs. 6/7 per lane), so the choice is symmetric in them — from the uniform u. Fluorescent:
+// `fresh` new lanes at the strata of u/P̄ of `strategy`'s inverse CDF if given (its density must not
+// depend on the known wavelength), else of the Bsdf's own densities given each known wavelength,
+// as a mixture over the lanes that can fluoresce.
+LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, int fresh, float u,
+                          const WavelengthDensity* strategy = nullptr);
+
+// Lane k's weight through event e for the sampled direction wSampled (without |cos θ|): elastic,
+// its own lane's throughput times f; fluorescent, Σ_j before[j]·f(between known[j] and lambda[k]).
+// T is the throughput type (XYZ for camera paths, a scalar for light paths).
+template <class T>
+T laneWeight(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, const T* before, const LaneEvent& e,
+             int k, const Vec3& wSampled, const Vec3& wKnown) {
+  const bool radiance = mode == TransportMode::Radiance;
+  const Vec3& wi = radiance ? wSampled : wKnown;
+  const Vec3& wo = radiance ? wKnown : wSampled;
+  if (e.lobe == SpectralLobe::Elastic)
+    return before[e.source[k]] * (bsdf.eval(mode, wi, wo, e.lambda[k], e.lambda[k], e.lobe) * e.scale[k]);
+  T sum = before[0] * 0.0f;
+  for (size_t j = 0; j < known.size(); ++j)
+    sum += before[j] * (radiance ? bsdf.eval(mode, wi, wo, e.lambda[k], known[j], e.lobe)
+                                 : bsdf.eval(mode, wi, wo, known[j], e.lambda[k], e.lobe));
+  return sum * e.scale[k];
+}
+
+// Light selection symmetric in the lanes: a lane J uniformly, then light l ∝ Φ_l(λ_J), so that
+// P(l) = (1/N)·Σ_k Φ_l(λ_k)/Σ_l' Φ_l'(λ_k) (the mixture over the N hero techniques). Each lane
+// gets its share of the choices, however different the lights' powers at the lanes are
+// (∝ Σ_k Φ_l(λ_k) would almost never pick a weak white light beside a strong UV one).
+float laneLightProbability(const Scene& scene, size_t light, std::span<const float> lambda);
+// The light chosen with u and its probability P(l) (0 if no light emits at the chosen lane).
+std::pair<size_t, float> selectLaneLight(const Scene& scene, std::span<const float> lambda, float u);
+
+// Ends the lanes in one, chosen uniformly with u, its weight times their number: an unbiased
+// one-sample estimate of the sum over the lanes, however they were drawn.
+void keepOneLane(LaneEvent& e, float u);
+
+}  // namespace kasha
