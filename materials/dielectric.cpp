@@ -7,7 +7,7 @@
 
 namespace kasha {
 
-Dielectric::Dielectric(Ior ior, WavelengthRange range) : ior_(std::move(ior)) {
+SmoothDielectric::SmoothDielectric(Ior ior, WavelengthRange range) : ior_(std::move(ior)) {
   if (std::string m = checkIor(ior_, range); !m.empty()) throw std::invalid_argument(m);
 }
 
@@ -45,14 +45,6 @@ float Dielectric::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float
   // side (Veach97 §5.2). Importance mode carries power, which refraction does not rescale.
   if (m.refract && radiance) return f / sqr(relativeEta(wo, lambdaIn));
   return f;
-}
-
-SpectralChoice Dielectric::sampleSpectral(TransportMode, float lambdaKnown, float) const {
-  return {SpectralLobe::Elastic, lambdaKnown, 1.0f};  // lossless: everything is scattered
-}
-
-float Dielectric::spectralPdf(TransportMode, float, float, SpectralLobe lobe) const {
-  return lobe == SpectralLobe::Elastic ? 1.0f : 0.0f;
 }
 
 std::optional<DirectionSample> Dielectric::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,

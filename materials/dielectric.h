@@ -20,33 +20,23 @@
 // f(ω_i→ω_o)/η_o² = f(ω_o→ω_i)/η_i² (both deltas in the same direction's solid angle). So the
 // path weight f·|cos θ_sampled|/pdf is 1 for every event except a refraction in Radiance mode,
 // where it is (η_o/η_i)².
-#include "materials/ior.h"
-#include "materials/material.h"
+#include "materials/smooth_dielectric.h"
 
 namespace kasha {
 
-class Dielectric final : public UniformMaterial {
+class Dielectric final : public SmoothDielectric {
  public:
   // Throws std::invalid_argument with checkIor's message if n(λ) is not valid over the range.
-  Dielectric(Ior ior, WavelengthRange range);
+  Dielectric(Ior ior, WavelengthRange range) : SmoothDielectric(std::move(ior), range) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
-  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
-  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  // Dispersion refracts each wavelength into its own direction.
-  BsdfFlags flags() const override {
-    return BsdfFlags::DeltaDirection | flagIf(ior_.dispersive(), BsdfFlags::WavelengthDependentDirection);
-  }
-  float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
-  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
   std::string describe() const override { return "dielectric (" + ior_.describe() + ")"; }
 
-  const Ior& ior() const { return ior_; }
   // η_far/η_w: the index on the far side of the surface from w over the index on w's side.
   float relativeEta(const Vec3& w, float lambda) const;
 
@@ -57,8 +47,6 @@ class Dielectric final : public UniformMaterial {
     float prob = 0.0f;
   };
   Match match(const Vec3& wKnown, const Vec3& wSampled, float lambda) const;
-
-  Ior ior_;
 };
 
 }  // namespace kasha

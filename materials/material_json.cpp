@@ -16,6 +16,7 @@
 #include "materials/rough_conductor.h"
 #include "materials/rough_dielectric.h"
 #include "materials/texture_json.h"
+#include "materials/thin_dielectric.h"
 
 namespace kasha {
 namespace {
@@ -158,10 +159,11 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     Spectrum r = spectrumField(f, "reflectance", ctx);
     requireAlbedo(f, "reflectance", r, range, unphysical);
     m = std::make_unique<Mirror>(std::move(r), parseReflectanceTexture(f, "reflectance_texture", ctx));
-  } else if (type == "dielectric") {
+  } else if (type == "dielectric" || type == "thin_dielectric") {
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
-    m = std::make_unique<Dielectric>(std::move(ior), range);
+    if (type == "dielectric") m = std::make_unique<Dielectric>(std::move(ior), range);
+    else m = std::make_unique<ThinDielectric>(std::move(ior), range);
   } else if (type == "file") {
     m = parseMaterialFile(f, ctx, range);
   } else if (type == "zhdanov") {
@@ -193,7 +195,7 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     m = std::make_unique<CoatedFluorescent>(std::move(p), std::move(ior), a.x, a.y, range, std::move(tex));
   } else {
     f.fail("type", "unknown material type '" + type +
-                       "' (lambertian, jung_fluorescent, mirror, dielectric, rough_conductor, rough_dielectric, "
+                       "' (lambertian, jung_fluorescent, mirror, dielectric, thin_dielectric, rough_conductor, rough_dielectric, "
                        "coated_fluorescent, zhdanov, measured_reradiation, file)");
   }
   f.finish();

@@ -28,6 +28,7 @@ const char* kAnalytic = R"({
     "lambertian": {"type": "lambertian", "reflectance": {"type": "tabulated", "wavelengths": [400, 700], "values": [0.2, 0.8]}},
     "mirror": {"type": "mirror", "reflectance": 0.9},
     "glass": {"type": "dielectric", "ior": "BK7"},
+    "thin_glass": {"type": "thin_dielectric", "ior": "BK7"},
     "metal": {"type": "rough_conductor", "reflectance": {"type": "tabulated", "wavelengths": [400, 700], "values": [0.5, 0.9]}, "alpha": 0.3},
     "rough_glass": {"type": "rough_dielectric", "ior": "BK7", "alpha": 0.3},
     "rough_plain_glass": {"type": "rough_dielectric", "ior": 1.5, "alpha": 0.3},
@@ -87,7 +88,7 @@ const std::vector<Subject>& subjects() {
 TEST(BsdfInterface, EveryMaterialTypeIsCovered) {
   std::set<std::string> types;
   for (const Subject& s : subjects()) types.insert(s.material->describe().substr(0, s.material->describe().find(' ')));
-  for (const char* t : {"lambertian", "mirror", "dielectric", "rough_conductor", "rough_dielectric", "jung_fluorescent",
+  for (const char* t : {"lambertian", "mirror", "dielectric", "thin_dielectric", "rough_conductor", "rough_dielectric", "jung_fluorescent",
                         "coated_fluorescent", "zhdanov", "measured_reradiation"})
     EXPECT_TRUE(types.count(t)) << t;
   std::set<std::string> textured;

@@ -262,6 +262,7 @@ TEST_F(MitsubaImport, Bsdfs) {
     <bsdf type="dielectric" id="g"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1.0"/></bsdf>
     <bsdf type="dielectric" id="w"><string name="int_ior" value="water"/><string name="ext_ior" value="vacuum"/></bsdf>
     <bsdf type="roughdielectric" id="rg"><float name="alpha" value="0.2"/><float name="int_ior" value="1.5"/><float name="ext_ior" value="1.25"/></bsdf>
+    <bsdf type="thindielectric" id="tg"><float name="int_ior" value="1.6"/><float name="ext_ior" value="1.0"/></bsdf>
     <bsdf type="plastic" id="p"><spectrum name="diffuse_reflectance" value="0.4"/></bsdf>
     <bsdf type="roughplastic" id="rp"><float name="alpha" value="0.05"/><string name="distribution" value="ggx"/></bsdf>
     <bsdf type="twosided" id="two"><bsdf type="diffuse"/></bsdf>
@@ -280,6 +281,7 @@ TEST_F(MitsubaImport, Bsdfs) {
   EXPECT_NEAR(m["w"]["ior"].get<float>(), 1.333f, 1e-6f);
   EXPECT_EQ(m["rg"]["type"], "rough_dielectric");
   EXPECT_NEAR(m["rg"]["ior"].get<float>(), 1.2f, 1e-6f);  // relative index int/ext
+  EXPECT_EQ(m["tg"], json({{"type", "thin_dielectric"}, {"ior", 1.6f}}));
   EXPECT_EQ(m["p"]["type"], "coated_fluorescent");
   EXPECT_EQ(m["p"]["c"], 0.0);
   EXPECT_EQ(m["p"]["reflectance"], 0.4f);
@@ -457,7 +459,6 @@ TEST_F(MitsubaImport, UnsupportedPluginsAndPropertiesAreErrorsWithFileLineAndPlu
   EXPECT_TRUE(contains(error(prefix + "<emitter type=\"sky\"/>"), file() + ":7: emitter 'sky': unsupported emitter plugin"));
   EXPECT_TRUE(contains(error(prefix + "<integrator type=\"volpath\"/>"), file() + ":7: integrator 'volpath': unsupported"));
   EXPECT_TRUE(contains(error(prefix + "<medium type=\"homogeneous\"/>"), file() + ":7: medium 'homogeneous': unsupported element <medium>"));
-  EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"thindielectric\" id=\"t\"/>"), "thindielectric has no kasha equivalent"));
   // A property the plugin does not read: the line of the property, the plugin's name.
   EXPECT_TRUE(contains(error(prefix + std::string(kLight) + "<shape type=\"sphere\">\n<float name=\"radiuss\" value=\"1\"/></shape>"),
                   file() + ":8: shape 'sphere': unsupported property 'radiuss'"));

@@ -174,6 +174,18 @@ TEST(SpecularFurnace, NonDispersiveGlassKeepsEveryLane) {
   }
 }
 
+TEST(SpecularFurnace, ThinGlassSphereIsLossless) {
+  // A thin BK7 shell: every path reflects or passes straight through without loss, so the field
+  // stays L_e/(1 − r) (the camera sees only the shell: a path-tracer test, lanes ended at the
+  // dispersive shell).
+  const std::string path = test::sourcePath("scenes/validation/furnace_glass.json");
+  nlohmann::json root = nlohmann::json::parse(test::readTextFile(path));
+  root["materials"]["glass"]["type"] = "thin_dielectric";
+  auto scene = loadSceneFromJson(root, path);
+  const Vec3 exact = toXyz(scene->range, [&](double l) { return furnaceRadiance(*scene, l); });
+  expectAgreement(*scene, "pt", 1000, exact, 8, 128);
+}
+
 class GlassEmitter : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(GlassEmitter, FieldStaysUniform) {

@@ -171,10 +171,11 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
   } else if (t == "jung_fluorescent" || t == "zhdanov" || t == "coated_fluorescent" || t == "measured_reradiation") {
     m = kashaMaterial(b);
   } else if (t == "thindielectric") {
-    b.fail("thindielectric has no kasha equivalent (a surface that refracts without bending); model the slab's "
-           "two faces with dielectric");
+    requireUnitSpecular(b, "specular_reflectance");
+    requireUnitSpecular(b, "specular_transmittance");
+    m = {{"type", "thin_dielectric"}, {"ior", relativeIor(b, "int_ior", "bk7")}};
   } else {
-    b.fail("unsupported BSDF plugin (diffuse, conductor, roughconductor, dielectric, roughdielectric, plastic, "
+    b.fail("unsupported BSDF plugin (diffuse, conductor, roughconductor, dielectric, thindielectric, roughdielectric, plastic, "
            "roughplastic, twosided; kasha's jung_fluorescent, zhdanov, coated_fluorescent, measured_reradiation)");
   }
   b.finish();
