@@ -160,42 +160,44 @@ size_t ImageTexture::texelIndex(Vec2 uv) const {
   return texelAt(int(std::floor(f.x)), int(std::floor(f.y)));
 }
 
-int ImageTexture::footprint(Vec2 uv, size_t index[4], float weight[4]) const {
+Vec2 ImageTexture::footprint(Vec2 uv, size_t index[4]) const {
   if (filter_ == TextureFilter::Nearest) {
-    index[0] = texelIndex(uv);
-    weight[0] = 1.0f;
-    return 1;
+    index[0] = index[1] = index[2] = index[3] = texelIndex(uv);
+    return Vec2(0.0f);
   }
   // Bilinear: the four texel centres around uv.
   const Vec2 f = texelCoordinates(uv) - 0.5f;
   const int x0 = int(std::floor(f.x)), y0 = int(std::floor(f.y));
-  const float dx = f.x - float(x0), dy = f.y - float(y0);
-  index[0] = texelAt(x0, y0), weight[0] = (1.0f - dx) * (1.0f - dy);
-  index[1] = texelAt(x0 + 1, y0), weight[1] = dx * (1.0f - dy);
-  index[2] = texelAt(x0, y0 + 1), weight[2] = (1.0f - dx) * dy;
-  index[3] = texelAt(x0 + 1, y0 + 1), weight[3] = dx * dy;
-  return 4;
+  index[0] = texelAt(x0, y0);
+  index[1] = texelAt(x0 + 1, y0);
+  index[2] = texelAt(x0, y0 + 1);
+  index[3] = texelAt(x0 + 1, y0 + 1);
+  return Vec2(f.x - float(x0), f.y - float(y0));
 }
+
+namespace {
+// a + t·(b − a): exactly a where t = 0 or a = b.
+template <class T>
+T lerp(const T& a, const T& b, float t) {
+  return a + t * (b - a);
+}
+}  // namespace
 
 float ImageTexture::scalar(Vec2 uv) const {
   size_t index[4];
-  float weight[4];
-  const int n = footprint(uv, index, weight);
-  float v = 0.0f;
-  for (int k = 0; k < n; ++k) v += weight[k] * texels_[index[k] * size_t(channels_)];
-  return v;
+  const Vec2 t = footprint(uv, index);
+  const auto v = [&](int k) { return texels_[index[k] * size_t(channels_)]; };
+  return lerp(lerp(v(0), v(1), t.x), lerp(v(2), v(3), t.x), t.y);
 }
 
 Vec3 ImageTexture::rgb(Vec2 uv) const {
   size_t index[4];
-  float weight[4];
-  const int n = footprint(uv, index, weight);
-  Vec3 v(0.0f);
-  for (int k = 0; k < n; ++k) {
-    const float* t = &texels_[index[k] * size_t(channels_)];
-    v += weight[k] * Vec3(t[0], t[channels_ > 1 ? 1 : 0], t[channels_ > 2 ? 2 : 0]);
-  }
-  return v;
+  const Vec2 t = footprint(uv, index);
+  const auto v = [&](int k) {
+    const float* p = &texels_[index[k] * size_t(channels_)];
+    return Vec3(p[0], p[channels_ > 1 ? 1 : 0], p[channels_ > 2 ? 2 : 0]);
+  };
+  return lerp(lerp(v(0), v(1), t.x), lerp(v(2), v(3), t.x), t.y);
 }
 
 std::shared_ptr<const ImageTexture> TextureLoader::load(const std::string& path, TextureChannel channel,

@@ -61,8 +61,10 @@ class ImageTexture {
   uint64_t bytes() const { return uint64_t(texels_.size()) * sizeof(float); }
 
  private:
-  // The (up to) four texels and weights that filtering blends at uv.
-  int footprint(Vec2 uv, size_t index[4], float weight[4]) const;
+  // The four texels that filtering blends at uv (x0y0, x1y0, x0y1, x1y1; nearest: one texel four
+  // times) and the blend's fractions along x and y. Blending by nested a + t·(b − a) returns a
+  // constant image's value exactly (a textured material with a constant image is the untextured one).
+  Vec2 footprint(Vec2 uv, size_t index[4]) const;
   // Continuous texel coordinates of uv: u·w to the right, v·h up from the bottom row; texel
   // centres at integers + ½.
   Vec2 texelCoordinates(Vec2 uv) const;

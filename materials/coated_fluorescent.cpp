@@ -17,25 +17,31 @@ Ior checkedCoat(Ior ior, WavelengthRange range) {
 
 }  // namespace
 
-CoatedFluorescent::CoatedFluorescent(JungParams base, Ior coatIor, float alphaX, float alphaY, WavelengthRange range)
-    : base_(std::move(base), range), ior_(checkedCoat(std::move(coatIor), range)), ggx_(checkedGgx(alphaX, alphaY)) {}
+CoatedFluorescent::CoatedFluorescent(JungParams base, Ior coatIor, float alphaX, float alphaY, WavelengthRange range,
+                                     CoatedTextures textures)
+    : TexturedMaterial(JungModel(spectra_, HitReflectance{&spectra_.params.reflectance}, base.concentration,
+                                 base.energyRatio),
+                       coatIor_, checkedGgx(alphaX, alphaY)),
+      spectra_(std::move(base), range),
+      coatIor_(checkedCoat(std::move(coatIor), range)),
+      textures_(std::move(textures)) {}
 
-float CoatedFluorescent::coatFresnel(float c, float lambda) const {
-  const float eta = ior_(lambda);
+float CoatedModel::coatFresnel(float c, float lambda) const {
+  const float eta = (*ior_)(lambda);
   return eta == 1.0f ? 0.0f : fresnelDielectric(c, eta);  // exactly 0 when index-matched, not rounding residue
 }
 
-float CoatedFluorescent::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+float CoatedModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
                               SpectralLobe lobe) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
   const float ti = 1.0f - coatFresnel(std::abs(wi.z), lambdaIn);
   if (lobe == SpectralLobe::Fluorescent) {
     const float to = 1.0f - coatFresnel(std::abs(wo.z), lambdaOut);
     const float ca = base_.c() * base_.a(lambdaIn);
-    return ti * to / sqr(ior_(lambdaOut)) * ca * base_.q() * base_.e(lambdaOut) * kInvPi;  // Jung18 eq. 2, coated
+    return ti * to / sqr((*ior_)(lambdaOut)) * ca * base_.q() * base_.e(lambdaOut) * kInvPi;  // Jung18 eq. 2, coated
   }
   const float to = 1.0f - coatFresnel(std::abs(wo.z), lambdaIn);
-  const float base = ti * to / sqr(ior_(lambdaIn)) * (1.0f - base_.c() * base_.a(lambdaIn)) * base_.r(lambdaIn) *
+  const float base = ti * to / sqr((*ior_)(lambdaIn)) * (1.0f - base_.c() * base_.a(lambdaIn)) * base_.r(lambdaIn) *
                      kInvPi;  // Jung18 eq. 3, coated
   const float r = ggx_.reflection(wi, wo);
   if (r <= 0.0f) return base;
@@ -43,7 +49,7 @@ float CoatedFluorescent::eval(TransportMode, const Vec3& wi, const Vec3& wo, flo
   return base + coatFresnel(std::abs(glm::dot(wi, h)), lambdaIn) * r;  // Walter07 eq. 20
 }
 
-float CoatedFluorescent::probFluorescence(TransportMode mode, float l) const {
+float CoatedModel::probFluorescence(TransportMode mode, float l) const {
   // Jung18 eqs. 6 (Importance, λ_i known) and 7 (Radiance, λ_o known), the coat's R0 added to the
   // elastic weight.
   const float ca = base_.c() * base_.a(l);
@@ -53,7 +59,7 @@ float CoatedFluorescent::probFluorescence(TransportMode mode, float l) const {
   return fl + el > 0.0f ? fl / (fl + el) : -1.0f;  // −1: nothing is scattered
 }
 
-SpectralChoice CoatedFluorescent::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
+SpectralChoice CoatedModel::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
   const float pFluor = probFluorescence(mode, lambdaKnown);
   if (pFluor < 0.0f) return {};
   if (u < pFluor) {
@@ -66,7 +72,7 @@ SpectralChoice CoatedFluorescent::sampleSpectral(TransportMode mode, float lambd
   return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
 }
 
-float CoatedFluorescent::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
+float CoatedModel::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
   const float pFluor = probFluorescence(mode, lambdaKnown);
   if (pFluor < 0.0f) return 0.0f;
   if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
@@ -74,13 +80,13 @@ float CoatedFluorescent::spectralPdf(TransportMode mode, float lambdaKnown, floa
   return pFluor * (radiance ? base_.absorptionDistribution() : base_.emissionDistribution()).pdf(lambdaOther);
 }
 
-float CoatedFluorescent::probCoat(const Vec3& wKnown, float lambda) const {
+float CoatedModel::probCoat(const Vec3& wKnown, float lambda) const {
   const float F = coatFresnel(std::abs(wKnown.z), lambda);
   const float base = (1.0f - F) * (1.0f - base_.c() * base_.a(lambda)) * base_.r(lambda);
   return F + base > 0.0f ? F / (F + base) : 0.0f;  // neither reflects: the base's cosine sampling
 }
 
-std::optional<DirectionSample> CoatedFluorescent::sampleDirection(TransportMode mode, const Vec3& wKnown,
+std::optional<DirectionSample> CoatedModel::sampleDirection(TransportMode mode, const Vec3& wKnown,
                                                                    SpectralLobe lobe, float lambdaIn, float lambdaOut,
                                                                    Vec2 u) const {
   if (wKnown.z == 0.0f) return std::nullopt;
@@ -99,7 +105,7 @@ std::optional<DirectionSample> CoatedFluorescent::sampleDirection(TransportMode 
   return DirectionSample{w, pdf, false};
 }
 
-float CoatedFluorescent::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
+float CoatedModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
                                      float lambdaIn, float) const {
   const float diffusePdf = diffuse::pdf(wKnown, wSampled);
   if (lobe == SpectralLobe::Fluorescent) return diffusePdf;

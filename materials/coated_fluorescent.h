@@ -30,14 +30,16 @@
 #include "materials/ggx.h"
 #include "materials/ior.h"
 #include "materials/jung_bbrrdf.h"
+#include "materials/surface_texture.h"
+#include "materials/textured_material.h"
 
 namespace kasha {
 
-class CoatedFluorescent final : public UniformMaterial {
+// The model at one hit.
+class CoatedModel : public BsdfModel {
  public:
-  // Throws std::invalid_argument "field: reason" for invalid base parameters (checkJungParams),
-  // coat index (checkIor) or roughness (checkedGgx).
-  CoatedFluorescent(JungParams base, Ior coatIor, float alphaX, float alphaY, WavelengthRange range);
+  // `coatIor` must outlive the model (the material's).
+  CoatedModel(JungModel base, const Ior& coatIor, Ggx ggx) : base_(base), ior_(&coatIor), ggx_(ggx) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
@@ -54,12 +56,8 @@ class CoatedFluorescent final : public UniformMaterial {
   float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override {
     return std::max(probFluorescence(mode, lambdaKnown), 0.0f);
   }
-  // The base's (an upper bound of what crosses the coat, with the same support).
-  std::optional<FluorophoreSpectra> fluorophore() const override { return base_.fluorophore(); }
-  std::string describe() const override { return "coated_fluorescent (" + ior_.describe() + ")"; }
-
-  const JungBbrrdf& base() const { return base_; }
-  const Ior& coatIor() const { return ior_; }
+  const JungModel& base() const { return base_; }
+  const Ior& coatIor() const { return *ior_; }
   const Ggx& ggx() const { return ggx_; }
   // Coat Fresnel reflectance at |cos θ| = c and λ.
   float coatFresnel(float c, float lambda) const;
@@ -69,9 +67,35 @@ class CoatedFluorescent final : public UniformMaterial {
   float probCoat(const Vec3& wKnown, float lambda) const;
 
  private:
-  JungBbrrdf base_;
-  Ior ior_;
+  JungModel base_;
+  const Ior* ior_;
   Ggx ggx_;
+};
+
+// Textures (materials/surface_texture.h): the base's r, c, Q (JungTextures) and "coat_alpha_texture".
+struct CoatedTextures {
+  JungTextures base;
+  ScalarTexture coatAlpha;
+};
+
+class CoatedFluorescent final : public TexturedMaterial<CoatedModel> {
+ public:
+  // Throws std::invalid_argument "field: reason" for invalid base parameters (checkJungParams),
+  // coat index (checkIor) or roughness (checkedGgx).
+  CoatedFluorescent(JungParams base, Ior coatIor, float alphaX, float alphaY, WavelengthRange range,
+                    CoatedTextures textures = {});
+  // The base's (an upper bound of what crosses the coat, with the same support).
+  std::optional<FluorophoreSpectra> fluorophore() const override { return base().fluorophoreSpectra(); }
+  std::string describe() const override { return "coated_fluorescent (" + coatIor().describe() + ")"; }
+  bool textured() const override { return textures_.base.any() || textures_.coatAlpha.image; }
+
+ private:
+  CoatedModel modelAt(Vec2 uv) const override {
+    return CoatedModel(textures_.base.at(spectra_, uv), coatIor_, texturedGgx(ggx(), textures_.coatAlpha, uv));
+  }
+  JungSpectra spectra_;
+  Ior coatIor_;
+  CoatedTextures textures_;
 };
 
 }  // namespace kasha

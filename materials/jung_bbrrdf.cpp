@@ -36,12 +36,18 @@ std::string checkJungParams(const JungParams& p, WavelengthRange range) {
   return {};
 }
 
-JungBbrrdf::JungBbrrdf(JungParams params, WavelengthRange range)
-    : p_(std::move(params)), range_(range), absorption_(p_.absorption, range), emission_(p_.emission, range) {
-  if (std::string m = checkJungParams(p_, range_); !m.empty()) throw std::invalid_argument(m);
+JungSpectra::JungSpectra(JungParams p, WavelengthRange r)
+    : params(std::move(p)), range(r), absorption(params.absorption, r), emission(params.emission, r) {
+  if (std::string m = checkJungParams(params, range); !m.empty()) throw std::invalid_argument(m);
 }
 
-float JungBbrrdf::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+JungBbrrdf::JungBbrrdf(JungParams params, WavelengthRange range, JungTextures textures)
+    : TexturedMaterial(spectra_, HitReflectance{&spectra_.params.reflectance}, params.concentration,
+                       params.energyRatio),
+      spectra_(std::move(params), range),
+      textures_(std::move(textures)) {}
+
+float JungModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
                        SpectralLobe lobe) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
   const float ca = c() * a(lambdaIn);
@@ -49,81 +55,81 @@ float JungBbrrdf::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lamb
   return ca * q() * e(lambdaOut) * kInvPi;                                        // Jung18 eq. 2
 }
 
-float JungBbrrdf::probFluorescenceLight(float lambdaIn) const {
+float JungModel::probFluorescenceLight(float lambdaIn) const {
   // Jung18 eq. 6: P_l = c·a(λ_i)·Q / (c·a(λ_i)·Q + (1 − c·a(λ_i))·r(λ_i))
   const float ca = c() * a(lambdaIn);
   const float fl = ca * q(), el = (1.0f - ca) * r(lambdaIn);
   return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
 }
 
-float JungBbrrdf::probFluorescenceCamera(float lambdaOut) const {
+float JungModel::probFluorescenceCamera(float lambdaOut) const {
   // Jung18 eq. 7: P_c = c·∫a·Q·e(λ_o) / (c·∫a·Q·e(λ_o) + (1 − c·a(λ_o))·r(λ_o))
   const float fl = c() * absorptionIntegral() * q() * e(lambdaOut);
   const float el = (1.0f - c() * a(lambdaOut)) * r(lambdaOut);
   return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
 }
 
-float JungBbrrdf::fluorescenceProbability(TransportMode mode, float lambdaKnown) const {
+float JungModel::fluorescenceProbability(TransportMode mode, float lambdaKnown) const {
   return mode == TransportMode::Radiance ? probFluorescenceCamera(lambdaKnown) : probFluorescenceLight(lambdaKnown);
 }
 
-std::optional<FluorophoreSpectra> JungBbrrdf::fluorophore() const {
+std::optional<FluorophoreSpectra> JungModel::fluorophoreSpectra() const {
   if (!fluoresces()) return std::nullopt;
-  return FluorophoreSpectra{p_.absorption.scaled(c()),
-                            p_.emission.scaled(q() * c() * absorptionIntegral() / emission_.integral())};
+  return FluorophoreSpectra{s_->params.absorption.scaled(c()),
+                            s_->params.emission.scaled(q() * c() * absorptionIntegral() / s_->emission.integral())};
 }
 
-float JungBbrrdf::albedoIn(float lambdaIn) const {
+float JungModel::albedoIn(float lambdaIn) const {
   const float ca = c() * a(lambdaIn);
   return (1.0f - ca) * r(lambdaIn) + ca * q();
 }
 
-float JungBbrrdf::albedoOut(float lambdaOut) const {
+float JungModel::albedoOut(float lambdaOut) const {
   return (1.0f - c() * a(lambdaOut)) * r(lambdaOut) + c() * q() * absorptionIntegral() * e(lambdaOut);
 }
 
-SpectralChoice JungBbrrdf::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
+SpectralChoice JungModel::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
   const bool radiance = mode == TransportMode::Radiance;
   const bool anything = radiance ? albedoOut(lambdaKnown) > 0.0f : albedoIn(lambdaKnown) > 0.0f;
   if (!anything) return {};
   const float pFluor = fluorescenceProbability(mode, lambdaKnown);
   if (u < pFluor) {
     // Radiance: λ_i ∝ a (camera paths); Importance: λ_o ∝ e (light paths).
-    const WavelengthSample ws = (radiance ? absorption_ : emission_).sample(std::min(u / pFluor, 0x1.fffffep-1f));
+    const WavelengthSample ws = (radiance ? s_->absorption : s_->emission).sample(std::min(u / pFluor, 0x1.fffffep-1f));
     if (ws.pdf <= 0.0f) return {};
     return {SpectralLobe::Fluorescent, ws.lambda, pFluor * ws.pdf};
   }
   return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
 }
 
-float JungBbrrdf::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
+float JungModel::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
   const bool radiance = mode == TransportMode::Radiance;
   const bool anything = radiance ? albedoOut(lambdaKnown) > 0.0f : albedoIn(lambdaKnown) > 0.0f;
   if (!anything) return 0.0f;
   const float pFluor = fluorescenceProbability(mode, lambdaKnown);
   if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
-  return pFluor * (radiance ? absorption_.pdf(lambdaOther) : emission_.pdf(lambdaOther));
+  return pFluor * (radiance ? s_->absorption.pdf(lambdaOther) : s_->emission.pdf(lambdaOther));
 }
 
-std::optional<DirectionSample> JungBbrrdf::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe, float, float,
+std::optional<DirectionSample> JungModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe, float, float,
                                                             Vec2 u) const {
   return diffuse::sample(wKnown, u);
 }
 
-float JungBbrrdf::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
+float JungModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
                               float) const {
   return diffuse::pdf(wKnown, wSampled);
 }
 
-ReradiationMatrix JungBbrrdf::reradiationMatrix(const std::vector<float>& grid) const {
+ReradiationMatrix JungModel::reradiationMatrix(const std::vector<float>& grid) const {
   ReradiationMatrix out;
   out.grid = grid;
   const size_t n = grid.size();
   std::vector<float> eBand(n);
   for (size_t j = 0; j < n; ++j) {
-    const float lo = j == 0 ? range_.min : 0.5f * (grid[j - 1] + grid[j]);
-    const float hi = j + 1 == n ? range_.max : 0.5f * (grid[j] + grid[j + 1]);
-    eBand[j] = p_.emission.integral(std::max(lo, range_.min), std::min(hi, range_.max)) / emission_.integral();
+    const float lo = j == 0 ? s_->range.min : 0.5f * (grid[j - 1] + grid[j]);
+    const float hi = j + 1 == n ? s_->range.max : 0.5f * (grid[j] + grid[j + 1]);
+    eBand[j] = s_->params.emission.integral(std::max(lo, s_->range.min), std::min(hi, s_->range.max)) / s_->emission.integral();
   }
   out.m.assign(n, std::vector<float>(n, 0.0f));
   for (size_t i = 0; i < n; ++i) {

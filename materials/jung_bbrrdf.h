@@ -3,12 +3,14 @@
 // "A Simple Diffuse Fluorescent BBRRDF Model" (Jung18):
 //   f(λ_i, ω_i, ω_o, λ_o) = [δ(λ_i − λ_o)(1 − c·a(λ_i))·r(λ_i) + c·a(λ_i)·Q·e(λ_o)] / π   (eq. 4)
 // with absorption a, emission e normalised to ∫e dλ = 1 over the scene's wavelength range,
-// non-fluorescent reflectance r, energy ratio Q and concentration c.
+// non-fluorescent reflectance r, energy ratio Q and concentration c; r, c and Q may be textured
+// (JungTextures), so that fluorescent ink printed on paper is a c texture.
 #include <string>
 #include <vector>
 
 #include "core/spectral_distribution.h"
-#include "materials/material.h"
+#include "materials/surface_texture.h"
+#include "materials/textured_material.h"
 
 namespace kasha {
 
@@ -38,10 +40,21 @@ struct ReradiationMatrix {
   std::vector<std::vector<float>> m;  // m[in][out]
 };
 
-class JungBbrrdf final : public UniformMaterial {
- public:
+// What the BBRRDF keeps for a whole surface: its spectra and their wavelength samplers.
+struct JungSpectra {
   // Throws std::invalid_argument with checkJungParams' message if eq. 8's conditions fail.
-  JungBbrrdf(JungParams params, WavelengthRange range);
+  JungSpectra(JungParams params, WavelengthRange range);
+  JungParams params;
+  WavelengthRange range;
+  SpectralDistribution absorption;  // samples λ_i ∝ a on camera paths
+  SpectralDistribution emission;    // samples λ_o ∝ e on light paths; its pdf is the normalised e
+};
+
+// The BBRRDF at one hit: the surface's spectra with this hit's r(λ), c and Q.
+class JungModel : public BsdfModel {
+ public:
+  // `spectra` must outlive the model (the material's).
+  JungModel(const JungSpectra& spectra, HitReflectance r, float c, float q) : s_(&spectra), r_(r), c_(c), q_(q) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
@@ -52,12 +65,11 @@ class JungBbrrdf final : public UniformMaterial {
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
   BsdfFlags flags() const override { return flagIf(fluoresces(), BsdfFlags::Fluorescent); }
-  bool fluoresces() const { return p_.concentration > 0.0f && p_.energyRatio > 0.0f; }
-  std::string describe() const override { return "jung_fluorescent"; }
+  bool fluoresces() const { return c_ > 0.0f && q_ > 0.0f; }
   // P_c (Radiance) or P_l (Importance).
   float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override;
   // absorbed = c·a(λ); reemitted = Q·(∫c·a)·e(λ) (Jung18 eq. 2 integrated over λ_i under unit light).
-  std::optional<FluorophoreSpectra> fluorophore() const override;
+  std::optional<FluorophoreSpectra> fluorophoreSpectra() const;
 
   // Jung18 eq. 6: probability of the fluorescent lobe on a light path, given λ_i.
   float probFluorescenceLight(float lambdaIn) const;
@@ -69,24 +81,52 @@ class JungBbrrdf final : public UniformMaterial {
   float albedoOut(float lambdaOut) const;
 
   // Normalised emission e(λ) (∫e = 1 over the range) and the other parameters.
-  float a(float l) const { return p_.absorption(l); }
-  float e(float l) const { return emission_.pdf(l); }
-  float r(float l) const { return p_.reflectance(l); }
-  float c() const { return p_.concentration; }
-  float q() const { return p_.energyRatio; }
-  float absorptionIntegral() const { return absorption_.integral(); }
+  float a(float l) const { return s_->params.absorption(l); }
+  float e(float l) const { return s_->emission.pdf(l); }
+  float r(float l) const { return r_(l); }
+  float c() const { return c_; }
+  float q() const { return q_; }
+  float absorptionIntegral() const { return s_->absorption.integral(); }
   // The wavelength samplers of the spectral stage: λ_i ∝ a (camera paths), λ_o ∝ e (light paths).
-  const SpectralDistribution& absorptionDistribution() const { return absorption_; }
-  const SpectralDistribution& emissionDistribution() const { return emission_; }
-  const WavelengthRange& range() const { return range_; }
+  const SpectralDistribution& absorptionDistribution() const { return s_->absorption; }
+  const SpectralDistribution& emissionDistribution() const { return s_->emission; }
+  const WavelengthRange& range() const { return s_->range; }
 
   ReradiationMatrix reradiationMatrix(const std::vector<float>& grid) const;
 
  private:
-  JungParams p_;
-  WavelengthRange range_;
-  SpectralDistribution absorption_;  // samples λ_i ∝ a on camera paths
-  SpectralDistribution emission_;    // samples λ_o ∝ e on light paths; its pdf is the normalised e
+  const JungSpectra* s_;
+  HitReflectance r_;
+  float c_, q_;
+};
+
+// Textures of r(λ), c and Q (materials/surface_texture.h): "reflectance_texture", "c_texture",
+// "Q_texture"; absent: the material's value.
+struct JungTextures {
+  ReflectanceTexture reflectance;
+  ScalarTexture c, q;
+  bool any() const { return reflectance.image || c.image || q.image; }
+  // The model of the surface's spectra at uv.
+  JungModel at(const JungSpectra& s, Vec2 uv) const {
+    return JungModel(s, reflectance.at(s.params.reflectance, uv), c.at(s.params.concentration, uv),
+                     q.at(s.params.energyRatio, uv));
+  }
+};
+
+class JungBbrrdf final : public TexturedMaterial<JungModel> {
+ public:
+  // Throws std::invalid_argument with checkJungParams' message if eq. 8's conditions fail.
+  JungBbrrdf(JungParams params, WavelengthRange range, JungTextures textures = {});
+  // The untextured surface's: textures scale c and Q by at most 1, so it bounds every hit's with
+  // the same support.
+  std::optional<FluorophoreSpectra> fluorophore() const override { return fluorophoreSpectra(); }
+  std::string describe() const override { return textured() ? "jung_fluorescent (textured)" : "jung_fluorescent"; }
+  bool textured() const override { return textures_.any(); }
+
+ private:
+  JungModel modelAt(Vec2 uv) const override { return textures_.at(spectra_, uv); }
+  JungSpectra spectra_;
+  JungTextures textures_;
 };
 
 }  // namespace kasha

@@ -4,26 +4,26 @@
 
 namespace kasha {
 
-float Lambertian::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float, SpectralLobe lobe) const {
+float LambertianModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float, SpectralLobe lobe) const {
   if (lobe != SpectralLobe::Elastic || !diffuse::sameSide(wi, wo)) return 0.0f;
   return r_(lambdaIn) * kInvPi;
 }
 
-SpectralChoice Lambertian::sampleSpectral(TransportMode, float lambdaKnown, float) const {
+SpectralChoice LambertianModel::sampleSpectral(TransportMode, float lambdaKnown, float) const {
   // The elastic lobe is the only one: probability 1 whenever anything is reflected.
   return {SpectralLobe::Elastic, lambdaKnown, r_(lambdaKnown) > 0.0f ? 1.0f : 0.0f};
 }
 
-float Lambertian::spectralPdf(TransportMode, float lambdaKnown, float, SpectralLobe lobe) const {
+float LambertianModel::spectralPdf(TransportMode, float lambdaKnown, float, SpectralLobe lobe) const {
   return lobe == SpectralLobe::Elastic && r_(lambdaKnown) > 0.0f ? 1.0f : 0.0f;
 }
 
-std::optional<DirectionSample> Lambertian::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe, float, float,
+std::optional<DirectionSample> LambertianModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe, float, float,
                                                             Vec2 u) const {
   return diffuse::sample(wKnown, u);
 }
 
-float Lambertian::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
+float LambertianModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
                               float) const {
   return diffuse::pdf(wKnown, wSampled);
 }

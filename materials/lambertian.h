@@ -1,13 +1,15 @@
 #pragma once
-// Lambertian reflector: f = r(λ)/π, elastic only, both sides of the surface.
+// Lambertian reflector: f = r(λ)/π, elastic only, both sides of the surface; r may be textured
+// ("reflectance_texture", materials/surface_texture.h).
 #include "core/spectrum.h"
-#include "materials/material.h"
+#include "materials/textured_material.h"
 
 namespace kasha {
 
-class Lambertian final : public UniformMaterial {
+// The model at one hit.
+class LambertianModel : public BsdfModel {
  public:
-  explicit Lambertian(Spectrum reflectance) : r_(std::move(reflectance)) {}
+  explicit LambertianModel(HitReflectance r) : r_(r) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
@@ -19,13 +21,15 @@ class Lambertian final : public UniformMaterial {
                      float lambdaOut) const override;
   BsdfFlags flags() const override { return BsdfFlags::None; }
   float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
-  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
-  std::string describe() const override { return "lambertian"; }
-
-  const Spectrum& reflectance() const { return r_; }
 
  private:
-  Spectrum r_;
+  HitReflectance r_;
+};
+
+class Lambertian final : public ReflectanceMaterial<LambertianModel> {
+ public:
+  using ReflectanceMaterial::ReflectanceMaterial;
+  std::string describe() const override { return "lambertian"; }
 };
 
 }  // namespace kasha

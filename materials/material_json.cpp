@@ -7,7 +7,6 @@
 #include "core/input_file.h"
 #include "core/json_fields.h"
 #include "core/json_parse.h"
-#include "core/texture.h"
 #include "materials/coated_fluorescent.h"
 #include "materials/dielectric.h"
 #include "materials/jung_bbrrdf.h"
@@ -16,8 +15,8 @@
 #include "materials/mirror.h"
 #include "materials/rough_conductor.h"
 #include "materials/rough_dielectric.h"
+#include "materials/texture_json.h"
 #include "materials/thin_dielectric.h"
-#include "materials/textured_jung.h"
 
 namespace kasha {
 namespace {
@@ -118,46 +117,10 @@ JungParams parseJungParams(JsonFields& f, const SpectrumContext& ctx, Wavelength
   return p;
 }
 
-// "<key>": "image.png" | {"file": "image.exr", "channel": "mean" | "r" | "g" | "b" | "a",
-// "wrap": "repeat" | "clamp" | "mirror", "filter": "bilinear" | "nearest"} (texture.h); nullptr
-// when absent.
-std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::string& key, const SpectrumContext& ctx) {
-  if (!parent.has(key)) return nullptr;
-  const nlohmann::json& v = parent.get(key);
-  std::string file;
-  TextureChannel channel = TextureChannel::Mean;
-  TextureWrap wrap = TextureWrap::Repeat;
-  TextureFilter filter = TextureFilter::Bilinear;
-  if (v.is_string()) {
-    file = v.get<std::string>();
-  } else if (v.is_object()) {
-    JsonFields f(v, ctx.file, parent.path(key));
-    file = f.string("file");
-    const std::string name = f.string("channel", "mean");
-    const std::optional<TextureChannel> c = parseTextureChannel(name);
-    if (!c) f.fail("channel", "unknown channel '" + name + "' (mean, r, g, b, a)");
-    channel = *c;
-    const std::string wrapName = f.string("wrap", "repeat");
-    const std::optional<TextureWrap> w = parseTextureWrap(wrapName);
-    if (!w) f.fail("wrap", "unknown wrap mode '" + wrapName + "' (repeat, clamp, mirror)");
-    wrap = *w;
-    const std::string filterName = f.string("filter", "bilinear");
-    const std::optional<TextureFilter> fl = parseTextureFilter(filterName);
-    if (!fl) f.fail("filter", "unknown filter '" + filterName + "' (bilinear, nearest)");
-    filter = *fl;
-    f.finish();
-  } else {
-    parent.fail(key, "expected an image file name or {\"file\": ..., \"channel\": ...}, got " + jsonTypeName(v));
-  }
-  const std::string path = (!file.empty() && file[0] == '/') ? file : ctx.baseDir + "/" + file;
-  try {
-    if (ctx.textures) return ctx.textures->load(path, channel, wrap, filter);
-    return TextureLoader(ctx.memoryLimit).load(path, channel, wrap, filter);
-  } catch (const InputError& e) {  // names the file already
-    parent.fail(key, e.what());
-  } catch (const std::runtime_error& e) {  // also MemoryLimitError
-    parent.fail(key, "'" + path + "': " + e.what());
-  }
+// "reflectance_texture", "c_texture", "Q_texture" of a Jung18 base.
+JungTextures parseJungTextures(JsonFields& f, const SpectrumContext& ctx) {
+  return JungTextures{parseReflectanceTexture(f, "reflectance_texture", ctx), parseScalarTexture(f, "c_texture", ctx),
+                      parseScalarTexture(f, "Q_texture", ctx)};
 }
 
 // "alpha": α (isotropic) | [α_x, α_y] (ggx.h)
@@ -188,28 +151,14 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
   if (type == "lambertian") {
     Spectrum r = spectrumField(f, "reflectance", ctx);
     requireAlbedo(f, "reflectance", r, range, unphysical);
-    m = std::make_unique<Lambertian>(std::move(r));
+    m = std::make_unique<Lambertian>(std::move(r), parseReflectanceTexture(f, "reflectance_texture", ctx));
   } else if (type == "jung_fluorescent") {
     JungParams p = parseJungParams(f, ctx, range, unphysical);
-    JungTextures tex;
-    tex.reflectance = parseTexture(f, "reflectance_texture", ctx);
-    tex.c = parseTexture(f, "c_texture", ctx);
-    tex.q = parseTexture(f, "Q_texture", ctx);
-    if (tex.reflectance || tex.c || tex.q) {
-      try {
-        m = std::make_unique<TexturedJung>(std::move(p), std::move(tex), range);
-      } catch (const std::invalid_argument& e) {
-        const std::string problem = e.what();
-        const size_t colon = problem.find(": ");
-        f.fail(problem.substr(0, colon), problem.substr(colon + 2));
-      }
-    } else {
-      m = std::make_unique<JungBbrrdf>(std::move(p), range);
-    }
+    m = std::make_unique<JungBbrrdf>(std::move(p), range, parseJungTextures(f, ctx));
   } else if (type == "mirror") {
     Spectrum r = spectrumField(f, "reflectance", ctx);
     requireAlbedo(f, "reflectance", r, range, unphysical);
-    m = std::make_unique<Mirror>(std::move(r));
+    m = std::make_unique<Mirror>(std::move(r), parseReflectanceTexture(f, "reflectance_texture", ctx));
   } else if (type == "dielectric" || type == "thin_dielectric") {
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
@@ -225,13 +174,15 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     Spectrum r = spectrumField(f, "reflectance", ctx);
     requireAlbedo(f, "reflectance", r, range, unphysical);
     const Vec2 a = parseAlpha(f, "alpha");
-    m = std::make_unique<RoughConductor>(std::move(r), a.x, a.y);
+    RoughConductorTextures tex{parseReflectanceTexture(f, "reflectance_texture", ctx),
+                               parseScalarTexture(f, "alpha_texture", ctx)};
+    m = std::make_unique<RoughConductor>(std::move(r), a.x, a.y, std::move(tex));
   } else if (type == "rough_dielectric") {
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
     const Vec2 a = parseAlpha(f, "alpha");
     try {
-      m = std::make_unique<RoughDielectric>(std::move(ior), a.x, a.y, range);
+      m = std::make_unique<RoughDielectric>(std::move(ior), a.x, a.y, range, parseScalarTexture(f, "alpha_texture", ctx));
     } catch (const std::invalid_argument& e) {
       f.fail("ior", std::string(e.what()).substr(5));  // only the index can still be rejected
     }
@@ -240,7 +191,8 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     Ior ior = parseIor(f, "coat_ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("coat_ior", problem);
     const Vec2 a = parseAlpha(f, "coat_alpha");
-    m = std::make_unique<CoatedFluorescent>(std::move(p), std::move(ior), a.x, a.y, range);
+    CoatedTextures tex{parseJungTextures(f, ctx), parseScalarTexture(f, "coat_alpha_texture", ctx)};
+    m = std::make_unique<CoatedFluorescent>(std::move(p), std::move(ior), a.x, a.y, range, std::move(tex));
   } else {
     f.fail("type", "unknown material type '" + type +
                        "' (lambertian, jung_fluorescent, mirror, dielectric, thin_dielectric, rough_conductor, rough_dielectric, "

@@ -13,6 +13,8 @@
 //   {"type": "rough_dielectric", "ior": <index>, "alpha": α | [α_x, α_y]}
 //   {"type": "coated_fluorescent", <the jung_fluorescent fields>, "coat_ior": <index>,
 //    "coat_alpha": α | [α_x, α_y]} (docs/layered.md)
+// Every parameter named above except the indices of refraction may be textured by a
+// "<parameter>_texture" field (texture_json.h, docs/scene-format.md "Textures").
 #include <memory>
 
 #include <nlohmann/json.hpp>

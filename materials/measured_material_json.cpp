@@ -2,6 +2,7 @@
 
 #include "core/bispectral_exr.h"
 #include "materials/measured_reradiation.h"
+#include "materials/texture_json.h"
 #include "materials/zhdanov_bdf.h"
 
 namespace kasha {
@@ -19,7 +20,9 @@ std::unique_ptr<Material> parseZhdanov(JsonFields& f, const SpectrumContext& ctx
     const size_t colon = problem.find(": ");
     f.fail(problem.substr(0, colon), problem.substr(colon + 2));
   }
-  return std::make_unique<ZhdanovBdf>(std::move(p), range);
+  ZhdanovTextures tex{parseScalarTexture(f, "gloss_texture", ctx), parseScalarTexture(f, "gloss_exponent_texture", ctx),
+                      parseReflectanceTexture(f, "passive_texture", ctx), parseScalarTexture(f, "excitation_texture", ctx)};
+  return std::make_unique<ZhdanovBdf>(std::move(p), range, std::move(tex));
 }
 
 std::unique_ptr<Material> parseMeasuredReradiation(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range,
@@ -34,9 +37,10 @@ std::unique_ptr<Material> parseMeasuredReradiation(JsonFields& f, const Spectrum
     const std::string e(ext);
     return rel.size() >= e.size() && rel.compare(rel.size() - e.size(), e.size(), e) == 0;
   };
+  MeasuredTextures tex{parseScalarTexture(f, "reflectance_texture", ctx), parseScalarTexture(f, "reradiation_texture", ctx)};
   try {  // errors in the matrix file name it; the scene's field comes first
-    if (endsWith(".csv")) return std::make_unique<MeasuredReradiation>(readBispectralCsv(path), o, range);
-    if (endsWith(".exr")) return std::make_unique<MeasuredReradiation>(readBispectralExr(path), o, range);
+    if (endsWith(".csv")) return std::make_unique<MeasuredReradiation>(readBispectralCsv(path), o, range, tex);
+    if (endsWith(".exr")) return std::make_unique<MeasuredReradiation>(readBispectralExr(path), o, range, tex);
   } catch (const InputError& e) {
     f.fail("file", e.what());
   }

@@ -23,8 +23,7 @@ void requireIncreasing(const std::vector<float>& g, const std::string& source, c
 
 }  // namespace
 
-MeasuredReradiation::MeasuredReradiation(const BispectralData& data, MeasuredReradiationOptions options,
-                                         WavelengthRange range)
+MeasuredMatrix::MeasuredMatrix(const BispectralData& data, MeasuredReradiationOptions options, WavelengthRange range)
     : in_(data.in), out_(data.out) {
   requireIncreasing(in_, data.source, "input wavelengths");
   requireIncreasing(out_, data.source, "output wavelengths");
@@ -69,7 +68,7 @@ MeasuredReradiation::MeasuredReradiation(const BispectralData& data, MeasuredRer
   }
 }
 
-MeasuredReradiation::Bracket MeasuredReradiation::bracket(const std::vector<float>& g, float l) {
+MeasuredMatrix::Bracket MeasuredMatrix::bracket(const std::vector<float>& g, float l) {
   Bracket b;
   if (!(l >= g.front() && l <= g.back())) return b;
   if (g.size() == 1) return {0, 0, 1.0f, 0.0f};
@@ -78,13 +77,13 @@ MeasuredReradiation::Bracket MeasuredReradiation::bracket(const std::vector<floa
   return {k1 - 1, k1, 1.0f - t, t};
 }
 
-float MeasuredReradiation::diagonal(float l) const {
+float MeasuredMatrix::diagonal(float l) const {
   if (diagL_.empty()) return 0.0f;
   const Bracket b = bracket(diagL_, l);
   return b.w0 * diagV_[b.k0] + b.w1 * diagV_[b.k1];
 }
 
-float MeasuredReradiation::F(float lambdaOut, float lambdaIn) const {
+float MeasuredMatrix::F(float lambdaOut, float lambdaIn) const {
   // Bilinear between the four surrounding knots (zero outside the measured grid).
   const Bracket bi = bracket(in_, lambdaIn), bo = bracket(out_, lambdaOut);
   const auto at = [&](size_t o, size_t i) { return f_[o * in_.size() + i]; };
@@ -92,18 +91,17 @@ float MeasuredReradiation::F(float lambdaOut, float lambdaIn) const {
          bo.w1 * (bi.w0 * at(bo.k1, bi.k0) + bi.w1 * at(bo.k1, bi.k1));
 }
 
-float MeasuredReradiation::A(float lambdaIn) const {
+float MeasuredMatrix::A(float lambdaIn) const {
   const Bracket b = bracket(in_, lambdaIn);
   return b.w0 * columns_[b.k0].integral() + b.w1 * columns_[b.k1].integral();
 }
 
-float MeasuredReradiation::B(float lambdaOut) const {
+float MeasuredMatrix::B(float lambdaOut) const {
   const Bracket b = bracket(out_, lambdaOut);
   return b.w0 * rows_[b.k0].integral() + b.w1 * rows_[b.k1].integral();
 }
 
-std::optional<FluorophoreSpectra> MeasuredReradiation::fluorophore() const {
-  if (!fluoresces_) return std::nullopt;
+FluorophoreSpectra MeasuredMatrix::spectra() const {
   // A and B are linear between the knots (the lines' integrals) and zero outside the grid.
   std::vector<float> a, b;
   for (const SpectralDistribution& c : columns_) a.push_back(c.integral());
@@ -111,59 +109,64 @@ std::optional<FluorophoreSpectra> MeasuredReradiation::fluorophore() const {
   return FluorophoreSpectra{Spectrum::piecewiseLinear(in_, a).zeroOutside(), Spectrum::piecewiseLinear(out_, b).zeroOutside()};
 }
 
-float MeasuredReradiation::fluorescentWeight(TransportMode mode, float lambdaKnown) const {
+WavelengthSample MeasuredMatrix::sampleLine(bool radiance, float lambdaKnown, float u) const {
+  // Pick one of the two neighbouring lines in proportion to its weighted mass, then sample it.
+  const std::vector<SpectralDistribution>& lines = radiance ? rows_ : columns_;
+  const Bracket b = bracket(radiance ? out_ : in_, lambdaKnown);
+  const float m0 = b.w0 * lines[b.k0].integral(), m1 = b.w1 * lines[b.k1].integral();
+  float v = u * (m0 + m1);
+  const bool first = v < m0 || !(m1 > 0.0f);
+  v = first ? v / m0 : (v - m0) / m1;
+  return lines[first ? b.k0 : b.k1].sample(std::min(v, 0x1.fffffep-1f));
+}
+
+float MeasuredMatrix::lineMass(bool radiance, float lambdaKnown, float lambdaOther) const {
+  // The mixture of the two lines: F itself along the line (A or B times the density F/∫F).
+  const std::vector<SpectralDistribution>& lines = radiance ? rows_ : columns_;
+  const Bracket b = bracket(radiance ? out_ : in_, lambdaKnown);
+  return b.w0 * lines[b.k0].integral() * lines[b.k0].pdf(lambdaOther) +
+         b.w1 * lines[b.k1].integral() * lines[b.k1].pdf(lambdaOther);
+}
+
+float MeasuredModel::fluorescentWeight(TransportMode mode, float lambdaKnown) const {
   return mode == TransportMode::Importance ? A(lambdaKnown) : B(lambdaKnown);
 }
 
-float MeasuredReradiation::probFluorescence(TransportMode mode, float lambdaKnown) const {
+float MeasuredModel::probFluorescence(TransportMode mode, float lambdaKnown) const {
   const float fl = fluorescentWeight(mode, lambdaKnown), el = diagonal(lambdaKnown);
   return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
 }
 
-float MeasuredReradiation::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                                SpectralLobe lobe) const {
+float MeasuredModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+                          SpectralLobe lobe) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
   return (lobe == SpectralLobe::Elastic ? diagonal(lambdaIn) : F(lambdaOut, lambdaIn)) * kInvPi;
 }
 
-SpectralChoice MeasuredReradiation::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
+SpectralChoice MeasuredModel::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
   const float fl = fluorescentWeight(mode, lambdaKnown), el = diagonal(lambdaKnown);
   if (!(fl + el > 0.0f)) return {};
   const float pFluor = fl / (fl + el);
   if (!(u < pFluor)) return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
-  // Pick one of the two neighbouring lines in proportion to its weighted mass, then sample it.
-  const bool radiance = mode == TransportMode::Radiance;
-  const std::vector<SpectralDistribution>& lines = radiance ? rows_ : columns_;
-  const Bracket b = bracket(radiance ? out_ : in_, lambdaKnown);
-  const float m0 = b.w0 * lines[b.k0].integral(), m1 = b.w1 * lines[b.k1].integral();
-  float v = u / pFluor * (m0 + m1);
-  const bool first = v < m0 || !(m1 > 0.0f);
-  v = first ? v / m0 : (v - m0) / m1;
-  const WavelengthSample ws = lines[first ? b.k0 : b.k1].sample(std::min(v, 0x1.fffffep-1f));
+  const WavelengthSample ws = m_->sampleLine(mode == TransportMode::Radiance, lambdaKnown, u / pFluor);
   if (ws.pdf <= 0.0f) return {};
   return {SpectralLobe::Fluorescent, ws.lambda, spectralPdf(mode, lambdaKnown, ws.lambda, SpectralLobe::Fluorescent)};
 }
 
-float MeasuredReradiation::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther,
-                                       SpectralLobe lobe) const {
+float MeasuredModel::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
   const float fl = fluorescentWeight(mode, lambdaKnown), el = diagonal(lambdaKnown);
   if (!(fl + el > 0.0f)) return 0.0f;
   if (lobe == SpectralLobe::Elastic) return el / (fl + el);
   // P(fluorescent)·F/∫F, where the mixture density of the two lines is exactly F/∫F.
-  const bool radiance = mode == TransportMode::Radiance;
-  const std::vector<SpectralDistribution>& lines = radiance ? rows_ : columns_;
-  const Bracket b = bracket(radiance ? out_ : in_, lambdaKnown);
-  const float mass = b.w0 * lines[b.k0].integral() * lines[b.k0].pdf(lambdaOther) +
-                     b.w1 * lines[b.k1].integral() * lines[b.k1].pdf(lambdaOther);
-  return mass / (fl + el);
+  return reradiationScale_ * m_->lineMass(mode == TransportMode::Radiance, lambdaKnown, lambdaOther) / (fl + el);
 }
 
-std::optional<DirectionSample> MeasuredReradiation::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe,
+std::optional<DirectionSample> MeasuredModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe,
                                                                      float, float, Vec2 u) const {
   return diffuse::sample(wKnown, u);
 }
 
-float MeasuredReradiation::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
+float MeasuredModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
                                         float) const {
   return diffuse::pdf(wKnown, wSampled);
 }

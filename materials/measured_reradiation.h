@@ -20,7 +20,8 @@
 
 #include "core/bispectral_data.h"
 #include "core/spectral_distribution.h"
-#include "materials/material.h"
+#include "materials/surface_texture.h"
+#include "materials/textured_material.h"
 
 namespace kasha {
 
@@ -31,10 +32,46 @@ struct MeasuredReradiationOptions {
 // Measured matrices are noisy: a reflected energy up to 1% above 1 is accepted as noise.
 constexpr float kEnergyTolerance = 0.01f;
 
-class MeasuredReradiation final : public UniformMaterial {
+// The measured matrix, cleaned, as densities and wavelength samplers (what the surface shares).
+class MeasuredMatrix {
  public:
   // Throws InputError naming the source file and the offending wavelength on bad data.
-  MeasuredReradiation(const BispectralData& data, MeasuredReradiationOptions options, WavelengthRange range);
+  MeasuredMatrix(const BispectralData& data, MeasuredReradiationOptions options, WavelengthRange range);
+  float diagonal(float l) const;
+  float F(float lambdaOut, float lambdaIn) const;  // reradiation density per nm
+  float A(float lambdaIn) const;                   // ∫F(λ_o; λ_i) dλ_o over the range
+  float B(float lambdaOut) const;                  // ∫F(λ_o; λ_i) dλ_i over the range
+  bool fluoresces() const { return fluoresces_; }
+  // absorbed = A(λ_i), reemitted = B(λ_o).
+  FluorophoreSpectra spectra() const;
+  // Samples λ_other ∝ F along the line through the known wavelength (Radiance: λ_o known, λ_i
+  // sampled; Importance: the reverse); pdf per nm.
+  WavelengthSample sampleLine(bool radiance, float lambdaKnown, float u) const;
+  // F along that line at lambdaOther: A or B times sampleLine's density.
+  float lineMass(bool radiance, float lambdaKnown, float lambdaOther) const;
+
+ private:
+  // The two lines around l and their interpolation weights (zero outside the grid).
+  struct Bracket {
+    size_t k0 = 0, k1 = 0;
+    float w0 = 0.0f, w1 = 0.0f;
+  };
+  static Bracket bracket(const std::vector<float>& grid, float l);
+  std::vector<float> in_, out_;
+  std::vector<float> diagL_, diagV_;  // the measured diagonal d(λ)
+  std::vector<float> f_;              // F at the knots, f_[o * in_.size() + i], per nm
+  // The measured lines as wavelength samplers (their integrals are A and B at the knots):
+  std::vector<SpectralDistribution> columns_;  // per input knot: F(·; λ_i) over λ_o
+  std::vector<SpectralDistribution> rows_;     // per output knot: F(λ_o; ·) over λ_i
+  bool fluoresces_ = false;
+};
+
+// The material at one hit: the matrix with factors on its diagonal and its off-diagonal part.
+class MeasuredModel : public BsdfModel {
+ public:
+  // `matrix` must outlive the model (the material's).
+  MeasuredModel(const MeasuredMatrix& matrix, float diagonalScale, float reradiationScale)
+      : m_(&matrix), diagonalScale_(diagonalScale), reradiationScale_(reradiationScale) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
@@ -44,36 +81,50 @@ class MeasuredReradiation final : public UniformMaterial {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  BsdfFlags flags() const override { return flagIf(fluoresces_, BsdfFlags::Fluorescent); }
+  BsdfFlags flags() const override {
+    return flagIf(m_->fluoresces() && reradiationScale_ > 0.0f, BsdfFlags::Fluorescent);
+  }
   float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override {
     return probFluorescence(mode, lambdaKnown);
   }
-  // absorbed = A(λ_i), reemitted = B(λ_o): the matrix's off-diagonal row and column integrals.
-  std::optional<FluorophoreSpectra> fluorophore() const override;
-  std::string describe() const override { return "measured_reradiation"; }
-
-  float diagonal(float l) const;
-  float F(float lambdaOut, float lambdaIn) const;  // reradiation density per nm
-  float A(float lambdaIn) const;                   // ∫F(λ_o; λ_i) dλ_o over the range
-  float B(float lambdaOut) const;                  // ∫F(λ_o; λ_i) dλ_i over the range
+  float diagonal(float l) const { return diagonalScale_ * m_->diagonal(l); }
+  float F(float lambdaOut, float lambdaIn) const { return reradiationScale_ * m_->F(lambdaOut, lambdaIn); }
+  float A(float lambdaIn) const { return reradiationScale_ * m_->A(lambdaIn); }
+  float B(float lambdaOut) const { return reradiationScale_ * m_->B(lambdaOut); }
   float probFluorescence(TransportMode mode, float lambdaKnown) const;
 
  private:
-  // The two lines around l and their interpolation weights (zero outside the grid).
-  struct Bracket {
-    size_t k0 = 0, k1 = 0;
-    float w0 = 0.0f, w1 = 0.0f;
-  };
-  static Bracket bracket(const std::vector<float>& grid, float l);
   float fluorescentWeight(TransportMode mode, float lambdaKnown) const;
+  const MeasuredMatrix* m_;
+  float diagonalScale_, reradiationScale_;
+};
 
-  std::vector<float> in_, out_;
-  std::vector<float> diagL_, diagV_;  // the measured diagonal d(λ)
-  std::vector<float> f_;              // F at the knots, f_[o * in_.size() + i], per nm
-  // The measured lines as wavelength samplers (their integrals are A and B at the knots):
-  std::vector<SpectralDistribution> columns_;  // per input knot: F(·; λ_i) over λ_o
-  std::vector<SpectralDistribution> rows_;     // per output knot: F(λ_o; ·) over λ_i
-  bool fluoresces_ = false;
+// Textures (materials/surface_texture.h): "reflectance_texture" (a factor on the diagonal) and
+// "reradiation_texture" (a factor on the off-diagonal part F).
+struct MeasuredTextures {
+  ScalarTexture diagonal, reradiation;
+};
+
+class MeasuredReradiation final : public TexturedMaterial<MeasuredModel> {
+ public:
+  // Throws InputError naming the source file and the offending wavelength on bad data.
+  MeasuredReradiation(const BispectralData& data, MeasuredReradiationOptions options, WavelengthRange range,
+                      MeasuredTextures textures = {})
+      : TexturedMaterial(matrix_, 1.0f, 1.0f), matrix_(data, options, range), textures_(std::move(textures)) {}
+  // A(λ_i) and B(λ_o): the matrix's off-diagonal row and column integrals (textures only lower them).
+  std::optional<FluorophoreSpectra> fluorophore() const override {
+    if (!matrix_.fluoresces()) return std::nullopt;
+    return matrix_.spectra();
+  }
+  std::string describe() const override { return "measured_reradiation"; }
+  bool textured() const override { return textures_.diagonal.image || textures_.reradiation.image; }
+
+ private:
+  MeasuredModel modelAt(Vec2 uv) const override {
+    return MeasuredModel(matrix_, textures_.diagonal.at(1.0f, uv), textures_.reradiation.at(1.0f, uv));
+  }
+  MeasuredMatrix matrix_;
+  MeasuredTextures textures_;
 };
 
 }  // namespace kasha

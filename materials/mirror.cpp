@@ -4,7 +4,7 @@
 
 namespace kasha {
 
-float Mirror::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float, SpectralLobe lobe) const {
+float MirrorModel::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float, SpectralLobe lobe) const {
   const bool radiance = mode == TransportMode::Radiance;
   const Vec3& wKnown = radiance ? wo : wi;
   const Vec3& wSampled = radiance ? wi : wo;
@@ -13,21 +13,21 @@ float Mirror::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lam
   return r_(lambdaIn) / std::abs(wSampled.z);
 }
 
-SpectralChoice Mirror::sampleSpectral(TransportMode, float lambdaKnown, float) const {
+SpectralChoice MirrorModel::sampleSpectral(TransportMode, float lambdaKnown, float) const {
   return {SpectralLobe::Elastic, lambdaKnown, r_(lambdaKnown) > 0.0f ? 1.0f : 0.0f};
 }
 
-float Mirror::spectralPdf(TransportMode, float lambdaKnown, float, SpectralLobe lobe) const {
+float MirrorModel::spectralPdf(TransportMode, float lambdaKnown, float, SpectralLobe lobe) const {
   return lobe == SpectralLobe::Elastic && r_(lambdaKnown) > 0.0f ? 1.0f : 0.0f;
 }
 
-std::optional<DirectionSample> Mirror::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe, float,
+std::optional<DirectionSample> MirrorModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe, float,
                                                         float, Vec2) const {
   if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
   return DirectionSample{specular::reflect(wKnown), 1.0f, true};
 }
 
-float Mirror::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float,
+float MirrorModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float,
                           float) const {
   const bool hit = lobe == SpectralLobe::Elastic && wKnown.z != 0.0f && specular::matches(wSampled, specular::reflect(wKnown));
   return hit ? 1.0f : 0.0f;

@@ -8,14 +8,17 @@
 // f·|cos θ|/pdf is R(λ) (pbrt-v4's convention for specular BxDFs). Reflection maps solid angle
 // onto itself, so the value is the same in both transport modes and reciprocal. Every other
 // direction gets f = 0 and density 0.
+//
+// R may be textured ("reflectance_texture", materials/surface_texture.h).
 #include "core/spectrum.h"
-#include "materials/material.h"
+#include "materials/textured_material.h"
 
 namespace kasha {
 
-class Mirror final : public UniformMaterial {
+// The model at one hit.
+class MirrorModel : public BsdfModel {
  public:
-  explicit Mirror(Spectrum reflectance) : r_(std::move(reflectance)) {}
+  explicit MirrorModel(HitReflectance r) : r_(r) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
@@ -27,13 +30,15 @@ class Mirror final : public UniformMaterial {
                      float lambdaOut) const override;
   BsdfFlags flags() const override { return BsdfFlags::DeltaDirection; }
   float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
-  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
-  std::string describe() const override { return "mirror"; }
-
-  const Spectrum& reflectance() const { return r_; }
 
  private:
-  Spectrum r_;
+  HitReflectance r_;
+};
+
+class Mirror final : public ReflectanceMaterial<MirrorModel> {
+ public:
+  using ReflectanceMaterial::ReflectanceMaterial;
+  std::string describe() const override { return "mirror"; }
 };
 
 }  // namespace kasha

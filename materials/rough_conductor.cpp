@@ -5,16 +5,22 @@
 
 namespace kasha {
 
-RoughConductor::RoughConductor(Spectrum f0, float alphaX, float alphaY)
-    : f0_(std::move(f0)), ggx_(checkedGgx(alphaX, alphaY)) {}
+RoughConductor::RoughConductor(Spectrum f0, float alphaX, float alphaY, RoughConductorTextures textures)
+    : TexturedMaterial(HitReflectance{&spectrum_}, checkedGgx(alphaX, alphaY)),
+      spectrum_(std::move(f0)),
+      textures_(std::move(textures)) {}
 
-float RoughConductor::fresnel(float c, float lambda) const {
+RoughConductorModel RoughConductor::modelAt(Vec2 uv) const {
+  return RoughConductorModel(textures_.f0.at(spectrum_, uv), texturedGgx(ggx(), textures_.alpha, uv));
+}
+
+float RoughConductorModel::fresnel(float c, float lambda) const {
   const float F0 = f0_(lambda);
   const float k = 1.0f - std::clamp(c, 0.0f, 1.0f);
   return F0 + (1.0f - F0) * sqr(sqr(k)) * k;  // Schlick 1994 eq. 15
 }
 
-float RoughConductor::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float,
+float RoughConductorModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float,
                            SpectralLobe lobe) const {
   if (lobe != SpectralLobe::Elastic) return 0.0f;
   const float r = ggx_.reflection(wi, wo);
@@ -23,16 +29,16 @@ float RoughConductor::eval(TransportMode, const Vec3& wi, const Vec3& wo, float 
   return fresnel(std::abs(glm::dot(wi, h)), lambdaIn) * r;  // Walter07 eq. 20
 }
 
-SpectralChoice RoughConductor::sampleSpectral(TransportMode, float lambdaKnown, float) const {
+SpectralChoice RoughConductorModel::sampleSpectral(TransportMode, float lambdaKnown, float) const {
   // Elastic only; Schlick's F is positive away from normal incidence even where F0 = 0.
   return {SpectralLobe::Elastic, lambdaKnown, 1.0f};
 }
 
-float RoughConductor::spectralPdf(TransportMode, float, float, SpectralLobe lobe) const {
+float RoughConductorModel::spectralPdf(TransportMode, float, float, SpectralLobe lobe) const {
   return lobe == SpectralLobe::Elastic ? 1.0f : 0.0f;
 }
 
-std::optional<DirectionSample> RoughConductor::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,
+std::optional<DirectionSample> RoughConductorModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,
                                                                 float, float, Vec2 u) const {
   if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
   const Vec3 w = reflectAbout(wKnown, ggx_.sampleVisible(wKnown, u));
@@ -41,7 +47,7 @@ std::optional<DirectionSample> RoughConductor::sampleDirection(TransportMode, co
   return DirectionSample{w, pdf, false};
 }
 
-float RoughConductor::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float,
+float RoughConductorModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float,
                                   float) const {
   return lobe == SpectralLobe::Elastic ? ggx_.reflectionPdf(wKnown, wSampled) : 0.0f;
 }

@@ -15,16 +15,20 @@
 // same construction from the other direction. Weight f·|cos θ_sampled|/pdf = F·G1(ω_sampled) ≤ 1;
 // a mirrored direction that ends up below the surface is a failed sample (energy lost to the
 // single-scattering model, as in Walter07).
+//
+// Textures (materials/surface_texture.h): "reflectance_texture" on F0, "alpha_texture" on both α
+// (clamped to kMinAlpha).
 #include "core/spectrum.h"
 #include "materials/ggx.h"
-#include "materials/material.h"
+#include "materials/surface_texture.h"
+#include "materials/textured_material.h"
 
 namespace kasha {
 
-class RoughConductor final : public UniformMaterial {
+// The model at one hit.
+class RoughConductorModel : public BsdfModel {
  public:
-  // Throws std::invalid_argument for α outside [kMinAlpha, kMaxAlpha] (ggx.h).
-  RoughConductor(Spectrum f0, float alphaX, float alphaY);
+  RoughConductorModel(HitReflectance f0, Ggx ggx) : f0_(f0), ggx_(ggx) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
@@ -36,16 +40,33 @@ class RoughConductor final : public UniformMaterial {
                      float lambdaOut) const override;
   BsdfFlags flags() const override { return BsdfFlags::None; }
   float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
-  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
-  std::string describe() const override { return "rough_conductor"; }
 
   // Schlick's Fresnel at cos θ = c (relative to the microfacet normal).
   float fresnel(float c, float lambda) const;
   const Ggx& ggx() const { return ggx_; }
 
  private:
-  Spectrum f0_;
+  HitReflectance f0_;
   Ggx ggx_;
+};
+
+struct RoughConductorTextures {
+  ReflectanceTexture f0;
+  ScalarTexture alpha;
+};
+
+class RoughConductor final : public TexturedMaterial<RoughConductorModel> {
+ public:
+  // Throws std::invalid_argument for α outside [kMinAlpha, kMaxAlpha] (ggx.h).
+  RoughConductor(Spectrum f0, float alphaX, float alphaY, RoughConductorTextures textures = {});
+  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
+  std::string describe() const override { return "rough_conductor"; }
+  bool textured() const override { return textures_.f0.image || textures_.alpha.image; }
+
+ private:
+  RoughConductorModel modelAt(Vec2 uv) const override;
+  Spectrum spectrum_;
+  RoughConductorTextures textures_;
 };
 
 }  // namespace kasha

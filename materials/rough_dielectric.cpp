@@ -28,15 +28,16 @@ bool facetSides(const Vec3& a, const Vec3& b, const Vec3& h) {
 
 }  // namespace
 
-RoughDielectric::RoughDielectric(Ior ior, float alphaX, float alphaY, WavelengthRange range)
-    : ior_(checkedIor(std::move(ior), range)), ggx_(checkedGgx(alphaX, alphaY)) {}
+RoughDielectric::RoughDielectric(Ior ior, float alphaX, float alphaY, WavelengthRange range, ScalarTexture alphaTexture)
+    : TexturedMaterial(checkedIor(std::move(ior), range), checkedGgx(alphaX, alphaY)),
+      alphaTexture_(std::move(alphaTexture)) {}
 
-float RoughDielectric::reflectProbability(const Vec3& w, float lambda) const {
+float RoughDielectricModel::reflectProbability(const Vec3& w, float lambda) const {
   const float F = fresnelDielectric(std::abs(w.z), sideIndex(-w, lambda) / sideIndex(w, lambda));
   return std::clamp(F, kMinReflectProbability, 1.0f - kMinReflectProbability);
 }
 
-float RoughDielectric::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float,
+float RoughDielectricModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float,
                             SpectralLobe lobe) const {
   if (lobe != SpectralLobe::Elastic || wi.z == 0.0f || wo.z == 0.0f) return 0.0f;
   const float etaI = sideIndex(wi, lambdaIn), etaO = sideIndex(wo, lambdaIn);
@@ -58,15 +59,15 @@ float RoughDielectric::eval(TransportMode, const Vec3& wi, const Vec3& wo, float
          ggx_.g1(wo) / denom;
 }
 
-SpectralChoice RoughDielectric::sampleSpectral(TransportMode, float lambdaKnown, float) const {
+SpectralChoice RoughDielectricModel::sampleSpectral(TransportMode, float lambdaKnown, float) const {
   return {SpectralLobe::Elastic, lambdaKnown, 1.0f};
 }
 
-float RoughDielectric::spectralPdf(TransportMode, float, float, SpectralLobe lobe) const {
+float RoughDielectricModel::spectralPdf(TransportMode, float, float, SpectralLobe lobe) const {
   return lobe == SpectralLobe::Elastic ? 1.0f : 0.0f;
 }
 
-std::optional<DirectionSample> RoughDielectric::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,
+std::optional<DirectionSample> RoughDielectricModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,
                                                                  float lambdaIn, float, Vec2 u) const {
   if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
   const float pr = reflectProbability(wKnown, lambdaIn);
@@ -85,12 +86,12 @@ std::optional<DirectionSample> RoughDielectric::sampleDirection(TransportMode, c
   return DirectionSample{w, pdf, false};
 }
 
-float RoughDielectric::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
+float RoughDielectricModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
                                    float lambdaIn, float) const {
   return lobe == SpectralLobe::Elastic ? density(wKnown, wSampled, lambdaIn) : 0.0f;
 }
 
-float RoughDielectric::density(const Vec3& wk, const Vec3& ws, float lambda) const {
+float RoughDielectricModel::density(const Vec3& wk, const Vec3& ws, float lambda) const {
   if (wk.z == 0.0f || ws.z == 0.0f) return 0.0f;
   const float pr = reflectProbability(wk, lambda);
   if (wk.z * ws.z > 0.0f) return pr * ggx_.reflectionPdf(wk, ws);  // Walter07 eq. 14

@@ -29,18 +29,19 @@
 //   refraction  (1 − P_r)·D_k(h_t)·η_s²|ω_s·h_t| / (η_k(ω_k·h_t) + η_s(ω_s·h_t))²
 // with ω_s the sampled direction. A refraction blocked by total internal reflection at m, or a
 // direction that ends on the wrong side of the macro surface, is a failed sample (f = 0 there).
+//
+// Texture (materials/surface_texture.h): "alpha_texture" on both α (clamped to kMinAlpha).
 #include "materials/ggx.h"
 #include "materials/ior.h"
-#include "materials/material.h"
+#include "materials/surface_texture.h"
+#include "materials/textured_material.h"
 
 namespace kasha {
 
-class RoughDielectric final : public UniformMaterial {
+// The model at one hit.
+class RoughDielectricModel : public BsdfModel {
  public:
-  // Throws std::invalid_argument "ior: ..." if n(λ) is invalid (checkIor) or closer to 1 than
-  // 1.001 anywhere in the range (index-matched refraction is a Dirac delta straight through, which
-  // the generalised half vector cannot describe), or "alpha: ..." (checkedGgx).
-  RoughDielectric(Ior ior, float alphaX, float alphaY, WavelengthRange range);
+  RoughDielectricModel(Ior ior, Ggx ggx) : ior_(std::move(ior)), ggx_(ggx) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
@@ -53,8 +54,6 @@ class RoughDielectric final : public UniformMaterial {
   // Dispersion changes the refracted direction and the Fresnel choice between the lobes.
   BsdfFlags flags() const override { return flagIf(ior_.dispersive(), BsdfFlags::WavelengthDependentDirection); }
   float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
-  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
-  std::string describe() const override { return "rough_dielectric (" + ior_.describe() + ")"; }
 
   const Ior& ior() const { return ior_; }
   const Ggx& ggx() const { return ggx_; }
@@ -69,6 +68,23 @@ class RoughDielectric final : public UniformMaterial {
 
   Ior ior_;
   Ggx ggx_;
+};
+
+class RoughDielectric final : public TexturedMaterial<RoughDielectricModel> {
+ public:
+  // Throws std::invalid_argument "ior: ..." if n(λ) is invalid (checkIor) or closer to 1 than
+  // 1.001 anywhere in the range (index-matched refraction is a Dirac delta straight through, which
+  // the generalised half vector cannot describe), or "alpha: ..." (checkedGgx).
+  RoughDielectric(Ior ior, float alphaX, float alphaY, WavelengthRange range, ScalarTexture alphaTexture = {});
+  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
+  std::string describe() const override { return "rough_dielectric (" + ior().describe() + ")"; }
+  bool textured() const override { return alphaTexture_.image != nullptr; }
+
+ private:
+  RoughDielectricModel modelAt(Vec2 uv) const override {
+    return RoughDielectricModel(ior(), texturedGgx(ggx(), alphaTexture_, uv));
+  }
+  ScalarTexture alphaTexture_;
 };
 
 }  // namespace kasha

@@ -30,6 +30,14 @@ struct ShadingCorrection {
     const float den = std::abs(glm::dot(wi, ng)) * std::abs(wo.z);
     return den > 0.0f ? std::abs(wi.z) * std::abs(glm::dot(wo, ng)) / den : 0.0f;
   }
+  // |ω·n_s| / |ω·n_g| for light arriving along ω: f times it is Veach's f_s, for estimators that
+  // know the light's flux through the surface (photon density estimation) rather than a sampled
+  // direction; 0 where ω is inconsistent.
+  float incidentRatio(const Vec3& w) const {
+    if (!active) return 1.0f;
+    const float g = std::abs(glm::dot(w, ng));
+    return consistent(w) && g > 0.0f ? std::abs(w.z) / g : 0.0f;
+  }
 };
 
 }  // namespace kasha

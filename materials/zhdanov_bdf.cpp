@@ -30,51 +30,63 @@ std::string checkZhdanovParams(const ZhdanovParams& p, WavelengthRange range) {
   return {};
 }
 
-ZhdanovBdf::ZhdanovBdf(ZhdanovParams params, WavelengthRange range)
-    : p_(std::move(params)), excitation_(p_.excitation, range), emission_(p_.emission, range) {
-  if (std::string m = checkZhdanovParams(p_, range); !m.empty()) throw std::invalid_argument(m);
+ZhdanovSpectra::ZhdanovSpectra(ZhdanovParams p, WavelengthRange range)
+    : params(std::move(p)), excitation(params.excitation, range), emission(params.emission, range) {
+  if (std::string m = checkZhdanovParams(params, range); !m.empty()) throw std::invalid_argument(m);
 }
 
-float ZhdanovBdf::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
+ZhdanovBdf::ZhdanovBdf(ZhdanovParams params, WavelengthRange range, ZhdanovTextures textures)
+    : TexturedMaterial(spectra_, ZhdanovHit{params.gloss, params.glossExponent, HitReflectance{&spectra_.params.passive}}),
+      spectra_(std::move(params), range),
+      textures_(std::move(textures)) {}
+
+ZhdanovModel ZhdanovBdf::modelAt(Vec2 uv) const {
+  const ZhdanovParams& p = spectra_.params;
+  return ZhdanovModel(spectra_, ZhdanovHit{textures_.gloss.at(p.gloss, uv), textures_.glossExponent.at(p.glossExponent, uv),
+                                           textures_.passive.at(p.passive, uv), textures_.excitation.at(1.0f, uv)});
+}
+
+float ZhdanovModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
                        SpectralLobe lobe) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
   if (lobe == SpectralLobe::Elastic)  // Zhdanov eq. 2, passive part: gloss peak + Lambert
-    return (p_.gloss > 0.0f ? p_.gloss * gloss::value(wi, wo, p_.glossExponent) : 0.0f) + passive(lambdaIn) * kInvPi;
+    return (h_.gloss > 0.0f ? h_.gloss * gloss::value(wi, wo, h_.glossExponent) : 0.0f) + passive(lambdaIn) * kInvPi;
   return E(lambdaOut) * A(lambdaIn) * kInvPi;  // Zhdanov eq. 3
 }
 
-float ZhdanovBdf::fluorescentWeight(TransportMode mode, float lambdaKnown) const {
+float ZhdanovModel::fluorescentWeight(TransportMode mode, float lambdaKnown) const {
   // Light paths: the fluorescent albedo A(λ_i). Camera paths: ∫ A(λ_i) E(λ_o) dλ_i = E(λ_o)·∫A.
-  return mode == TransportMode::Importance ? A(lambdaKnown) : E(lambdaKnown) * excitation_.integral();
+  return mode == TransportMode::Importance ? A(lambdaKnown) : E(lambdaKnown) * excitationIntegral();
 }
 
-std::optional<FluorophoreSpectra> ZhdanovBdf::fluorophore() const {
+std::optional<FluorophoreSpectra> ZhdanovModel::fluorophoreSpectra() const {
   if (!fluoresces()) return std::nullopt;
-  return FluorophoreSpectra{p_.excitation, p_.emission.scaled(excitation_.integral() / emission_.integral())};
+  return FluorophoreSpectra{s_->params.excitation.scaled(h_.excitationScale),
+                            s_->params.emission.scaled(excitationIntegral() / s_->emission.integral())};
 }
 
-float ZhdanovBdf::probFluorescence(TransportMode mode, float lambdaKnown) const {
+float ZhdanovModel::probFluorescence(TransportMode mode, float lambdaKnown) const {
   const float fl = fluorescentWeight(mode, lambdaKnown), el = elasticWeight(lambdaKnown);
   return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
 }
 
-SpectralChoice ZhdanovBdf::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
+SpectralChoice ZhdanovModel::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
   if (!(fluorescentWeight(mode, lambdaKnown) + elasticWeight(lambdaKnown) > 0.0f)) return {};
   const float pFluor = probFluorescence(mode, lambdaKnown);
   if (u < pFluor) {
     const bool radiance = mode == TransportMode::Radiance;
-    const WavelengthSample ws = (radiance ? excitation_ : emission_).sample(std::min(u / pFluor, 0x1.fffffep-1f));
+    const WavelengthSample ws = (radiance ? s_->excitation : s_->emission).sample(std::min(u / pFluor, 0x1.fffffep-1f));
     if (ws.pdf <= 0.0f) return {};
     return {SpectralLobe::Fluorescent, ws.lambda, pFluor * ws.pdf};
   }
   return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
 }
 
-float ZhdanovBdf::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
+float ZhdanovModel::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
   if (!(fluorescentWeight(mode, lambdaKnown) + elasticWeight(lambdaKnown) > 0.0f)) return 0.0f;
   const float pFluor = probFluorescence(mode, lambdaKnown);
   if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
-  return pFluor * (mode == TransportMode::Radiance ? excitation_.pdf(lambdaOther) : emission_.pdf(lambdaOther));
+  return pFluor * (mode == TransportMode::Radiance ? s_->excitation.pdf(lambdaOther) : s_->emission.pdf(lambdaOther));
 }
 
 namespace {
@@ -82,13 +94,13 @@ namespace {
 float glossChoice(float gloss, float passive) { return gloss + passive > 0.0f ? gloss / (gloss + passive) : 0.0f; }
 }  // namespace
 
-std::optional<DirectionSample> ZhdanovBdf::sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
+std::optional<DirectionSample> ZhdanovModel::sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
                                                             float lambdaIn, float lambdaOut, Vec2 u) const {
   if (lobe == SpectralLobe::Fluorescent) return diffuse::sample(wKnown, u);
-  const float pg = glossChoice(p_.gloss, passive(lambdaIn));
+  const float pg = glossChoice(h_.gloss, passive(lambdaIn));
   std::optional<DirectionSample> s;
   if (u.x < pg) {
-    s = gloss::sample(wKnown, Vec2(std::min(u.x / pg, 0x1.fffffep-1f), u.y), p_.glossExponent);
+    s = gloss::sample(wKnown, Vec2(std::min(u.x / pg, 0x1.fffffep-1f), u.y), h_.glossExponent);
   } else {
     s = diffuse::sample(wKnown, Vec2(std::min((u.x - pg) / (1.0f - pg), 0x1.fffffep-1f), u.y));
   }
@@ -97,12 +109,12 @@ std::optional<DirectionSample> ZhdanovBdf::sampleDirection(TransportMode mode, c
   return s;
 }
 
-float ZhdanovBdf::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
+float ZhdanovModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
                                float lambdaIn, float) const {
   if (lobe == SpectralLobe::Fluorescent) return diffuse::pdf(wKnown, wSampled);
-  const float pg = glossChoice(p_.gloss, passive(lambdaIn));
+  const float pg = glossChoice(h_.gloss, passive(lambdaIn));
   const float lambert = (1.0f - pg) * diffuse::pdf(wKnown, wSampled);
-  return pg > 0.0f ? pg * gloss::pdf(wKnown, wSampled, p_.glossExponent) + lambert : lambert;
+  return pg > 0.0f ? pg * gloss::pdf(wKnown, wSampled, h_.glossExponent) + lambert : lambert;
 }
 
 }  // namespace kasha

@@ -17,7 +17,8 @@
 #include <string>
 
 #include "core/spectral_distribution.h"
-#include "materials/material.h"
+#include "materials/surface_texture.h"
+#include "materials/textured_material.h"
 
 namespace kasha {
 
@@ -33,10 +34,26 @@ struct ZhdanovParams {
 // Returns "" if the parameters are valid over the range, else "field: reason".
 std::string checkZhdanovParams(const ZhdanovParams& p, WavelengthRange range);
 
-class ZhdanovBdf final : public UniformMaterial {
- public:
+// What the BDF keeps for a whole surface: its parameters and wavelength samplers.
+struct ZhdanovSpectra {
   // Throws std::invalid_argument with checkZhdanovParams' message.
-  ZhdanovBdf(ZhdanovParams params, WavelengthRange range);
+  ZhdanovSpectra(ZhdanovParams params, WavelengthRange range);
+  ZhdanovParams params;
+  SpectralDistribution excitation;  // λ_i ∝ A on camera paths
+  SpectralDistribution emission;    // λ_o ∝ E on light paths; its pdf is the normalised E
+};
+
+// The BDF at one hit: the surface's spectra with this hit's ρ_g, n, p(λ) and a factor on A(λ).
+struct ZhdanovHit {
+  float gloss = 0.0f, glossExponent = 0.0f;
+  HitReflectance passive;
+  float excitationScale = 1.0f;
+};
+
+class ZhdanovModel : public BsdfModel {
+ public:
+  // `spectra` must outlive the model (the material's).
+  ZhdanovModel(const ZhdanovSpectra& spectra, ZhdanovHit hit) : s_(&spectra), h_(hit) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
@@ -49,31 +66,55 @@ class ZhdanovBdf final : public UniformMaterial {
   // The elastic lobe picks the gloss peak with a probability weighted by p(λ).
   BsdfFlags flags() const override {
     return flagIf(fluoresces(), BsdfFlags::Fluorescent) |
-           flagIf(p_.gloss > 0.0f, BsdfFlags::WavelengthDependentDirection);
+           flagIf(h_.gloss > 0.0f, BsdfFlags::WavelengthDependentDirection);
   }
-  bool fluoresces() const { return excitation_.integral() > 0.0f; }
+  bool fluoresces() const { return excitationIntegral() > 0.0f; }
   float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override {
     return probFluorescence(mode, lambdaKnown);
   }
   // absorbed = A(λ_i); reemitted = E(λ_o)·∫A (eq. 3 integrated over λ_i under unit light).
-  std::optional<FluorophoreSpectra> fluorophore() const override;
-  std::string describe() const override { return "zhdanov"; }
+  std::optional<FluorophoreSpectra> fluorophoreSpectra() const;
 
-  float passive(float l) const { return p_.passive(l); }
-  float A(float l) const { return p_.excitation(l); }
-  float E(float l) const { return emission_.pdf(l); }
-  float gloss() const { return p_.gloss; }
-  float glossExponent() const { return p_.glossExponent; }
+  float passive(float l) const { return h_.passive(l); }
+  float A(float l) const { return h_.excitationScale * s_->params.excitation(l); }
+  float E(float l) const { return s_->emission.pdf(l); }
+  float gloss() const { return h_.gloss; }
+  float glossExponent() const { return h_.glossExponent; }
   // Probability of the fluorescent lobe given the known wavelength (light paths: λ_i; camera: λ_o).
   float probFluorescence(TransportMode mode, float lambdaKnown) const;
 
  private:
-  float elasticWeight(float l) const { return p_.gloss + p_.passive(l); }
+  float excitationIntegral() const { return h_.excitationScale * s_->excitation.integral(); }
+  float elasticWeight(float l) const { return h_.gloss + passive(l); }
   float fluorescentWeight(TransportMode mode, float lambdaKnown) const;
+  const ZhdanovSpectra* s_;
+  ZhdanovHit h_;
+};
 
-  ZhdanovParams p_;
-  SpectralDistribution excitation_;  // λ_i ∝ A on camera paths
-  SpectralDistribution emission_;    // λ_o ∝ E on light paths; its pdf is the normalised E
+// Textures (materials/surface_texture.h): "gloss_texture", "gloss_exponent_texture" (factors on
+// ρ_g and n), "passive_texture" (on p(λ)), "excitation_texture" (a factor on A(λ)).
+struct ZhdanovTextures {
+  ScalarTexture gloss, glossExponent;
+  ReflectanceTexture passive;
+  ScalarTexture excitation;
+};
+
+class ZhdanovBdf final : public TexturedMaterial<ZhdanovModel> {
+ public:
+  // Throws std::invalid_argument with checkZhdanovParams' message.
+  ZhdanovBdf(ZhdanovParams params, WavelengthRange range, ZhdanovTextures textures = {});
+  // The untextured surface's: textures scale A by at most 1 (same support).
+  std::optional<FluorophoreSpectra> fluorophore() const override { return fluorophoreSpectra(); }
+  std::string describe() const override { return "zhdanov"; }
+  bool textured() const override {
+    return textures_.gloss.image || textures_.glossExponent.image || textures_.passive.image ||
+           textures_.excitation.image;
+  }
+
+ private:
+  ZhdanovModel modelAt(Vec2 uv) const override;
+  ZhdanovSpectra spectra_;
+  ZhdanovTextures textures_;
 };
 
 }  // namespace kasha

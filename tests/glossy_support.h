@@ -21,6 +21,7 @@ namespace kasha::test {
 struct DirectionChi2Config {
   int nCos = 20, nPhi = 24, sub = 8;
   int samples = 200000;
+  Vec2 uv{0.0f};  // texture coordinates of the hit (a textured material's per-hit model)
 };
 
 struct DirectionChi2Result {
@@ -45,7 +46,7 @@ inline double sphereQuadrature(int nCos, int nPhi, const std::function<double(co
 
 inline DirectionChi2Result directionChi2(const Material& material, TransportMode mode, const Vec3& wKnown, float lambda,
                                          uint64_t seed, const DirectionChi2Config& c = {}) {
-  const Bsdf m = localBsdf(material, lambda);
+  const Bsdf m = localBsdf(material, lambda, c.uv);
   const int nCells = c.nCos * c.nPhi;
   std::vector<double> observed(size_t(nCells), 0.0), expected(size_t(nCells), 0.0);
   DirectionChi2Result res;

@@ -25,10 +25,10 @@ inline Vec3 randomDirection(Rng& rng) {
 }
 
 // The Bsdf a material builds at a hit whose local frame is the world frame (so local directions
-// pass through unchanged), for a path at wavelength `lambda`.
-inline Bsdf localBsdf(const Material& m, float lambda = 550.0f) {
+// pass through unchanged), for a path at wavelength `lambda`, at texture coordinates uv.
+inline Bsdf localBsdf(const Material& m, float lambda = 550.0f, Vec2 uv = Vec2(0.0f)) {
   const Frame world{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
-  return m.bsdf(HitContext{Vec2(0.0f), world, world, {&lambda, 1}});
+  return m.bsdf(HitContext{uv, world, world, {&lambda, 1}});
 }
 
 // |a − b| ≤ rel·max(|a|, |b|) + abs

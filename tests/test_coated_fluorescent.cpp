@@ -172,7 +172,7 @@ TEST(CoatedFluorescentEnergy, AlbedoAtMostOneAndMatchesSampling) {
 
 TEST(CoatedFluorescentLimit, IndexOneIsTheBase) {
   const CoatedFluorescent m(boxParams(), Ior::constant(1.0), 0.3f, 0.3f, kRange);
-  const JungBbrrdf& base = m.base();
+  const JungModel& base = m.base();
   Rng rng(13);
   for (int i = 0; i < 5000; ++i) {
     const Vec3 a = randomDirection(rng), b = randomDirection(rng);

@@ -1,5 +1,5 @@
 // Textures (core/texture.h), texture coordinates of shapes (core/shape.h) and the textured Jung
-// material (materials/textured_jung.h): lookup, files, errors, and that a textured material with a
+// material (materials/jung_bbrrdf.h): lookup, files, errors, and that a textured material with a
 // constant image renders exactly as the untextured one.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -19,45 +19,14 @@
 #include "integrators/render_loop.h"
 #include "materials/jung_bbrrdf.h"
 #include "materials/material_json.h"
-#include "materials/textured_jung.h"
-#include "temp_dir.h"
+#include "tests/texture_files.h"
 
 namespace kasha {
 namespace {
 
 namespace fs = std::filesystem;
-
-class TextureFiles : public test::TempDirTest {
- protected:
-  TextureFiles() : TempDirTest("texture") {}
-
-  // RGBA bytes, row 0 at the top.
-  std::string writePng(const std::string& name, int w, int h, const std::vector<unsigned char>& rgba) {
-    png_image img{};
-    img.version = PNG_IMAGE_VERSION;
-    img.width = png_uint_32(w);
-    img.height = png_uint_32(h);
-    img.format = PNG_FORMAT_RGBA;
-    const std::string path = dir + "/" + name;
-    EXPECT_TRUE(png_image_write_to_file(&img, path.c_str(), 0, rgba.data(), 0, nullptr)) << img.message;
-    return path;
-  }
-  // One grey value per pixel (R = G = B, A = 1), row 0 at the top.
-  std::string writeExr(const std::string& name, int w, int h, const std::vector<float>& grey) {
-    std::vector<Imf::Rgba> px;
-    for (const float g : grey) px.emplace_back(g, g, g, 1.0f);
-    const std::string path = dir + "/" + name;
-    Imf::RgbaOutputFile out(path.c_str(), w, h, Imf::WRITE_RGBA);
-    out.setFrameBuffer(px.data(), 1, size_t(w));
-    out.writePixels(h);
-    return path;
-  }
-  std::string writeText(const std::string& name, const std::string& text) {
-    std::ofstream(dir + "/" + name) << text;
-    return dir + "/" + name;
-  }
-
-};
+using test::renderFilm;
+using test::TextureFiles;
 
 // ---------------------------------------------------------------------------------------------
 // Lookup
@@ -239,14 +208,14 @@ TEST_F(TextureFiles, ClearErrors) {
             at + "c_texture/channel: unknown channel 'x' (mean, r, g, b, a)");
   EXPECT_EQ(error({{"c_texture", 3}}),
             at + "c_texture: expected an image file name or {\"file\": ..., \"channel\": ...}, got number");
-  EXPECT_EQ(error({{"c_texture", "two.png"}, {"Q_texture", "three.png"}}),
-            at + "Q_texture: 3×1 pixels, but c_texture has 2×1 (the textures of one material must have the same size)");
-  // More distinct (c, Q) combinations than the palette holds: 65×64 different (R, G) pairs.
-  std::vector<unsigned char> pairs;
-  for (int i = 0; i < 65 * 64; ++i) pairs.insert(pairs.end(), {(unsigned char)(i % 256), (unsigned char)(i / 256), 0, 255});
-  writePng("pairs.png", 65, 64, pairs);
-  EXPECT_EQ(error({{"c_texture", {{"file", "pairs.png"}, {"channel", "r"}}}, {"Q_texture", {{"file", "pairs.png"}, {"channel", "g"}}}}),
-            at + "c_texture: more than 4096 distinct combinations of texture values (quantise the images)");
+  // An RGB colour is a reflectance's texture only.
+  EXPECT_EQ(error({{"c_texture", {{"file", "two.png"}, {"channel", "rgb"}}}}),
+            at + "c_texture/channel: unknown channel 'rgb' (mean, r, g, b, a)");
+  EXPECT_EQ(error({{"reflectance_texture", {{"file", "two.png"}, {"channel", "x"}}}}),
+            at + "reflectance_texture/channel: unknown channel 'x' (mean, r, g, b, a, rgb)");
+  EXPECT_EQ(error({{"reflectance_texture", {{"file", "two.png"}, {"channel", "rgb"}}}}), "no error");
+  // Textures of one material may differ in size (each is filtered on its own grid).
+  EXPECT_EQ(error({{"c_texture", "two.png"}, {"Q_texture", "three.png"}}), "no error");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -324,20 +293,6 @@ TEST_F(TextureFiles, SceneMemoryLimit) {
   EXPECT_NO_THROW(loadScene(dir + "/ink.json", options));
 }
 
-std::vector<Vec3> renderFilm(const std::string& path, const std::string& integratorName) {
-  const auto scene = loadScene(path);
-  const std::unique_ptr<Integrator> integrator = makeIntegrator(integratorName, *scene, scene->render);
-  Film film(scene->camera.width(), scene->camera.height());
-  RenderOptions opt;
-  opt.spp = 4;
-  opt.seed = 5;
-  render(*scene, *integrator, film, opt);
-  std::vector<Vec3> px;
-  for (int y = 0; y < film.height(); ++y)
-    for (int x = 0; x < film.width(); ++x) px.push_back(film.xyz(x, y));
-  return px;
-}
-
 // A constant texture is the untextured material: the same image, bit for bit, from the same seed.
 // 0.5 is exact in half floats, so c = 0.8 × 0.5 is the float 0.4 of the plain material.
 TEST_F(TextureFiles, ConstantTextureRendersAsTheUntexturedMaterial) {
@@ -362,14 +317,12 @@ TEST_F(TextureFiles, ConstantTextureRendersAsTheUntexturedMaterial) {
   }
 }
 
-// The shipped ink scene: two palette entries per sheet (ink, paper), resolved at hits.
+// The shipped ink scene: ink and paper resolved at hits (texel centres, where bilinear filtering
+// gives the texel).
 TEST(FluorescentInkScene, InkAndPaperResolveAtHits) {
   const auto scene = loadScene(std::string(KASHA_SOURCE_DIR) + "/scenes/fluorescent_ink.json");
   ASSERT_EQ(scene->materials.size(), 2u);
-  for (const auto& m : scene->materials) {
-    ASSERT_TRUE(m->textured());
-    EXPECT_EQ(static_cast<const TexturedJung&>(*m).paletteSize(), 2u);
-  }
+  for (const auto& m : scene->materials) ASSERT_TRUE(m->textured());
   // Left sheet: the red channel's ring is centred on pixel (32, 32) of 128×64, radii 14–22, so
   // pixel (32 + 18, 32) is ink and the centre is paper. uv of a pixel centre: ((x + ½)/128, 1 − (y + ½)/64).
   const auto cAt = [&](float px, float py) {
@@ -377,7 +330,7 @@ TEST(FluorescentInkScene, InkAndPaperResolveAtHits) {
     const Vec3 p(-0.45f + 0.4f * u, -0.1f + 0.2f * v, 1.0f);  // the left sheet spans 0.4 × 0.2
     const std::optional<Hit> h = scene->accel->intersect(Ray{p, Vec3(0, 0, -1)});
     EXPECT_TRUE(h);
-    const auto* j = dynamic_cast<const JungBbrrdf*>(&scene->bsdf(*h, {}).model());
+    const auto* j = dynamic_cast<const JungModel*>(&scene->bsdf(*h, {}).model());
     EXPECT_NE(j, nullptr);
     return j ? j->c() : -1.0f;
   };

@@ -9,10 +9,11 @@ namespace kasha {
 struct Photon {
   float p[3];      // position; first, so that FLANN reads positions in place with stride sizeof(Photon)
   float wi[3];     // unit direction towards where the light came from, in the frame of the surface the
-                   // photon landed on (Frame::fromNormal of its geometric normal)
+                   // photon landed on (its Bsdf's local, shading frame)
   float lambda;    // wavelength of the light arriving here, nm
   float power;     // the light subpath's throughput: flux per emitted subpath, per nm of wavelength
-                   // density already divided out (the light tracer's beta)
+                   // density already divided out (the light tracer's beta), times |ω_i·n_s|/|ω_i·n_g|
+                   // here (1 without a shading normal: Veach's f_s, docs/photon-mapping.md §3)
   uint32_t depth;  // index of this vertex on its light subpath: 1 for the first surface hit
 };
 static_assert(sizeof(Photon) == 36);

@@ -7,6 +7,7 @@
 #include "core/math.h"
 #include "core/spectrum_json.h"
 #include "scene/mitsuba/xml_spectrum.h"
+#include "scene/mitsuba/xml_texture.h"
 
 namespace kasha::mitsuba {
 namespace {
@@ -90,6 +91,18 @@ void requireUnitSpecular(Plugin& b, const char* key) {
   if (!(s.is_number() && s.get<float>() == 1.0f)) b.fail(std::string("'") + key + "' other than 1 is not supported");
 }
 
+// Sets m["reflectance"] from the reflectance property `key`: a spectrum, or a <texture
+// type="bitmap"> (reflectance 1 times the image's colours, xml_texture.h).
+void setReflectance(Plugin& b, const std::string& key, json& m) {
+  const pugi::xml_node p = b.property(key);
+  if (p && std::string(p.name()) == "texture") {
+    m["reflectance"] = 1.0;
+    m["reflectance_texture"] = bitmapTexture(b.xml(), p);
+  } else {
+    m["reflectance"] = spectrumProperty(b, key, 0.5);
+  }
+}
+
 // The kasha material types a scene may use directly; each property becomes the JSON field of
 // its name.
 json kashaMaterial(Plugin& b) {
@@ -126,7 +139,8 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
     m = translate(xml, inner.front(), true);
   } else if (t == "diffuse") {
     oneSided();
-    m = {{"type", "lambertian"}, {"reflectance", spectrumProperty(b, "reflectance", 0.5)}};
+    m = {{"type", "lambertian"}};
+    setReflectance(b, "reflectance", m);
   } else if (t == "conductor") {
     oneSided();
     m = {{"type", "mirror"}, {"reflectance", conductorF0(b)}};
@@ -144,8 +158,8 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
     requireUnitSpecular(b, "specular_reflectance");
     if (b.boolean("nonlinear", false)) b.fail("nonlinear = true is not supported");
     m = {{"type", "coated_fluorescent"}, {"absorption", 0.0}, {"emission", 1.0}, {"c", 0.0}, {"Q", 0.0},
-         {"reflectance", spectrumProperty(b, "diffuse_reflectance", 0.5)},
          {"coat_ior", relativeIor(b, "int_ior", "polypropylene")}};
+    setReflectance(b, "diffuse_reflectance", m);
     if (t == "roughplastic") {
       m["coat_alpha"] = roughness(b);
     } else {

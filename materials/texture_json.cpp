@@ -1,0 +1,62 @@
+#include "materials/texture_json.h"
+
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/json_parse.h"
+
+namespace kasha {
+namespace {
+
+// The image of "<key>" (texture_json.h); nullptr when absent. rgb: "channel": "rgb" is allowed.
+std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::string& key, const SpectrumContext& ctx,
+                                                 bool rgb) {
+  if (!parent.has(key)) return nullptr;
+  const nlohmann::json& v = parent.get(key);
+  std::string file;
+  TextureChannel channel = TextureChannel::Mean;
+  TextureWrap wrap = TextureWrap::Repeat;
+  TextureFilter filter = TextureFilter::Bilinear;
+  if (v.is_string()) {
+    file = v.get<std::string>();
+  } else if (v.is_object()) {
+    JsonFields f(v, ctx.file, parent.path(key));
+    file = f.string("file");
+    const std::string name = f.string("channel", "mean");
+    const std::optional<TextureChannel> c = rgb && name == "rgb" ? TextureChannel::Rgb : parseTextureChannel(name);
+    if (!c) f.fail("channel", "unknown channel '" + name + (rgb ? "' (mean, r, g, b, a, rgb)" : "' (mean, r, g, b, a)"));
+    channel = *c;
+    const std::string wrapName = f.string("wrap", "repeat");
+    const std::optional<TextureWrap> w = parseTextureWrap(wrapName);
+    if (!w) f.fail("wrap", "unknown wrap mode '" + wrapName + "' (repeat, clamp, mirror)");
+    wrap = *w;
+    const std::string filterName = f.string("filter", "bilinear");
+    const std::optional<TextureFilter> fl = parseTextureFilter(filterName);
+    if (!fl) f.fail("filter", "unknown filter '" + filterName + "' (bilinear, nearest)");
+    filter = *fl;
+    f.finish();
+  } else {
+    parent.fail(key, "expected an image file name or {\"file\": ..., \"channel\": ...}, got " + jsonTypeName(v));
+  }
+  const std::string path = (!file.empty() && file[0] == '/') ? file : ctx.baseDir + "/" + file;
+  try {
+    if (ctx.textures) return ctx.textures->load(path, channel, wrap, filter);
+    return TextureLoader(ctx.memoryLimit).load(path, channel, wrap, filter);
+  } catch (const InputError& e) {  // names the file already
+    parent.fail(key, e.what());
+  } catch (const std::runtime_error& e) {  // also MemoryLimitError
+    parent.fail(key, "'" + path + "': " + e.what());
+  }
+}
+
+}  // namespace
+
+ScalarTexture parseScalarTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx) {
+  return ScalarTexture{parseTexture(f, key, ctx, false)};
+}
+
+ReflectanceTexture parseReflectanceTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx) {
+  return ReflectanceTexture{parseTexture(f, key, ctx, true)};
+}
+
+}  // namespace kasha
