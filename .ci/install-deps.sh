@@ -8,6 +8,7 @@ PACKAGES=(
   libtinyobjloader-dev libcli11-dev libpng-dev libpugixml-dev libassimp-dev
   libopenmpi-dev openmpi-bin
   python3-numpy python3-matplotlib
+  python3-dev pybind11-dev python3-pybind11 python3-pytest
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

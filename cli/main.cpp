@@ -36,12 +36,14 @@
 #include "core/image_output.h"
 #include "core/memory_budget.h"
 #include "core/output_file.h"
+#include "core/spectral_film.h"
 #include "scene/scene_loader.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/strategy_images.h"
 #include "scene/wavelength_strategy.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
+#include "integrators/render_setup.h"
 #include "materials/jung_bbrrdf.h"
 
 namespace kasha {
@@ -94,6 +96,8 @@ struct RenderArgs {
   std::string strategyImages;  // directory for one image per BDPT strategy
   bool strategyUnweighted = false;
   int strategyDepth = 4;
+  int spectralBins = 0;        // 0: none
+  float spectralStep = 0.0f;   // nm; 0: none
   bool mpi = false;  // initialise MPI even if no MPI launcher is detected
 };
 
@@ -173,6 +177,14 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   if (!checkpoint.empty()) outputs.push_back({checkpoint, a.checkpoint.empty() ? "--resume" : "--checkpoint", "", a.resume});
   checkOutputs(outputs, {a.resume});
   const int width = scene->camera.width(), height = scene->camera.height();
+  SpectralBins bins;
+  try {
+    if (a.spectralBins > 0) bins = SpectralBins::fromCount(scene->range, a.spectralBins);
+    if (a.spectralStep > 0.0f) bins = SpectralBins::fromStep(scene->range, a.spectralStep);
+    fitIntegratorToBins(integrator, a.integrator, *scene, r, bins);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(a.spectralBins > 0 ? "--spectral-bins" : "--spectral-step", "", e.what());
+  }
   std::unique_ptr<bdpt::StrategyImages> strategies;
   if (!a.strategyImages.empty()) {
     if (!dynamic_cast<const Bdpt*>(integrator.get()))
@@ -202,20 +214,16 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
                                    {"light_sampling", r.wavelengths.light.text},
                                    {"nee_sampling", r.wavelengths.nee.text},
                                    {"hero_wavelengths", integrator->lanes()},
-                                   {"resolution", {width, height}}};
+                                   {"resolution", {width, height}},
+                                   {"spectral_bins", bins.enabled() ? nlohmann::json{bins.min, bins.step, bins.count}
+                                                                    : nlohmann::json(nullptr)}};
   if (a.integrator == "bdpt-mollified") settings["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
 
-  // Film buffers, plus the same again while a checkpoint is read, plus the EXR's six float channels.
-  const uint64_t filmBytes = Film::bytesFor(width, height);
-  requireMemory(filmBytes * (a.resume.empty() ? 1 : 2) + uint64_t(width) * uint64_t(height) * 6 * sizeof(float),
-                "the film (" + std::to_string(width) + "x" + std::to_string(height) + " pixels)", memoryLimit);
+  requireFilmMemory(width, height, bins, !a.resume.empty(), memoryLimit);
   Film film(width, height);
-  RenderOptions opt;
-  opt.spp = r.spp;
-  opt.timeBudgetSeconds = r.timeBudgetSeconds;
-  opt.seed = r.seed;
-  opt.sampler = r.sampler;
-  opt.threads = a.threads;
+  std::unique_ptr<SpectralFilm> spectral;
+  if (bins.enabled()) spectral = std::make_unique<SpectralFilm>(width, height, bins);
+  RenderOptions opt = renderOptions(r, a.threads);
   opt.group = group;
   const bool root = !group || group->rank() == 0;
   nlohmann::json resumed;
@@ -231,20 +239,17 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     if (opt.samplesPerPass < 1 || !(opt.previousSeconds >= 0.0)) throw InputError(a.resume, "", "checkpoint header is corrupted");
     opt.startSpp = d.spp;
     resumed = {{"checkpoint", a.resume}, {"spp", d.spp}, {"seconds", opt.previousSeconds}};
-    restoreFilm(std::move(d), film);
+    restoreFilm(std::move(d), film, spectral.get());
   }
   // A pass's camera samples wait in a record before they reach the film (integrators/render_pass.h).
-  const int perPass = opt.samplesPerPass > 0 ? opt.samplesPerPass
-                                             : std::min(defaultSamplesPerPass(width, height), integrator->maxSamplesPerPass());
-  requireMemory(PassTracer::sampleBytes(width, height, perPass),
-                "the samples of one pass (" + std::to_string(perPass) + " per pixel)", memoryLimit);
+  requirePassMemory(*integrator, width, height, opt.samplesPerPass, bins.enabled(), memoryLimit);
   if (!checkpoint.empty()) {
     opt.checkpointIntervalSeconds = a.checkpointInterval;
     opt.checkpoint = [&](const RenderStats& s) {
       const nlohmann::json run = {{"scene", a.scene}, {"samples_per_pass", s.samplesPerPass},
                                   {"seconds", opt.previousSeconds + s.seconds}};
       try {
-        writeCheckpoint(checkpoint, settings, run, film);
+        writeCheckpoint(checkpoint, settings, run, film, spectral.get());
       } catch (const std::exception& e) {  // a full disk must not end an overnight render
         std::fprintf(stderr, "kasha: warning: %s\n", e.what());
       }
@@ -252,6 +257,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   }
   if (strategies) opt.strategies = [&](const StrategySample& rec) { strategies->add(rec); };
   opt.stop = &gStopSignal;
+  opt.spectral = spectral.get();
   ProgressBar bar(std::filesystem::path(a.scene).filename().string());
   if (!a.quiet && root) opt.progress = [&](int spp, double t, double total) { bar.update(spp, t, total); };
   installStopHandlers();
@@ -261,18 +267,11 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   const int sig = st.stopSignal != 0 ? st.stopSignal : gStopSignal.load();
   if (!root) return sig != 0 ? 128 + sig : 0;
 
-  writeExr(film, exr);
+  writeExr(film, exr, spectral.get());
   if (!png.empty()) writePng(film, png, a.exposure);
   nlohmann::json j = toJson(st);
   j["scene"] = a.scene;
-  j["seed"] = r.seed;
-  j["sampler"] = toString(r.sampler);
-  j["sensor_sampling"] = r.wavelengths.sensor.text;
-  j["fluorescence_sampling"] = r.wavelengths.fluorescence.text;
-  j["light_sampling"] = r.wavelengths.light.text;
-  j["nee_sampling"] = r.wavelengths.nee.text;
-  j["hero_wavelengths"] = integrator->lanes();
-  j["max_depth"] = r.maxDepth;
+  j.update(settingsRecord(r, *integrator));
   j["resolution"] = {film.width(), film.height()};
   j["first_non_finite_pixel"] = {film.firstNonFinitePixel().first, film.firstNonFinitePixel().second};
   if (!st.nonFiniteSamples) j.erase("first_non_finite_pixel");
@@ -286,6 +285,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     j["outputs"]["strategy_images"] = strategies->write(a.strategyImages, a.strategyUnweighted, !png.empty(), a.exposure);
   }
   if (a.integrator == "bdpt-mollified") j["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
+  if (spectral) j["spectral_bins"] = {{"min_nm", bins.min}, {"step_nm", bins.step}, {"count", bins.count}};
   writeTextFile(stats, j.dump(2) + "\n");
   std::printf("%s\nwrote %s%s%s, %s\n", summaryLine(st).c_str(), exr.c_str(), png.empty() ? "" : ", ", png.c_str(),
               stats.c_str());
@@ -420,6 +420,14 @@ int main(int argc, char** argv) {
   render->add_option("--strategy-depth", ra.strategyDepth,
                      "With --strategy-images: longest path (scattering events) with its own images; longer ones go to deeper.exr (default 4)")
       ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 64));
+  CLI::Option* bins = render->add_option("--spectral-bins", ra.spectralBins,
+                     "Also write the spectral radiance per nm in N equal bins of the scene's wavelength range "
+                     "(S0.<nm> channels, Fichet et al. 2021 layout)")
+      ->check(numberCheck(Sign::Positive, true) & CLI::Range(1, kasha::SpectralBins::kMaxBins));
+  render->add_option("--spectral-step", ra.spectralStep,
+                     "Like --spectral-bins, bins NM wide (must divide the scene's wavelength range)")
+      ->check(numberCheck(Sign::Positive, false))
+      ->excludes(bins);
   const CLI::Validator strategy(
       [](std::string& s) {
         try {

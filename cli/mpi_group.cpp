@@ -49,19 +49,22 @@ MpiGroup::MpiGroup(int* argc, char*** argv) {
 
 MpiGroup::~MpiGroup() { MPI_Finalize(); }
 
-// A record goes as a header (pass, sizes, ray counts) followed by its three arrays as bytes:
+// A record goes as a header (pass, sizes, ray counts) followed by its five arrays as bytes:
 // every rank runs the same binary on the same kind of machine.
 void MpiGroup::send(const PassRecord& r) {
-  const std::array<uint64_t, 7> header{uint64_t(r.first), uint64_t(r.count), r.samples.size(), r.splats.size(),
-                                       r.strategies.size(), r.rays.closest, r.rays.shadow};
+  const std::array<uint64_t, 9> header{uint64_t(r.first), uint64_t(r.count), r.samples.size(), r.splats.size(),
+                                       r.strategies.size(), r.rays.closest, r.rays.shadow, r.spectralCounts.size(),
+                                       r.spectral.size()};
   MPI_Send(header.data(), int(header.size()), MPI_UINT64_T, 0, kHeaderTag, MPI_COMM_WORLD);
   sendVector(r.samples, 0);
   sendVector(r.splats, 0);
   sendVector(r.strategies, 0);
+  sendVector(r.spectralCounts, 0);
+  sendVector(r.spectral, 0);
 }
 
 PassRecord MpiGroup::receive(int from, int width, int height) {
-  std::array<uint64_t, 7> header{};
+  std::array<uint64_t, 9> header{};
   MPI_Recv(header.data(), int(header.size()), MPI_UINT64_T, from, kHeaderTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
   PassRecord r;
   r.first = int(header[0]);
@@ -72,6 +75,16 @@ PassRecord MpiGroup::receive(int from, int width, int height) {
   receiveVector(r.samples, header[2], from);
   receiveVector(r.splats, header[3], from);
   receiveVector(r.strategies, header[4], from);
+  if (header[7] != 0 && header[7] != header[2])
+    throw std::runtime_error("MPI rank " + std::to_string(from) + " sent spectral counts for " + std::to_string(header[7]) +
+                             " samples in a pass of " + std::to_string(header[2]));
+  receiveVector(r.spectralCounts, header[7], from);
+  receiveVector(r.spectral, header[8], from);
+  uint64_t shares = 0;
+  for (const uint32_t n : r.spectralCounts) shares += n;
+  if (shares != header[8])
+    throw std::runtime_error("MPI rank " + std::to_string(from) + " sent " + std::to_string(header[8]) +
+                             " spectral shares, but its counts add up to " + std::to_string(shares));
   r.rays = RayCounter{header[5], header[6]};
   return r;
 }

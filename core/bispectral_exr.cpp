@@ -7,62 +7,16 @@
 #include <ImfOutputFile.h>
 
 #include <algorithm>
-#include <cctype>
-#include <cstdlib>
 #include <cmath>
-#include <map>
 #include <set>
 #include <vector>
 
 #include "core/error.h"
 #include "core/exr_input.h"
+#include "core/exr_wavelength.h"
 #include "core/image_input.h"
 
 namespace kasha {
-namespace {
-
-constexpr double kSpeedOfLight = 299792458.0;  // m/s
-
-// Wavelength in nm of one part of a channel name, "<value><prefix><m|Hz>", the value written with
-// a decimal comma and an optional exponent ("550,000000nm", "0,45um", "5,5e2nm", "600THz").
-std::optional<float> toNanometres(const std::string& part) {
-  static const std::map<std::string, double> kPrefix = {
-      {"", 1.0},    {"Y", 1e24}, {"Z", 1e21}, {"E", 1e18},  {"P", 1e15}, {"T", 1e12}, {"G", 1e9}, {"M", 1e6},
-      {"k", 1e3},   {"h", 1e2},  {"da", 1e1}, {"d", 1e-1},  {"c", 1e-2}, {"m", 1e-3}, {"u", 1e-6}, {"n", 1e-9},
-      {"p", 1e-12}};
-  const auto digit = [&](size_t k) { return k < part.size() && std::isdigit(static_cast<unsigned char>(part[k])); };
-  size_t k = 0, digits = 0;
-  for (; digit(k); ++k) ++digits;
-  if (k < part.size() && part[k] == ',')
-    for (++k; digit(k); ++k) ++digits;
-  if (digits == 0) return std::nullopt;
-  if (k < part.size() && (part[k] == 'e' || part[k] == 'E')) {
-    const size_t sign = k + 1 < part.size() && (part[k + 1] == '+' || part[k + 1] == '-') ? 1 : 0;
-    if (digit(k + 1 + sign)) {  // otherwise E is the exa prefix
-      k += 1 + sign;
-      while (digit(k)) ++k;
-    }
-  }
-  std::string value = part.substr(0, k), unit = part.substr(k);
-  std::replace(value.begin(), value.end(), ',', '.');
-  const bool hertz = unit.size() >= 2 && unit.compare(unit.size() - 2, 2, "Hz") == 0;
-  const bool metres = !hertz && !unit.empty() && unit.back() == 'm';
-  if (!hertz && !metres) return std::nullopt;
-  const auto prefix = kPrefix.find(unit.substr(0, unit.size() - (hertz ? 2 : 1)));
-  if (prefix == kPrefix.end()) return std::nullopt;
-  const double v = std::strtod(value.c_str(), nullptr) * prefix->second;
-  const double m = metres ? v : kSpeedOfLight / v;
-  if (!(m > 0.0) || !std::isfinite(m)) return std::nullopt;
-  return float(m * 1e9);
-}
-
-std::string wavelengthName(float nm) {
-  std::string s = std::to_string(double(nm));
-  std::replace(s.begin(), s.end(), '.', ',');
-  return s + "nm";
-}
-
-}  // namespace
 
 std::optional<BispectralChannel> parseBispectralChannel(const std::string& name) {
   // "T.<λ>" or "T.<λ_i>.<λ_o>": the decimal comma keeps '.' a separator.
@@ -75,11 +29,11 @@ std::optional<BispectralChannel> parseBispectralChannel(const std::string& name)
   }
   if (parts[0] != "T" || parts.size() < 2 || parts.size() > 3) return std::nullopt;
   BispectralChannel c;
-  const std::optional<float> li = toNanometres(parts[1]);
+  const std::optional<float> li = parseExrWavelength(parts[1]);
   if (!li) return std::nullopt;
   c.lambdaIn = *li;
   if (parts.size() == 3) {
-    const std::optional<float> lo = toNanometres(parts[2]);
+    const std::optional<float> lo = parseExrWavelength(parts[2]);
     if (!lo) return std::nullopt;
     c.lambdaOut = *lo;
   }
@@ -142,8 +96,8 @@ void writeBispectralExr(const std::string& path, const BispectralData& d) {
   for (size_t o = 0; o < d.out.size(); ++o)
     for (size_t i = 0; i < d.in.size(); ++i) {
       const bool diagonal = d.out[o] == d.in[i];
-      cells.emplace_back(diagonal ? "T." + wavelengthName(d.in[i])
-                                  : "T." + wavelengthName(d.in[i]) + "." + wavelengthName(d.out[o]),
+      cells.emplace_back(diagonal ? "T." + exrWavelengthName(d.in[i])
+                                  : "T." + exrWavelengthName(d.in[i]) + "." + exrWavelengthName(d.out[o]),
                          d.at(o, i));
     }
   Imf::FrameBuffer fb;

@@ -2,7 +2,7 @@
 // Bispectral OpenEXR files in the layout of Fichet, Pacanowski & Wilkie (2021), "An OpenEXR Layout
 // for Spectral Images", JCGT 10(3), §3: reflective channels "T.<λ>" (the diagonal) and reradiation
 // channels "T.<λ_i>.<λ_o>", each wavelength written as a number with a decimal comma followed by a
-// unit, m or Hz with an optional SI prefix ("T.550,000000nm", "T.0,45um.0,6um", "T.600THz").
+// unit (core/exr_wavelength.h: "T.550,000000nm", "T.0,45um.0,6um", "T.600THz").
 // Other channels (RGB previews, emissive "S0.*") are ignored. A measurement is one pixel: the
 // first pixel of the data window is read.
 #include <optional>

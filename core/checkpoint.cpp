@@ -121,8 +121,9 @@ uint64_t hashBytes(const void* data, size_t size, uint64_t seed) {
   return h.finish();
 }
 
-void writeCheckpoint(const std::string& path, const nlohmann::json& settings, const nlohmann::json& run, const Film& film) {
-  const nlohmann::json header = {
+void writeCheckpoint(const std::string& path, const nlohmann::json& settings, const nlohmann::json& run, const Film& film,
+                     const SpectralFilm* spectral) {
+  nlohmann::json header = {
       {"settings", settings},
       {"run", run},
       {"film",
@@ -132,6 +133,10 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& settings, co
         {"non_finite_samples", film.nonFiniteCount()},
         {"first_non_finite_pixel", {film.firstNonFinitePixel().first, film.firstNonFinitePixel().second}}}},
       {"byte_order", byteOrder()}};
+  if (spectral) {
+    const SpectralBins& b = spectral->bins();
+    header["film"]["spectral_bins"] = {{"min", b.min}, {"step", b.step}, {"count", b.count}};
+  }
   const std::string text = header.dump();
   OutputFile out(path);
   Writer w(out);
@@ -146,6 +151,7 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& settings, co
   w.value(uint64_t(sums.size()));
   w.bytes(sums.data(), sums.size() * sizeof(DVec3));
   w.bytes(splats.data(), splats.size() * sizeof(DVec3));
+  if (spectral) w.bytes(spectral->sums().data(), spectral->sums().size() * sizeof(double));
   w.checksum();
   // fsync before the rename, so that after a crash the name holds the old or the new checkpoint.
   out.commit();
@@ -182,6 +188,12 @@ CheckpointData readCheckpoint(const std::string& path) {
     d.spp = film.at("spp").get<int>();
     d.nonFiniteSamples = film.at("non_finite_samples").get<uint64_t>();
     d.firstNonFinitePixel = {film.at("first_non_finite_pixel").at(0).get<int>(), film.at("first_non_finite_pixel").at(1).get<int>()};
+    if (film.contains("spectral_bins")) {
+      const nlohmann::json& b = film.at("spectral_bins");
+      d.spectralBins = {b.at("min").get<float>(), b.at("step").get<float>(), b.at("count").get<int>()};
+      if (d.spectralBins.count < 1 || d.spectralBins.count > SpectralBins::kMaxBins || !(d.spectralBins.step > 0.0f))
+        throw InputError(path, "", "checkpoint header is corrupted (spectral bins)");
+    }
   } catch (const nlohmann::json::exception& e) {
     throw InputError(path, "", std::string("checkpoint header is corrupted: ") + e.what());
   }
@@ -191,13 +203,20 @@ CheckpointData readCheckpoint(const std::string& path) {
   if (pixels != uint64_t(d.width) * uint64_t(d.height))
     throw InputError(path, "", "checkpoint is corrupted (pixel count does not match the film size)");
   // The file must be as long as the header says before anything that size is allocated.
-  const uint64_t expected = 8 + 4 + 4 + 8 + headerLength + 8 + 2 * pixels * sizeof(DVec3) + 8;
+  const uint64_t spectralValues = pixels * uint64_t(d.spectralBins.count);
+  const uint64_t expected = 8 + 4 + 4 + 8 + headerLength + 8 + 2 * pixels * sizeof(DVec3) + spectralValues * sizeof(double) + 8;
   if (fileSize != expected) throw InputError(path, "", "checkpoint is truncated or has trailing data");
   d.sums.resize(pixels);
   d.splats.resize(pixels);
   r.bytes(d.sums.data(), pixels * sizeof(DVec3));
   r.bytes(d.splats.data(), pixels * sizeof(DVec3));
+  if (spectralValues > 0) {  // an empty vector's data() may be null, which memcpy must not get
+    d.spectral.resize(spectralValues);
+    r.bytes(d.spectral.data(), spectralValues * sizeof(double));
+  }
   r.checksum();
+  for (const double v : d.spectral)
+    if (!std::isfinite(v)) throw InputError(path, "", "checkpoint is corrupted (a non-finite spectral sum)");
   for (const std::vector<DVec3>* buffer : {&d.sums, &d.splats})
     for (const DVec3& v : *buffer)
       if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
@@ -219,10 +238,16 @@ void requireSameSettings(const nlohmann::json& saved, const nlohmann::json& curr
       throw InputError(path, "", "checkpoint records '" + it.key() + "', which this kasha version does not know");
 }
 
-void restoreFilm(CheckpointData&& d, Film& film) {
+void restoreFilm(CheckpointData&& d, Film& film, SpectralFilm* spectral) {
   if (d.width != film.width() || d.height != film.height())
     throw InputError("", "", "checkpoint film is " + std::to_string(d.width) + "x" + std::to_string(d.height) +
                                  ", the render's is " + std::to_string(film.width()) + "x" + std::to_string(film.height()));
+  const int bins = spectral ? spectral->bins().count : 0;
+  if (d.spectralBins.count != bins || (spectral && (d.spectralBins.min != spectral->bins().min ||
+                                                    d.spectralBins.step != spectral->bins().step)))
+    throw InputError("", "", "checkpoint has " + std::to_string(d.spectralBins.count) + " spectral bins, the render " +
+                                 std::to_string(bins) + " (or other wavelengths)");
+  if (spectral) spectral->restore(std::move(d.spectral), d.spp);
   film.restore(std::move(d.sums), std::move(d.splats), d.spp, d.nonFiniteSamples, d.firstNonFinitePixel);
 }
 

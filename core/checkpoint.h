@@ -11,6 +11,8 @@
 //   u32       0 (reserved)
 //   u64       header length n, then n bytes of JSON: {"settings": {...}, "film": {...}, "run": {...}}
 //   u64       pixel count w·h, then w·h·3 doubles of camera-sample sums, w·h·3 doubles of splat sums
+//   if the header's film has "spectral_bins" {min, step, count}: w·h·count doubles of spectral
+//   sums (core/spectral_film.h), pixel-major
 //   u64       checksum of every byte before it
 #include <cstdint>
 #include <string>
@@ -19,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/film.h"
+#include "core/spectral_film.h"
 
 namespace kasha {
 
@@ -29,11 +32,15 @@ struct CheckpointData {
   uint64_t nonFiniteSamples = 0;
   std::pair<int, int> firstNonFinitePixel{-1, -1};
   std::vector<DVec3> sums, splats;
+  SpectralBins spectralBins;     // count 0: the render kept no spectral bins
+  std::vector<double> spectral;  // SpectralFilm::sums()
 };
 
-// Writes the film's state with `settings` and `run` to `path` atomically. Throws
-// std::runtime_error naming the file if it cannot be written (the previous checkpoint stays).
-void writeCheckpoint(const std::string& path, const nlohmann::json& settings, const nlohmann::json& run, const Film& film);
+// Writes the film's state (and the spectral film's, if any) with `settings` and `run` to `path`
+// atomically. Throws std::runtime_error naming the file if it cannot be written (the previous
+// checkpoint stays).
+void writeCheckpoint(const std::string& path, const nlohmann::json& settings, const nlohmann::json& run, const Film& film,
+                     const SpectralFilm* spectral = nullptr);
 
 // Reads a checkpoint. A missing, truncated, corrupted or foreign file is an InputError naming it.
 CheckpointData readCheckpoint(const std::string& path);
@@ -42,8 +49,9 @@ CheckpointData readCheckpoint(const std::string& path);
 // ("was made with seed 1, this render has seed 2"); entries missing from either count as different.
 void requireSameSettings(const nlohmann::json& saved, const nlohmann::json& current, const std::string& path);
 
-// Puts a checkpoint's state into the film (which must have its resolution).
-void restoreFilm(CheckpointData&& data, Film& film);
+// Puts a checkpoint's state into the film (which must have its resolution) and the spectral film,
+// which must be given, with the same bins, exactly when the checkpoint has spectral sums.
+void restoreFilm(CheckpointData&& data, Film& film, SpectralFilm* spectral = nullptr);
 
 // A 64-bit hash of bytes (word-wise FNV-1a with a SplitMix64 finaliser): checksums and scene hashes.
 uint64_t hashBytes(const void* data, size_t size, uint64_t seed = 0);

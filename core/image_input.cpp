@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/exr_input.h"
+#include "core/spectral_exr.h"
 
 namespace kasha {
 
@@ -22,12 +23,28 @@ void requireImageMemory(const std::string& path, uint64_t width, uint64_t height
   }
 }
 
+std::string pixelName(size_t index, int width) {
+  return "pixel (" + std::to_string(index % size_t(width)) + ", " + std::to_string(index / size_t(width)) + ")";
+}
+
 XyzImage readExrXyz(const std::string& path, uint64_t memoryLimit) {
   ExrInput in(path, "image file");
+  return readExrXyz(in, path, memoryLimit);
+}
+
+XyzImage readExrXyz(ExrInput& in, const std::string& path, uint64_t memoryLimit) {
   Imf::InputFile& file = in.file();
   for (const char* c : {"XYZ.X", "XYZ.Y", "XYZ.Z"})
-    if (!file.header().channels().findChannel(c))
-      throw InputError(path, c, "missing channel (not a kasha render with an XYZ layer)");
+    if (!file.header().channels().findChannel(c)) {
+      if (hasEmissiveChannels(in)) {
+        XyzImage img = spectralToXyz(readSpectralExr(in, path, memoryLimit));
+        for (size_t i = 0; i < img.pixels.size(); ++i)  // finite values may still sum past FLT_MAX
+          if (!std::isfinite(img.pixels[i].x) || !std::isfinite(img.pixels[i].y) || !std::isfinite(img.pixels[i].z))
+            throw InputError(path, "", pixelName(i, img.width) + " integrates to a non-finite XYZ");
+        return img;
+      }
+      throw InputError(path, c, "missing channel (not a kasha render with an XYZ layer, nor a spectral image with S0.* channels)");
+    }
   // Three float channels and the XYZ pixels made of them.
   requireImageMemory(path, in.width(), in.height(), 3 * sizeof(float) + sizeof(Vec3), memoryLimit);
   try {
@@ -50,8 +67,7 @@ XyzImage readExrXyz(const std::string& path, uint64_t memoryLimit) {
     for (size_t i = 0; i < img.pixels.size(); ++i) {
       img.pixels[i] = Vec3(ch[0][i], ch[1][i], ch[2][i]);
       if (!std::isfinite(ch[0][i]) || !std::isfinite(ch[1][i]) || !std::isfinite(ch[2][i]))
-        throw InputError(path, "", "pixel (" + std::to_string(i % size_t(img.width)) + ", " +
-                                       std::to_string(i / size_t(img.width)) + ") is not finite");
+        throw InputError(path, "", pixelName(i, img.width) + " is not finite");
     }
     return img;
   } catch (const InputError&) {

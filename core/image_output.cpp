@@ -4,6 +4,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 #include <png.h>
 
 #include <stdexcept>
@@ -11,6 +12,7 @@
 
 #include "core/color.h"
 #include "core/output_file.h"
+#include "core/spectral_exr.h"
 
 namespace kasha {
 namespace {
@@ -48,7 +50,7 @@ void pngFlush(png_structp) {}
 
 }  // namespace
 
-void writeExr(const Film& film, const std::string& path) {
+void writeExr(const Film& film, const std::string& path, const SpectralFilm* spectral) {
   const int w = film.width(), h = film.height();
   std::vector<float> ch[6];
   for (auto& c : ch) c.resize(size_t(w) * h);
@@ -67,6 +69,14 @@ void writeExr(const Film& film, const std::string& path) {
   for (int c = 0; c < 6; ++c) {
     header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
     fb.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(ch[c].data()), sizeof(float), sizeof(float) * w));
+  }
+  const auto bins = spectral ? spectralChannels(*spectral) : std::vector<std::pair<std::string, std::vector<float>>>{};
+  if (spectral)
+    for (const auto& [name, value] : spectralAttributes()) header.insert(name, Imf::StringAttribute(value));
+  for (const auto& [name, values] : bins) {
+    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    fb.insert(name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(values.data())), sizeof(float),
+                               sizeof(float) * w));
   }
   OutputFile out(path);
   try {

@@ -35,6 +35,9 @@ class HeroPathTracer final : public Integrator {
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override { return "pt"; }
   int lanes() const override { return n_; }
+  // No: a lane's throughput is XYZ, which after a fluorescent event mixes the sensor wavelengths
+  // of every lane before it, so no share belongs to one sensor wavelength.
+  bool keepsSpectralBins() const override { return false; }
 
   // The lanes of a path segment: wavelength and XYZ throughput over the path density.
   struct Lanes {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/color.h"
 #include "core/math.h"
 #include "core/sampler.h"
 #include "scene/scene.h"
@@ -20,10 +21,21 @@ struct RayCounter {
   uint64_t shadow = 0;   // occlusion queries
 };
 
-// A contribution to another pixel than the one being sampled (light tracing, BDPT's t = 1).
+// A contribution to another pixel than the one being sampled (light tracing, BDPT's t = 1):
+// xyz = W(λ)·value (core/color.h), value being what the spectral bins receive at lambda.
 struct Splat {
   Vec2 pixel;
   Vec3 xyz;
+  float lambda = 0.0f, value = 0.0f;
+};
+// The splat of `value` (radiance over the wavelength density, in the units of a splat) at λ.
+inline Splat spectralSplat(Vec2 pixel, float lambda, float value) {
+  return {pixel, Observer::cie1931().weight(lambda) * value, lambda, value};
+}
+
+// One wavelength's share of a camera sample, for spectral bins (core/spectral_film.h).
+struct SpectralSample {
+  float lambda = 0.0f, value = 0.0f;
 };
 
 // One strategy's share of a sample, recorded when SampleContext::recordStrategies is set (BDPT's
@@ -47,7 +59,17 @@ struct SampleContext {
   const PassData* pass = nullptr;  // what beginPass returned for the current pass
   bool recordStrategies = false;   // integrators that can, append to `strategies`
   std::vector<StrategySample> strategies;  // merged in a fixed order after each pass, like splats
+  bool recordSpectral = false;             // set when the render keeps spectral bins
+  std::vector<SpectralSample> spectral;    // this camera sample's shares, read after each sample
 };
+
+// The XYZ of radiance-over-density `value` arriving at the sensor at λ, W(λ)·value (core/color.h),
+// recorded for the spectral bins when the render keeps them. Every camera-sample contribution of
+// an integrator goes through here.
+inline Vec3 sensorResponse(SampleContext& ctx, float lambda, float value) {
+  if (ctx.recordSpectral) ctx.spectral.push_back({lambda, value});
+  return Observer::cie1931().weight(lambda) * value;
+}
 
 class Integrator {
  public:
@@ -69,6 +91,9 @@ class Integrator {
   }
   // The most samples per pixel one pass may take.
   virtual int maxSamplesPerPass() const { return std::numeric_limits<int>::max(); }
+  // Whether every contribution reaches the film through sensorResponse or spectralSplat at the
+  // wavelength the sensor sees, so that a render can keep spectral bins (core/spectral_film.h).
+  virtual bool keepsSpectralBins() const { return true; }
 };
 
 }  // namespace kasha

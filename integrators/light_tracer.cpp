@@ -1,5 +1,7 @@
 #include "integrators/light_tracer.h"
 
+#include <algorithm>
+
 #include "core/color.h"
 #include "integrators/wavelength_lanes.h"
 
@@ -13,6 +15,30 @@ bool visible(const Scene& scene, const Vec3& p, const Vec3& n, const Camera::Con
   ++ctx.counter.shadow;
   const Vec3 origin = glm::dot(n, n) > 0.0f ? offsetPoint(p, n, c.wi) : p;
   return !scene.accel->occluded(origin, c.wi, c.dist * (1.0f - 1e-4f) - rayEpsilon(p));
+}
+
+// The XYZ of lane k's value[k] at lambda[k] (the sensor responds with W(λ_k)), summed over the lanes.
+Vec3 lanesXyz(const float* lambda, const float* value, int n) {
+  Vec3 xyz(0.0f);
+  for (int k = 0; k < n; ++k) xyz += Observer::cie1931().weight(lambda[k]) * value[k];
+  return xyz;
+}
+
+// Whether the lanes add anything the film keeps: XYZ, and with spectral bins any lane's value.
+bool contributes(const SampleContext& ctx, const float* lambda, const float* value, int n) {
+  if (ctx.recordSpectral) return std::any_of(value, value + n, [](float v) { return v != 0.0f; });
+  return lanesXyz(lambda, value, n) != Vec3(0.0f);
+}
+
+// Splats the lanes' values, each times `scale`: as one XYZ splat, or with spectral bins one splat
+// per lane, so that each bin gets its lane's share.
+void splatLanes(SampleContext& ctx, Vec2 pixel, const float* lambda, const float* value, int n, float scale) {
+  if (!ctx.recordSpectral) {
+    ctx.splats.push_back({pixel, lanesXyz(lambda, value, n) * scale});
+    return;
+  }
+  for (int k = 0; k < n; ++k)
+    if (value[k] != 0.0f) ctx.splats.push_back(spectralSplat(pixel, lambda[k], value[k] * scale));
 }
 
 float magnitude(const float* beta, int n) {
@@ -35,7 +61,6 @@ LightTracer::LightTracer(const Scene& scene, const RenderSettings& s)
 }
 
 Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleContext& ctx) const {
-  const Observer& observer = Observer::cie1931();
   const int n = lanes_;
   // Lanes at the strata of the light-start density; the light ∝ Σ_j Φ_l(λ_j), symmetric in them.
   const float uLambda = rng.uniform(), uLight = rng.uniform();
@@ -64,11 +89,10 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
   if (!es->deltaPos && !es->deltaDir && glm::dot(es->n, es->n) > 0.0f) {
     if (const auto c = scene.camera.connect(es->p)) {
       const auto& area = static_cast<const AreaLight&>(light);
-      Vec3 xyz(0.0f);
-      for (int j = 0; j < n; ++j)
-        xyz += observer.weight(lambda[j]) * (area.shape().emission->eval(lambda[j], es->n, c->wi) * start[j]);
-      if (xyz != Vec3(0.0f) && visible(scene, es->p, es->n, *c, ctx))
-        ctx.splats.push_back({c->pixel, xyz * (std::abs(glm::dot(es->n, c->wi)) / es->pdfPos * c->importance * perPath(scene))});
+      float value[kMaxLanes];
+      for (int j = 0; j < n; ++j) value[j] = area.shape().emission->eval(lambda[j], es->n, c->wi) * start[j];
+      if (contributes(ctx, lambda, value, n) && visible(scene, es->p, es->n, *c, ctx))
+        splatLanes(ctx, c->pixel, lambda, value, n, std::abs(glm::dot(es->n, c->wi)) / es->pdfPos * c->importance * perPath(scene));
     }
   }
 
@@ -94,11 +118,11 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     if (!bsdf.has(BsdfFlags::DeltaDirection)) {
       if (const auto c = scene.camera.connect(hit->p)) {
         const Vec3 wo = bsdf.toLocal(c->wi);
-        Vec3 xyz(0.0f);
+        float value[kMaxLanes];
         for (int k = 0; k < e.n; ++k)
-          xyz += observer.weight(e.lambda[k]) * (laneWeight(bsdf, TransportMode::Importance, known, beta, e, k, wo, wi) * std::abs(wo.z));
-        if (xyz != Vec3(0.0f) && visible(scene, hit->p, hit->ng, *c, ctx))
-          ctx.splats.push_back({c->pixel, xyz * (c->importance * perPath(scene))});
+          value[k] = laneWeight(bsdf, TransportMode::Importance, known, beta, e, k, wo, wi) * std::abs(wo.z);
+        if (contributes(ctx, e.lambda, value, e.n) && visible(scene, hit->p, hit->ng, *c, ctx))
+          splatLanes(ctx, c->pixel, e.lambda, value, e.n, c->importance * perPath(scene));
       }
     }
     if (depth == maxDepth_) break;

@@ -23,7 +23,7 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
     const Ray ray = scene.camera.generateRay(pixel + jitter);
     const float L = radiance(scene, ray, d.lambda, rng, ctx.counter);
     // W(λ)·L(λ)·(MIS weight)/p(λ): the sensor responds at the wavelength arriving at it (transport.md §1).
-    xyz += Observer::cie1931().weight(d.lambda) * (L * d.weight);
+    xyz += sensorResponse(ctx, d.lambda, L * d.weight);
   }
   return xyz;
 }

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "integrators/render_setup.h"
+
 namespace kasha {
 
 int defaultSamplesPerPass(int width, int height) { return std::max(1, 65536 / std::max(1, width * height)); }
@@ -30,10 +32,10 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   const int perPass = std::min(opt.samplesPerPass > 0 ? opt.samplesPerPass : defaultSamplesPerPass(w, h),
                                integrator.maxSamplesPerPass());
   st.samplesPerPass = perPass;
-  PassTracer tracer(scene, integrator, w, h, opt.seed, opt.sampler, bool(opt.strategies));
+  PassTracer tracer(scene, integrator, w, h, opt.seed, opt.sampler, bool(opt.strategies), opt.spectral != nullptr);
   RayCounter rays;  // of the committed passes: on rank 0, those of every rank
   auto commit = [&](const PassRecord& rec) {
-    tracer.commit(rec, film, opt.strategies);
+    tracer.commit(rec, film, opt.spectral, opt.strategies);
     rays.closest += rec.rays.closest;
     rays.shadow += rec.rays.shadow;
   };
@@ -59,6 +61,12 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   };
   int pass = std::max(0, opt.startSpp);
   film.setSamplesPerPixel(pass);
+  if (opt.spectral) {
+    if (opt.spectral->width() != w || opt.spectral->height() != h)
+      throw std::invalid_argument("render: the spectral film's size differs from the film's");
+    requireSpectralBins(integrator, opt.spectral->bins());
+    opt.spectral->setSamplesPerPixel(pass);
+  }
   double lastCheckpoint = 0.0;
   bool unsaved = false;
   while (pass < opt.spp) {
@@ -88,6 +96,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
       }
     pass = int(std::min<int64_t>(opt.spp, firstOf(st.ranks)));
     film.setSamplesPerPixel(pass);
+    if (opt.spectral) opt.spectral->setSamplesPerPixel(pass);
     unsaved = true;
     const double t = elapsed(), total = opt.previousSeconds + t;
     const bool outOfTime = agree(0, root && opt.timeBudgetSeconds > 0.0 && total >= opt.timeBudgetSeconds)[1] != 0;

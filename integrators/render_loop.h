@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/film.h"
+#include "core/spectral_film.h"
 #include "integrators/integrator.h"
 #include "integrators/render_group.h"
 
@@ -67,6 +68,10 @@ struct RenderOptions {
   // If set, integrators that can record each strategy's share of their samples
   // (SampleContext::recordStrategies), and this receives the records after each pass, in tile order.
   std::function<void(const StrategySample&)> strategies;
+  // If set (same size as the film), also receives every sample's spectral shares; the XYZ film's
+  // non-finite samples are left out of it too. In a group, only rank 0's receives them (every
+  // rank must still set one, so that its passes record the shares).
+  SpectralFilm* spectral = nullptr;
   // The processes rendering this image together; nullptr: this one alone. All of them call
   // render() with the same options; only rank 0's film receives samples, and only rank 0 calls
   // progress, checkpoint and strategies. A stop request on any rank stops all after the same pass;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/film.h"
+#include "core/spectral_film.h"
 #include "integrators/integrator.h"
 
 namespace kasha {
@@ -19,6 +20,10 @@ struct PassRecord {
   std::vector<Vec3> samples;  // row-major pixels, `count` consecutive values each, in sample order
   std::vector<Splat> splats;  // in tile order
   std::vector<StrategySample> strategies;  // in tile order (only when recording strategies)
+  // Only when recording spectral shares: how many shares each sample of `samples` has (same
+  // layout), and the shares themselves, in the order of the samples in tile order.
+  std::vector<uint32_t> spectralCounts;
+  std::vector<SpectralSample> spectral;
   RayCounter rays;            // traced by the pass (Integrator::beginPass and the samples)
 };
 
@@ -28,16 +33,20 @@ struct PassRecord {
 class PassTracer {
  public:
   PassTracer(const Scene& scene, const Integrator& integrator, int width, int height, uint64_t seed,
-             SamplerKind sampler, bool recordStrategies);
+             SamplerKind sampler, bool recordStrategies, bool recordSpectral);
   // Traces samples [first, first + count) of every pixel.
   PassRecord trace(int first, int count);
   // Adds a record to the film: each pixel's samples in sample order (pixels in tile order, so the
-  // first non-finite pixel is the same as with one thread), then the splats; strategy records go
-  // to `strategies` if set. Records must be committed in pass order for bit-identical sums.
-  void commit(const PassRecord& record, Film& film, const std::function<void(const StrategySample&)>& strategies) const;
+  // first non-finite pixel is the same as with one thread), then the splats; the spectral shares
+  // of the samples and splats the film keeps go to `spectral` if set; strategy records go to
+  // `strategies` if set. Records must be committed in pass order for bit-identical sums.
+  void commit(const PassRecord& record, Film& film, SpectralFilm* spectral,
+              const std::function<void(const StrategySample&)>& strategies) const;
 
-  // Bytes of the sample buffer of a pass of `samplesPerPixel` (a record's splats come on top).
-  static uint64_t sampleBytes(int width, int height, int samplesPerPixel);
+  // Bytes of the sample buffer of a pass of `samplesPerPixel` (a record's splats come on top). With
+  // `spectral`, each sample's share count and one share, kept per tile and again in the record;
+  // samples with more shares (hero wavelengths, photon mapping's exact elastic gathers) take more.
+  static uint64_t sampleBytes(int width, int height, int samplesPerPixel, bool spectral = false);
 
  private:
   template <class PixelFn>
@@ -47,8 +56,9 @@ class PassTracer {
   int w_, h_, tilesX_, tileCount_;
   uint64_t seedMix_, seed_;
   SamplerKind sampler_;
-  bool recordStrategies_;
+  bool recordStrategies_, recordSpectral_;
   std::vector<SampleContext> contexts_;  // one per tile, reused across passes
+  std::vector<std::vector<SpectralSample>> tileSpectral_;  // each tile's shares, in pixel and sample order
 };
 
 }  // namespace kasha

@@ -1,6 +1,6 @@
 // The render loop dealing passes among the ranks of a group (integrators/render_group.h), the
-// ranks being threads (thread_group.h): rank 0's film holds exactly the bits of a one-process
-// render, its statistics the sums over the ranks, and a stop request on one rank ends every rank
+// ranks being threads (thread_group.h): rank 0's film and spectral bins hold exactly the bits of
+// a one-process render, its statistics the sums over the ranks, and a stop request on one rank ends every rank
 // after the same pass. The MPI form of these tests runs the kasha binary under mpirun
 // (tests/mpi/mpi_render_test.sh).
 #include <gtest/gtest.h>
@@ -20,7 +20,8 @@ namespace {
 // Random camera samples and splats spanning 2^±60, so that their double sums depend on the
 // order of the additions (floats of similar size add exactly in a double and would not tell);
 // requests a stop through `stop` in the pass that starts at sample `stopAt` (as a signal
-// arriving while that pass runs).
+// arriving while that pass runs). With spectral bins, each sample records 0–2 shares of equally
+// wide range and each splat one (sensorResponse, spectralSplat).
 class SplattingIntegrator : public Integrator {
  public:
   std::unique_ptr<const PassData> beginPass(const Scene&, int firstSample, int, uint64_t, RayCounter& counter) const override {
@@ -31,8 +32,10 @@ class SplattingIntegrator : public Integrator {
   Vec3 samplePixel(const Scene&, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override {
     ++ctx.counter.closest;
     const float u = rng.uniform();
-    if (u < 0.5f) ctx.splats.push_back({Vec2(rng.uniform() * 24.0f, pixel.x), Vec3(wide(rng), u, 1.0f)});
-    return Vec3(wide(rng), wide(rng) * pixel.y, u);
+    if (u < 0.5f) ctx.splats.push_back(spectralSplat(Vec2(rng.uniform() * 24.0f, pixel.x), 400.0f + 300.0f * u, wide(rng)));
+    Vec3 xyz(wide(rng), wide(rng) * pixel.y, u);
+    for (int k = int(u * 3.0f); k > 0; --k) xyz += sensorResponse(ctx, 400.0f + 300.0f * rng.uniform(), wide(rng));
+    return xyz;
   }
   static float wide(Sampler& rng) { return std::ldexp(rng.uniform(), int(rng.uniform() * 120.0f) - 60); }
   std::string name() const override { return "splatting"; }
@@ -46,16 +49,22 @@ bool sameBits(const std::vector<DVec3>& a, const std::vector<DVec3>& b) {
 
 struct GroupRun {
   std::vector<std::unique_ptr<Film>> films;
+  std::vector<std::unique_ptr<SpectralFilm>> spectral;  // only when rendering with bins
   std::vector<RenderStats> stats;
 };
 
 // Renders with `ranks` threads as ranks; rank r's integrator requests a stop at sample stopAt[r].
-GroupRun renderInGroup(int ranks, const RenderOptions& base, int width, int height, const std::vector<int>& stopAt = {}) {
+// With `bins`, every rank keeps spectral bins too.
+GroupRun renderInGroup(int ranks, const RenderOptions& base, int width, int height, const std::vector<int>& stopAt = {},
+                       const SpectralBins& bins = {}) {
   const Scene scene;
   test::ThreadGroup group(ranks);
   GroupRun run;
   run.stats.resize(size_t(ranks));
-  for (int r = 0; r < ranks; ++r) run.films.push_back(std::make_unique<Film>(width, height));
+  for (int r = 0; r < ranks; ++r) {
+    run.films.push_back(std::make_unique<Film>(width, height));
+    if (bins.enabled()) run.spectral.push_back(std::make_unique<SpectralFilm>(width, height, bins));
+  }
   std::vector<std::atomic<int>> stops(static_cast<size_t>(ranks));
   std::vector<std::thread> threads;
   for (int r = 0; r < ranks; ++r)
@@ -67,6 +76,7 @@ GroupRun renderInGroup(int ranks, const RenderOptions& base, int width, int heig
       RenderOptions opt = base;
       opt.group = &rank;
       opt.stop = &stops[size_t(r)];
+      if (bins.enabled()) opt.spectral = run.spectral[size_t(r)].get();
       run.stats[size_t(r)] = render(scene, integrator, *run.films[size_t(r)], opt);
     });
   for (std::thread& t : threads) t.join();
@@ -80,13 +90,24 @@ TEST(RenderGroup, RanksGiveTheBitsOfOneProcess) {
   opt.spp = 50;
   opt.samplesPerPass = 7;  // 8 passes, the last of 1 sample
   opt.seed = 5;
+  const SpectralBins bins{400.0f, 30.0f, 10};
   Film one(24, 20);
+  SpectralFilm oneBins(24, 20, bins);
+  opt.spectral = &oneBins;
   const RenderStats single = render(scene, integrator, one, opt);
+  opt.spectral = nullptr;
+  double binTotal = 0.0;
+  for (double v : oneBins.sums()) binTotal += std::abs(v);
+  ASSERT_GT(binTotal, 0.0) << "the bins received shares";
   for (int ranks : {2, 3, 5}) {
     SCOPED_TRACE(ranks);
-    const GroupRun run = renderInGroup(ranks, opt, 24, 20);
+    const GroupRun run = renderInGroup(ranks, opt, 24, 20, {}, bins);
     EXPECT_TRUE(sameBits(run.films[0]->sampleSums(), one.sampleSums()));
     EXPECT_TRUE(sameBits(run.films[0]->splatSums(), one.splatSums()));
+    const std::vector<double>& got = run.spectral[0]->sums();
+    ASSERT_EQ(got.size(), oneBins.sums().size());
+    EXPECT_EQ(std::memcmp(got.data(), oneBins.sums().data(), got.size() * sizeof(double)), 0) << "spectral bins";
+    EXPECT_EQ(run.spectral[0]->samplesPerPixel(), 50);
     EXPECT_EQ(run.films[0]->samplesPerPixel(), 50);
     const RenderStats& st = run.stats[0];
     EXPECT_EQ(st.ranks, ranks);

@@ -26,7 +26,8 @@ if importlib.util.find_spec("matplotlib") is None or importlib.util.find_spec("n
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import config as config_file  # noqa: E402
-import kasha  # noqa: E402
+import kasha_cli  # noqa: E402
+import measure  # noqa: E402
 import report  # noqa: E402
 
 
@@ -44,23 +45,23 @@ def _machine():
     return f"{os.cpu_count()} cores ({model})"
 
 
-def run_scene(binary, cfg, sc, runs, log):
+def run_scene(binary, metrics, cfg, sc, runs, log):
     work = os.path.join(cfg["work"], sc["name"])
     os.makedirs(work, exist_ok=True)
-    scene = kasha.prepare_scene(sc["scene"], sc["resolution_scale"], os.path.join(work, "scene"))
-    ref, ref_stats = kasha.reference(binary, scene, os.path.join(cfg["work"], "references"), sc["reference"],
-                                     cfg["threads"], log)
+    scene = kasha_cli.prepare_scene(sc["scene"], sc["resolution_scale"], os.path.join(work, "scene"))
+    ref, ref_stats = kasha_cli.reference(binary, scene, os.path.join(cfg["work"], "references"), sc["reference"],
+                                         cfg["threads"], log)
     largest = cfg["budget"]["values"][-1]
     crops = []
     for budget in cfg["budget"]["values"]:
         for seed in cfg["seeds"]:
             for c in sc["configurations"]:
                 exr = os.path.join(work, f"{_safe(c['label'])}_b{budget:g}_s{seed}.exr")
-                stats = kasha.render(binary, scene, exr, c["integrator"], c["args"], seed, cfg["budget"]["kind"],
-                                     budget, cfg["threads"])
+                stats = kasha_cli.render(binary, scene, exr, c["integrator"], c["args"], seed,
+                                         cfg["budget"]["kind"], budget, cfg["threads"])
                 show = budget == largest and seed == cfg["seeds"][0]
                 err_map = os.path.splitext(exr)[0] + ".error.pfm" if show else None
-                m = kasha.metrics(binary, exr, ref, err_map)
+                m = metrics(exr, ref, err_map)
                 runs.append({"scene": sc["name"], "config": c["label"], "integrator": c["integrator"],
                              "args": " ".join(c["args"]), "budget_kind": cfg["budget"]["kind"], "budget": budget,
                              "seed": seed, "seconds": stats["seconds"], "spp": stats["spp"], "rmse": m["rmse"],
@@ -80,28 +81,32 @@ def main():
     ap.add_argument("config", help="report configuration (JSON)")
     ap.add_argument("--quick", action="store_true", help="apply the configuration's `quick` reductions")
     ap.add_argument("--scene", action="append", help="only this scene (by name; repeatable); no report page")
-    ap.add_argument("--build-dir", default=os.path.join(kasha.REPO, "build"), help="CMake build directory")
+    ap.add_argument("--build-dir", default=os.path.join(kasha_cli.REPO, "build"), help="CMake build directory")
+    ap.add_argument("--cli", action="store_true",
+                    help="measure errors with `kasha metrics` subprocesses instead of the Python module")
     a = ap.parse_args()
     try:
         cfg = config_file.load(a.config, a.quick)
     except config_file.ConfigError as e:
         print(f"run.py: error: {e}", file=sys.stderr)
         return 1
-    cfg["repo"] = kasha.REPO
+    cfg["repo"] = kasha_cli.REPO
     scenes = [s for s in cfg["scenes"] if not a.scene or s["name"] in a.scene]
     if a.scene and len(scenes) != len(set(a.scene)):
         print(f"run.py: error: --scene: no such scene in {a.config}", file=sys.stderr)
         return 1
     start = time.time()
     log = lambda msg: print(msg, flush=True)  # noqa: E731
-    binary = kasha.build(a.build_dir)
+    binary = kasha_cli.build(a.build_dir, with_module=not a.cli)
+    metrics, path = measure.metrics_function(binary, a.build_dir, a.cli)
+    log(f"errors measured {'in-process by the kasha module' if path == 'module' else 'by kasha metrics'}")
     os.makedirs(cfg["output"], exist_ok=True)
     runs, done = [], []
     try:
         for sc in scenes:
             log(f"{sc['name']}:")
-            done.append(run_scene(binary, cfg, sc, runs, log))
-    except kasha.KashaError as e:
+            done.append(run_scene(binary, metrics, cfg, sc, runs, log))
+    except (kasha_cli.KashaError, ValueError) as e:
         print(f"run.py: error: {e}", file=sys.stderr)
         return 1
     import figures  # matplotlib takes a while to import: only once there is something to draw
@@ -120,7 +125,7 @@ def main():
     report.write_csv(os.path.join(cfg["output"], "runs.csv"), report.RUN_FIELDS, runs)
     report.write_csv(os.path.join(cfg["output"], "summary.csv"), report.SUMMARY_FIELDS,
                      [r for configs in summary.values() for rows in configs.values() for r in rows])
-    command = "python3 " + " ".join(shlex.quote(os.path.relpath(p, kasha.REPO)) if os.path.exists(p) else p
+    command = "python3 " + " ".join(shlex.quote(os.path.relpath(p, kasha_cli.REPO)) if os.path.exists(p) else p
                                     for p in [os.path.abspath(__file__), os.path.abspath(a.config)])
     command += " --quick" if a.quick else ""
     page = report.markdown(cfg, done, summary, command, time.time() - start, _machine(),

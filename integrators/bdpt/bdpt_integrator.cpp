@@ -80,7 +80,7 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   }
   // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
   for (int s = 1; s <= int(L.size()) && s - 1 <= ws_.maxDepth; ++s) connectToCamera(c, L, s, ctx.splats);
-  return Observer::cie1931().weight(ws.lambda) * (L_pixel / ws.pdf);
+  return sensorResponse(ctx, ws.lambda, L_pixel / ws.pdf);
 }
 
 }  // namespace kasha

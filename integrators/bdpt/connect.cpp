@@ -333,8 +333,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
   float sensorWeight = perPath;
   if (c.walk.mode == WavelengthMode::Shared) sensorWeight /= c.sensorPdf;  // λ was the sensor's sample
-  const Vec3 xyz = Observer::cie1931().weight(lambda) * (value * conn->importance * sensorWeight);
-  splats.push_back({conn->pixel, xyz * weight});
+  const Splat unweighted = spectralSplat(conn->pixel, lambda, value * conn->importance * sensorWeight);
+  const Vec3 xyz = unweighted.xyz;
+  splats.push_back({conn->pixel, xyz * weight, lambda, unweighted.value * weight});
   if (c.log) c.log->push_back({conn->pixel, xyz * weight, xyz, s, 1, uint8_t(Variant::kStandard)});
 }
 

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/color.h"
 #include "core/memory_budget.h"
 #include "integrators/photon_mapping/photon_map.h"
 #include "integrators/photon_mapping/photon_tracer.h"
@@ -24,26 +23,27 @@ struct PhotonPass final : PassData {
   float density;  // 1/(π r² N): turns a sum of f·Φ_p into reflected radiance
 };
 
-// The reflected radiance at a camera vertex from the photons of the pass, as XYZ: `sensor` is the
-// camera sample's W(λ)/p(λ) times the camera path's throughput, λ the wavelength leaving this
-// vertex towards the camera, `bounces` the specular vertices before it.
-Vec3 gather(const PhotonPass& pass, const Bsdf& bsdf, const Vec3& p, const Vec3& wo, float lambda, const Vec3& sensor,
-            int bounces, int maxDepth, bool exactElastic) {
-  const Observer& obs = Observer::cie1931();
-  Vec3 sum(0.0f);
+// The reflected radiance at a camera vertex from the photons of the pass, at λ, the wavelength
+// leaving this vertex towards the camera (the camera sample turns it into XYZ with W(λ)/p(λ));
+// `bounces` is the number of specular vertices before it. With `exactElastic` (at the first
+// vertex) the elastic lobe is instead seen at each photon's own wavelength: those contributions
+// go straight to the sensor (sensorResponse) and are added to `photonXyz`.
+float gather(const PhotonPass& pass, const Bsdf& bsdf, const Vec3& p, const Vec3& wo, float lambda, int bounces,
+             int maxDepth, bool exactElastic, SampleContext& ctx, Vec3& photonXyz) {
+  float sum = 0.0f;
   for (const size_t i : pass.map.within(p, pass.radius)) {
     const Photon& ph = pass.map[i];
     if (int(ph.depth) + bounces > maxDepth) continue;
     const Vec3 wi(ph.wi[0], ph.wi[1], ph.wi[2]);  // the photon's direction in its own surface frame
     // Fluorescent lobe: exact for any pair of wavelengths (transport.md §4).
     if (bsdf.has(BsdfFlags::Fluorescent))
-      sum += sensor * (bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, lambda, SpectralLobe::Fluorescent) * ph.power);
+      sum += bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, lambda, SpectralLobe::Fluorescent) * ph.power;
     const float fe = bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, ph.lambda, SpectralLobe::Elastic) * ph.power;
     if (fe <= 0.0f) continue;
     if (exactElastic)
-      sum += obs.weight(ph.lambda) * fe;  // the sensor at the photon's own wavelength (β = 1 here)
+      photonXyz += sensorResponse(ctx, ph.lambda, fe * pass.density);  // the sensor at the photon's own wavelength
     else
-      sum += sensor * (fe * wavelengthKernel(ph.lambda - lambda, pass.bandwidth));
+      sum += fe * wavelengthKernel(ph.lambda - lambda, pass.bandwidth);
   }
   return sum * pass.density;
 }
@@ -102,23 +102,23 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
   const WavelengthSample ws = sensor_.density().sample(rng.uniform());
   if (ws.pdf <= 0.0f) return Vec3(0.0f);
   Ray ray = scene.camera.generateRay(pixel + rng.uniform2());
-  const Vec3 sensor = Observer::cie1931().weight(ws.lambda) / ws.pdf;  // W(λ)/p(λ)
   float lambda = ws.lambda, beta = 1.0f;  // beta: throughput of the specular vertices so far
-  Vec3 xyz(0.0f);
+  float L = 0.0f;    // radiance arriving at the camera's wavelength
+  Vec3 xyz(0.0f);    // elastic photons seen at their own wavelengths
   for (int bounces = 0;; ++bounces) {
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++ctx.counter.closest;
     if (!hit) {
-      if (const EnvironmentLight* env = scene.environment()) xyz += sensor * (beta * env->Le(lambda, ray.d));
+      if (const EnvironmentLight* env = scene.environment()) L += beta * env->Le(lambda, ray.d);
       break;
     }
     const Shape& shape = scene.shapes[hit->shape];
-    if (shape.emission) xyz += sensor * (beta * shape.emission->eval(lambda, hit->ng, -ray.d));
+    if (shape.emission) L += beta * shape.emission->eval(lambda, hit->ng, -ray.d);
     if (bounces >= maxDepth_) break;
     const Bsdf bsdf = scene.bsdf(*hit, {&lambda, 1});
     const Vec3 wo = bsdf.toLocal(-ray.d);
     if (!bsdf.has(BsdfFlags::DeltaDirection))
-      xyz += gather(pass, bsdf, hit->p, wo, lambda, sensor * beta, bounces, maxDepth_, bounces == 0 && !alwaysKernel_);
+      L += beta * gather(pass, bsdf, hit->p, wo, lambda, bounces, maxDepth_, bounces == 0 && !alwaysKernel_, ctx, xyz);
     // The gather covers every non-specular lobe; a sampled specular lobe continues the path.
     const std::optional<ScatterSample> ss =
         bsdf.sample(TransportMode::Radiance, wo, lambda, rng.uniform3());
@@ -129,7 +129,8 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     const Vec3 w = bsdf.toWorld(ss->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
   }
-  return xyz;
+  // W(λ)/p(λ) at the camera sample's wavelength (transport.md §1).
+  return xyz + sensorResponse(ctx, ws.lambda, L / ws.pdf);
 }
 
 }  // namespace kasha

@@ -1,6 +1,7 @@
 // libFuzzer target: image input (core/texture.h, core/image_input.h) on arbitrary bytes, as a
 // PNG when they start with PNG's signature and as an OpenEXR otherwise, both as a texture and
-// (OpenEXR) as a render read back. An image is refused with an exception naming it, or decodes
+// (OpenEXR) as a render read back (its XYZ layer, or its S0.<λ> spectral channels integrated).
+// An image is refused with an exception naming it, or decodes
 // to texels in [0, 1] (textures) and finite XYZ pixels (renders); the memory limit is 256 KiB
 // (some 20 000 pixels: decoding more only slows the fuzzer down), so a header
 // declaring more pixels must be refused before decoding (-rss_limit_mb catches a miss).

@@ -2,7 +2,8 @@
 # MPI-distributed rendering (README "Distributed rendering"), run by ctest:
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR identical INTEGRATOR
 #     renders a small UV Cornell box (128×96, at most 6 bounces, 23 spp: passes of 5 samples, the last of 3) with one
-#     process and with `mpirun -np 2` and `-np 3`; the EXRs must be the same bytes (cmp) and the
+#     process and with `mpirun -np 2` and `-np 3`; the EXRs (with 8 spectral bins, as in every
+#     mode but error) must be the same bytes (cmp) and the
 #     statistics' sample and ray counts (summed over the ranks) the same numbers; with bdpt, the
 #     per-strategy images too. (That the film
 #     adds the passes in pass order is tested where the order shows in the bits:
@@ -43,7 +44,7 @@ scene["camera"]["resolution"] = [128, 96]
 scene["render"]["max_depth"] = 6
 json.dump(scene, open("scene.json", "w"), indent=1)
 PY
-render() { "$kasha" render scene.json --no-png -q "$@"; }
+render() { "$kasha" render scene.json --no-png -q --spectral-bins 8 "$@"; }
 stat() { python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])' "$1" "$2"; }
 same_image() { cmp "$1" "$2" || fail "$1 and $2 differ"; }
 
@@ -53,7 +54,7 @@ identical)
   strategies() { if [ "$integrator" = bdpt ]; then echo --strategy-images "strategies_$1"; fi; }
   render --integrator "$integrator" --spp 23 -o one.exr $(strategies one) >/dev/null
   for n in 2 3; do
-    mpi "$n" render scene.json --no-png -q --integrator "$integrator" --spp 23 -o "np$n.exr" $(strategies "np$n") >/dev/null
+    mpi "$n" render scene.json --no-png -q --spectral-bins 8 --integrator "$integrator" --spp 23 -o "np$n.exr" $(strategies "np$n") >/dev/null
     same_image one.exr "np$n.exr"
     if [ "$integrator" = bdpt ]; then
       for f in strategies_one/*.exr; do same_image "$f" "strategies_np$n/$(basename "$f")"; done
@@ -65,7 +66,7 @@ identical)
   done
   ;;
 stop)
-  timeout 120 mpirun "${root[@]}" --oversubscribe -np 3 "$kasha" render scene.json --no-png -q --spp 1000000 \
+  timeout 120 mpirun "${root[@]}" --oversubscribe -np 3 "$kasha" render scene.json --no-png -q --spectral-bins 8 --spp 1000000 \
     -o stopped.exr --checkpoint run.ckpt >stop.out 2>stop.err &
   launcher=$!
   # The ranks are the children of mpirun, the child of timeout: wait until the three run and the
@@ -85,12 +86,12 @@ stop)
   render --spp "$spp" -o reference_stop.exr >/dev/null
   same_image reference_stop.exr stopped.exr
   end=$((spp + 12))
-  mpi 2 render scene.json --no-png -q --resume run.ckpt --spp "$end" -o resumed.exr >/dev/null
+  mpi 2 render scene.json --no-png -q --spectral-bins 8 --resume run.ckpt --spp "$end" -o resumed.exr >/dev/null
   render --spp "$end" -o reference_end.exr >/dev/null
   same_image reference_end.exr resumed.exr
   ;;
 time)
-  mpi 2 render scene.json --no-png -q --spp 1000000 --time 1 -o timed.exr >/dev/null
+  mpi 2 render scene.json --no-png -q --spectral-bins 8 --spp 1000000 --time 1 -o timed.exr >/dev/null
   [ "$(stat timed.stats.json interrupted)" = "False" ] || fail "a time budget is not an interruption"
   spp=$(stat timed.stats.json spp)
   [ "$spp" -gt 0 ] && [ "$spp" -lt 1000000 ] || fail "the time budget did not end the render ($spp spp)"

@@ -1,7 +1,8 @@
-"""Running kasha from the harness: building it, preparing scenes, rendering, measuring.
+"""Running the kasha binary from the harness: building it, preparing scenes, rendering, measuring.
 
 Every render goes through `kasha render` (its statistics JSON gives the actual time and samples per
-pixel) and every error through `kasha metrics` (the RMSE and relMSE of integrators/comparison.h).
+pixel: configurations are `kasha render` arguments); errors go through `kasha metrics` (the RMSE
+and relMSE of integrators/comparison.h) with --cli, otherwise through the module (measure.py).
 """
 import hashlib
 import json
@@ -16,15 +17,23 @@ class KashaError(Exception):
     pass
 
 
-def build(build_dir):
-    """Configures (once) and builds the kasha target in Release; returns the binary's path."""
+def build(build_dir, with_module=False):
+    """Configures (once) and builds the kasha target (and the Python module kasha_python) in
+    Release; returns the binary's path."""
     env = dict(os.environ, CCACHE_BASEDIR=os.path.dirname(REPO))
     if not os.path.isfile(os.path.join(build_dir, "CMakeCache.txt")):
         subprocess.run(["cmake", "-S", REPO, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release"], check=True, env=env,
                        stdout=subprocess.DEVNULL)
-    subprocess.run(["cmake", "--build", build_dir, "-j2", "--target", "kasha"], check=True, env=env,
+    targets = ["kasha"] + (["kasha_python"] if with_module and _has_target(build_dir, "kasha_python") else [])
+    subprocess.run(["cmake", "--build", build_dir, "-j2", "--target"] + targets, check=True, env=env,
                    stdout=subprocess.DEVNULL)
     return os.path.join(build_dir, "kasha")
+
+
+def _has_target(build_dir, target):
+    """Whether the build directory's configuration has `target` (the module is optional)."""
+    p = subprocess.run(["cmake", "--build", build_dir, "--target", "help"], capture_output=True, text=True)
+    return target in p.stdout
 
 
 def _run(cmd):

@@ -1,0 +1,168 @@
+// The Python module `kasha` (pybind11): scenes from files or dicts, renders to numpy arrays,
+// metrics on arrays, spectral OpenEXR reading. Built by the project's CMake into build/python/
+// (README "Python"). Errors are Python exceptions carrying kasha's message (file, field, reason).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/image_input.h"
+#include "core/memory_budget.h"
+#include "core/spectral_exr.h"
+#include "integrators/comparison.h"
+#include "integrators/integrator_factory.h"
+#include "python/py_arrays.h"
+#include "python/py_render.h"
+#include "python/py_scene.h"
+
+namespace py = pybind11;
+using kasha::python::PyScene;
+
+namespace {
+
+using Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+py::dict readExr(const std::string& path, const std::string& memoryLimit) {
+  py::dict out;
+  const kasha::ExrImage img = kasha::readExrImage(path, kasha::parseByteSize(memoryLimit));
+  out["xyz"] = kasha::python::xyzArray(img.xyz);
+  if (!img.spectral.wavelengths.empty()) {
+    const kasha::SpectralImage& s = img.spectral;
+    out["spectral"] = kasha::python::spectralArray(s);
+    out["wavelengths"] = py::array_t<float>(py::ssize_t(s.wavelengths.size()), s.wavelengths.data());
+  }
+  return out;
+}
+
+py::array_t<float> errorMap(const Array& image, const Array& reference) {
+  const kasha::XyzImage a = kasha::python::toXyzImage(image, "image"), r = kasha::python::toXyzImage(reference, "reference");
+  const std::vector<float> map = kasha::relativeErrorMap(a, r);
+  py::array_t<float> out({py::ssize_t(a.height), py::ssize_t(a.width)});
+  std::copy(map.begin(), map.end(), out.mutable_data());
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(kasha, m) {
+  m.doc() = "kasha: a spectral renderer for fluorescence research. Load a scene (kasha.Scene), render it "
+            "(kasha.render) to numpy arrays, compare images (kasha.metrics, kasha.error_map), read spectral "
+            "OpenEXR files (kasha.read_exr).";
+  m.attr("__version__") = "0.1.0";
+  py::register_exception<kasha::InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<kasha::MemoryLimitError>(m, "MemoryLimitError", PyExc_MemoryError);
+  // Raised by a render stopped with Ctrl-C; its `result` holds the image of the passes done.
+  static py::exception<std::runtime_error> interrupted(m, "RenderInterrupted", PyExc_KeyboardInterrupt);
+  m.attr("RenderInterrupted").attr("__doc__") =
+      "KeyboardInterrupt raised by kasha.render after Ctrl-C, once the current pass has finished; "
+      "`.result` is the partial result (every pixel has the same number of samples).";
+
+  py::class_<PyScene>(m, "Scene", "A scene in kasha's JSON format (docs/scene-format.md), editable before each render.")
+      .def(py::init(&PyScene::fromFile), py::arg("path"),
+           "Loads the scene file at `path` (JSON). Errors (a missing file, malformed JSON) raise kasha.InputError; "
+           "the scene's contents are checked when it is rendered.")
+      .def_static("from_dict", &PyScene::fromDict, py::arg("scene"), py::arg("base_dir") = ".",
+                  "A scene from a dict in the JSON scene format; relative file names start from `base_dir`.")
+      .def("get", &PyScene::get, py::arg("pointer"),
+           "The value at a JSON pointer, e.g. scene.get('/materials/dye/c'); KeyError if there is none.")
+      .def("set", &PyScene::set, py::arg("pointer"), py::arg("value"),
+           "Sets the value at a JSON pointer, e.g. scene.set('/materials/dye/c', 0.5) or "
+           "scene.set('/render/sensor_sampling', 'uniform'). Checked (and the scene reloaded) at the next render.")
+      .def(
+          "set_spectrum",
+          [](PyScene& s, const std::string& pointer, const Array& wavelengths, const Array& values) {
+            nlohmann::json t = {{"type", "tabulated"},
+                                {"wavelengths", kasha::python::toJson(wavelengths)},
+                                {"values", kasha::python::toJson(values)}};
+            s.set(pointer, kasha::python::fromJson(t));
+          },
+          py::arg("pointer"), py::arg("wavelengths"), py::arg("values"),
+          "Sets a spectrum (e.g. '/materials/dye/absorption') to a table of (wavelength in nm, value).")
+      .def("spectrum", &PyScene::spectrum, py::arg("pointer"),
+           "The spectrum at a JSON pointer (a number, a name, a table, a Gaussian, ...) as (wavelengths, values): "
+           "the knots of the piecewise-linear function kasha renders with.")
+      .def(
+          "set_material",
+          [](PyScene& s, const std::string& name, const py::kwargs& params) {
+            if (!s.json().contains("materials") || !s.json()["materials"].contains(name))
+              throw kasha::InputError(s.path(), "/materials/" + name, "no such material");
+            for (const auto& [key, value] : params) s.set("/materials/" + name + "/" + py::str(key).cast<std::string>(),
+                                                         py::reinterpret_borrow<py::object>(value));
+          },
+          py::arg("name"),
+          "Sets parameters of a material, e.g. scene.set_material('dye', c=0.5, Q=0.8); spectra as numbers, "
+          "names or {'type': 'tabulated', ...} dicts.")
+      .def_property_readonly("materials",
+                             [](const PyScene& s) {
+                               std::vector<std::string> names;
+                               if (s.json().contains("materials"))
+                                 for (auto it = s.json()["materials"].begin(); it != s.json()["materials"].end(); ++it)
+                                   names.push_back(it.key());
+                               return names;
+                             },
+                             "The names of the scene's materials.")
+      .def("to_dict", [](const PyScene& s) { return kasha::python::fromJson(s.json()); },
+           "The scene's JSON as a dict (a copy).")
+      .def_property_readonly("path", &PyScene::path, "The file the scene came from (or '<base_dir>/<dict>').");
+
+  m.def(
+      "render",
+      [](PyScene& scene, const std::string& integrator, const py::object& spp, const py::object& time,
+         const py::object& seed, int threads, int spectralBins, float spectralStep, bool strategyImages,
+         int strategyDepth, const std::string& memoryLimit, const py::object& progress, const std::string& output,
+         const py::kwargs& settings) {
+        kasha::python::RenderRequest r;
+        r.integrator = integrator;
+        r.spp = spp, r.time = time, r.seed = seed;
+        r.threads = threads;
+        r.spectralBins = spectralBins;
+        r.spectralStep = spectralStep;
+        r.strategyImages = strategyImages;
+        r.strategyDepth = strategyDepth;
+        r.memoryLimit = memoryLimit;
+        r.progress = progress;
+        r.output = output;
+        r.settings = settings;
+        return kasha::python::render(scene, r, interrupted);
+      },
+      py::arg("scene"), py::arg("integrator") = "pt", py::arg("spp") = py::none(), py::arg("time") = py::none(),
+      py::arg("seed") = py::none(), py::arg("threads") = 0, py::arg("spectral_bins") = 0,
+      py::arg("spectral_step") = 0.0f, py::arg("strategy_images") = false, py::arg("strategy_depth") = 4,
+      py::arg("memory_limit") = "8G", py::arg("progress") = py::none(), py::arg("output") = "",
+      "Renders `scene` with an integrator (pt, lt, bdpt, bdpt-shared, bdpt-independent, bdpt-mollified, ppm) "
+      "for `spp` samples per pixel and/or `time` seconds (whole passes). Further keyword arguments are keys of "
+      "the scene's render object: max_depth, sensor_sampling, fluorescence_sampling, nee_sampling, "
+      "light_sampling, hero_wavelengths, mollify, ppm, ... (docs/scene-format.md).\n\n"
+      "Returns a dict: 'xyz' and 'rgb' (linear sRGB), float32 arrays of shape (height, width, 3); 'stats' (the "
+      "statistics of `kasha render`); with spectral_bins=N or spectral_step=NM, 'spectral' (height, width, N): "
+      "radiance per nm averaged over each bin, 'wavelengths' (bin centres, nm) and 'bin_width'; with "
+      "strategy_images=True (BDPT), 'strategies': one XYZ array per (s, t) strategy, weighted and '_unweighted'. "
+      "`output` also writes an OpenEXR (with the spectral bins).\n\n"
+      "The GIL is released while rendering. `progress(spp, seconds, estimated_total_seconds)` is called after "
+      "every pass. Ctrl-C stops after the current pass and raises kasha.RenderInterrupted (a KeyboardInterrupt) "
+      "whose `result` is the partial result. Bad scenes raise kasha.InputError with kasha's message (file, "
+      "JSON pointer, reason); memory beyond `memory_limit` raises kasha.MemoryLimitError.");
+
+  m.def(
+      "metrics",
+      [](const Array& image, const Array& reference) {
+        const kasha::ImageError e = kasha::compareImages(kasha::python::toXyzImage(image, "image"),
+                                                         kasha::python::toXyzImage(reference, "reference"));
+        py::dict d;
+        d["rmse"] = e.rmse;
+        d["relmse"] = e.relMse;
+        return d;
+      },
+      py::arg("image"), py::arg("reference"),
+      "RMSE and relMSE (mean of (x - ref)^2 / (ref^2 + 0.01)) over X, Y, Z of every pixel of two XYZ arrays of "
+      "shape (height, width, 3), as `kasha metrics` computes them.");
+  m.def("error_map", &errorMap, py::arg("image"), py::arg("reference"),
+        "Per-pixel relative squared error (height, width), averaged over X, Y, Z; its mean is metrics()['relmse'].");
+  m.def("read_exr", &readExr, py::arg("path"), py::arg("memory_limit") = "8G",
+        "Reads an OpenEXR: 'xyz' from its XYZ layer (or integrated from its spectral channels), and 'spectral' + "
+        "'wavelengths' if it has emissive S0.<nm> channels (Fichet et al. 2021). Like `kasha metrics`, it reads "
+        "regular files only and refuses images whose decoded pixels exceed `memory_limit` (kasha.InputError).");
+  m.def("integrators", &kasha::integratorNames, "The integrators' names.");
+}

@@ -1,0 +1,32 @@
+#pragma once
+// kasha.render(): renders a PyScene with any integrator and returns numpy arrays and statistics.
+// The GIL is released while the render runs; between passes the render takes it back briefly to
+// run Python's signal handlers (Ctrl-C) and the progress callback.
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+#include "python/py_scene.h"
+
+namespace kasha::python {
+
+struct RenderRequest {
+  std::string integrator = "pt";
+  pybind11::object spp, time, seed;  // None: the scene's
+  int threads = 0;
+  int spectralBins = 0;
+  float spectralStep = 0.0f;
+  bool strategyImages = false;
+  int strategyDepth = 4;
+  std::string memoryLimit = "8G";
+  pybind11::object progress;  // None or callable(spp, seconds, estimated_total_seconds)
+  std::string output;         // an OpenEXR to write as well (with the spectral bins)
+  pybind11::dict settings;    // further keys of the scene's render object
+};
+
+// Returns a dict: xyz, rgb, stats, and spectral + wavelengths + bin_width (with bins) and
+// strategies (with strategy images). Ctrl-C raises `interrupted` (a KeyboardInterrupt subclass)
+// after the current pass, with the partial result as its `result` attribute.
+pybind11::dict render(PyScene& scene, const RenderRequest& request, const pybind11::object& interrupted);
+
+}  // namespace kasha::python

@@ -1,0 +1,60 @@
+"""Files read and written from Python follow kasha's rules (README "Files in and out"): regular
+files only, strict JSON, outputs checked before the first sample, decoded images counted against
+the memory limit."""
+import json
+import os
+
+import numpy as np
+import pytest
+
+import kasha
+from conftest import REPO, furnace_dict
+
+
+def test_scene_files_are_read_like_the_command_line(tmp_path):
+    fifo = tmp_path / "scene.json"
+    os.mkfifo(fifo)  # opening it must not block, reading it is refused
+    with pytest.raises(kasha.InputError, match="scene.json: cannot open scene file .*not a regular file"):
+        kasha.Scene(str(fifo))
+    twice = tmp_path / "twice.json"
+    twice.write_text('{"render": {"spp": 1, "spp": 2}}')
+    with pytest.raises(kasha.InputError, match="twice.json: /render/spp: duplicate key 'spp'"):
+        kasha.Scene(str(twice))
+
+
+def test_outputs_are_checked_before_the_first_sample(tmp_path):
+    scene = kasha.Scene.from_dict(furnace_dict(resolution=4, spp=4))
+    passes = []
+    for bad, reason in ((tmp_path / "missing" / "out.exr", "missing"), (tmp_path / "out.png", r"\.exr")):
+        with pytest.raises(kasha.InputError, match=reason):
+            kasha.render(scene, output=str(bad), progress=lambda *a: passes.append(a))
+        assert not bad.exists()
+    assert passes == []  # refused before rendering
+    source = tmp_path / "scene.exr"  # a JSON scene under a name an output could have
+    source.write_text(json.dumps(furnace_dict(resolution=4, spp=4)))
+    scene = kasha.Scene(str(source))
+    with pytest.raises(kasha.InputError, match="scene.exr: output: is one of the inputs"):
+        kasha.render(scene, output=str(source))
+    assert json.loads(source.read_text())["render"]["spp"] == 4
+    # A written output leaves no temporary file beside it.
+    kasha.render(scene, output=str(tmp_path / "ok.exr"), spectral_bins=4)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ok.exr", "scene.exr"]
+
+
+def test_read_exr_refuses_what_kasha_metrics_refuses(tmp_path):
+    with pytest.raises(kasha.InputError, match="not a regular file"):
+        kasha.read_exr(str(tmp_path))
+    out = str(tmp_path / "bins.exr")
+    kasha.render(kasha.Scene.from_dict(furnace_dict(resolution=8, spp=1)), output=out, spectral_bins=64)
+    assert kasha.read_exr(out)["spectral"].shape == (8, 8, 64)
+    # 64 bins × 4 bytes per pixel are over a 4 KiB limit at 8x8 pixels.
+    with pytest.raises(kasha.InputError, match="bins.exr: .*memory limit"):
+        kasha.read_exr(out, memory_limit="4K")
+
+
+def test_mitsuba_scene_from_python():
+    scene = kasha.Scene(os.path.join(REPO, "scenes", "mitsuba", "cornell_box.xml"))
+    assert scene.path.endswith("cornell_box.xml") and scene.materials
+    scene.set("/camera/resolution", [8, 6])
+    result = kasha.render(scene, spp=1, max_depth=2)
+    assert result["xyz"].shape == (6, 8, 3) and np.all(np.isfinite(result["xyz"]))
