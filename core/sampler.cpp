@@ -6,6 +6,8 @@ namespace kasha {
 namespace sobol {
 namespace {
 
+}  // namespace
+
 uint32_t reverseBits(uint32_t v) {
   v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
   v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
@@ -13,6 +15,8 @@ uint32_t reverseBits(uint32_t v) {
   v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
   return (v >> 16) | (v << 16);
 }
+
+namespace {
 
 // Direction numbers of Sobol's second dimension: polynomial x + 1, m_1 = 1, so
 // v_k = v_{k−1} XOR (v_{k−1} >> 1) as 32-bit fractions (v_1 = 1/2).
@@ -23,6 +27,29 @@ constexpr std::array<uint32_t, 32> directions1() {
   return v;
 }
 constexpr std::array<uint32_t, 32> kDirections1 = directions1();
+
+// The same, bit-reversed: XOR-ing them gives reverseBits(dimension1(index)) directly.
+constexpr std::array<uint32_t, 32> reversedDirections1() {
+  std::array<uint32_t, 32> r{};
+  for (size_t k = 0; k < r.size(); ++k)
+    for (int b = 0; b < 32; ++b)
+      if (kDirections1[k] & (1u << b)) r[k] |= 1u << (31 - b);
+  return r;
+}
+constexpr std::array<uint32_t, 32> kReversedDirections1 = reversedDirections1();
+
+// Byte tables of the same: entry [b][x] is the XOR of the reversed directions of the set bits of
+// byte x at byte position b, so that a 32-bit index takes four lookups instead of a loop over its
+// bits (whose branches a random index mispredicts).
+constexpr std::array<std::array<uint32_t, 256>, 4> reversedDirectionBytes() {
+  std::array<std::array<uint32_t, 256>, 4> t{};
+  for (size_t b = 0; b < 4; ++b)
+    for (size_t x = 0; x < 256; ++x)
+      for (size_t k = 0; k < 8; ++k)
+        if (x & (size_t(1) << k)) t[b][x] ^= kReversedDirections1[8 * b + k];
+  return t;
+}
+constexpr std::array<std::array<uint32_t, 256>, 4> kReversedDirectionBytes = reversedDirectionBytes();
 
 // Burley 2020 §3 (Laine & Karras 2011's permutation with Burley's constants): a bijection of
 // 32-bit integers in which bit i of the result depends only on bits 0..i of the input.
@@ -46,6 +73,13 @@ uint32_t dimension1(uint32_t index) {
   return v;
 }
 
+uint32_t reversedDimension1(uint32_t index) {
+  return kReversedDirectionBytes[0][index & 0xffu] ^ kReversedDirectionBytes[1][(index >> 8) & 0xffu] ^
+         kReversedDirectionBytes[2][(index >> 16) & 0xffu] ^ kReversedDirectionBytes[3][index >> 24];
+}
+
+uint32_t laineKarrasPermutation(uint32_t x, uint32_t seed) { return laineKarras(x, seed); }
+
 // Bit-reversed, the permutation lets each bit depend on the more significant ones only: a
 // nested uniform scramble of the fraction (Burley 2020 eq. 3).
 uint32_t owenScramble(uint32_t v, uint32_t seed) { return reverseBits(laineKarras(reverseBits(v), seed)); }
@@ -64,19 +98,46 @@ std::optional<SamplerKind> parseSamplerKind(const std::string& name) {
   return std::nullopt;
 }
 
-Sampler::Sampler(SamplerKind kind, uint64_t seed, uint64_t stream, uint32_t sample)
-    : kind_(kind), rng_(mixBits(seed ^ mixBits(stream)), uint64_t(sample)), key_(mixBits(seed ^ mixBits(stream))), sample_(sample) {}
+namespace {
+// The 64-bit hash of each of the first kTabulatedDimensions dimensions.
+constexpr uint32_t kTabulatedDimensions = 1024;
+const std::array<uint64_t, kTabulatedDimensions>& dimensionHashes() {
+  static const std::array<uint64_t, kTabulatedDimensions> table = [] {
+    std::array<uint64_t, kTabulatedDimensions> t{};
+    for (uint32_t i = 0; i < t.size(); ++i) t[i] = mixBits(uint64_t(i));
+    return t;
+  }();
+  return table;
+}
+}  // namespace
 
-uint32_t Sampler::scrambleKey(uint32_t dim, uint32_t salt) const {
-  return uint32_t(mixBits(key_ ^ mixBits((uint64_t(dim) << 2) | salt)));
+Sampler::Sampler(SamplerKind kind, uint64_t seed, uint64_t stream, uint32_t sample)
+    : kind_(kind),
+      rng_(mixBits(seed ^ mixBits(stream)), uint64_t(sample)),
+      key_(mixBits(seed ^ mixBits(stream))),
+      sample_(sample),
+      reversedSample_(sobol::reverseBits(sample)) {}
+
+Sampler::Keys Sampler::scrambleKeys(uint32_t dim) const {
+  // One 64-bit hash per dimension: its halves scramble the index and the first coordinate, and a
+  // multiplicative hash of it the second coordinate of a pair.
+  const uint64_t h = mixBits(key_ ^ (dim < kTabulatedDimensions ? dimensionHashes()[dim] : mixBits(dim)));
+  return {uint32_t(h), uint32_t(h >> 32), uint32_t((h * 0x9e3779b97f4a7c15ull) >> 32)};
+}
+
+uint32_t Sampler::shuffledIndex(uint32_t key) const {
+  // owenScramble(sample_, key) with the sample's reversal computed once.
+  return sobol::reverseBits(sobol::laineKarrasPermutation(reversedSample_, key));
 }
 
 float Sampler::uniform() {
   if (kind_ == SamplerKind::Independent) return rng_.uniform();
   const uint32_t d = dim_++;
   // Burley 2020 §4: each padded dimension shuffles the sample order by its own scramble.
-  const uint32_t index = sobol::owenScramble(sample_, scrambleKey(d, 0));
-  return toUnit(sobol::owenScramble(sobol::dimension0(index), scrambleKey(d, 1)));
+  const Keys k = scrambleKeys(d);
+  const uint32_t index = shuffledIndex(k.index);
+  // owenScramble(dimension0(index), ·) = reverseBits(LK(index, ·)): dimension0 is a reversal.
+  return toUnit(sobol::reverseBits(sobol::laineKarrasPermutation(index, k.first)));
 }
 
 Vec2 Sampler::uniform2() {
@@ -86,9 +147,10 @@ Vec2 Sampler::uniform2() {
   }
   const uint32_t d = dim_;
   dim_ += 2;
-  const uint32_t index = sobol::owenScramble(sample_, scrambleKey(d, 0));
-  return Vec2(toUnit(sobol::owenScramble(sobol::dimension0(index), scrambleKey(d, 1))),
-              toUnit(sobol::owenScramble(sobol::dimension1(index), scrambleKey(d, 2))));
+  const Keys k = scrambleKeys(d);
+  const uint32_t index = shuffledIndex(k.index);
+  return Vec2(toUnit(sobol::reverseBits(sobol::laineKarrasPermutation(index, k.first))),
+              toUnit(sobol::reverseBits(sobol::laineKarrasPermutation(sobol::reversedDimension1(index), k.second))));
 }
 
 }  // namespace kasha

@@ -54,12 +54,20 @@ class Sampler {
   uint32_t dimension() const { return dim_; }
 
  private:
-  uint32_t scrambleKey(uint32_t dim, uint32_t salt) const;
+  // A dimension's scrambling seeds: of the sample index (Burley 2020 §4's shuffle), of the first
+  // and of the second coordinate.
+  struct Keys {
+    uint32_t index, first, second;
+  };
+  Keys scrambleKeys(uint32_t dim) const;
+  // The sample's index in a dimension's own shuffled order.
+  uint32_t shuffledIndex(uint32_t key) const;
 
   SamplerKind kind_;
   Rng rng_;
   uint64_t key_;
   uint32_t sample_;
+  uint32_t reversedSample_;  // sobol::reverseBits(sample_)
   uint32_t dim_ = 0;
 };
 
@@ -69,6 +77,11 @@ namespace sobol {
 // generator matrix of the primitive polynomial x + 1), as 32-bit fractions.
 uint32_t dimension0(uint32_t index);
 uint32_t dimension1(uint32_t index);
+// reverseBits(dimension1(index)), without the reversal.
+uint32_t reversedDimension1(uint32_t index);
+uint32_t reverseBits(uint32_t v);
+// Burley 2020's Laine–Karras permutation: bit i of the result depends on bits 0..i of x only.
+uint32_t laineKarrasPermutation(uint32_t x, uint32_t seed);
 // Burley 2020 §3: a nested uniform (Owen) scramble of the bits of a 32-bit fraction, from the
 // most significant bit down, keyed by seed.
 uint32_t owenScramble(uint32_t v, uint32_t seed);

@@ -21,6 +21,18 @@ TEST(Sampler, SobolSecondDimensionMatchesItsDirectionNumbers) {
   for (uint32_t i = 0; i < 8; ++i) EXPECT_DOUBLE_EQ(sobol::dimension0(i) * 0x1p-32, vdc[i]) << i;
 }
 
+TEST(Sampler, ReversedSecondDimensionByBytesMatchesTheBitLoop) {
+  // The sampler's four-lookup form against the direction-number loop, bit-reversed by hand.
+  Rng rng(5, 0);
+  for (int k = 0; k < 10000; ++k) {
+    const uint32_t i = k < 64 ? uint32_t(k) : rng.nextU32();
+    const uint32_t d = sobol::dimension1(i);
+    uint32_t reversed = 0;
+    for (int b = 0; b < 32; ++b) reversed |= ((d >> b) & 1u) << (31 - b);
+    ASSERT_EQ(sobol::reversedDimension1(i), reversed) << i;
+  }
+}
+
 TEST(Sampler, OwenScrambleIsABijectionThatKeepsPrefixes) {
   // A nested uniform scramble maps numbers sharing their top k bits to numbers sharing their
   // top k bits, and is one-to-one.
