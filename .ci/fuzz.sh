@@ -2,13 +2,13 @@
 # libFuzzer run of kasha's readers — the scene parser (JSON and Mitsuba XML), the spectrum/matrix reader, the strict OBJ
 # reader, image (texture and render) input, material files and the checkpoint reader: installs
 # clang (libFuzzer is in Debian's libclang-rt-<v>-dev), builds tests/fuzz with KASHA_FUZZ=ON
-# (ASan + UBSan) into build-fuzz/, and runs each target for FUZZ_SECONDS (default 30) on a copy of its seed corpus
+# (ASan + UBSan) into build-fuzz/, and runs each target for FUZZ_SECONDS (default 20) on a copy of its seed corpus
 # tests/fuzz/corpus/<target>/. A finding stops the run, leaves the input as build-fuzz/crash-* /
 # leak-* / timeout-* and fails the script. New inputs that grow coverage stay in
 # build-fuzz/corpus/<target>/; copy the interesting ones (small!) to the seed corpus by hand.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SECONDS_PER_TARGET="${FUZZ_SECONDS:-30}"
+SECONDS_PER_TARGET="${FUZZ_SECONDS:-20}"
 
 bash .ci/install-deps.sh
 CLANG_VERSION=14

@@ -99,11 +99,11 @@ std::optional<SamplerKind> parseSamplerKind(const std::string& name) {
 }
 
 namespace {
-// The 64-bit hash of each of the first kTabulatedDimensions dimensions.
+// mixBits((dimension << 2) | salt) of the first kTabulatedDimensions dimensions.
 constexpr uint32_t kTabulatedDimensions = 1024;
-const std::array<uint64_t, kTabulatedDimensions>& dimensionHashes() {
-  static const std::array<uint64_t, kTabulatedDimensions> table = [] {
-    std::array<uint64_t, kTabulatedDimensions> t{};
+const std::array<uint64_t, kTabulatedDimensions * 4>& dimensionHashes() {
+  static const std::array<uint64_t, kTabulatedDimensions * 4> table = [] {
+    std::array<uint64_t, kTabulatedDimensions * 4> t{};
     for (uint32_t i = 0; i < t.size(); ++i) t[i] = mixBits(uint64_t(i));
     return t;
   }();
@@ -118,11 +118,9 @@ Sampler::Sampler(SamplerKind kind, uint64_t seed, uint64_t stream, uint32_t samp
       sample_(sample),
       reversedSample_(sobol::reverseBits(sample)) {}
 
-Sampler::Keys Sampler::scrambleKeys(uint32_t dim) const {
-  // One 64-bit hash per dimension: its halves scramble the index and the first coordinate, and a
-  // multiplicative hash of it the second coordinate of a pair.
-  const uint64_t h = mixBits(key_ ^ (dim < kTabulatedDimensions ? dimensionHashes()[dim] : mixBits(dim)));
-  return {uint32_t(h), uint32_t(h >> 32), uint32_t((h * 0x9e3779b97f4a7c15ull) >> 32)};
+uint32_t Sampler::scrambleKey(uint32_t dim, uint32_t salt) const {
+  const uint64_t slot = (uint64_t(dim) << 2) | salt;
+  return uint32_t(mixBits(key_ ^ (slot < dimensionHashes().size() ? dimensionHashes()[slot] : mixBits(slot))));
 }
 
 uint32_t Sampler::shuffledIndex(uint32_t key) const {
@@ -134,10 +132,9 @@ float Sampler::uniform() {
   if (kind_ == SamplerKind::Independent) return rng_.uniform();
   const uint32_t d = dim_++;
   // Burley 2020 §4: each padded dimension shuffles the sample order by its own scramble.
-  const Keys k = scrambleKeys(d);
-  const uint32_t index = shuffledIndex(k.index);
+  const uint32_t index = shuffledIndex(scrambleKey(d, 0));
   // owenScramble(dimension0(index), ·) = reverseBits(LK(index, ·)): dimension0 is a reversal.
-  return toUnit(sobol::reverseBits(sobol::laineKarrasPermutation(index, k.first)));
+  return toUnit(sobol::reverseBits(sobol::laineKarrasPermutation(index, scrambleKey(d, 1))));
 }
 
 Vec2 Sampler::uniform2() {
@@ -147,10 +144,9 @@ Vec2 Sampler::uniform2() {
   }
   const uint32_t d = dim_;
   dim_ += 2;
-  const Keys k = scrambleKeys(d);
-  const uint32_t index = shuffledIndex(k.index);
-  return Vec2(toUnit(sobol::reverseBits(sobol::laineKarrasPermutation(index, k.first))),
-              toUnit(sobol::reverseBits(sobol::laineKarrasPermutation(sobol::reversedDimension1(index), k.second))));
+  const uint32_t index = shuffledIndex(scrambleKey(d, 0));
+  return Vec2(toUnit(sobol::reverseBits(sobol::laineKarrasPermutation(index, scrambleKey(d, 1)))),
+              toUnit(sobol::reverseBits(sobol::laineKarrasPermutation(sobol::reversedDimension1(index), scrambleKey(d, 2)))));
 }
 
 }  // namespace kasha

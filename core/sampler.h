@@ -54,12 +54,9 @@ class Sampler {
   uint32_t dimension() const { return dim_; }
 
  private:
-  // A dimension's scrambling seeds: of the sample index (Burley 2020 §4's shuffle), of the first
-  // and of the second coordinate.
-  struct Keys {
-    uint32_t index, first, second;
-  };
-  Keys scrambleKeys(uint32_t dim) const;
+  // Scrambling seed of a dimension: salt 0 shuffles the sample index (Burley 2020 §4), 1 and 2
+  // scramble the first and second coordinate.
+  uint32_t scrambleKey(uint32_t dim, uint32_t salt) const;
   // The sample's index in a dimension's own shuffled order.
   uint32_t shuffledIndex(uint32_t key) const;
 

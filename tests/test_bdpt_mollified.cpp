@@ -154,8 +154,8 @@ TEST(BdptMollified, MollifiedConnectionsRenderWhatTheExactIndependentFamilyCanno
   const Batches exact = renderBatches(*scene, "bdpt-independent", 8, 1, 16);
   EXPECT_FALSE(exact.connections);
   for (int c = 0; c < 3; ++c) EXPECT_EQ(exact.xyz[c].mean, 0.0);
-  const Batches shared = renderBatches(*scene, "bdpt-shared", 8, 16, 128);
-  const Batches moll = renderBatches(*scene, "bdpt-mollified", 8, 16, 128, 150.0f);
+  const Batches shared = renderBatches(*scene, "bdpt-shared", 8, 16, 256);
+  const Batches moll = renderBatches(*scene, "bdpt-mollified", 8, 16, 256, 150.0f);
   EXPECT_TRUE(moll.connections);
   EXPECT_NEAR(moll.mollifiedShareY, 1.0, 1e-4) << "all the light comes through mollified connections";
   for (int c = 0; c < 3; ++c) {
