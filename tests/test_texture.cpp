@@ -330,7 +330,8 @@ TEST(FluorescentInkScene, InkAndPaperResolveAtHits) {
     const Vec3 p(-0.45f + 0.4f * u, -0.1f + 0.2f * v, 1.0f);  // the left sheet spans 0.4 × 0.2
     const std::optional<Hit> h = scene->accel->intersect(Ray{p, Vec3(0, 0, -1)});
     EXPECT_TRUE(h);
-    const auto* j = dynamic_cast<const JungModel*>(&scene->bsdf(*h, {}).model());
+    const Bsdf bsdf = scene->bsdf(*h, {});  // the per-hit model lives inside the Bsdf
+    const auto* j = dynamic_cast<const JungModel*>(&bsdf.model());
     EXPECT_NE(j, nullptr);
     return j ? j->c() : -1.0f;
   };
