@@ -115,7 +115,6 @@ Sampler::Sampler(SamplerKind kind, uint64_t seed, uint64_t stream, uint32_t samp
     : kind_(kind),
       rng_(mixBits(seed ^ mixBits(stream)), uint64_t(sample)),
       key_(mixBits(seed ^ mixBits(stream))),
-      sample_(sample),
       reversedSample_(sobol::reverseBits(sample)) {}
 
 uint32_t Sampler::scrambleKey(uint32_t dim, uint32_t salt) const {
@@ -124,7 +123,7 @@ uint32_t Sampler::scrambleKey(uint32_t dim, uint32_t salt) const {
 }
 
 uint32_t Sampler::shuffledIndex(uint32_t key) const {
-  // owenScramble(sample_, key) with the sample's reversal computed once.
+  // owenScramble(sample, key) with the sample's reversal computed once.
   return sobol::reverseBits(sobol::laineKarrasPermutation(reversedSample_, key));
 }
 

@@ -63,8 +63,7 @@ class Sampler {
   SamplerKind kind_;
   Rng rng_;
   uint64_t key_;
-  uint32_t sample_;
-  uint32_t reversedSample_;  // sobol::reverseBits(sample_)
+  uint32_t reversedSample_;  // sobol::reverseBits of the sample's index
   uint32_t dim_ = 0;
 };
 
