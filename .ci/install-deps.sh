@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian package kasha needs to build, test and benchmark. Idempotent.
+# Installs every Debian package kasha needs to build, test and benchmark. Idempotent. clang 14 (with
+# libFuzzer and the sanitizer runtimes in libclang-rt-14-dev) builds .ci/sanitize-build.sh's tree.
 set -euo pipefail
 PACKAGES=(
   build-essential cmake ccache pkg-config
@@ -9,6 +10,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin
   python3-numpy python3-matplotlib
   python3-dev pybind11-dev python3-pybind11 python3-pytest
+  clang-14 libclang-rt-14-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
