@@ -63,8 +63,9 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
   }
   if (bdpt) {
     if (name == "bdpt-shared") requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
-    const bdpt::WavelengthMode mode =
-        name == "bdpt-shared" ? bdpt::WavelengthMode::Shared : bdpt::WavelengthMode::Independent;
+    const bdpt::WavelengthMode mode = name == "bdpt-shared" ? bdpt::WavelengthMode::Shared
+                                      : name == "bdpt"      ? bdpt::WavelengthMode::Unified
+                                                            : bdpt::WavelengthMode::Independent;
     return std::make_unique<Bdpt>(scene, s, mode, mollified ? &s.mollify : nullptr);
   }
   return std::make_unique<PpmIntegrator>(scene, s);

@@ -49,18 +49,21 @@ void lightEnd(const Context& c, int light, float lambda0, const PathVertex& x0, 
   float pdfPos = 0.0f, pdfDir = 0.0f;
   L.emissionPdfs(x0.p, x0.n, w, pdfPos, pdfDir);
   const float startDensity = L.atInfinity() ? pdfDir : pdfPos;  // of x_0 itself
-  fp.v[0].pdfLight = double(lightChoicePdf(c.scene, light, lambda0, c.walk)) * startDensity;
+  const double nee = double(c.scene.lightSelector->probability(size_t(light), lambda0)) * startDensity;
+  fp.v[0].pdfLight = nee;  // p(light | λ_0)·p_A; the own family's p_light(λ_0) is a factor of its own
   fp.v[0].connectible = true;
+  fp.lightPdf = c.walk.lightWavelengths->pdf(lambda0);
   if (x1.kind != Kind::Camera)
     fp.v[1].pdfLight = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
-  fp.pdfNee = double(c.scene.lightSelector->probability(size_t(light), lambda0)) * startDensity;
+  fp.pdfNee = nee;
   fp.lightVertexConnectible = !L.atInfinity();
 }
 
 // Stored densities of the subpath vertices L[0..s−1], C[0..t−1] laid out as x_0 … x_k.
 FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t) {
   FullPath fp;
-  fp.mode = c.walk.mode;
+  fp.families = c.families;
+  fp.sensorPdf = c.sensorPdf;  // the camera's wavelength, unless t = 1 says otherwise
   const int k = s + t - 1;
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {
@@ -73,7 +76,7 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   }
   fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
   fp.v[size_t(k)].pdfLight = 0.0;
-  if (c.walk.mode == WavelengthMode::Independent && c.bandwidth > 0.0f) fp.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
+  if (c.bandwidth > 0.0f) fp.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
   return fp;
 }
 
@@ -125,7 +128,7 @@ float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
     fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
   }
   else fp.lightSeenByPinhole = e.kind == Kind::Surface;
-  const float weight = misWeight(fp, 0);
+  const float weight = misWeight(fp, 0, Variant::kStandard);
   record(c, 0, t, Variant::kStandard, e.beta * Le, weight);
   return e.beta * Le * weight;
 }
@@ -166,7 +169,7 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampl
   fp.specCam1 = x1.spectralPdf;
   fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
   const float value = x1.beta * fx * std::abs(wi.z) / x1.spectralPdf * ls->Li / (pSel * ls->pdf);
-  const float weight = misWeight(fp, 1);
+  const float weight = misWeight(fp, 1, Variant::kStandard);
   record(c, 1, t, Variant::kStandard, value, weight);
   return value * weight;
 }
@@ -192,7 +195,6 @@ float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, con
   FullPath fp = layout(c, &L, 1, C, t);
   fp.v[1].lobe = SpectralLobe::Fluorescent;
   lightEnd(c, a.light, a.lambda, a, b, fp);
-  fp.v[0].pdfLight = a.pdfFwd;
   fp.v[0].pdfCam = cameraSide(c.scene, b, bNext, a, SpectralLobe::Fluorescent, a.lambda, b.lambda);
   if (bNext.kind != Kind::Camera)
     fp.v[2].pdfLight = lightSide(c.scene, b, a, bNext, SpectralLobe::Fluorescent, a.lambda, b.lambda);
@@ -206,7 +208,8 @@ float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, con
   return value * weight;
 }
 
-float connect(const Context& c, const std::vector<PathVertex>& L, int s, const std::vector<PathVertex>& C, int t) {
+float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+              const std::vector<PathVertex>& C, int t) {
   const PathVertex& a = L[size_t(s - 1)];
   const PathVertex& b = C[size_t(t - 1)];
   if (a.kind != Kind::Surface || b.kind != Kind::Surface || !a.connectible() || !b.connectible()) return 0.0f;
@@ -231,13 +234,13 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
   };
   Pair pairs[3];
   int n = 0;
-  if (c.walk.mode == WavelengthMode::Shared) {
+  if (family == LightFamily::Shared) {
     pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, c.lambdaCamera, c.lambdaCamera, Variant::kStandard};
   } else {
     if (a.bsdf->has(BsdfFlags::Fluorescent))
-      pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, b.lambda, b.lambda, Variant::kStandard};
+      pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, b.lambda, b.lambda, Variant::kOwn};
     if (b.bsdf->has(BsdfFlags::Fluorescent))
-      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda, a.lambda, Variant::kStandard};
+      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda, a.lambda, Variant::kOwn};
     if (c.bandwidth > 0.0f && std::abs(a.lambda - b.lambda) < c.bandwidth)
       pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kMollified};
   }
@@ -259,7 +262,6 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
     fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
     fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambdaB) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
     lightEnd(c, L[0].light, L[0].lambda, L[0], L[1], fp);
-    fp.v[0].pdfLight = L[0].pdfFwd;  // as sampled (same value; avoids recomputation drift)
     const float weight = misWeight(fp, s, p.variant);
     if (!(weight > 0.0f)) continue;
     if (!checked) {
@@ -281,7 +283,8 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
   return sum;
 }
 
-void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, std::vector<Splat>& splats) {
+void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+                     std::vector<Splat>& splats) {
   const PathVertex& a = L[size_t(s - 1)];
   if (a.kind == Kind::Infinite || !a.connectible()) return;
   const std::optional<Camera::Connection> conn = c.scene.camera.connect(a.p);
@@ -297,10 +300,10 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
   const std::vector<PathVertex> camOnly{cam};
   FullPath fp = layout(c, &L, s, camOnly, 1);
   const int k = s;
-  // The camera's density of a: its direction over the whole film, [× the sensor's density of the
-  // wavelength arriving at it].
-  const float sensor = c.walk.mode == WavelengthMode::Independent ? c.sensor.pdf(lambda) : 1.0f;
-  fp.v[size_t(k - 1)].pdfCam = toAreaDensity(c.scene.camera.directionPdf(-conn->wi) * sensor, cam, a);
+  // The camera's density of a: its direction over the whole film times the sensor's density of the
+  // wavelength arriving at it.
+  fp.sensorPdf = c.sensor.pdf(lambda);
+  fp.v[size_t(k - 1)].pdfCam = toAreaDensity(c.scene.camera.directionPdf(-conn->wi) * float(fp.sensorPdf), cam, a);
   if (s == 1) {
     // The light itself, seen directly (area lights only).
     if (a.kind != Kind::Light || a.deltaPosition) return;
@@ -309,6 +312,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
     if (!(Le > 0.0f)) return;
     value = Le * std::abs(glm::dot(a.n, conn->wi)) / a.pdfFwd;
     fp.lightSeenByPinhole = true;
+    lightEnd(c, a.light, a.lambda, a, cam, fp);
   } else {
     // The light side's own spectral event at a (λ_o from e when fluorescent): the sensor
     // responds at the wavelength it chose.
@@ -325,18 +329,18 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
     fp.specCam1 = s == 2 ? specCamera(x1, a.lobe, x1.lambda, lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
     fp.specLightLast = a.spectralPdf;
     lightEnd(c, L[0].light, L[0].lambda, L[0], L[1], fp);
-    fp.v[0].pdfLight = L[0].pdfFwd;
   }
-  const float weight = misWeight(fp, s);
+  const Variant variant = family == LightFamily::Shared ? Variant::kStandard : Variant::kOwn;
+  const float weight = misWeight(fp, s, variant);
   if (!(weight > 0.0f) || !visible(c, a, cam)) return;
   // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel).
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
   float sensorWeight = perPath;
-  if (c.walk.mode == WavelengthMode::Shared) sensorWeight /= c.sensorPdf;  // λ was the sensor's sample
+  if (family == LightFamily::Shared) sensorWeight /= c.sensorPdf;  // λ was the sensor's sample
   const Splat unweighted = spectralSplat(conn->pixel, lambda, value * conn->importance * sensorWeight);
   const Vec3 xyz = unweighted.xyz;
   splats.push_back({conn->pixel, xyz * weight, lambda, unweighted.value * weight});
-  if (c.log) c.log->push_back({conn->pixel, xyz * weight, xyz, s, 1, uint8_t(Variant::kStandard)});
+  if (c.log) c.log->push_back({conn->pixel, xyz * weight, xyz, s, 1, uint8_t(variant)});
 }
 
 }  // namespace kasha::bdpt

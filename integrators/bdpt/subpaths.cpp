@@ -7,7 +7,7 @@ namespace {
 // ray's direction at the last vertex (per steradian; for a light at infinity, per unit area of
 // its disk). Camera walks run in Radiance mode, light walks in Importance mode.
 void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lambda, TransportMode mode,
-                const WalkSettings& ws, Sampler& rng, RayCounter& counter, std::vector<PathVertex>& path) {
+                bool stopAtFluorescence, const WalkSettings& ws, Sampler& rng, RayCounter& counter, std::vector<PathVertex>& path) {
   const bool camera = mode == TransportMode::Radiance;
   const float beta0 = beta;
   int surfaces = 0;
@@ -54,7 +54,7 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     cur.spectralPdf = sc.pdf;
     cur.eventSampled = true;
     if (!camera && surfaces == ws.maxDepth) return;
-    if (!camera && ws.mode == WavelengthMode::Shared && sc.lobe == SpectralLobe::Fluorescent) return;
+    if (stopAtFluorescence && sc.lobe == SpectralLobe::Fluorescent) return;
     const float lambdaIn = camera ? sc.lambda : lambda, lambdaOut = camera ? lambda : sc.lambda;
     const std::optional<DirectionSample> ds =
         bsdf.sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, rng.uniform2());
@@ -89,11 +89,6 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
 
 }  // namespace
 
-float lightChoicePdf(const Scene& scene, int light, float lambda, const WalkSettings& ws) {
-  const float conditional = scene.lightSelector->probability(size_t(light), lambda);
-  return ws.mode == WavelengthMode::Independent ? conditional * ws.lightWavelengths->pdf(lambda) : conditional;
-}
-
 void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float sensorPdf, const WalkSettings& ws,
                         Sampler& rng, RayCounter& counter, std::vector<PathVertex>& out) {
   out.clear();
@@ -106,18 +101,18 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float se
   c.deltaPosition = true;
   out.push_back(c);
   const Ray ray = scene.camera.generateRay(filmPos);
-  // The sensor samples the last wavelength group; in Shared mode every strategy shares it.
-  const float pdfDir = scene.camera.directionPdf(ray.d) * (ws.mode == WavelengthMode::Independent ? sensorPdf : 1.0f);
-  randomWalk(scene, ray, 1.0f, pdfDir, lambda, TransportMode::Radiance, ws, rng, counter, out);
+  // The sensor samples the last wavelength group (docs/bdpt-mis.md §2).
+  const float pdfDir = scene.camera.directionPdf(ray.d) * sensorPdf;
+  randomWalk(scene, ray, 1.0f, pdfDir, lambda, TransportMode::Radiance, false, ws, rng, counter, out);
 }
 
-void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSettings& ws, Sampler& rng, RayCounter& counter,
-                       std::vector<PathVertex>& out) {
+void traceLightSubpath(const Scene& scene, LightFamily family, float sharedLambda, const WalkSettings& ws, Sampler& rng,
+                       RayCounter& counter, std::vector<PathVertex>& out) {
   out.clear();
   size_t light = 0;
   float lambda = sharedLambda, choice = 0.0f;
   const float u1 = rng.uniform(), u2 = rng.uniform();
-  if (ws.mode == WavelengthMode::Independent) {
+  if (family == LightFamily::Own) {
     const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(*ws.lightWavelengths, u1, u2);
     light = lw.light, lambda = lw.lambda, choice = lw.pdf;
   } else {
@@ -145,7 +140,7 @@ void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSetting
   const float beta = es->Le * es->cosOrigin / (choice * es->pdfPos * es->pdfDir);
   const Vec3 origin = glm::dot(es->n, es->n) > 0.0f ? offsetPoint(es->p, es->n, es->w) : es->p;
   randomWalk(scene, Ray{origin, es->w}, beta, L.atInfinity() ? es->pdfPos : es->pdfDir, lambda,
-             TransportMode::Importance, ws, rng, counter, out);
+             TransportMode::Importance, family == LightFamily::Shared, ws, rng, counter, out);
 }
 
 }  // namespace kasha::bdpt
