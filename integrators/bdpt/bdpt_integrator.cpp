@@ -83,24 +83,7 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
     c.pixelScale = pixelScale;
   }
 
-  // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelength.
-  float L_pixel = 0.0f;
-  for (int t = 2; t <= int(C.size()); ++t) {
-    const PathVertex& ct = C[size_t(t - 1)];
-    L_pixel += emitterHit(c, C, t);
-    if (ct.kind != PathVertex::Kind::Surface) continue;
-    if (t - 1 <= ws_.maxDepth) {
-      L_pixel += nextEvent(c, C, t, rng);
-      if (!LO.empty()) L_pixel += connectLightVertex(c, LO, C, t);
-    }
-    for (int s = 2; s <= int(LS.size()) && (s - 1) + (t - 1) <= ws_.maxDepth; ++s)
-      L_pixel += connect(c, LS, LightFamily::Shared, s, C, t);
-    for (int s = 2; s <= int(LO.size()) && (s - 1) + (t - 1) <= ws_.maxDepth; ++s)
-      L_pixel += connect(c, LO, LightFamily::Own, s, C, t);
-  }
-  // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
-  for (int s = 1; s <= int(LS.size()) && s - 1 <= ws_.maxDepth; ++s) connectToCamera(c, LS, LightFamily::Shared, s, ctx.splats);
-  for (int s = 1; s <= int(LO.size()) && s - 1 <= ws_.maxDepth; ++s) connectToCamera(c, LO, LightFamily::Own, s, ctx.splats);
+  const float L_pixel = connectSubpaths(c, C, LS, LO, rng, ctx.splats);
   return sensorResponse(ctx, ws.lambda, L_pixel / ws.pdf);
 }
 

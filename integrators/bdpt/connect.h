@@ -10,6 +10,13 @@
 
 namespace kasha::bdpt {
 
+// One connection's weight both ways (tests: the recursion against the full recomputation).
+struct WeightCheck {
+  int s, t;
+  uint8_t variant;  // Variant
+  float recursive, full;
+};
+
 struct Context {
   const Scene& scene;
   const WalkSettings& walk;
@@ -26,6 +33,8 @@ struct Context {
   std::vector<StrategySample>* log = nullptr;
   Vec2 pixel{0.0f};
   Vec3 pixelScale{0.0f};
+  // Tests only: every weight also recomputed over the whole path (mis.h), both recorded here.
+  std::vector<WeightCheck>* oracle = nullptr;
 };
 
 // s = 0: the camera subpath's vertex C[t−1] lies on an emitter. Radiance, weighted.
@@ -44,5 +53,11 @@ float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fa
 // the light subpath sampled there; appends a splat (film units) if visible.
 void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
                      std::vector<Splat>& splats);
+
+// Every strategy of one camera sample: the camera subpath C joined to the light subpaths of the
+// shared (LS) and own (LO) families (either may be empty). Returns the pixel's radiance at the
+// camera's wavelength (weighted, t ≥ 2) and appends the t = 1 splats.
+float connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,
+                      const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats);
 
 }  // namespace kasha::bdpt

@@ -1,5 +1,7 @@
 #include "integrators/bdpt/subpaths.h"
 
+#include "integrators/bdpt/subpath_mis.h"
+
 namespace kasha::bdpt {
 namespace {
 
@@ -25,6 +27,7 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
         v.lambda = lambda;
         v.pdfFwd = pdfSA;
         path.push_back(v);
+        updateSums(path, mode);
       }
       return;
     }
@@ -39,6 +42,7 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     v.pdfFwd = prev.kind == PathVertex::Kind::Infinite ? pdfSA * std::abs(glm::dot(v.n, ray.d))  // disk → surface
                                                         : toAreaDensity(pdfSA, prev, v);
     path.push_back(v);
+    updateSums(path, mode);
     ++surfaces;
     // Vertices up to maxDepth sample their spectral event (used by next-event estimation and
     // the camera connection); camera vertices then extend up to maxDepth (the next one may be an
@@ -99,7 +103,9 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float se
   c.lambda = lambda;
   c.pdfFwd = 1.0f;
   c.deltaPosition = true;
+  c.wavelengthPdf = sensorPdf;
   out.push_back(c);
+  updateSums(out, TransportMode::Radiance);
   const Ray ray = scene.camera.generateRay(filmPos);
   // The sensor samples the last wavelength group (docs/bdpt-mis.md §2).
   const float pdfDir = scene.camera.directionPdf(ray.d) * sensorPdf;
@@ -134,9 +140,12 @@ void traceLightSubpath(const Scene& scene, LightFamily family, float sharedLambd
   v.deltaPosition = es->deltaPos;
   // At infinity the light vertex is a direction (density per sr) and the disk position is the
   // density of the first surface point; otherwise the position is the vertex.
-  v.pdfFwd = choice * (L.atInfinity() ? es->pdfDir : es->pdfPos);
-  v.beta = es->Le / v.pdfFwd;
+  const float start = L.atInfinity() ? es->pdfDir : es->pdfPos;
+  v.pdfFwd = scene.lightSelector->probability(light, lambda) * start;
+  v.wavelengthPdf = ws.lightWavelengths->pdf(lambda);
+  v.beta = es->Le / (choice * start);
   out.push_back(v);
+  updateSums(out, TransportMode::Importance);
   const float beta = es->Le * es->cosOrigin / (choice * es->pdfPos * es->pdfDir);
   const Vec3 origin = glm::dot(es->n, es->n) > 0.0f ? offsetPoint(es->p, es->n, es->w) : es->p;
   randomWalk(scene, Ray{origin, es->w}, beta, L.atInfinity() ? es->pdfPos : es->pdfDir, lambda,
