@@ -65,6 +65,11 @@ LightEnd lightEnd(const Context& c, int light, float lambda0, const PathVertex& 
   return e;
 }
 
+// The light end of a light subpath with at least two vertices, from what the subpath stored.
+LightEnd storedLightEnd(const std::vector<PathVertex>& L) {
+  return {L[0].pdfFwd, L[1].pdfFwd, L[0].wavelengthPdf, L[0].kind == Kind::Light};
+}
+
 MisFactors factors(const Context& c, const LightEnd& end, bool oneGroup) {
   return {c.families.shared, c.families.independent, end.lightPdf,
           c.bandwidth > 0.0f ? 1.0 / wavelengthKernel(0.0f, c.bandwidth) : 0.0, oneGroup};
@@ -317,7 +322,7 @@ float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fa
     if (c.bandwidth > 0.0f && std::abs(a.lambda - b.lambda) < c.bandwidth)
       pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kMollified};
   }
-  const LightEnd end = lightEnd(c, L[0].light, L[0].lambda, L[0], L[1]);
+  const LightEnd end = storedLightEnd(L);
   float sum = 0.0f;
   bool checked = false, unoccluded = false;
   for (int i = 0; i < n; ++i) {
@@ -389,9 +394,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   const Variant variant = family == LightFamily::Shared ? Variant::kStandard : Variant::kOwn;
   // The camera's density of a: its direction over the whole film times the sensor's density of the
   // wavelength arriving at it.
-  const double sensorPdf = c.sensor.pdf(lambda);
+  const double sensorPdf = family == LightFamily::Shared ? c.sensorPdf : c.sensor.pdf(lambda);
   const double pCamA = toAreaDensity(c.scene.camera.directionPdf(-conn->wi) * float(sensorPdf), cam, a);
-  const LightEnd end = lightEnd(c, L[0].light, L[0].lambda, L[0], s == 1 ? cam : L[1]);
+  const LightEnd end = s == 1 ? lightEnd(c, L[0].light, L[0].lambda, L[0], cam) : storedLightEnd(L);
   float value = 0.0f;
   MisSums here, own, lightSum;
   bool oneGroup = true;
