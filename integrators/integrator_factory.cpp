@@ -4,9 +4,9 @@
 
 #include "scene/wavelength_strategy.h"
 #include "integrators/bdpt/bdpt_integrator.h"
-#include "integrators/hero_path_tracer.h"
-#include "integrators/light_tracer.h"
-#include "integrators/path_tracer.h"
+#include "integrators/path_tracing/hero_path_tracer.h"
+#include "integrators/light_tracing/light_tracer.h"
+#include "integrators/path_tracing/path_tracer.h"
 #include "integrators/photon_mapping/ppm_integrator.h"
 
 namespace kasha {
