@@ -15,7 +15,7 @@
 
 #include "core/sampling.h"
 #include "scene/scene_loader.h"
-#include "integrators/path_tracer.h"
+#include "integrators/path_tracing/path_tracer.h"
 #include "integrators/render_loop.h"
 
 using namespace kasha;

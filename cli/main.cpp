@@ -407,7 +407,7 @@ int main(int argc, char** argv) {
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")
       ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 4096));
   render->add_option("--integrator", ra.integrator,
-                     "Integrator: pt | lt | bdpt (= bdpt-independent) | bdpt-shared | bdpt-independent | bdpt-mollified | ppm")
+                     "Integrator: pt | lt | bdpt (both wavelength families) | bdpt-shared | bdpt-independent | bdpt-mollified | ppm")
       ->check(kIntegratorName);
   render->add_option("--mollify-bandwidth", ra.mollifyBandwidth,
                      "bdpt-mollified: wavelength kernel half-width of the first pass in nm (0: 2% of the range)")
@@ -447,7 +447,7 @@ int main(int argc, char** argv) {
                      "light | absorption | yamamoto | mix:absorption,light")
       ->check(strategy);
   render->add_option("--light-sampling", ra.light,
-                     "Light subpath wavelength (lt, bdpt-independent, ppm), e.g. light | uniform | mix:light,absorption")
+                     "Light subpath wavelength (lt, bdpt, bdpt-independent, ppm), e.g. light | uniform | mix:light,absorption")
       ->check(strategy);
   render->add_option("--nee-sampling", ra.nee,
                      "Excitation wavelength of next-event estimation after a fluorescent event (pt): event (the "

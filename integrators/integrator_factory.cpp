@@ -4,9 +4,9 @@
 
 #include "scene/wavelength_strategy.h"
 #include "integrators/bdpt/bdpt_integrator.h"
-#include "integrators/hero_path_tracer.h"
-#include "integrators/light_tracer.h"
-#include "integrators/path_tracer.h"
+#include "integrators/path_tracing/hero_path_tracer.h"
+#include "integrators/light_tracing/light_tracer.h"
+#include "integrators/path_tracing/path_tracer.h"
 #include "integrators/photon_mapping/ppm_integrator.h"
 
 namespace kasha {
@@ -63,8 +63,9 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
   }
   if (bdpt) {
     if (name == "bdpt-shared") requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
-    const bdpt::WavelengthMode mode =
-        name == "bdpt-shared" ? bdpt::WavelengthMode::Shared : bdpt::WavelengthMode::Independent;
+    const bdpt::WavelengthMode mode = name == "bdpt-shared" ? bdpt::WavelengthMode::Shared
+                                      : name == "bdpt"      ? bdpt::WavelengthMode::Unified
+                                                            : bdpt::WavelengthMode::Independent;
     return std::make_unique<Bdpt>(scene, s, mode, mollified ? &s.mollify : nullptr);
   }
   return std::make_unique<PpmIntegrator>(scene, s);

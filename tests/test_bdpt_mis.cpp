@@ -10,9 +10,13 @@ namespace {
 constexpr SpectralLobe E = SpectralLobe::Elastic, F = SpectralLobe::Fluorescent;
 
 // A path x_0 … x_k with the given interior lobes and random positive densities.
-FullPath randomPath(const std::vector<SpectralLobe>& interior, WavelengthMode mode, Rng& rng) {
+constexpr Families kShared{true, false}, kIndependent{false, true}, kBoth{true, true};
+
+FullPath randomPath(const std::vector<SpectralLobe>& interior, Families families, Rng& rng) {
   FullPath p;
-  p.mode = mode;
+  p.families = families;
+  p.lightPdf = 0.01 + rng.uniform();
+  p.sensorPdf = 0.01 + rng.uniform();
   p.v.resize(interior.size() + 2);
   for (size_t i = 0; i < p.v.size(); ++i) {
     p.v[i].pdfLight = 0.01 + rng.uniform();
@@ -31,7 +35,7 @@ FullPath randomPath(const std::vector<SpectralLobe>& interior, WavelengthMode mo
 double weightSum(const FullPath& p) {
   const int k = int(p.v.size()) - 1;
   double sum = 0.0;
-  for (int s = 0; s <= k; ++s) sum += misWeight(p, s, Variant::kStandard);
+  for (int s = 0; s <= k; ++s) sum += misWeight(p, s, Variant::kStandard) + misWeight(p, s, Variant::kOwn);
   if (k >= 2) sum += misWeight(p, 1, Variant::kLightVertex);
   for (int s = 2; s < k; ++s) sum += misWeight(p, s, Variant::kMollified);
   return sum;
@@ -41,7 +45,7 @@ TEST(BdptMis, WeightsArePartitionOfUnity) {
   Rng rng(5);
   const std::vector<std::vector<SpectralLobe>> lobes = {{}, {E}, {F}, {E, E}, {E, F}, {F, E}, {F, F, E}, {E, F, E, F}};
   for (const auto& l : lobes)
-    for (WavelengthMode m : {WavelengthMode::Shared, WavelengthMode::Independent})
+    for (Families m : {kShared, kIndependent, kBoth})
       for (int trial = 0; trial < 20; ++trial) {
         FullPath p = randomPath(l, m, rng);
         EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
@@ -52,7 +56,7 @@ TEST(BdptMis, WeightsArePartitionOfUnity) {
 
 TEST(BdptMis, MollifiedStrategiesJoinTwoElasticVerticesInTheIndependentFamily) {
   Rng rng(4);
-  FullPath p = randomPath({E, E, F, E}, WavelengthMode::Independent, rng);  // x_0 … x_5 (camera)
+  FullPath p = randomPath({E, E, F, E}, kIndependent, rng);  // x_0 … x_5 (camera)
   for (int s = 0; s <= 5; ++s) EXPECT_FALSE(strategyValid(p, s, Variant::kMollified)) << "off without a kernel";
   p.mollifyWidth = 2.0;
   EXPECT_TRUE(strategyValid(p, 2, Variant::kMollified));   // x_1 (E) – x_2 (E)
@@ -64,10 +68,10 @@ TEST(BdptMis, MollifiedStrategiesJoinTwoElasticVerticesInTheIndependentFamily) {
   // weight ratio to strategy 3 follows from the layout alone.
   const double d2 = p.v[0].pdfLight * p.v[1].pdfLight * p.v[2].pdfCam * p.v[3].pdfCam * p.v[4].pdfCam * p.v[5].pdfCam;
   const double d3 = p.v[0].pdfLight * p.v[1].pdfLight * p.v[2].pdfLight * p.v[3].pdfCam * p.v[4].pdfCam * p.v[5].pdfCam;
-  const double ratio = misWeight(p, 2, Variant::kMollified) / misWeight(p, 3);
+  const double ratio = misWeight(p, 2, Variant::kMollified) / misWeight(p, 3, Variant::kOwn);
   EXPECT_NEAR(ratio, (2.0 * d2 / d3) * (2.0 * d2 / d3), 1e-5 * ratio);
   FullPath shared = p;
-  shared.mode = WavelengthMode::Shared;
+  shared.families = kShared;
   EXPECT_FALSE(strategyValid(shared, 2, Variant::kMollified));  // Shared joins elastic vertices exactly
   p.v[1].connectible = false;
   EXPECT_FALSE(strategyValid(p, 2, Variant::kMollified));
@@ -76,42 +80,78 @@ TEST(BdptMis, MollifiedStrategiesJoinTwoElasticVerticesInTheIndependentFamily) {
 TEST(BdptMis, IndependentConnectionsNeedExactlyOneFluorescentEnd) {
   Rng rng(1);
   // x_0 x_1 x_2 x_3 x_4(camera): lobes at x_1..x_3 = E, F, E
-  const FullPath p = randomPath({E, F, E}, WavelengthMode::Independent, rng);
-  EXPECT_TRUE(strategyValid(p, 0));
+  const FullPath p = randomPath({E, F, E}, kIndependent, rng);
+  EXPECT_TRUE(strategyValid(p, 0, Variant::kStandard));
   EXPECT_TRUE(strategyValid(p, 1, Variant::kStandard));
   EXPECT_FALSE(strategyValid(p, 1, Variant::kLightVertex));  // x_1 is elastic
-  EXPECT_TRUE(strategyValid(p, 2));                       // x_1 (E) – x_2 (F)
-  EXPECT_TRUE(strategyValid(p, 3));                       // x_2 (F) – x_3 (E)
-  EXPECT_TRUE(strategyValid(p, 4));                       // t = 1, x_3 elastic
-  const FullPath q = randomPath({F, E, F}, WavelengthMode::Independent, rng);
+  EXPECT_TRUE(strategyValid(p, 2, Variant::kOwn));  // x_1 (E) – x_2 (F)
+  EXPECT_TRUE(strategyValid(p, 3, Variant::kOwn));  // x_2 (F) – x_3 (E)
+  EXPECT_TRUE(strategyValid(p, 4, Variant::kOwn));  // t = 1, x_3 elastic
+  for (int s = 2; s <= 4; ++s) EXPECT_FALSE(strategyValid(p, s, Variant::kStandard)) << "no shared subpath";
+  const FullPath q = randomPath({F, E, F}, kIndependent, rng);
   EXPECT_TRUE(strategyValid(q, 1, Variant::kLightVertex));
-  EXPECT_TRUE(strategyValid(q, 2));    // x_1 (F) – x_2 (E)
-  EXPECT_TRUE(strategyValid(q, 3));    // x_2 (E) – x_3 (F)
-  EXPECT_TRUE(strategyValid(q, 4));    // t = 1 samples x_3's fluorescent event itself
-  const FullPath e = randomPath({E, E}, WavelengthMode::Independent, rng);
-  EXPECT_FALSE(strategyValid(e, 2));   // elastic–elastic joins two independent wavelengths
-  EXPECT_TRUE(strategyValid(e, 3));    // light tracing samples the single group
+  EXPECT_TRUE(strategyValid(q, 2, Variant::kOwn));  // x_1 (F) – x_2 (E)
+  EXPECT_TRUE(strategyValid(q, 3, Variant::kOwn));  // x_2 (E) – x_3 (F)
+  EXPECT_TRUE(strategyValid(q, 4, Variant::kOwn));  // t = 1 samples x_3's fluorescent event itself
+  const FullPath e = randomPath({E, E}, kIndependent, rng);
+  EXPECT_FALSE(strategyValid(e, 2, Variant::kOwn));  // elastic–elastic joins two independent wavelengths
+  EXPECT_TRUE(strategyValid(e, 3, Variant::kOwn));   // light tracing samples the single group
 }
 
 TEST(BdptMis, SharedBidirectionalStrategiesOnlyForElasticPaths) {
   Rng rng(2);
-  const FullPath el = randomPath({E, E}, WavelengthMode::Shared, rng);
-  for (int s = 0; s <= 3; ++s) EXPECT_TRUE(strategyValid(el, s)) << s;
+  const FullPath el = randomPath({E, E}, kShared, rng);
+  for (int s = 0; s <= 3; ++s) EXPECT_TRUE(strategyValid(el, s, Variant::kStandard)) << s;
+  for (int s = 0; s <= 3; ++s) EXPECT_FALSE(strategyValid(el, s, Variant::kOwn)) << "no own-wavelength subpath";
   EXPECT_FALSE(strategyValid(el, 1, Variant::kLightVertex));
-  const FullPath fl = randomPath({E, F}, WavelengthMode::Shared, rng);
-  EXPECT_TRUE(strategyValid(fl, 0));
+  const FullPath fl = randomPath({E, F}, kShared, rng);
+  EXPECT_TRUE(strategyValid(fl, 0, Variant::kStandard));
   EXPECT_TRUE(strategyValid(fl, 1, Variant::kStandard));
-  EXPECT_FALSE(strategyValid(fl, 2));
-  EXPECT_FALSE(strategyValid(fl, 3));
+  EXPECT_FALSE(strategyValid(fl, 2, Variant::kStandard));
+  EXPECT_FALSE(strategyValid(fl, 3, Variant::kStandard));
+}
+
+// Both families in one MIS (docs/bdpt-mis.md §5): an elastic path has the shared family's joins and
+// t = 1 plus the own family's t = 1; a fluorescent one only the own family's exact joins.
+TEST(BdptMis, UnifiedHasBothFamiliesWhereEachIsExact) {
+  Rng rng(6);
+  const FullPath el = randomPath({E, E, E}, kBoth, rng);  // x_0 … x_4 (camera)
+  for (int s = 0; s <= 4; ++s) EXPECT_TRUE(strategyValid(el, s, Variant::kStandard)) << s;
+  for (int s = 1; s <= 3; ++s) EXPECT_FALSE(strategyValid(el, s, Variant::kOwn)) << s;
+  EXPECT_TRUE(strategyValid(el, 4, Variant::kOwn));  // t = 1 at the light's own wavelength
+  const FullPath fl = randomPath({E, F, E}, kBoth, rng);
+  for (int s = 2; s <= 4; ++s) EXPECT_FALSE(strategyValid(fl, s, Variant::kStandard)) << s;
+  for (int s = 2; s <= 4; ++s) EXPECT_TRUE(strategyValid(fl, s, Variant::kOwn)) << s;
+  const FullPath direct = randomPath({}, kBoth, rng);  // k = 1: the light seen by the camera
+  EXPECT_TRUE(strategyValid(direct, 1, Variant::kStandard));
+  EXPECT_TRUE(strategyValid(direct, 1, Variant::kOwn));
+}
+
+// The two t = 1 strategies of an elastic path differ only in who drew its one wavelength: the
+// sensor (shared family) or the light-start strategy (own family).
+TEST(BdptMis, TheTwoLightTracingStrategiesDifferByTheirWavelengthDensities) {
+  Rng rng(7);
+  for (int k = 1; k <= 4; ++k) {
+    FullPath p = randomPath(std::vector<SpectralLobe>(size_t(k - 1), E), kBoth, rng);
+    const double ratio = misWeight(p, k, Variant::kOwn) / misWeight(p, k, Variant::kStandard);
+    EXPECT_NEAR(ratio, (p.lightPdf / p.sensorPdf) * (p.lightPdf / p.sensorPdf), 1e-5 * ratio) << k;
+    // The shared t = 1 against the camera hitting the light: every factor written out.
+    double light = p.sensorPdf, camera = 1.0;
+    for (int i = 0; i < k; ++i) light *= p.v[size_t(i)].pdfLight;
+    if (k >= 2) light *= p.specLightLast;
+    for (int i = 0; i <= k; ++i) camera *= p.v[size_t(i)].pdfCam;
+    const double r0 = misWeight(p, 0, Variant::kStandard) / misWeight(p, k, Variant::kStandard);
+    EXPECT_NEAR(r0, (camera / light) * (camera / light), 1e-5 * r0) << k;
+  }
 }
 
 TEST(BdptMis, DeltaVerticesCannotBeConnected) {
   Rng rng(3);
-  FullPath p = randomPath({E, E}, WavelengthMode::Shared, rng);
+  FullPath p = randomPath({E, E}, kShared, rng);
   p.v[1].connectible = false;  // a mirror at x_1
   EXPECT_FALSE(strategyValid(p, 1, Variant::kStandard));
-  EXPECT_FALSE(strategyValid(p, 2));
-  EXPECT_TRUE(strategyValid(p, 3));
+  EXPECT_FALSE(strategyValid(p, 2, Variant::kStandard));
+  EXPECT_TRUE(strategyValid(p, 3, Variant::kStandard));
   EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
 }
 

@@ -79,8 +79,8 @@ TEST_P(Convergence, StandardErrorFallsAsOneOverRootN) {
 INSTANTIATE_TEST_SUITE_P(Cornell, Agreement,
                          ::testing::Combine(::testing::Values("cornell_fluorescent.json", "cornell_uv.json",
                                                               "cornell_glossy.json"),
-                                            ::testing::Values("lt", "bdpt-shared", "bdpt-independent")));
-INSTANTIATE_TEST_SUITE_P(Cornell, Convergence, ::testing::Values("pt", "lt", "bdpt-shared", "bdpt-independent"));
+                                            ::testing::Values("lt", "bdpt", "bdpt-shared", "bdpt-independent")));
+INSTANTIATE_TEST_SUITE_P(Cornell, Convergence, ::testing::Values("pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent"));
 
 }  // namespace
 }  // namespace kasha

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/scene_loader.h"
-#include "integrators/path_tracer.h"
+#include "integrators/path_tracing/path_tracer.h"
 #include "integrators/render_loop.h"
 #include "tests/support.h"
 

@@ -42,7 +42,7 @@ def small_scene(tmp):
 def main():
     with tempfile.TemporaryDirectory() as tmp:
         images = os.path.join(tmp, "strategies")
-        cmd = [KASHA, "render", small_scene(tmp), "--integrator", "bdpt", "--spp", str(SPP), "--seed", "1",
+        cmd = [KASHA, "render", small_scene(tmp), "--integrator", "bdpt-independent", "--spp", str(SPP), "--seed", "1",
                "--exposure", str(EXPOSURE), "--strategy-images", images, "--strategy-depth", str(DEPTH),
                "-o", os.path.join(tmp, "full.exr"), "-q"]
         print(" ".join(cmd[:1] + ["render", "<cornell_uv at %dx%d>" % (SIZE, SIZE)] + cmd[3:]))
@@ -61,7 +61,8 @@ def main():
         for d in range(DEPTH + 1):
             for s in range(d + 2):
                 t = d + 2 - s
-                png = os.path.join(images, "s%d_t%d.png" % (s, t))
+                # s = 0 and next-event estimation are the camera's; joins and t = 1 the own family's.
+                png = os.path.join(images, "s%d_t%d%s.png" % (s, t, "" if s <= 1 and t >= 2 else "_own"))
                 if os.path.exists(png):
                     axes[d][s].imshow(mpimg.imread(png))
                 axes[d][s].set_title("s=%d, t=%d" % (s, t), fontsize=8)

@@ -10,6 +10,20 @@
 namespace kasha {
 namespace {
 
+bool sceneFluoresces(const Scene& scene) {
+  for (const auto& m : scene.materials)
+    if (has(m->flags(), BsdfFlags::Fluorescent)) return true;
+  return false;
+}
+
+// The light subpaths of each camera sample (docs/bdpt-mis.md §5): the unified estimator traces an
+// own-wavelength one only where some path can fluoresce, since on elastic paths the shared family
+// has every strategy the own one has.
+bdpt::Families familiesFor(const Scene& scene, bdpt::WavelengthMode mode) {
+  using M = bdpt::WavelengthMode;
+  return {mode != M::Independent, mode == M::Independent || (mode == M::Unified && sceneFluoresces(scene))};
+}
+
 struct MollifyPass final : PassData {
   explicit MollifyPass(float h) : bandwidth(h) {}
   float bandwidth;
@@ -20,11 +34,11 @@ struct MollifyPass final : PassData {
 Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bdpt::WavelengthMode mode, const MollificationSettings* m)
     : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
       light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
-      ws_{s.maxDepth, s.rrDepth, mode, &light_.density()} {
+      ws_{s.maxDepth, s.rrDepth, &light_.density()}, mode_(mode), families_(familiesFor(scene, mode)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by bdpt (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by bdpt (its MIS weights need the light-start density)");
   if (!m) return;
-  if (ws_.mode != bdpt::WavelengthMode::Independent)
+  if (mode_ != bdpt::WavelengthMode::Independent)
     throw std::invalid_argument("bdpt: mollification needs the independent wavelength family");
   if (!(m->bandwidth >= 0.0f)) throw std::invalid_argument("bdpt: the mollification bandwidth must not be negative");
   if (!(m->alpha > 0.0f && m->alpha < 1.0f)) throw std::invalid_argument("bdpt: the mollification alpha must be in (0, 1)");
@@ -34,7 +48,8 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bdpt::WavelengthMode mod
 
 std::string Bdpt::name() const {
   if (mollifies()) return "bdpt-mollified";
-  return ws_.mode == bdpt::WavelengthMode::Shared ? "bdpt-shared" : "bdpt-independent";
+  if (mode_ == bdpt::WavelengthMode::Unified) return "bdpt";
+  return mode_ == bdpt::WavelengthMode::Shared ? "bdpt-shared" : "bdpt-independent";
 }
 
 float Bdpt::bandwidth(int sample) const {
@@ -50,14 +65,16 @@ int Bdpt::maxSamplesPerPass() const { return mollifies() ? 1 : Integrator::maxSa
 
 Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   using namespace bdpt;
-  thread_local std::vector<PathVertex> C, L;
-  if (C.capacity() < 16) C.reserve(16), L.reserve(16);
+  thread_local std::vector<PathVertex> C, LS, LO;  // the camera subpath, the shared and own light subpaths
+  if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
   const WavelengthSample ws = sensor_.density().sample(rng.uniform());
   if (ws.pdf <= 0.0f) return Vec3(0.0f);
   const Vec2 film = pixel + rng.uniform2();
   traceCameraSubpath(scene, film, ws.lambda, ws.pdf, ws_, rng, ctx.counter, C);
-  traceLightSubpath(scene, ws.lambda, ws_, rng, ctx.counter, L);
-  Context c{scene, ws_, ws.lambda, ws.pdf, sensor_.density(), ctx.counter};
+  LS.clear(), LO.clear();
+  if (families_.shared) traceLightSubpath(scene, LightFamily::Shared, ws.lambda, ws_, rng, ctx.counter, LS);
+  if (families_.independent) traceLightSubpath(scene, LightFamily::Own, ws.lambda, ws_, rng, ctx.counter, LO);
+  Context c{scene, ws_, families_, ws.lambda, ws.pdf, sensor_.density(), ctx.counter};
   if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;
   const Vec3 pixelScale = Observer::cie1931().weight(ws.lambda) / ws.pdf;  // W(λ)/p(λ)
   if (ctx.recordStrategies) {
@@ -66,20 +83,7 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
     c.pixelScale = pixelScale;
   }
 
-  // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelength.
-  float L_pixel = 0.0f;
-  for (int t = 2; t <= int(C.size()); ++t) {
-    const PathVertex& ct = C[size_t(t - 1)];
-    L_pixel += emitterHit(c, C, t);
-    if (ct.kind != PathVertex::Kind::Surface) continue;
-    if (t - 1 <= ws_.maxDepth) {
-      L_pixel += nextEvent(c, C, t, rng);
-      if (ws_.mode == WavelengthMode::Independent && !L.empty()) L_pixel += connectLightVertex(c, L, C, t);
-    }
-    for (int s = 2; s <= int(L.size()) && (s - 1) + (t - 1) <= ws_.maxDepth; ++s) L_pixel += connect(c, L, s, C, t);
-  }
-  // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
-  for (int s = 1; s <= int(L.size()) && s - 1 <= ws_.maxDepth; ++s) connectToCamera(c, L, s, ctx.splats);
+  const float L_pixel = connectSubpaths(c, C, LS, LO, rng, ctx.splats);
   return sensorResponse(ctx, ws.lambda, L_pixel / ws.pdf);
 }
 

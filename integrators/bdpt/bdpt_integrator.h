@@ -1,14 +1,17 @@
 #pragma once
 // Bidirectional path tracing for bispectral scenes (docs/bdpt-mis.md): every (s, t) strategy,
 // densities both ways, every wavelength density in the MIS weights, and the two exact wavelength
-// families of transport.md §3 — light subpaths sharing the camera sample's wavelength (Shared) or
-// drawing their own from the light-start strategy, by default the lights' power spectrum
-// (Independent), the latter joined through a connection vertex that evaluates its fluorescent
-// lobe. The sensor and light-start strategies must be densities (single or mix:), which enter
-// the MIS weights. Optionally (Independent only) spectral mollification joins elastic connection
+// families of transport.md §3 — light subpaths sharing the camera sample's wavelength (Shared),
+// joined to elastic camera vertices on paths that never fluoresce, and light subpaths drawing their
+// own from the light-start strategy, by default the lights' power spectrum (Independent), joined
+// through a connection vertex that evaluates its fluorescent lobe. `bdpt` (Unified) combines both
+// in one MIS (docs/bdpt-mis.md §5); `bdpt-shared` and `bdpt-independent` are each family alone.
+// The sensor and light-start strategies must be densities (single or mix:), which enter the MIS
+// weights. Optionally (Independent only) spectral mollification joins elastic connection
 // vertices through a wavelength kernel whose half-width shrinks pass by pass (docs/bdpt-mis.md
 // §6); each pass then takes one sample per pixel.
 #include "scene/wavelength_strategy.h"
+#include "integrators/bdpt/mis.h"
 #include "integrators/bdpt/subpaths.h"
 #include "integrators/integrator.h"
 
@@ -35,6 +38,8 @@ class Bdpt final : public Integrator {
  private:
   WavelengthStrategy sensor_, light_;
   bdpt::WalkSettings ws_;
+  bdpt::WavelengthMode mode_;
+  bdpt::Families families_;
   float bandwidth1_ = 0.0f, alpha_ = 0.0f;
 };
 

@@ -1,6 +1,7 @@
 #include "integrators/bdpt/connect.h"
 
 #include "core/color.h"
+#include "integrators/bdpt/subpath_mis.h"
 #include "integrators/progressive_schedule.h"
 
 namespace kasha::bdpt {
@@ -42,25 +43,45 @@ double lightSide(const Scene& scene, const PathVertex& at, const PathVertex& lig
   return toArea(scene, pdf, at, target);
 }
 
-// The densities at the light end: x_0 on light `light` at wavelength λ_0, x_1 its neighbour.
-void lightEnd(const Context& c, int light, float lambda0, const PathVertex& x0, const PathVertex& x1, FullPath& fp) {
+// The light end x_0 (light `light`, wavelength λ_0) seen from its neighbour x_1.
+struct LightEnd {
+  double pdf0 = 0.0;      // pL_0 = p(light | λ_0)·p_A (per sr at infinity): also next-event estimation's
+  double pdf1 = 0.0;      // pL_1: the light side's density of x_1 (0 if x_1 is the camera)
+  double lightPdf = 0.0;  // p_light(λ_0)
+  bool finite = false;    // x_0 is at a finite position
+};
+
+LightEnd lightEnd(const Context& c, int light, float lambda0, const PathVertex& x0, const PathVertex& x1) {
   const Light& L = *c.scene.lights[size_t(light)];
   const Vec3 w = L.atInfinity() ? x0.dir : glm::normalize(x1.p - x0.p);
   float pdfPos = 0.0f, pdfDir = 0.0f;
   L.emissionPdfs(x0.p, x0.n, w, pdfPos, pdfDir);
-  const float startDensity = L.atInfinity() ? pdfDir : pdfPos;  // of x_0 itself
-  fp.v[0].pdfLight = double(lightChoicePdf(c.scene, light, lambda0, c.walk)) * startDensity;
-  fp.v[0].connectible = true;
+  LightEnd e;
+  e.pdf0 = double(c.scene.lightSelector->probability(size_t(light), lambda0)) * (L.atInfinity() ? pdfDir : pdfPos);
   if (x1.kind != Kind::Camera)
-    fp.v[1].pdfLight = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
-  fp.pdfNee = double(c.scene.lightSelector->probability(size_t(light), lambda0)) * startDensity;
-  fp.lightVertexConnectible = !L.atInfinity();
+    e.pdf1 = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
+  e.lightPdf = c.walk.lightWavelengths->pdf(lambda0);
+  e.finite = !L.atInfinity();
+  return e;
 }
 
-// Stored densities of the subpath vertices L[0..s−1], C[0..t−1] laid out as x_0 … x_k.
-FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t) {
+// The light end of a light subpath with at least two vertices, from what the subpath stored.
+LightEnd storedLightEnd(const std::vector<PathVertex>& L) {
+  return {L[0].pdfFwd, L[1].pdfFwd, L[0].wavelengthPdf, L[0].kind == Kind::Light};
+}
+
+MisFactors factors(const Context& c, const LightEnd& end, bool oneGroup) {
+  return {c.families.shared, c.families.independent, end.lightPdf,
+          c.bandwidth > 0.0f ? 1.0 / wavelengthKernel(0.0f, c.bandwidth) : 0.0, oneGroup};
+}
+
+// The full recomputation (test oracle, docs/bdpt-mis.md §5): the stored densities of L[0..s−1],
+// C[0..t−1] laid out as x_0 … x_k, with the light end's.
+FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t,
+                const LightEnd& end) {
   FullPath fp;
-  fp.mode = c.walk.mode;
+  fp.families = c.families;
+  fp.sensorPdf = c.sensorPdf;  // the camera's wavelength, unless t = 1 says otherwise
   const int k = s + t - 1;
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {
@@ -73,7 +94,14 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   }
   fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
   fp.v[size_t(k)].pdfLight = 0.0;
-  if (c.walk.mode == WavelengthMode::Independent && c.bandwidth > 0.0f) fp.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
+  // The light end where no light subpath vertex stores it.
+  if (s == 0) fp.v[0].pdfLight = end.pdf0;
+  if (s <= 1 && end.pdf1 > 0.0) fp.v[1].pdfLight = end.pdf1;
+  fp.v[0].connectible = true;
+  fp.pdfNee = fp.v[0].pdfLight;  // p(light | λ_0)·p_A, as the recursion has it
+  fp.lightPdf = end.lightPdf;
+  fp.lightVertexConnectible = end.finite;
+  if (c.bandwidth > 0.0f) fp.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
   return fp;
 }
 
@@ -87,6 +115,17 @@ double specCamera(const PathVertex& x1, SpectralLobe lobe, float lambda0, float 
 // vertex (then `lobe`/`lambdaIn` give the connection's).
 double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn) {
   return c1.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, c1.lambda, lobe);
+}
+
+// A strategy's weight from the recursive sums: its own c² over the path's whole sum
+// (docs/bdpt-mis.md eq. 11). With c.oracle set, the full recomputation `full()` is recorded beside it.
+template <class Full>
+float weigh(const Context& c, int s, int t, Variant v, const MisSums& own, const MisSums& total, const MisFactors& f,
+            Full&& full) {
+  const double sum = combine(total, f);
+  const float w = sum > 0.0 ? float(combine(own, f) / sum) : 0.0f;
+  if (c.oracle) c.oracle->push_back({s, t, uint8_t(v), w, full()});
+  return w;
 }
 
 // Records a strategy's share of the sample at the camera sample's pixel (strategies with t ≥ 2).
@@ -106,6 +145,22 @@ bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
   return !c.scene.accel->occluded(o, w, dist * (1.0f - 1e-4f) - shorten - rayEpsilon(a.p));
 }
 
+// The camera side's sum when the light's side is the light end alone (s ≤ 1): C[t−1] is x_s, with
+// the light side's density pLast, the strategy with t − 1 camera vertices `mLast`; C[t−2] with
+// the light side's density pBefore.
+MisSums cameraSum(const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast, double pBefore) {
+  const PathVertex& b = C[size_t(t - 1)];
+  const PathVertex& bNext = C[size_t(t - 2)];
+  return sideSum(b.sums, densityRatio(pBefore, bNext.pdfFwd), cameraMultiplicity(C, t - 2), densityRatio(pLast, b.pdfFwd),
+                 mLast);
+}
+
+// The light side's sum of a strategy whose light subpath ends at x_0 (s = 1): the camera side's
+// density pCam0 of it over the light side's, pLight0.
+MisSums lightEndSum(double pCam0, double pLight0) {
+  return extend({}, densityRatio(pCam0, pLight0), MisSums{1.0, 0.0, 0.0, 0.0});  // s' = 0: M = 1
+}
+
 }  // namespace
 
 float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
@@ -117,15 +172,24 @@ float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
                        : static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission->eval(
                              e.lambda, e.n, towards(e, next));
   if (!(Le > 0.0f)) return 0.0f;
-  FullPath fp = layout(c, nullptr, 0, C, t);
-  lightEnd(c, e.light, e.lambda, e, next, fp);
+  const LightEnd end = lightEnd(c, e.light, e.lambda, e, next);
   const int k = t - 1;
-  if (k >= 2) {
-    fp.specCam1 = C[size_t(t - 2)].spectralPdf;
-    fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-  }
-  else fp.lightSeenByPinhole = e.kind == Kind::Surface;
-  const float weight = misWeight(fp, 0);
+  // The strategies with one light vertex: next-event estimation and the light vertex at x_1, or
+  // for k = 1 the light seen by the camera.
+  const MisSums m1 = k >= 2 ? firstVertexMultiplicity(next.connectible(), next.lobe, next.spectralPdf, end.finite)
+                            : directLightMultiplicity(e.kind == Kind::Surface, c.sensorPdf);
+  const MisSums own{1.0, 0.0, 0.0, 0.0};
+  const MisSums total = own + cameraSum(C, t, end.pdf0, m1, end.pdf1);
+  const float weight = weigh(c, 0, t, Variant::kStandard, own, total, factors(c, end, e.elasticBefore), [&] {
+    FullPath fp = layout(c, nullptr, 0, C, t, end);
+    if (k >= 2) {
+      fp.specCam1 = next.spectralPdf;
+      fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+    } else {
+      fp.lightSeenByPinhole = e.kind == Kind::Surface;
+    }
+    return misWeight(fp, 0, Variant::kStandard);
+  });
   record(c, 0, t, Variant::kStandard, e.beta * Le, weight);
   return e.beta * Le * weight;
 }
@@ -158,15 +222,25 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampl
   const Vec3 wi = f.toLocal(ls->wi), wo = f.toLocal(towards(x1, x2));
   const float fx = x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda0, x1.lambda, x1.lobe);
   if (!(fx > 0.0f) || !visible(c, x1, x0)) return 0.0f;
-  FullPath fp = layout(c, nullptr, 0, C, t);  // x_1 … x_k; prepend x_0
-  fp.v.insert(fp.v.begin(), FullVertex{});
-  lightEnd(c, int(li), lambda0, x0, x1, fp);
-  fp.v[0].pdfCam = cameraSide(c.scene, x1, x2, x0, x1.lobe, lambda0, x1.lambda);
-  if (x2.kind != Kind::Camera) fp.v[2].pdfLight = lightSide(c.scene, x1, x0, x2, x1.lobe, lambda0, x1.lambda);
-  fp.specCam1 = x1.spectralPdf;
-  fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+  const LightEnd end = lightEnd(c, int(li), lambda0, x0, x1);
+  const double pCam0 = cameraSide(c.scene, x1, x2, x0, x1.lobe, lambda0, x1.lambda);
+  const double pLight2 = x2.kind != Kind::Camera ? lightSide(c.scene, x1, x0, x2, x1.lobe, lambda0, x1.lambda) : 0.0;
+  const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite);
+  const MisSums own{x1.spectralPdf * double(x1.spectralPdf), 0.0, 0.0, 0.0};
+  const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1), pLight2);
+  const bool oneGroup = x1.elasticBefore && x1.lobe == SpectralLobe::Elastic;
+  const float weight = weigh(c, 1, t, Variant::kStandard, own, total, factors(c, end, oneGroup), [&] {
+    PathVertex light = x0;
+    light.pdfFwd = float(end.pdf0);
+    light.pdfRev = float(pCam0);
+    const std::vector<PathVertex> L1{light};
+    FullPath fp = layout(c, &L1, 1, C, t, end);
+    if (x2.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
+    fp.specCam1 = x1.spectralPdf;
+    fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+    return misWeight(fp, 1, Variant::kStandard);
+  });
   const float value = x1.beta * fx * std::abs(wi.z) / x1.spectralPdf * ls->Li / (pSel * ls->pdf);
-  const float weight = misWeight(fp, 1);
   record(c, 1, t, Variant::kStandard, value, weight);
   return value * weight;
 }
@@ -185,28 +259,35 @@ float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, con
   const Bsdf& fb = *b.bsdf;
   const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
   // x_1 bridges the light's wavelength to the camera's with its fluorescent lobe.
-  const float f = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, a.lambda, b.lambda, SpectralLobe::Fluorescent);
+  constexpr SpectralLobe F = SpectralLobe::Fluorescent;
+  const float f = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, a.lambda, b.lambda, F);
   if (!(f > 0.0f)) return 0.0f;
   const float cosA = glm::dot(a.n, a.n) > 0.0f ? std::abs(glm::dot(a.n, w)) : 1.0f;
   const float G = cosA * std::abs(bWi.z) / dist2;
-  FullPath fp = layout(c, &L, 1, C, t);
-  fp.v[1].lobe = SpectralLobe::Fluorescent;
-  lightEnd(c, a.light, a.lambda, a, b, fp);
-  fp.v[0].pdfLight = a.pdfFwd;
-  fp.v[0].pdfCam = cameraSide(c.scene, b, bNext, a, SpectralLobe::Fluorescent, a.lambda, b.lambda);
-  if (bNext.kind != Kind::Camera)
-    fp.v[2].pdfLight = lightSide(c.scene, b, a, bNext, SpectralLobe::Fluorescent, a.lambda, b.lambda);
-  fp.specCam1 = specCamera(b, SpectralLobe::Fluorescent, a.lambda, b.lambda);
-  fp.specLightLast = t == 2 ? specLightLast(b, SpectralLobe::Fluorescent, a.lambda)
-                            : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-  const float weight = misWeight(fp, 1, Variant::kLightVertex);
+  const LightEnd end = lightEnd(c, a.light, a.lambda, a, b);
+  const double pCam0 = cameraSide(c.scene, b, bNext, a, F, a.lambda, b.lambda);
+  const double pLight2 = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, F, a.lambda, b.lambda) : 0.0;
+  const double specCam1 = specCamera(b, F, a.lambda, b.lambda);
+  const MisSums own{0.0, 1.0, 0.0, 0.0};
+  const MisSums total = firstVertexMultiplicity(true, F, specCam1, true) + lightEndSum(pCam0, a.pdfFwd) +
+                        cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, c.sensorPdf), pLight2);
+  const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, factors(c, end, false), [&] {
+    FullPath fp = layout(c, &L, 1, C, t, end);
+    fp.v[1].lobe = F;
+    fp.v[0].pdfCam = pCam0;
+    if (bNext.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
+    fp.specCam1 = specCam1;
+    fp.specLightLast = t == 2 ? specLightLast(b, F, a.lambda) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+    return misWeight(fp, 1, Variant::kLightVertex);
+  });
   if (!(weight > 0.0f) || !visible(c, b, a)) return 0.0f;
-  const float value = Le * G * f * b.beta / a.pdfFwd;
+  const float value = Le * G * f * b.beta / (a.pdfFwd * a.wavelengthPdf);
   record(c, 1, t, Variant::kLightVertex, value, weight);
   return value * weight;
 }
 
-float connect(const Context& c, const std::vector<PathVertex>& L, int s, const std::vector<PathVertex>& C, int t) {
+float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+              const std::vector<PathVertex>& C, int t) {
   const PathVertex& a = L[size_t(s - 1)];
   const PathVertex& b = C[size_t(t - 1)];
   if (a.kind != Kind::Surface || b.kind != Kind::Surface || !a.connectible() || !b.connectible()) return 0.0f;
@@ -231,16 +312,17 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
   };
   Pair pairs[3];
   int n = 0;
-  if (c.walk.mode == WavelengthMode::Shared) {
+  if (family == LightFamily::Shared) {
     pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, c.lambdaCamera, c.lambdaCamera, Variant::kStandard};
   } else {
     if (a.bsdf->has(BsdfFlags::Fluorescent))
-      pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, b.lambda, b.lambda, Variant::kStandard};
+      pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, b.lambda, b.lambda, Variant::kOwn};
     if (b.bsdf->has(BsdfFlags::Fluorescent))
-      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda, a.lambda, Variant::kStandard};
+      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda, a.lambda, Variant::kOwn};
     if (c.bandwidth > 0.0f && std::abs(a.lambda - b.lambda) < c.bandwidth)
       pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kMollified};
   }
+  const LightEnd end = storedLightEnd(L);
   float sum = 0.0f;
   bool checked = false, unoccluded = false;
   for (int i = 0; i < n; ++i) {
@@ -248,19 +330,34 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
     const float fA = a.bsdf->eval(TransportMode::Importance, aWi, aWo, a.lambda, p.lambdaA, p.la);
     const float fB = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, p.lambdaB, b.lambda, p.lb);
     if (!(fA > 0.0f && fB > 0.0f)) continue;
-    FullPath fp = layout(c, &L, s, C, t);
-    fp.v[size_t(s - 1)].lobe = p.la;
-    fp.v[size_t(s)].lobe = p.lb;
-    fp.v[size_t(s)].pdfLight = lightSide(c.scene, a, aPrev, b, p.la, a.lambda, p.lambdaA);
-    fp.v[size_t(s + 1)].pdfLight = lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, b.lambda);
-    fp.v[size_t(s - 1)].pdfCam = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, b.lambda);
-    fp.v[size_t(s - 2)].pdfCam = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
-    const PathVertex& x1 = L[1];
-    fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
-    fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambdaB) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-    lightEnd(c, L[0].light, L[0].lambda, L[0], L[1], fp);
-    fp.v[0].pdfLight = L[0].pdfFwd;  // as sampled (same value; avoids recomputation drift)
-    const float weight = misWeight(fp, s, p.variant);
+    // The four densities next to the connection, for its lobes and wavelengths.
+    const double pLightB = lightSide(c.scene, a, aPrev, b, p.la, a.lambda, p.lambdaA);
+    const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, b.lambda) : 0.0;
+    const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, b.lambda);
+    const double pCamAPrev = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
+    const MisSums lightSum = sideSum(a.sums, densityRatio(pCamAPrev, aPrev.pdfFwd), lightMultiplicity(L, s - 2),
+                                     densityRatio(pCamA, a.pdfFwd), lightMultiplicity(L, s - 1, p.la, p.lambdaA));
+    const MisSums cameraSum = sideSum(b.sums, densityRatio(pLightBNext, bNext.pdfFwd), cameraMultiplicity(C, t - 2),
+                                      densityRatio(pLightB, b.pdfFwd),
+                                      cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, c.sensorPdf));
+    const MisSums here = joinMultiplicity(true, p.la, p.lb);
+    const MisSums own = p.variant == Variant::kStandard ? MisSums{0.0, 0.0, 0.0, 1.0}
+                        : p.variant == Variant::kOwn    ? MisSums{0.0, 1.0, 0.0, 0.0}
+                                                        : MisSums{0.0, 0.0, 1.0, 0.0};
+    const bool oneGroup = a.elasticBefore && b.elasticBefore && p.la == SpectralLobe::Elastic && p.lb == SpectralLobe::Elastic;
+    const float weight = weigh(c, s, t, p.variant, own, here + lightSum + cameraSum, factors(c, end, oneGroup), [&] {
+      FullPath fp = layout(c, &L, s, C, t, end);
+      fp.v[size_t(s - 1)].lobe = p.la;
+      fp.v[size_t(s)].lobe = p.lb;
+      fp.v[size_t(s)].pdfLight = pLightB;
+      fp.v[size_t(s + 1)].pdfLight = pLightBNext;
+      fp.v[size_t(s - 1)].pdfCam = pCamA;
+      fp.v[size_t(s - 2)].pdfCam = pCamAPrev;
+      const PathVertex& x1 = L[1];
+      fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+      fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambdaB) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+      return misWeight(fp, s, p.variant);
+    });
     if (!(weight > 0.0f)) continue;
     if (!checked) {
       checked = true;
@@ -281,7 +378,8 @@ float connect(const Context& c, const std::vector<PathVertex>& L, int s, const s
   return sum;
 }
 
-void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, std::vector<Splat>& splats) {
+void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+                     std::vector<Splat>& splats) {
   const PathVertex& a = L[size_t(s - 1)];
   if (a.kind == Kind::Infinite || !a.connectible()) return;
   const std::optional<Camera::Connection> conn = c.scene.camera.connect(a.p);
@@ -293,22 +391,26 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
   // The wavelength arriving at the pinhole: the light itself for s = 1, else the one a's sampled
   // spectral event sends towards the camera.
   const float lambda = s == 1 ? a.lambda : a.lambdaNext;
+  const Variant variant = family == LightFamily::Shared ? Variant::kStandard : Variant::kOwn;
+  // The camera's density of a: its direction over the whole film times the sensor's density of the
+  // wavelength arriving at it.
+  const double sensorPdf = family == LightFamily::Shared ? c.sensorPdf : c.sensor.pdf(lambda);
+  const double pCamA = toAreaDensity(c.scene.camera.directionPdf(-conn->wi) * float(sensorPdf), cam, a);
+  const LightEnd end = s == 1 ? lightEnd(c, L[0].light, L[0].lambda, L[0], cam) : storedLightEnd(L);
   float value = 0.0f;
-  const std::vector<PathVertex> camOnly{cam};
-  FullPath fp = layout(c, &L, s, camOnly, 1);
-  const int k = s;
-  // The camera's density of a: its direction over the whole film, [× the sensor's density of the
-  // wavelength arriving at it].
-  const float sensor = c.walk.mode == WavelengthMode::Independent ? c.sensor.pdf(lambda) : 1.0f;
-  fp.v[size_t(k - 1)].pdfCam = toAreaDensity(c.scene.camera.directionPdf(-conn->wi) * sensor, cam, a);
+  MisSums here, own, lightSum;
+  bool oneGroup = true;
+  double pCamAPrev = 0.0;
   if (s == 1) {
     // The light itself, seen directly (area lights only).
     if (a.kind != Kind::Light || a.deltaPosition) return;
     const AreaEmission& em = *static_cast<const AreaLight&>(*c.scene.lights[size_t(a.light)]).shape().emission;
     const float Le = em.eval(lambda, a.n, conn->wi);
     if (!(Le > 0.0f)) return;
-    value = Le * std::abs(glm::dot(a.n, conn->wi)) / a.pdfFwd;
-    fp.lightSeenByPinhole = true;
+    value = Le * std::abs(glm::dot(a.n, conn->wi)) / (a.pdfFwd * (family == LightFamily::Own ? a.wavelengthPdf : 1.0f));
+    here = directLightMultiplicity(true, sensorPdf);
+    own = family == LightFamily::Shared ? MisSums{0.0, 0.0, 0.0, sensorPdf * sensorPdf} : MisSums{0.0, 1.0, 0.0, 0.0};
+    lightSum = lightEndSum(pCamA, a.pdfFwd);
   } else {
     // The light side's own spectral event at a (λ_o from e when fluorescent): the sensor
     // responds at the wavelength it chose.
@@ -319,24 +421,60 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, 
     const float fa = a.bsdf->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, a.lobe);
     if (!(fa > 0.0f)) return;
     value = a.beta * fa * std::abs(wo.z) / a.spectralPdf;
-    fp.v[size_t(k - 1)].lobe = a.lobe;
-    fp.v[size_t(k - 2)].pdfCam = cameraSide(c.scene, a, cam, aPrev, a.lobe, a.lambda, lambda);
-    const PathVertex& x1 = L[1];
-    fp.specCam1 = s == 2 ? specCamera(x1, a.lobe, x1.lambda, lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
-    fp.specLightLast = a.spectralPdf;
-    lightEnd(c, L[0].light, L[0].lambda, L[0], L[1], fp);
-    fp.v[0].pdfLight = L[0].pdfFwd;
+    pCamAPrev = cameraSide(c.scene, a, cam, aPrev, a.lobe, a.lambda, lambda);
+    here = lightTracingMultiplicity(true, a.spectralPdf, sensorPdf);
+    const double spec2 = double(a.spectralPdf) * a.spectralPdf;
+    own = family == LightFamily::Shared ? MisSums{0.0, 0.0, 0.0, sensorPdf * sensorPdf * spec2} : MisSums{0.0, spec2, 0.0, 0.0};
+    lightSum = sideSum(a.sums, densityRatio(pCamAPrev, aPrev.pdfFwd), lightMultiplicity(L, s - 2),
+                       densityRatio(pCamA, a.pdfFwd), lightMultiplicity(L, s - 1));
+    oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
-  const float weight = misWeight(fp, s);
+  const float weight = weigh(c, s, 1, variant, own, here + lightSum, factors(c, end, oneGroup), [&] {
+    const std::vector<PathVertex> camOnly{cam};
+    FullPath fp = layout(c, &L, s, camOnly, 1, end);
+    const int k = s;
+    fp.sensorPdf = sensorPdf;
+    fp.v[size_t(k - 1)].pdfCam = pCamA;
+    if (s == 1) {
+      fp.lightSeenByPinhole = true;
+    } else {
+      fp.v[size_t(k - 2)].pdfCam = pCamAPrev;
+      const PathVertex& x1 = L[1];
+      fp.specCam1 = s == 2 ? specCamera(x1, a.lobe, x1.lambda, lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+      fp.specLightLast = a.spectralPdf;
+    }
+    return misWeight(fp, s, variant);
+  });
   if (!(weight > 0.0f) || !visible(c, a, cam)) return;
   // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel).
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
   float sensorWeight = perPath;
-  if (c.walk.mode == WavelengthMode::Shared) sensorWeight /= c.sensorPdf;  // λ was the sensor's sample
+  if (family == LightFamily::Shared) sensorWeight /= c.sensorPdf;  // λ was the sensor's sample
   const Splat unweighted = spectralSplat(conn->pixel, lambda, value * conn->importance * sensorWeight);
   const Vec3 xyz = unweighted.xyz;
   splats.push_back({conn->pixel, xyz * weight, lambda, unweighted.value * weight});
-  if (c.log) c.log->push_back({conn->pixel, xyz * weight, xyz, s, 1, uint8_t(Variant::kStandard)});
+  if (c.log) c.log->push_back({conn->pixel, xyz * weight, xyz, s, 1, uint8_t(variant)});
+}
+
+float connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,
+                      const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats) {
+  const int maxDepth = c.walk.maxDepth;
+  // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelength.
+  float L = 0.0f;
+  for (int t = 2; t <= int(C.size()); ++t) {
+    L += emitterHit(c, C, t);
+    if (C[size_t(t - 1)].kind != Kind::Surface) continue;
+    if (t - 1 <= maxDepth) {
+      L += nextEvent(c, C, t, rng);
+      if (!LO.empty()) L += connectLightVertex(c, LO, C, t);
+    }
+    for (int s = 2; s <= int(LS.size()) && (s - 1) + (t - 1) <= maxDepth; ++s) L += connect(c, LS, LightFamily::Shared, s, C, t);
+    for (int s = 2; s <= int(LO.size()) && (s - 1) + (t - 1) <= maxDepth; ++s) L += connect(c, LO, LightFamily::Own, s, C, t);
+  }
+  // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
+  for (int s = 1; s <= int(LS.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LS, LightFamily::Shared, s, splats);
+  for (int s = 1; s <= int(LO.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LO, LightFamily::Own, s, splats);
+  return L;
 }
 
 }  // namespace kasha::bdpt

@@ -6,12 +6,21 @@
 #include "core/wavelength_density.h"
 #include "integrators/bdpt/mis.h"
 #include "integrators/bdpt/path_vertex.h"
+#include "integrators/bdpt/subpaths.h"
 
 namespace kasha::bdpt {
+
+// One connection's weight both ways (tests: the recursion against the full recomputation).
+struct WeightCheck {
+  int s, t;
+  uint8_t variant;  // Variant
+  float recursive, full;
+};
 
 struct Context {
   const Scene& scene;
   const WalkSettings& walk;
+  Families families;    // the light subpaths traced with each camera subpath
   float lambdaCamera;   // the sensor's wavelength
   float sensorPdf;      // its density
   const WavelengthDensity& sensor;  // the sensor's density, for other wavelengths' densities
@@ -24,20 +33,31 @@ struct Context {
   std::vector<StrategySample>* log = nullptr;
   Vec2 pixel{0.0f};
   Vec3 pixelScale{0.0f};
+  // Tests only: every weight also recomputed over the whole path (mis.h), both recorded here.
+  std::vector<WeightCheck>* oracle = nullptr;
 };
 
 // s = 0: the camera subpath's vertex C[t−1] lies on an emitter. Radiance, weighted.
 float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t);
 // s = 1: next-event estimation from C[t−1] at the wavelength its spectral event chose.
 float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampler& rng);
-// s = 1 through the light subpath's own vertex L[0] (Independent): its wavelength, drawn from the
-// lights' power spectrum, reaches the camera's through C[t−1]'s fluorescent lobe.
+// s = 1 through the own-family light subpath's vertex L[0]: its wavelength, drawn from the
+// light-start strategy, reaches the camera's through C[t−1]'s fluorescent lobe.
 float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t);
-// s ≥ 2, t ≥ 2: connect L[s−1] and C[t−1] through every exact lobe pair, and through two elastic
-// lobes with the wavelength kernel when mollifying.
-float connect(const Context& c, const std::vector<PathVertex>& L, int s, const std::vector<PathVertex>& C, int t);
-// t = 1: L[s−1] (s ≥ 1) seen by the pinhole, with the spectral event the light subpath sampled
-// there; appends a splat (film units) if visible.
-void connectToCamera(const Context& c, const std::vector<PathVertex>& L, int s, std::vector<Splat>& splats);
+// s ≥ 2, t ≥ 2: connect L[s−1] of a light subpath of `family` and C[t−1] through every exact lobe
+// pair (two elastic lobes in the shared family, one fluorescent in the own), and through two
+// elastic lobes with the wavelength kernel when mollifying (own family).
+float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+              const std::vector<PathVertex>& C, int t);
+// t = 1: L[s−1] (s ≥ 1) of a light subpath of `family` seen by the pinhole, with the spectral event
+// the light subpath sampled there; appends a splat (film units) if visible.
+void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+                     std::vector<Splat>& splats);
+
+// Every strategy of one camera sample: the camera subpath C joined to the light subpaths of the
+// shared (LS) and own (LO) families (either may be empty). Returns the pixel's radiance at the
+// camera's wavelength (weighted, t ≥ 2) and appends the t = 1 splats.
+float connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,
+                      const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats);
 
 }  // namespace kasha::bdpt

@@ -9,8 +9,50 @@ bool allElastic(const FullPath& p) {
   return true;
 }
 
-// Density of the full path under strategy s (docs/bdpt-mis.md eqs. 2, 3 and 6).
-double density(const FullPath& p, int s, Variant variant) {
+bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
+  const int k = int(p.v.size()) - 1;
+  if (s < 0 || s > k) return false;
+  const bool own = variant != Variant::kStandard;  // every other variant is the independent family's
+  if (own && !p.families.independent) return false;
+  if (s == 0) return variant == Variant::kStandard && p.v[0].pdfCam > 0.0;  // the camera subpath hits the emitter
+  if (k == 1) {  // s = t = 1: the light seen directly, at the sensor's or the light's wavelength
+    if (!p.lightSeenByPinhole) return false;
+    return variant == Variant::kOwn || (variant == Variant::kStandard && p.families.shared);
+  }
+  switch (variant) {
+    case Variant::kLightVertex:  // the light vertex's wavelength reaches the camera's through x_1's fluorescent lobe
+      return s == 1 && p.lightVertexConnectible && p.v[1].connectible && p.v[1].lobe == SpectralLobe::Fluorescent;
+    case Variant::kMollified: {  // two elastic connection vertices, wavelengths chosen apart
+      if (!(p.mollifyWidth > 0.0) || s < 2 || s > k - 1) return false;
+      const FullVertex& a = p.v[size_t(s - 1)];
+      const FullVertex& b = p.v[size_t(s)];
+      return a.connectible && b.connectible && a.lobe == SpectralLobe::Elastic && b.lobe == SpectralLobe::Elastic;
+    }
+    case Variant::kStandard:
+      if (s == 1) return p.v[1].connectible && p.pdfNee > 0.0;  // next-event estimation
+      // The shared family's light subpath and the camera's last group are one draw: exact only
+      // when the path has one group (docs/bdpt-mis.md §4).
+      if (!p.families.shared || !elastic) return false;
+      break;
+    case Variant::kOwn:
+      if (s == 1) return false;
+      break;
+  }
+  if (s == k)  // t = 1: light tracing, x_{k−1}'s event sampled by the light side
+    return p.v[size_t(k - 1)].connectible && p.specLightLast > 0.0;
+  // 2 ≤ s ≤ k − 1: both connection vertices evaluated; the connecting segment's wavelength must be
+  // sampled exactly once: shared by the whole elastic path, or by one side through an elastic
+  // connection vertex (independent family).
+  const FullVertex& a = p.v[size_t(s - 1)];
+  const FullVertex& b = p.v[size_t(s)];
+  if (!a.connectible || !b.connectible) return false;
+  return variant == Variant::kStandard ||
+         (a.lobe == SpectralLobe::Fluorescent) != (b.lobe == SpectralLobe::Fluorescent);
+}
+
+}  // namespace
+
+double strategyDensity(const FullPath& p, int s, Variant variant) {
   const int k = int(p.v.size()) - 1;
   const bool nee = s == 1 && k >= 2 && variant == Variant::kStandard;
   double d = 1.0;
@@ -21,55 +63,35 @@ double density(const FullPath& p, int s, Variant variant) {
   }
   for (int i = nee ? 1 : s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
   if (s == k && k >= 2) d *= p.specLightLast;  // t = 1 samples x_{k−1}'s event on the light side
+  // The first group's wavelength: the independent family draws it at the light; the shared
+  // family's t = 1 draws it (the path's only group) at the sensor, which every other strategy
+  // has in pdfCam of x_{k−1}.
+  if (variant != Variant::kStandard && s > 0) d *= p.lightPdf;
+  else if (s == k) d *= p.sensorPdf;
   // Both sides sampled the connecting group's wavelength; the kernel accepts a window ε_h of the
   // camera side's (docs/bdpt-mis.md eq. 6).
   if (variant == Variant::kMollified) d *= p.mollifyWidth;
   return d;
 }
 
-}  // namespace
-
-bool strategyValid(const FullPath& p, int s, Variant variant) {
-  const int k = int(p.v.size()) - 1;
-  const bool independent = p.mode == WavelengthMode::Independent;
-  if (s < 0 || s > k) return false;
-  if (variant == Variant::kMollified) {  // two elastic connection vertices, wavelengths chosen apart
-    if (!independent || !(p.mollifyWidth > 0.0) || s < 2 || s > k - 1) return false;
-    const FullVertex& a = p.v[size_t(s - 1)];
-    const FullVertex& b = p.v[size_t(s)];
-    return a.connectible && b.connectible && a.lobe == SpectralLobe::Elastic && b.lobe == SpectralLobe::Elastic;
-  }
-  if (s == 0) return p.v[0].pdfCam > 0.0;  // the camera subpath hits the emitter
-  if (k == 1) return p.lightSeenByPinhole && variant == Variant::kStandard;  // s = t = 1: the light seen directly
-  if (s == 1 && variant == Variant::kStandard) return p.v[1].connectible && p.pdfNee > 0.0;
-  if (s == 1)  // the light subpath's vertex, at its own wavelength: x_1 must bridge it (Independent)
-    return independent && p.lightVertexConnectible && p.v[1].connectible && p.v[1].lobe == SpectralLobe::Fluorescent;
-  if (s == k) {  // t = 1: light tracing, x_{k−1}'s event sampled by the light side
-    if (!p.v[size_t(k - 1)].connectible || !(p.specLightLast > 0.0)) return false;
-    return independent || allElastic(p);
-  }
-  // 2 ≤ s ≤ k − 1: both connection vertices evaluated; the connecting segment's wavelength must be
-  // sampled exactly once: by one side through an elastic connection vertex (Independent), or
-  // shared by the whole elastic path (Shared).
-  const FullVertex& a = p.v[size_t(s - 1)];
-  const FullVertex& b = p.v[size_t(s)];
-  if (!a.connectible || !b.connectible) return false;
-  if (!independent) return allElastic(p);
-  return (a.lobe == SpectralLobe::Fluorescent) != (b.lobe == SpectralLobe::Fluorescent);
-}
+bool strategyValid(const FullPath& p, int s, Variant variant) { return validGiven(p, s, variant, allElastic(p)); }
 
 float misWeight(const FullPath& p, int s, Variant variant) {
-  if (!strategyValid(p, s, variant)) return 0.0f;
+  const bool elastic = allElastic(p);
+  if (!validGiven(p, s, variant, elastic)) return 0.0f;
   const int k = int(p.v.size()) - 1;
-  const double own = density(p, s, variant);
+  const double own = strategyDensity(p, s, variant);
   if (!(own > 0.0)) return 0.0f;
   double sum = 0.0;
   auto add = [&](int i, Variant o) {
-    if (!strategyValid(p, i, o)) return;
-    const double r = density(p, i, o) / own;  // power heuristic, β = 2
+    if (!validGiven(p, i, o, elastic)) return;
+    const double r = strategyDensity(p, i, o) / own;  // power heuristic, β = 2
     sum += r * r;
   };
-  for (int i = 0; i <= k; ++i) add(i, Variant::kStandard);
+  for (int i = 0; i <= k; ++i) {
+    add(i, Variant::kStandard);
+    add(i, Variant::kOwn);
+  }
   if (k >= 2) add(1, Variant::kLightVertex);
   for (int i = 2; i < k; ++i) add(i, Variant::kMollified);
   return float(1.0 / sum);

@@ -1,49 +1,67 @@
 #pragma once
-// MIS weights over all (s, t) strategies for a full path with wavelength-changing vertices
-// (docs/bdpt-mis.md §3–4). The caller lays out the full path x_0 (on a light) … x_k (the camera)
-// with, for each vertex, the density with which the light side and the camera side would sample
-// it; this module decides which strategies could have produced the path and weights by the
-// power heuristic.
+// MIS weights over all strategies of both wavelength families for a full path with
+// wavelength-changing vertices (docs/bdpt-mis.md §3–5). The caller lays out the full path x_0 (on a
+// light) … x_k (the camera) with, for each vertex, the density with which the light side and the
+// camera side would sample it; this module decides which strategies could have produced the path
+// and weights by the power heuristic. It recomputes everything from the layout (O(k²) per weight):
+// the recursive weights of `integrators/bdpt/` are tested against it.
 #include <vector>
 
-#include "integrators/bdpt/subpaths.h"
+#include "materials/bsdf_model.h"
 
 namespace kasha::bdpt {
 
 struct FullVertex {
-  double pdfLight = 0.0;  // light-side density of this vertex (from x_{i-1}; x_0: light and wavelength choice)
-  double pdfCam = 0.0;    // camera-side density (from x_{i+1}; x_{k-1}: camera direction [× sensor])
+  // Light-side density of this vertex (from x_{i-1}); x_0: p(light | λ_0) times the position
+  // (per sr for a light at infinity): the light-start wavelength density is `lightPdf`.
+  double pdfLight = 0.0;
+  // Camera-side density (from x_{i+1}); x_{k-1}: the camera direction times p_sensor(λ_{k-1}).
+  double pdfCam = 0.0;
   SpectralLobe lobe = SpectralLobe::Elastic;  // interior vertices: the lobe the path uses here
   bool connectible = true;                    // a connection may end here (no delta lobe)
 };
 
+// Which light subpaths a camera sample is combined with (each at most one per camera sample).
+struct Families {
+  bool shared = false;       // a light subpath at the camera sample's wavelength
+  bool independent = false;  // a light subpath at a wavelength of its own (the light-start strategy)
+};
+
 struct FullPath {
   std::vector<FullVertex> v;  // x_0 … x_k; v[k] is the camera (pdfCam 1)
-  WavelengthMode mode = WavelengthMode::Independent;
+  Families families;
+  double lightPdf = 0.0;    // p_light(λ_0): the independent family's density of the first group's wavelength
+  double sensorPdf = 0.0;   // p_sensor(λ_{k−1}): the sensor's density of the last group's wavelength
   double specCam1 = 0.0;    // camera-side spectral density of x_1's event (next-event estimation)
   double pdfNee = 0.0;      // next-event density of x_0 given λ_0: p(light | λ_0)·p_A (per sr at infinity)
   bool lightSeenByPinhole = false;  // x_0 may connect to the camera directly (area lights)
   bool lightVertexConnectible = false;  // x_0 is at a finite position (not a light at infinity)
   double specLightLast = 0.0;  // light-side spectral density of x_{k−1}'s event (t = 1 samples it)
-  // Spectral mollification (Independent only, docs/bdpt-mis.md §6): the kernel's effective width
+  // Spectral mollification (independent family, docs/bdpt-mis.md §6): the kernel's effective width
   // ε_h = 1/K_h(0) in nm, which turns a mollified connection's density into one over the path
   // measure; 0: no mollified strategies.
   double mollifyWidth = 0.0;
 };
 
-// Strategies are named by s, the number of light-subpath vertices, and a variant. For s = 1 when
-// k ≥ 2 there are two: next-event estimation (kStandard: the camera side samples x_1's spectral
-// event and the light point at that wavelength) and the light subpath's own first vertex
-// (kLightVertex: its wavelength from the lights' power spectrum, x_1's fluorescent lobe
-// evaluated). For 2 ≤ s ≤ k − 1, kMollified joins two elastic connection vertices whose
-// wavelengths were chosen independently through a wavelength kernel (docs/bdpt-mis.md §6).
-enum class Variant : uint8_t { kStandard, kLightVertex, kMollified };
+// Strategies are named by s, the number of light-subpath vertices, and a variant:
+// - kStandard: the camera-only strategies (s = 0; s = 1 next-event estimation, where the camera side
+//   samples x_1's spectral event and the light point at that wavelength) and the shared family's
+//   (2 ≤ s ≤ k − 1 joins, t = 1 for s = k; for k = 1 the light seen by the camera);
+// - kOwn: the independent family's joins (2 ≤ s ≤ k − 1, exactly one fluorescent end) and t = 1;
+// - kLightVertex: s = 1 through the independent light subpath's own first vertex, x_1's
+//   fluorescent lobe evaluated;
+// - kMollified: 2 ≤ s ≤ k − 1, two elastic ends whose wavelengths the two sides chose apart,
+//   joined through a wavelength kernel (docs/bdpt-mis.md §6).
+enum class Variant : uint8_t { kStandard, kLightVertex, kMollified, kOwn };
 
-// Weight of strategy s (for k = 1, s = 1 is the light seen by the camera). Returns 0 if the
-// strategy itself cannot produce the path.
-float misWeight(const FullPath& path, int s, Variant variant = Variant::kStandard);
+// Weight of strategy (s, variant). Returns 0 if the strategy itself cannot produce the path.
+float misWeight(const FullPath& path, int s, Variant variant);
 
-// Whether strategy s can produce the path (exposed for tests).
-bool strategyValid(const FullPath& path, int s, Variant variant = Variant::kStandard);
+// Whether strategy (s, variant) can produce the path (exposed for tests).
+bool strategyValid(const FullPath& path, int s, Variant variant);
+
+// Density of the path under strategy (s, variant) (docs/bdpt-mis.md eqs. 2, 3, 6), whether or not
+// the strategy is valid (exposed for tests).
+double strategyDensity(const FullPath& path, int s, Variant variant);
 
 }  // namespace kasha::bdpt

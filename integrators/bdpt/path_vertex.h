@@ -3,10 +3,12 @@
 // density with which the vertex's own subpath produced it, pdfRev the density with which the
 // other subpath would have; both include the spectral event at the neighbour that sampled it
 // (lobe probability, and the per-nm density when that lobe is fluorescent), and are per unit
-// area (per steradian for a light at infinity).
+// area (per steradian for a light at infinity). The light vertex's pdfFwd is p(light | λ_0) times
+// its position: the light-start wavelength density is `wavelengthPdf`.
 #include <optional>
 
 #include "core/math.h"
+#include "integrators/bdpt/mis_sums.h"
 #include "materials/bsdf.h"
 
 namespace kasha::bdpt {
@@ -31,6 +33,14 @@ struct PathVertex {
   bool specular = false;
   float pdfFwd = 0.0f, pdfRev = 0.0f;
   bool deltaPosition = false;  // point and spot lights, the pinhole
+  // The first vertex of a subpath: the density of its wavelength under the strategy that draws the
+  // camera's (p_sensor) or an own-family light subpath's (p_light, also kept on a shared one).
+  float wavelengthPdf = 0.0f;
+  // Recursive MIS (docs/bdpt-mis.md §9): the running sum over the strategies with at least two
+  // fewer vertices on this subpath's side, and whether every interior vertex before this one on
+  // the subpath scattered elastically.
+  MisSums sums;
+  bool elasticBefore = true;
 
   bool onSurface() const { return kind == Kind::Surface; }
   // Whether a connection can end here: surfaces with a non-delta lobe, lights, the camera.

@@ -13,6 +13,7 @@ std::string strategyName(int s, int t, uint8_t variant) {
   std::string name = "s" + std::to_string(s) + "_t" + std::to_string(t);
   if (variant == uint8_t(Variant::kLightVertex)) name += "_light_vertex";
   if (variant == uint8_t(Variant::kMollified)) name += "_mollified";
+  if (variant == uint8_t(Variant::kOwn)) name += "_own";
   return name;
 }
 
@@ -50,10 +51,11 @@ std::vector<std::string> StrategyImages::write(const std::string& dir, bool unwe
 }
 
 uint64_t StrategyImages::bytesFor(int width, int height, int maxDepth) {
-  // Paths of k = 1 … K segments (K = maxDepth + 1): k + 1 strategies each, one light-vertex
-  // variant and k − 2 mollified ones (s = 2 … k − 1); and "deeper".
+  // Paths of k = 1 … K segments (K = maxDepth + 1): k + 1 standard strategies each, at most k
+  // of the own-wavelength family, one light-vertex variant and k − 2 mollified ones
+  // (s = 2 … k − 1); and "deeper".
   const uint64_t K = uint64_t(std::max(0, maxDepth)) + 1;
-  const uint64_t strategies = K * (K + 3) / 2 + K + (K - 1) * (K - 2) / 2 + 1;
+  const uint64_t strategies = K * (K + 3) / 2 + K * (K + 1) / 2 + K + (K - 1) * (K - 2) / 2 + 1;
   return saturatingMul(saturatingMul(strategies, 2), Film::bytesFor(width, height));
 }
 

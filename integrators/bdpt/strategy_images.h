@@ -13,7 +13,8 @@
 
 namespace kasha::bdpt {
 
-// File stem of a strategy's image: "s2_t3", "s1_t2_light_vertex", "s2_t2_mollified".
+// File stem of a strategy's image: "s2_t3" (camera-only and shared family), "s2_t3_own" (own
+// wavelength family), "s1_t2_light_vertex", "s2_t2_mollified".
 std::string strategyName(int s, int t, uint8_t variant);
 
 class StrategyImages {

@@ -1,5 +1,7 @@
 #include "integrators/bdpt/subpaths.h"
 
+#include "integrators/bdpt/subpath_mis.h"
+
 namespace kasha::bdpt {
 namespace {
 
@@ -7,7 +9,7 @@ namespace {
 // ray's direction at the last vertex (per steradian; for a light at infinity, per unit area of
 // its disk). Camera walks run in Radiance mode, light walks in Importance mode.
 void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lambda, TransportMode mode,
-                const WalkSettings& ws, Sampler& rng, RayCounter& counter, std::vector<PathVertex>& path) {
+                bool stopAtFluorescence, const WalkSettings& ws, Sampler& rng, RayCounter& counter, std::vector<PathVertex>& path) {
   const bool camera = mode == TransportMode::Radiance;
   const float beta0 = beta;
   int surfaces = 0;
@@ -25,6 +27,7 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
         v.lambda = lambda;
         v.pdfFwd = pdfSA;
         path.push_back(v);
+        updateSums(path, mode);
       }
       return;
     }
@@ -39,6 +42,7 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     v.pdfFwd = prev.kind == PathVertex::Kind::Infinite ? pdfSA * std::abs(glm::dot(v.n, ray.d))  // disk → surface
                                                         : toAreaDensity(pdfSA, prev, v);
     path.push_back(v);
+    updateSums(path, mode);
     ++surfaces;
     // Vertices up to maxDepth sample their spectral event (used by next-event estimation and
     // the camera connection); camera vertices then extend up to maxDepth (the next one may be an
@@ -54,7 +58,7 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     cur.spectralPdf = sc.pdf;
     cur.eventSampled = true;
     if (!camera && surfaces == ws.maxDepth) return;
-    if (!camera && ws.mode == WavelengthMode::Shared && sc.lobe == SpectralLobe::Fluorescent) return;
+    if (stopAtFluorescence && sc.lobe == SpectralLobe::Fluorescent) return;
     const float lambdaIn = camera ? sc.lambda : lambda, lambdaOut = camera ? lambda : sc.lambda;
     const std::optional<DirectionSample> ds =
         bsdf.sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, rng.uniform2());
@@ -89,11 +93,6 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
 
 }  // namespace
 
-float lightChoicePdf(const Scene& scene, int light, float lambda, const WalkSettings& ws) {
-  const float conditional = scene.lightSelector->probability(size_t(light), lambda);
-  return ws.mode == WavelengthMode::Independent ? conditional * ws.lightWavelengths->pdf(lambda) : conditional;
-}
-
 void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float sensorPdf, const WalkSettings& ws,
                         Sampler& rng, RayCounter& counter, std::vector<PathVertex>& out) {
   out.clear();
@@ -104,20 +103,22 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float se
   c.lambda = lambda;
   c.pdfFwd = 1.0f;
   c.deltaPosition = true;
+  c.wavelengthPdf = sensorPdf;
   out.push_back(c);
+  updateSums(out, TransportMode::Radiance);
   const Ray ray = scene.camera.generateRay(filmPos);
-  // The sensor samples the last wavelength group; in Shared mode every strategy shares it.
-  const float pdfDir = scene.camera.directionPdf(ray.d) * (ws.mode == WavelengthMode::Independent ? sensorPdf : 1.0f);
-  randomWalk(scene, ray, 1.0f, pdfDir, lambda, TransportMode::Radiance, ws, rng, counter, out);
+  // The sensor samples the last wavelength group (docs/bdpt-mis.md §2).
+  const float pdfDir = scene.camera.directionPdf(ray.d) * sensorPdf;
+  randomWalk(scene, ray, 1.0f, pdfDir, lambda, TransportMode::Radiance, false, ws, rng, counter, out);
 }
 
-void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSettings& ws, Sampler& rng, RayCounter& counter,
-                       std::vector<PathVertex>& out) {
+void traceLightSubpath(const Scene& scene, LightFamily family, float sharedLambda, const WalkSettings& ws, Sampler& rng,
+                       RayCounter& counter, std::vector<PathVertex>& out) {
   out.clear();
   size_t light = 0;
   float lambda = sharedLambda, choice = 0.0f;
   const float u1 = rng.uniform(), u2 = rng.uniform();
-  if (ws.mode == WavelengthMode::Independent) {
+  if (family == LightFamily::Own) {
     const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(*ws.lightWavelengths, u1, u2);
     light = lw.light, lambda = lw.lambda, choice = lw.pdf;
   } else {
@@ -139,13 +140,16 @@ void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSetting
   v.deltaPosition = es->deltaPos;
   // At infinity the light vertex is a direction (density per sr) and the disk position is the
   // density of the first surface point; otherwise the position is the vertex.
-  v.pdfFwd = choice * (L.atInfinity() ? es->pdfDir : es->pdfPos);
-  v.beta = es->Le / v.pdfFwd;
+  const float start = L.atInfinity() ? es->pdfDir : es->pdfPos;
+  v.pdfFwd = scene.lightSelector->probability(light, lambda) * start;
+  v.wavelengthPdf = ws.lightWavelengths->pdf(lambda);
+  v.beta = es->Le / (choice * start);
   out.push_back(v);
+  updateSums(out, TransportMode::Importance);
   const float beta = es->Le * es->cosOrigin / (choice * es->pdfPos * es->pdfDir);
   const Vec3 origin = glm::dot(es->n, es->n) > 0.0f ? offsetPoint(es->p, es->n, es->w) : es->p;
   randomWalk(scene, Ray{origin, es->w}, beta, L.atInfinity() ? es->pdfPos : es->pdfDir, lambda,
-             TransportMode::Importance, ws, rng, counter, out);
+             TransportMode::Importance, family == LightFamily::Shared, ws, rng, counter, out);
 }
 
 }  // namespace kasha::bdpt

@@ -10,31 +10,35 @@
 
 namespace kasha::bdpt {
 
-// The two exact wavelength families of transport.md §3.
+// Which light subpaths BDPT combines with each camera subpath: the two exact wavelength families of
+// transport.md §3 alone, or both (docs/bdpt-mis.md §5).
 enum class WavelengthMode : uint8_t {
   Shared,       // the light subpath starts at the camera sample's wavelength
-  Independent,  // the light subpath draws its own wavelength from the lights' power spectrum
+  Independent,  // the light subpath draws its own wavelength from the light-start strategy
+  Unified,      // both: a shared one, and (in scenes that fluoresce) one of its own
+};
+
+// The wavelength of one light subpath.
+enum class LightFamily : uint8_t {
+  Shared,  // the camera sample's; the subpath stops at its first fluorescent event
+  Own,     // drawn with the light from the light-start strategy
 };
 
 struct WalkSettings {
   int maxDepth = 64;  // maximum number of scattering vertices on a full path
   int rrDepth = 3;
-  WavelengthMode mode = WavelengthMode::Independent;
-  const WavelengthDensity* lightWavelengths = nullptr;  // Independent: the light-start strategy's density
+  const WavelengthDensity* lightWavelengths = nullptr;  // the light-start strategy's density (own family)
 };
 
 // C[0] is the pinhole; C[1] the first hit. lambda is the sensor's wavelength, sensorPdf its
-// density (folded into C[1].pdfFwd in Independent mode only, where it does not cancel).
+// density, folded into C[1].pdfFwd (docs/bdpt-mis.md §2).
 void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float sensorPdf, const WalkSettings& ws,
                         Sampler& rng, RayCounter& counter, std::vector<PathVertex>& out);
 
-// L[0] is the light vertex. In Shared mode the subpath starts at `sharedLambda` and stops at its
-// first fluorescent event (later vertices could only form paths Shared mode cannot weight).
-void traceLightSubpath(const Scene& scene, float sharedLambda, const WalkSettings& ws, Sampler& rng, RayCounter& counter,
-                       std::vector<PathVertex>& out);
-
-// Density with which a light subpath starts at light `light` with wavelength lambda: the joint
-// p(light, λ) = p(light | λ)·p(λ) in Independent mode, p(light | λ) in Shared mode.
-float lightChoicePdf(const Scene& scene, int light, float lambda, const WalkSettings& ws);
+// L[0] is the light vertex, its pdfFwd the density with which it was sampled (with the light-start
+// wavelength density in the own family). A shared subpath starts at `sharedLambda` and stops at its
+// first fluorescent event (later vertices could only form paths the shared family cannot weight).
+void traceLightSubpath(const Scene& scene, LightFamily family, float sharedLambda, const WalkSettings& ws, Sampler& rng,
+                       RayCounter& counter, std::vector<PathVertex>& out);
 
 }  // namespace kasha::bdpt

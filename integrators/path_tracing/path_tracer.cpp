@@ -1,4 +1,4 @@
-#include "integrators/path_tracer.h"
+#include "integrators/path_tracing/path_tracer.h"
 
 #include "core/color.h"
 #include "core/sampling.h"

@@ -1,4 +1,4 @@
-#include "integrators/light_tracer.h"
+#include "integrators/light_tracing/light_tracer.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "integrators/hero_path_tracer.h"
+#include "integrators/path_tracing/hero_path_tracer.h"
 
 #include <algorithm>
 #include <cmath>
