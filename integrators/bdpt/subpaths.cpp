@@ -7,7 +7,8 @@ namespace {
 
 // Extends `path` from its last vertex along `ray` (Veach's random walk). pdfSA is the density of
 // ray's direction at the last vertex (per steradian; for a light at infinity, per unit area of
-// its disk). Camera walks run in Radiance mode, light walks in Importance mode.
+// its disk). Camera walks run in Radiance mode, light walks in Importance mode; a walk with
+// stopAtFluorescence ends at its first fluorescent event (the shared family's light subpaths).
 void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lambda, TransportMode mode,
                 bool stopAtFluorescence, const WalkSettings& ws, Sampler& rng, RayCounter& counter, std::vector<PathVertex>& path) {
   const bool camera = mode == TransportMode::Radiance;
