@@ -50,8 +50,8 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
          (a.lobe == SpectralLobe::Fluorescent) != (b.lobe == SpectralLobe::Fluorescent);
 }
 
-}  // namespace
-
+// Density of the path under strategy (s, variant) (docs/bdpt-mis.md eqs. 2, 3, 6 and §5's table),
+// whether or not the strategy is valid.
 double strategyDensity(const FullPath& p, int s, Variant variant) {
   const int k = int(p.v.size()) - 1;
   const bool nee = s == 1 && k >= 2 && variant == Variant::kStandard;
@@ -73,6 +73,8 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
   if (variant == Variant::kMollified) d *= p.mollifyWidth;
   return d;
 }
+
+}  // namespace
 
 bool strategyValid(const FullPath& p, int s, Variant variant) { return validGiven(p, s, variant, allElastic(p)); }
 

@@ -60,8 +60,4 @@ float misWeight(const FullPath& path, int s, Variant variant);
 // Whether strategy (s, variant) can produce the path (exposed for tests).
 bool strategyValid(const FullPath& path, int s, Variant variant);
 
-// Density of the path under strategy (s, variant) (docs/bdpt-mis.md eqs. 2, 3, 6), whether or not
-// the strategy is valid (exposed for tests).
-double strategyDensity(const FullPath& path, int s, Variant variant);
-
 }  // namespace kasha::bdpt
