@@ -40,7 +40,7 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   std::vector<WeightCheck> checks;
   std::vector<Splat> splats;
   RayCounter counter;
-  std::map<std::pair<int, int>, int> interior;  // (variant, fraction of 1) of weights strictly inside (0, 1)
+  std::map<std::pair<int, int>, int> interior;  // (variant, s + t) → weights strictly inside (0, 1)
   int compared = 0;
   for (uint32_t sample = 0; sample < 20000; ++sample) {
     Sampler rng(SamplerKind::Independent, 11, sample, 0);

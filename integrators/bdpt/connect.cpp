@@ -65,9 +65,10 @@ LightEnd lightEnd(const Context& c, int light, float lambda0, const PathVertex& 
   return e;
 }
 
-// The light end of a light subpath with at least two vertices, from what the subpath stored.
-LightEnd storedLightEnd(const std::vector<PathVertex>& L) {
-  return {L[0].pdfFwd, L[1].pdfFwd, L[0].wavelengthPdf, L[0].kind == Kind::Light};
+// The light end of a light subpath whose first s vertices a strategy uses, from what the subpath
+// stored (x_1 is the camera when s = 1).
+LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s) {
+  return {L[0].pdfFwd, s >= 2 ? double(L[1].pdfFwd) : 0.0, L[0].wavelengthPdf, L[0].kind == Kind::Light};
 }
 
 MisFactors factors(const Context& c, const LightEnd& end, bool oneGroup) {
@@ -145,13 +146,23 @@ bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
   return !c.scene.accel->occluded(o, w, dist * (1.0f - 1e-4f) - shorten - rayEpsilon(a.p));
 }
 
-// The camera side's sum when the light's side is the light end alone (s ≤ 1): C[t−1] is x_s, with
-// the light side's density pLast, the strategy with t − 1 camera vertices `mLast`; C[t−2] with
-// the light side's density pBefore.
+// The camera side's sum at a connection through C[t−1] (docs/bdpt-mis.md eq. 10): C[t−1] with the
+// light side's density pLast and `mLast` the M of the strategy with t − 1 camera vertices; C[t−2]
+// with the light side's density pBefore.
 MisSums cameraSum(const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast, double pBefore) {
   const PathVertex& b = C[size_t(t - 1)];
   const PathVertex& bNext = C[size_t(t - 2)];
   return sideSum(b.sums, densityRatio(pBefore, bNext.pdfFwd), cameraMultiplicity(C, t - 2), densityRatio(pLast, b.pdfFwd),
+                 mLast);
+}
+
+// The light side's sum at a connection through L[s−1] (s ≥ 2; eq. 10): L[s−1] with the camera
+// side's density pLast and `mLast` the M of the strategy with s − 1 light vertices; L[s−2] with
+// the camera side's density pBefore.
+MisSums lightSum(const std::vector<PathVertex>& L, int s, double pLast, const MisSums& mLast, double pBefore) {
+  const PathVertex& a = L[size_t(s - 1)];
+  const PathVertex& aPrev = L[size_t(s - 2)];
+  return sideSum(a.sums, densityRatio(pBefore, aPrev.pdfFwd), lightMultiplicity(L, s - 2), densityRatio(pLast, a.pdfFwd),
                  mLast);
 }
 
@@ -322,7 +333,7 @@ float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fa
     if (c.bandwidth > 0.0f && std::abs(a.lambda - b.lambda) < c.bandwidth)
       pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kMollified};
   }
-  const LightEnd end = storedLightEnd(L);
+  const LightEnd end = storedLightEnd(L, s);
   float sum = 0.0f;
   bool checked = false, unoccluded = false;
   for (int i = 0; i < n; ++i) {
@@ -335,17 +346,14 @@ float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fa
     const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, b.lambda) : 0.0;
     const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, b.lambda);
     const double pCamAPrev = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
-    const MisSums lightSum = sideSum(a.sums, densityRatio(pCamAPrev, aPrev.pdfFwd), lightMultiplicity(L, s - 2),
-                                     densityRatio(pCamA, a.pdfFwd), lightMultiplicity(L, s - 1, p.la, p.lambdaA));
-    const MisSums cameraSum = sideSum(b.sums, densityRatio(pLightBNext, bNext.pdfFwd), cameraMultiplicity(C, t - 2),
-                                      densityRatio(pLightB, b.pdfFwd),
-                                      cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, c.sensorPdf));
+    const MisSums sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA), pCamAPrev) +
+                          cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, c.sensorPdf), pLightBNext);
     const MisSums here = joinMultiplicity(true, p.la, p.lb);
     const MisSums own = p.variant == Variant::kStandard ? MisSums{0.0, 0.0, 0.0, 1.0}
                         : p.variant == Variant::kOwn    ? MisSums{0.0, 1.0, 0.0, 0.0}
                                                         : MisSums{0.0, 0.0, 1.0, 0.0};
     const bool oneGroup = a.elasticBefore && b.elasticBefore && p.la == SpectralLobe::Elastic && p.lb == SpectralLobe::Elastic;
-    const float weight = weigh(c, s, t, p.variant, own, here + lightSum + cameraSum, factors(c, end, oneGroup), [&] {
+    const float weight = weigh(c, s, t, p.variant, own, here + sides, factors(c, end, oneGroup), [&] {
       FullPath fp = layout(c, &L, s, C, t, end);
       fp.v[size_t(s - 1)].lobe = p.la;
       fp.v[size_t(s)].lobe = p.lb;
@@ -396,9 +404,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   // wavelength arriving at it.
   const double sensorPdf = family == LightFamily::Shared ? c.sensorPdf : c.sensor.pdf(lambda);
   const double pCamA = toAreaDensity(c.scene.camera.directionPdf(-conn->wi) * float(sensorPdf), cam, a);
-  const LightEnd end = s == 1 ? lightEnd(c, L[0].light, L[0].lambda, L[0], cam) : storedLightEnd(L);
+  const LightEnd end = storedLightEnd(L, s);
   float value = 0.0f;
-  MisSums here, own, lightSum;
+  MisSums here, own, sides;
   bool oneGroup = true;
   double pCamAPrev = 0.0;
   if (s == 1) {
@@ -410,7 +418,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     value = Le * std::abs(glm::dot(a.n, conn->wi)) / (a.pdfFwd * (family == LightFamily::Own ? a.wavelengthPdf : 1.0f));
     here = directLightMultiplicity(true, sensorPdf);
     own = family == LightFamily::Shared ? MisSums{0.0, 0.0, 0.0, sensorPdf * sensorPdf} : MisSums{0.0, 1.0, 0.0, 0.0};
-    lightSum = lightEndSum(pCamA, a.pdfFwd);
+    sides = lightEndSum(pCamA, a.pdfFwd);
   } else {
     // The light side's own spectral event at a (λ_o from e when fluorescent): the sensor
     // responds at the wavelength it chose.
@@ -425,11 +433,10 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     here = lightTracingMultiplicity(true, a.spectralPdf, sensorPdf);
     const double spec2 = double(a.spectralPdf) * a.spectralPdf;
     own = family == LightFamily::Shared ? MisSums{0.0, 0.0, 0.0, sensorPdf * sensorPdf * spec2} : MisSums{0.0, spec2, 0.0, 0.0};
-    lightSum = sideSum(a.sums, densityRatio(pCamAPrev, aPrev.pdfFwd), lightMultiplicity(L, s - 2),
-                       densityRatio(pCamA, a.pdfFwd), lightMultiplicity(L, s - 1));
+    sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1), pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
-  const float weight = weigh(c, s, 1, variant, own, here + lightSum, factors(c, end, oneGroup), [&] {
+  const float weight = weigh(c, s, 1, variant, own, here + sides, factors(c, end, oneGroup), [&] {
     const std::vector<PathVertex> camOnly{cam};
     FullPath fp = layout(c, &L, s, camOnly, 1, end);
     const int k = s;
