@@ -29,8 +29,9 @@ PEERS = os.path.normpath(os.path.join(HERE, '..', '..', 'shared', 'peers'))
 PBRT = {
     'path': (1.29e-4, 6.92e-5, 13.07),
     'bdpt': (8.44e-5, 2.57e-5, 63.2),
+    'sppm': (6.08e-5, 1.03e-5, 45.7),  # pbrt's sppm error is its MSE minus its reference's variance (bias included)
 }
-PEER_OF = {'pt': 'path', 'lt': 'path', 'bdpt': 'bdpt', 'bdpt-shared': 'bdpt', 'bdpt-independent': 'bdpt'}
+PEER_OF = {'pt': 'path', 'lt': 'path', 'bdpt': 'bdpt', 'bdpt-shared': 'bdpt', 'bdpt-independent': 'bdpt', 'ppm': 'sppm'}
 
 
 def exr2npy(out):

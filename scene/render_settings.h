@@ -9,6 +9,11 @@
 
 namespace kasha {
 
+// Which estimator of photon mapping counts light that reaches a camera vertex straight from a
+// light (docs/photon-mapping.md §3): next-event estimation for the elastic lobe and photons for the
+// fluorescent lobe ("nee-elastic"), next-event estimation for every lobe ("nee"), or photons ("photons").
+enum class PpmDirectLight { NeeElastic, Nee, Photons };
+
 // Progressive photon mapping (integrator "ppm", docs/photon-mapping.md); zeros are derived from
 // the scene.
 struct PhotonMappingSettings {
@@ -17,6 +22,7 @@ struct PhotonMappingSettings {
   float alpha = 2.0f / 3.0f;   // radius reduction (Knaus & Zwicker 2011 eq. 15), in (1/3, 1)
   float bandwidth = 0.0f;      // half-width h_1 of the elastic wavelength kernel, nm; 0: 1% of the range
   bool alwaysKernel = false;   // elastic lobe through the kernel even where the sensor is evaluated exactly
+  PpmDirectLight direct = PpmDirectLight::NeeElastic;
 };
 
 // Spectral mollification of BDPT's elastic connections (integrator "bdpt-mollified",

@@ -173,6 +173,11 @@ struct Loader {
     p.bandwidth = f.number("bandwidth", p.bandwidth);
     if (!(p.bandwidth >= 0.0f)) f.fail("bandwidth", "must not be negative (0: 1% of the wavelength range)");
     p.alwaysKernel = f.boolean("always_wavelength_kernel", p.alwaysKernel);
+    const std::string direct = f.string("direct", "nee-elastic");
+    if (direct == "nee-elastic") p.direct = PpmDirectLight::NeeElastic;
+    else if (direct == "nee") p.direct = PpmDirectLight::Nee;
+    else if (direct == "photons") p.direct = PpmDirectLight::Photons;
+    else f.fail("direct", "expected \"nee-elastic\", \"nee\" or \"photons\"");
     f.finish();
   }
 

@@ -16,6 +16,13 @@
 
 namespace kasha::test {
 
+// The scene's camera, looking straight ahead from where it stands, at res × res pixels (the low
+// resolution of the agreement tests).
+inline void useSquareCamera(Scene& scene, int res) {
+  const Camera& c = scene.camera;
+  scene.camera = Camera(c.position(), c.position() + c.forward(), Vec3(0, 1, 0), c.fovYDegrees(), res, res);
+}
+
 // Stats of region r, channel c at index r·3 + c. Batch b uses seed seedStep·(b + 1).
 inline std::vector<BatchStats> regionBatches(const Scene& scene, const Integrator& integrator, int width, int height,
                                              int regions, const std::function<int(int x, int y)>& regionOf, int spp,

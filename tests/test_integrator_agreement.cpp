@@ -26,8 +26,7 @@ struct Estimate {
 
 std::unique_ptr<Scene> lowRes(const std::string& name) {
   auto scene = loadScene(test::sourcePath("scenes/" + name));
-  const Camera& c = scene->camera;
-  scene->camera = Camera(c.position(), c.position() + c.forward(), Vec3(0, 1, 0), c.fovYDegrees(), kRes, kRes);
+  test::useSquareCamera(*scene, kRes);
   return scene;
 }
 

@@ -69,7 +69,9 @@ TEST(Ppm, MemoryLimitIsCheckedBeforeAllocating) {
   s.ppm.photonsPerPass = 1000;
   s.memoryLimit = 1000 * kBytesPerPhoton - 1;  // not even one photon per subpath fits
   EXPECT_THROW(PpmIntegrator(*scene, s), MemoryLimitError);
-  // One photon per subpath fits, but a furnace stores about two: the photon pass refuses.
+  // One photon per subpath fits, but a furnace stores about two when photons carry direct light
+  // too (from their first vertex on): the photon pass refuses.
+  s.ppm.direct = PpmDirectLight::Photons;
   s.memoryLimit = 1200 * kBytesPerPhoton;
   const PpmIntegrator ppm(*scene, s);
   Film film(scene->camera.width(), scene->camera.height());
@@ -155,7 +157,8 @@ Vec3 kernelBias(const PpmIntegrator& ppm, int passes, const std::vector<double>&
 TEST(Ppm, ForcedWavelengthKernelHasItsDerivedBias) {
   // validation.md §1's worked example with the elastic lobe always through a kernel so wide
   // (h_1 = 200 nm) that its bias, a few per cent, lies far outside the noise: the mean must be the
-  // closed form plus the bias derived by quadrature.
+  // closed form plus the bias derived by quadrature. Direct light comes by next-event estimation,
+  // exactly: only the photons' elastic light, reflected L − L_e, goes through the kernel.
   auto scene = load("furnace_fluorescent.json");
   const auto& m = dynamic_cast<const JungBbrrdf&>(*scene->materials.at(0));
   const AreaEmission& em = *scene->shapes.at(0).emission;
@@ -165,7 +168,7 @@ TEST(Ppm, ForcedWavelengthKernelHasItsDerivedBias) {
   constexpr int kPasses = 256;
   const std::vector<double> x = grid(scene->range);
   // Closed form L = [L_e + Q·e·K]/D, K = A/(1 − Q·B) (validation.md §1), and the elastic part
-  // (1 − c·a)·r·L of the reflected radiance.
+  // (1 − c·a)·r·(L − L_e) of the radiance reflected from indirect light.
   double A = 0.0, B = 0.0;
   for (const double l : x) {
     const float lf = float(l);
@@ -179,7 +182,7 @@ TEST(Ppm, ForcedWavelengthKernelHasItsDerivedBias) {
     const float lf = float(x[i]);
     const double ca = m.c() * m.a(lf), D = 1.0 - (1.0 - ca) * m.r(lf);
     L[i] = (em.scale * em.radiance(lf) + m.q() * m.e(lf) * K) / D;
-    elastic[i] = (1.0 - ca) * m.r(lf) * L[i];
+    elastic[i] = (1.0 - ca) * m.r(lf) * (L[i] - em.scale * em.radiance(lf));
   }
   const Vec3 exact = integrateXyz(x, L);
   const Vec3 bias = kernelBias(PpmIntegrator(*scene, s), kPasses, x, elastic);

@@ -5,7 +5,7 @@
 
 #include "core/color.h"
 #include "core/sampling.h"
-#include "integrators/shadow_ray.h"
+#include "integrators/lane_next_event.h"
 
 namespace kasha {
 namespace {
@@ -28,12 +28,7 @@ HeroPathTracer::HeroPathTracer(const Scene& scene, const RenderSettings& s)
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "with hero wavelengths (their strata need p)");
-  if (!s.wavelengths.nee.uses(WavelengthSpec::Kind::Event))
-    throw WavelengthStrategyError(WavelengthSite::Nee, "nee_sampling '" + s.wavelengths.nee.text +
-                                                           "' is not supported with hero wavelengths (leave it at 'event')");
-  if (n_ < 2 || n_ > kMaxWavelengths)
-    throw std::invalid_argument("hero wavelengths: " + std::to_string(n_) + " is outside [2, " +
-                                std::to_string(kMaxWavelengths) + "]");
+  requireLaneSettings(s, n_, 2, "hero wavelengths");
 }
 
 Vec3 HeroPathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
@@ -106,26 +101,8 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
     const Vec2 uPos = rng.uniform2();
     prevN = e.n;
     std::copy(e.lambda, e.lambda + e.n, prevLambda);
-    if (!bsdf.has(BsdfFlags::DeltaDirection)) {
-      const auto [li, pSelect] = selectLaneLight(scene, {e.lambda, size_t(e.n)}, uLight);
-      const std::optional<LightSample> ls =
-          pSelect > 0.0f ? scene.lights[li]->sampleLi(hit->p, e.lambda[0], uPos) : std::nullopt;
-      if (ls && ls->pdf > 0.0f) {
-        const Vec3 wi = bsdf.toLocal(ls->wi);
-        if (lightVisible(scene, *hit, *ls, counter)) {
-          const float lightPdf = pSelect * ls->pdf;
-          const float w = ls->delta ? 1.0f
-                                    : powerHeuristic(lightPdf, bsdf.directionPdf(TransportMode::Radiance, wo, wi, e.lobe,
-                                                                                 e.lambda[0], lambdaOut0));
-          for (int k = 0; k < e.n; ++k) {
-            // The light's geometry does not depend on λ: the same point at every lane's wavelength.
-            const std::optional<LightSample> lk = k == 0 ? ls : scene.lights[li]->sampleLi(hit->p, e.lambda[k], uPos);
-            if (lk)
-              L += laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, wi, wo) * (std::abs(wi.z) * lk->Li * w / lightPdf);
-          }
-        }
-      }
-    }
+    L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, e, lambdaOut0, uLight, uPos, NeeWeight::PowerHeuristic,
+                       counter);
 
     // Direction stage at lane 0's wavelengths; every lane has the same density.
     const std::optional<DirectionSample> ds =

@@ -36,7 +36,7 @@ void tracePath(const Scene& scene, const PhotonTracing& s, Sampler& rng, std::ve
     // Stored as flux times |ω_i·n_s|/|ω_i·n_g| of this vertex, so that the gather's f·Φ is Veach's
     // shading-normal f_s·Φ (Veach97 §5.3): Φ is flux through the surface, not about n_s.
     const float power = beta * bsdf.incidentShadingRatio(wi);
-    if (!bsdf.has(BsdfFlags::DeltaDirection) && power > 0.0f)
+    if (depth >= s.firstStoredDepth && !bsdf.has(BsdfFlags::DeltaDirection) && power > 0.0f)
       out.push_back({{hit->p.x, hit->p.y, hit->p.z}, {wi.x, wi.y, wi.z}, lambda, power, uint32_t(depth)});
     if (depth == s.maxDepth) break;
     // Both stages in Importance mode: lobe and λ_o (Jung18 eq. 6), then the direction.

@@ -14,14 +14,16 @@ namespace kasha {
 
 struct PhotonTracing {
   size_t paths = 0;      // light subpaths to trace (the photons "emitted" in the estimate)
-  int maxDepth = 0;      // photons are stored at vertices 1..maxDepth
+  int maxDepth = 0;      // photons are stored at vertices firstStoredDepth..maxDepth
+  int firstStoredDepth = 1;  // 2 when next-event estimation counts the light arriving straight from a light
   int rrDepth = 3;       // Russian roulette from this vertex on
   uint64_t memoryLimit = 0;  // bytes: stored photons × kBytesPerPhoton must stay within it
   const WavelengthDensity* wavelengths = nullptr;  // the light-start strategy's density
   SamplerKind sampler = SamplerKind::Sobol;        // path j is sample j of the pass's sequence
 };
 
-// Traces the subpaths and returns a photon for every vertex that has a non-specular lobe. Path j
+// Traces the subpaths and returns a photon for every vertex from firstStoredDepth on that has a
+// non-specular lobe. Path j
 // draws from its own stream of `seed`, and the photons come in path order, so the result does not
 // depend on the number of threads. Throws MemoryLimitError as soon as the photons stored so far
 // exceed the memory limit.

@@ -4,7 +4,8 @@
 #include <stdexcept>
 
 #include "core/memory_budget.h"
-#include "integrators/photon_mapping/photon_map.h"
+#include "integrators/lane_next_event.h"
+#include "integrators/photon_mapping/photon_gather.h"
 #include "integrators/photon_mapping/photon_tracer.h"
 #include "integrators/progressive_schedule.h"
 
@@ -15,48 +16,35 @@ namespace {
 // surfaces (docs/photon-mapping.md).
 constexpr float kPhotonsPerDisc = 16.0f;
 
-struct PhotonPass final : PassData {
-  PhotonPass(std::vector<Photon> photons, float r, float h, size_t paths)
-      : map(std::move(photons)), radius(r), bandwidth(h), density(1.0f / (kPi * r * r * float(paths))) {}
-  PhotonMap map;
-  float radius, bandwidth;
-  float density;  // 1/(π r² N): turns a sum of f·Φ_p into reflected radiance
-};
+// Lanes when the settings leave them to the integrator.
+constexpr int kPpmDefaultLanes = 1;
 
-// The reflected radiance at a camera vertex from the photons of the pass, at λ, the wavelength
-// leaving this vertex towards the camera (the camera sample turns it into XYZ with W(λ)/p(λ));
-// `bounces` is the number of specular vertices before it. With `exactElastic` (at the first
-// vertex) the elastic lobe is instead seen at each photon's own wavelength: those contributions
-// go straight to the sensor (sensorResponse) and are added to `photonXyz`.
-float gather(const PhotonPass& pass, const Bsdf& bsdf, const Vec3& p, const Vec3& wo, float lambda, int bounces,
-             int maxDepth, bool exactElastic, SampleContext& ctx, Vec3& photonXyz) {
-  float sum = 0.0f;
-  for (const size_t i : pass.map.within(p, pass.radius)) {
-    const Photon& ph = pass.map[i];
-    if (int(ph.depth) + bounces > maxDepth) continue;
-    const Vec3 wi(ph.wi[0], ph.wi[1], ph.wi[2]);  // the photon's direction in its own surface frame
-    // Fluorescent lobe: exact for any pair of wavelengths (transport.md §4).
-    if (bsdf.has(BsdfFlags::Fluorescent))
-      sum += bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, lambda, SpectralLobe::Fluorescent) * ph.power;
-    const float fe = bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, ph.lambda, SpectralLobe::Elastic) * ph.power;
-    if (fe <= 0.0f) continue;
-    if (exactElastic)
-      photonXyz += sensorResponse(ctx, ph.lambda, fe * pass.density);  // the sensor at the photon's own wavelength
-    else
-      sum += fe * wavelengthKernel(ph.lambda - lambda, pass.bandwidth);
+// The elastic lobe for every lane, chosen with probability 1: each keeps its wavelength.
+LaneEvent elasticEvent(std::span<const float> known) {
+  LaneEvent e;
+  e.n = int(known.size());
+  for (int j = 0; j < e.n; ++j) {
+    e.lambda[j] = known[j];
+    e.source[j] = j;
+    e.scale[j] = 1.0f;
   }
-  return sum * pass.density;
+  return e;
 }
 
 }  // namespace
 
 PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
-    : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
-      light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
+    : sources_(scene),
+      sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
+      light_(s.wavelengths.light, sources_, WavelengthSite::LightStart),
+      excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
+      n_(s.heroWavelengths == kAutoLanes ? kPpmDefaultLanes : s.heroWavelengths),
       maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
-      alwaysKernel_(s.ppm.alwaysKernel), memoryLimit_(s.memoryLimit), sampler_(s.sampler) {
+      alwaysKernel_(s.ppm.alwaysKernel), direct_(s.ppm.direct), memoryLimit_(s.memoryLimit),
+      sampler_(s.sampler) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by ppm");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by ppm");
+  requireLaneSettings(s, n_, 1, "ppm");
   const PhotonMappingSettings& p = s.ppm;
   if (p.photonsPerPass < 0 || !(p.radius >= 0.0f) || !(p.bandwidth >= 0.0f))
     throw std::invalid_argument("ppm: photons per pass, radius and bandwidth must not be negative");
@@ -72,6 +60,9 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
   double area = 0.0;
   for (const Shape& shape : scene.shapes) area += shape.area;
   radius1_ = p.radius > 0.0f ? p.radius : float(std::sqrt(kPhotonsPerDisc * area / (kPi * double(photonsPerPass_))));
+  // A photon's first vertex is light straight from a light: needed unless next-event estimation
+  // counts it for every lobe, or it serves only fluorescent lobes and the scene has none.
+  firstStoredDepth_ = direct_ == PpmDirectLight::Nee || (direct_ == PpmDirectLight::NeeElastic && sources_.fluorophores.empty()) ? 2 : 1;
   bandwidth1_ = p.bandwidth > 0.0f ? p.bandwidth : 0.01f * (scene.range.max - scene.range.min);
 }
 
@@ -87,6 +78,7 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
     t.paths = photonsPerPass_;
     t.maxDepth = maxDepth_;
     t.rrDepth = rrDepth_;
+    t.firstStoredDepth = firstStoredDepth_;
     t.memoryLimit = memoryLimit_;
     t.sampler = sampler_;
     t.wavelengths = &light_.density();
@@ -99,38 +91,83 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
 
 Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   const auto& pass = static_cast<const PhotonPass&>(*ctx.pass);
-  const WavelengthSample ws = sensor_.density().sample(rng.uniform());
-  if (ws.pdf <= 0.0f) return Vec3(0.0f);
-  Ray ray = scene.camera.generateRay(pixel + rng.uniform2());
-  float lambda = ws.lambda, beta = 1.0f;  // beta: throughput of the specular vertices so far
-  float L = 0.0f;    // radiance arriving at the camera's wavelength
+  const WavelengthDensity& p = sensor_.density();
+  const float u = rng.uniform();
+  const Vec2 jitter = rng.uniform2();
+  // Lane j at the stratum (u + j/N) of p's inverse CDF, weighted by 1/(N·p(λ_j)) (Wilkie14 eq. 8,
+  // as the path tracer's lanes), in its own share of the sensor.
+  float sensorLambda[kMaxLanes];
+  CameraLanes lanes;
+  lanes.n = n_;
+  for (int j = 0; j < n_; ++j) {
+    const WavelengthSample s = p.sample(laneStratum(u, j, n_));
+    sensorLambda[j] = lanes.lambda[j] = s.lambda;
+    lanes.T[j].v[j] = s.pdf > 0.0f ? 1.0f / (float(n_) * s.pdf) : 0.0f;
+  }
+  Ray ray = scene.camera.generateRay(pixel + jitter);
+  SensorShares L;    // radiance over density arriving at each sensor wavelength
   Vec3 xyz(0.0f);    // elastic photons seen at their own wavelengths
+  const uint32_t firstDimension = rng.dimension();
   for (int bounces = 0;; ++bounces) {
+    rng.startVertex(firstDimension, bounces);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++ctx.counter.closest;
     if (!hit) {
-      if (const EnvironmentLight* env = scene.environment()) L += beta * env->Le(lambda, ray.d);
+      if (const EnvironmentLight* env = scene.environment())
+        for (int k = 0; k < lanes.n; ++k) L += lanes.T[k] * env->Le(lanes.lambda[k], ray.d);
       break;
     }
     const Shape& shape = scene.shapes[hit->shape];
-    if (shape.emission) L += beta * shape.emission->eval(lambda, hit->ng, -ray.d);
+    // Emission is hit only after the camera or specular vertices: next-event estimation and the
+    // photons never count these paths (docs/photon-mapping.md §3).
+    if (shape.emission)
+      for (int k = 0; k < lanes.n; ++k) L += lanes.T[k] * shape.emission->eval(lanes.lambda[k], hit->ng, -ray.d);
     if (bounces >= maxDepth_) break;
-    const Bsdf bsdf = scene.bsdf(*hit, {&lambda, 1});
+    const Bsdf bsdf = scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)});
     const Vec3 wo = bsdf.toLocal(-ray.d);
-    if (!bsdf.has(BsdfFlags::DeltaDirection))
-      L += beta * gather(pass, bsdf, hit->p, wo, lambda, bounces, maxDepth_, bounces == 0 && !alwaysKernel_, ctx, xyz);
-    // The gather covers every non-specular lobe; a sampled specular lobe continues the path.
-    const std::optional<ScatterSample> ss =
-        bsdf.sample(TransportMode::Radiance, wo, lambda, rng.uniform3());
-    if (!ss || !ss->specular) break;
-    beta *= ss->f * std::abs(ss->w.z) / ss->pdf;
-    if (!(beta > 0.0f)) break;
-    lambda = ss->lambda;
-    const Vec3 w = bsdf.toWorld(ss->w);
+    const float uLobe = rng.uniform(), uLane = rng.uniform(), uLight = rng.uniform();
+    const Vec2 uPos = rng.uniform2();
+    const std::span<const float> known(lanes.lambda, size_t(lanes.n));
+    // The spectral event of every lane (Jung18 eq. 7, λ_i as the path tracer draws it): next-event
+    // estimation's lobe, and the lobe whose direction continues the path if it is specular.
+    LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Radiance, known, n_, uLobe,
+                                  excitation_.draws(shape.material) ? &excitation_.density(shape.material) : nullptr);
+    if (!bsdf.has(BsdfFlags::DeltaDirection)) {
+      const int elasticFromDepth = direct_ == PpmDirectLight::Photons ? 1 : 2;
+      gatherPhotons(pass, bsdf, hit->p, wo, lanes, bounces, maxDepth_, elasticFromDepth, bounces == 0 && !alwaysKernel_,
+                    ctx, L, xyz);
+      // Light sampling is the only estimator of direct light here (the path continues through
+      // specular directions only): no MIS weight. "nee-elastic": the elastic lobe of every lane
+      // for sure; "nee": the lobe of the spectral event e.
+      if (direct_ != PpmDirectLight::Photons)
+        L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, direct_ == PpmDirectLight::Nee ? e : elasticEvent(known),
+                           /*lambdaOut0, unused without MIS*/ 0.0f, uLight, uPos, NeeWeight::Alone, ctx.counter);
+    }
+    if (e.n == 0) break;
+    // Lanes end where the path tracer ends them: a direction that depends on λ keeps one.
+    if (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection)) keepOneLane(e, uLane);
+    const float lambdaOut0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lanes.lambda[0];
+    const std::optional<DirectionSample> ds =
+        bsdf.sampleDirection(TransportMode::Radiance, wo, e.lobe, e.lambda[0], lambdaOut0, rng.uniform2());
+    // The gather covers every non-specular lobe; a sampled specular direction continues the path.
+    if (!ds || !ds->specular || !(ds->pdf > 0.0f)) break;
+    CameraLanes next;
+    next.n = e.n;
+    bool alive = false;
+    for (int k = 0; k < e.n; ++k) {
+      next.lambda[k] = e.lambda[k];
+      next.T[k] = laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, ds->w, wo) * (std::abs(ds->w.z) / ds->pdf);
+      alive = alive || next.T[k].anyPositive();
+    }
+    if (!alive) break;
+    lanes = next;
+    const Vec3 w = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
   }
-  // W(λ)/p(λ) at the camera sample's wavelength (transport.md §1).
-  return xyz + sensorResponse(ctx, ws.lambda, L / ws.pdf);
+  // W(λ_j) times each sensor wavelength's share (transport.md §1).
+  for (int j = 0; j < n_; ++j)
+    if (L.v[j] != 0.0f) xyz += sensorResponse(ctx, sensorLambda[j], L.v[j]);
+  return xyz;
 }
 
 }  // namespace kasha

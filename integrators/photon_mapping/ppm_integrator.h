@@ -5,29 +5,36 @@
 // average over samples is their average over iterations.
 //
 // Photons are light subpaths in Importance mode with their own wavelengths (photon_tracer.h). A
-// camera path passes specular vertices in Radiance mode and gathers at every vertex with a
-// non-specular lobe: Σ f·Φ_p / (π r_i² N) over the photons within r_i, N the subpaths of the pass.
-// The fluorescent lobe is evaluated exactly from the photon's wavelength to the camera's. The
-// elastic lobe needs λ_photon = λ_camera: where the camera path does not depend on its wavelength
-// (the first vertex) the sensor is evaluated at the photon's own wavelength, which is exact;
-// behind specular vertices (or always, if asked) an Epanechnikov kernel of half-width h_i =
-// h_1·r_i/r_1 in wavelength stands in for the delta. Emission seen along the camera path is added
-// exactly; there is no next-event estimation.
+// camera path carries wavelength lanes (hero wavelengths, stratified over the sensor density as in
+// the path tracer), passes specular vertices in Radiance mode and at every vertex with a
+// non-specular lobe adds the photons within r_i, Σ f·Φ_p / (π r_i² N), N the subpaths of the pass,
+// and direct light of the elastic lobe by next-event estimation (lane_next_event.h), so that the
+// photons' first vertices count for the fluorescent lobe only and every path is counted by exactly
+// one of the two (§3; render/ppm/direct "nee": next-event estimation for every lobe, photons from
+// their second vertex on; "photons": no next-event estimation). The
+// fluorescent lobe is evaluated exactly from the photon's wavelength to each lane's. The elastic
+// lobe needs λ_photon = λ_camera: where the camera path does not depend on its wavelengths (the
+// first vertex) the sensor is evaluated at the photon's own wavelength, which is exact; behind
+// specular vertices (or always, if asked) an Epanechnikov kernel of half-width h_i = h_1·r_i/r_1
+// in wavelength stands in for the delta. Emission seen along the camera path is added exactly.
 #include "scene/wavelength_strategy.h"
+#include "integrators/fluorescence_sampling.h"
 #include "integrators/integrator.h"
 
 namespace kasha {
 
 class PpmIntegrator final : public Integrator {
  public:
-  // Resolves the derived settings (PhotonMappingSettings). Throws std::invalid_argument for
-  // settings out of range and MemoryLimitError if a pass's photons cannot fit the memory limit.
+  // Resolves the derived settings (PhotonMappingSettings) and the lanes (settings.heroWavelengths,
+  // kAutoLanes: 4). Throws std::invalid_argument for settings out of range (WavelengthStrategyError
+  // for a strategy) and MemoryLimitError if a pass's photons cannot fit the memory limit.
   PpmIntegrator(const Scene& scene, const RenderSettings& settings);
   std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                             RayCounter& counter) const override;
   int maxSamplesPerPass() const override { return 1; }
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override { return "ppm"; }
+  int lanes() const override { return n_; }
 
   size_t photonsPerPass() const { return photonsPerPass_; }
   // Gather radius and elastic kernel half-width of the pass that takes sample `sample` (iteration sample + 1).
@@ -35,11 +42,15 @@ class PpmIntegrator final : public Integrator {
   float bandwidth(int sample) const;
 
  private:
+  WavelengthSources sources_;
   WavelengthStrategy sensor_, light_;
-  int maxDepth_, rrDepth_;
+  FluorescenceSampling excitation_;  // λ_i of next-event estimation's fluorescent lobe ("material": the Bsdf's own)
+  int n_, maxDepth_, rrDepth_;
   size_t photonsPerPass_;
   float radius1_, alpha_, bandwidth1_;
   bool alwaysKernel_;
+  PpmDirectLight direct_;
+  int firstStoredDepth_;  // the photon pass stores photons from this vertex of their subpaths on
   uint64_t memoryLimit_;
   SamplerKind sampler_;
 };

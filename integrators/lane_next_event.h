@@ -1,0 +1,69 @@
+#pragma once
+// Next-event estimation for the wavelength lanes of a camera path (Radiance mode), shared by the
+// path tracer with lanes and photon mapping (docs/wavelength-sampling.md "Hero wavelengths",
+// docs/photon-mapping.md §3). One light is chosen symmetrically in the lanes after the vertex's
+// spectral event (selectLaneLight), one point on it serves every lane (a light's geometry does not
+// depend on λ), and lane k of the event adds laneWeight(k)·|cos θ_i|·L_i(λ_k)·w/(P(l)·p_light):
+// for a fluorescent event the excitation lanes λ_k were drawn as the path tracer draws them
+// (sampleLaneEvent: Jung18 eq. 7's P_c, then λ_i from the fluorescence strategy or the material).
+#include <cmath>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+#include "core/sampling.h"
+#include "scene/render_settings.h"
+#include "scene/wavelength_strategy.h"
+#include "integrators/shadow_ray.h"
+#include "integrators/wavelength_lanes.h"
+
+namespace kasha {
+
+// Checks the settings that lanes with this next-event estimation need: nee_sampling "event" (the
+// lanes' light sample serves the event's own excitation lanes) and lanes in [minLanes, kMaxLanes].
+// `who` names the integrator in the messages ("hero wavelengths", "ppm"). Throws
+// WavelengthStrategyError or std::invalid_argument.
+inline void requireLaneSettings(const RenderSettings& s, int lanes, int minLanes, const std::string& who) {
+  if (!s.wavelengths.nee.uses(WavelengthSpec::Kind::Event))
+    throw WavelengthStrategyError(WavelengthSite::Nee, "nee_sampling '" + s.wavelengths.nee.text +
+                                                           "' is not supported with " + who + " (leave it at 'event')");
+  if (lanes < minLanes || lanes > kMaxLanes)
+    throw std::invalid_argument(who + ": " + std::to_string(lanes) + " wavelength lanes is outside [" +
+                                std::to_string(minLanes) + ", " + std::to_string(kMaxLanes) + "]");
+}
+
+// How next-event estimation is weighted against hitting the light by direction sampling.
+enum class NeeWeight {
+  PowerHeuristic,  // the path also samples the direction from lane 0's wavelengths and counts emission it hits
+  Alone,           // the path never reaches a light through a non-specular direction: weight 1
+};
+
+// The contribution of one light sample to every lane of event `e` at the non-specular vertex
+// `hit` (outgoing direction wo in the Bsdf's frame); `before[j]` is lane j's throughput before
+// the event at the known wavelength known[j], lambdaOut0 the outgoing wavelength the direction
+// sampling of the event's lane 0 uses (for the power heuristic). uLight chooses the light, uPos
+// the point on it. Returns zero at a purely specular vertex. T is the lanes' throughput type.
+template <class T>
+T laneNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, std::span<const float> known,
+                const T* before, const LaneEvent& e, float lambdaOut0, float uLight, Vec2 uPos, NeeWeight weighting,
+                RayCounter& counter) {
+  T sum = before[0] * 0.0f;
+  if (e.n == 0 || bsdf.has(BsdfFlags::DeltaDirection)) return sum;
+  const auto [li, pSelect] = selectLaneLight(scene, {e.lambda, size_t(e.n)}, uLight);
+  if (!(pSelect > 0.0f)) return sum;
+  const std::optional<LightSample> ls = scene.lights[li]->sampleLi(hit.p, e.lambda[0], uPos);
+  if (!ls || !(ls->pdf > 0.0f) || !lightVisible(scene, hit, *ls, counter)) return sum;
+  const Vec3 wi = bsdf.toLocal(ls->wi);
+  const float lightPdf = pSelect * ls->pdf;
+  const float w = ls->delta || weighting == NeeWeight::Alone
+                      ? 1.0f
+                      : powerHeuristic(lightPdf, bsdf.directionPdf(TransportMode::Radiance, wo, wi, e.lobe, e.lambda[0],
+                                                                   lambdaOut0));
+  for (int k = 0; k < e.n; ++k) {
+    const std::optional<LightSample> lk = k == 0 ? ls : scene.lights[li]->sampleLi(hit.p, e.lambda[k], uPos);
+    if (lk) sum += laneWeight(bsdf, TransportMode::Radiance, known, before, e, k, wi, wo) * (std::abs(wi.z) * lk->Li * w / lightPdf);
+  }
+  return sum;
+}
+
+}  // namespace kasha

@@ -1,0 +1,33 @@
+#include "integrators/photon_mapping/photon_gather.h"
+
+#include "integrators/progressive_schedule.h"
+
+namespace kasha {
+
+void gatherPhotons(const PhotonPass& pass, const Bsdf& bsdf, const Vec3& p, const Vec3& wo, const CameraLanes& lanes,
+                   int bounces, int maxDepth, int elasticFromDepth, bool exactElastic, SampleContext& ctx, SensorShares& L, Vec3& xyz) {
+  float sum[kMaxLanes] = {};  // Σ f·Φ_p arriving at each lane's wavelength
+  const bool fluorescent = bsdf.has(BsdfFlags::Fluorescent);
+  for (const size_t i : pass.map.within(p, pass.radius)) {
+    const Photon& ph = pass.map[i];
+    if (int(ph.depth) + bounces > maxDepth) continue;
+    const Vec3 wi(ph.wi[0], ph.wi[1], ph.wi[2]);  // the photon's direction in its own surface frame
+    // Fluorescent lobe: exact for any pair of wavelengths (transport.md §4).
+    if (fluorescent)
+      for (int k = 0; k < lanes.n; ++k)
+        sum[k] += bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, lanes.lambda[k], SpectralLobe::Fluorescent) *
+                  ph.power;
+    if (int(ph.depth) < elasticFromDepth) continue;
+    const float fe = bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, ph.lambda, SpectralLobe::Elastic) * ph.power;
+    if (fe <= 0.0f) continue;
+    if (exactElastic) {
+      xyz += sensorResponse(ctx, ph.lambda, fe * pass.density);  // the sensor at the photon's own wavelength
+      continue;
+    }
+    for (int k = 0; k < lanes.n; ++k) sum[k] += fe * wavelengthKernel(ph.lambda - lanes.lambda[k], pass.bandwidth);
+  }
+  for (int k = 0; k < lanes.n; ++k)
+    if (sum[k] > 0.0f) L += lanes.T[k] * (sum[k] * pass.density);
+}
+
+}  // namespace kasha
