@@ -1,5 +1,6 @@
 // The photon map (integrators/photon_mapping/photon_map.h): FLANN's radius queries against brute
-// force on random points, and FLANN's memory against the bytes per photon the memory limit uses.
+// force on random points, with one tree and with the cells of a large map, and FLANN's memory
+// against the bytes per photon the memory limit uses.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,10 +15,10 @@ namespace {
 
 std::vector<Photon> randomPhotons(size_t n, Rng& rng, bool onSphere) {
   std::vector<Photon> v(n);
-  for (Photon& ph : v) {
+  for (size_t i = 0; i < n; ++i) {
     const Vec3 p = onSphere ? sampleUniformSphere(Vec2(rng.uniform(), rng.uniform()))
                             : Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f;
-    ph = {{p.x, p.y, p.z}, {0.0f, 0.0f, 1.0f}, 500.0f, 1.0f, 1};
+    v[i] = {{p.x, p.y, p.z}, {0.0f, 0.0f, 1.0f}, 500.0f, 1.0f, uint32_t(i)};  // depth: the photon's name here
   }
   return v;
 }
@@ -32,12 +33,14 @@ void compareWithBruteForce(size_t n, bool onSphere, uint64_t seed) {
   const std::vector<Photon> copy = photons;
   const PhotonMap map(std::move(photons));
   ASSERT_EQ(map.size(), n);
+  EXPECT_EQ(map.cells(), n >= PhotonMap::kSplitFrom ? size_t(1) << PhotonMap::kSplitLevels : 1u);
   size_t found = 0;
   for (int q = 0; q < 200; ++q) {
     const Vec3 x = onSphere ? sampleUniformSphere(Vec2(rng.uniform(), rng.uniform()))
                             : Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.4f - 1.2f;
     const float r = 0.02f + 0.6f * rng.uniform() * rng.uniform();
-    std::vector<size_t> got = map.within(x, r), expected;
+    std::vector<size_t> got, expected;  // the photons' names (the map reorders them)
+    for (const size_t i : map.within(x, r)) got.push_back(map[i].depth);
     for (size_t i = 0; i < n; ++i) {
       const Vec3 d = Vec3(copy[i].p[0], copy[i].p[1], copy[i].p[2]) - x;
       const float d2 = glm::dot(d, d);
@@ -55,11 +58,11 @@ void compareWithBruteForce(size_t n, bool onSphere, uint64_t seed) {
 }
 
 TEST(PhotonMap, RadiusQueriesMatchBruteForceInACube) {
-  for (size_t n : {1, 7, 10, 11, 100, 5000}) compareWithBruteForce(n, false, 11 + n);
+  for (size_t n : {1, 7, 10, 11, 100, 5000, 40000}) compareWithBruteForce(n, false, 11 + n);
 }
 
 TEST(PhotonMap, RadiusQueriesMatchBruteForceOnASphere) {
-  for (size_t n : {3, 64, 4000}) compareWithBruteForce(n, true, 29 + n);
+  for (size_t n : {3, 64, 4000, 40000}) compareWithBruteForce(n, true, 29 + n);
 }
 
 TEST(PhotonMap, EmptyMapFindsNothing) {

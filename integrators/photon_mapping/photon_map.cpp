@@ -1,33 +1,93 @@
 #include "integrators/photon_mapping/photon_map.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
 #include <flann/flann.hpp>
 
 namespace kasha {
+namespace {
+
+Vec3 position(const Photon& ph) { return Vec3(ph.p[0], ph.p[1], ph.p[2]); }
+
+// Splits photons[begin, end) at the median of the longest axis of their bounding box, `levels`
+// times; cell `first` + k receives the k-th of the 2^levels parts (in order along the splits).
+void split(std::vector<Photon>& photons, size_t begin, size_t end, int levels, size_t first, std::vector<size_t>& bounds) {
+  if (levels == 0) {
+    bounds[first + 1] = end;
+    return;
+  }
+  if (end - begin > 1) {
+    Vec3 lo(kInf), hi(-kInf);
+    for (size_t i = begin; i < end; ++i) {
+      lo = glm::min(lo, position(photons[i]));
+      hi = glm::max(hi, position(photons[i]));
+    }
+    const Vec3 extent = hi - lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    std::nth_element(photons.begin() + long(begin), photons.begin() + long(begin + (end - begin) / 2),
+                     photons.begin() + long(end),
+                     [axis](const Photon& a, const Photon& b) { return a.p[axis] < b.p[axis]; });
+  }
+  const size_t mid = begin + (end - begin) / 2;
+  const size_t half = size_t(1) << (levels - 1);
+  tbb::parallel_invoke([&] { split(photons, begin, mid, levels - 1, first, bounds); },
+                       [&] { split(photons, mid, end, levels - 1, first + half, bounds); });
+}
+
+}  // namespace
 
 PhotonMap::PhotonMap(std::vector<Photon> photons) : photons_(std::move(photons)) {
-  if (photons_.empty()) return;
-  // Rows are the photons' positions, read in place: sizeof(Photon) bytes apart.
-  const flann::Matrix<float> positions(photons_[0].p, photons_.size(), 3, sizeof(Photon));
-  index_ = std::make_unique<flann::Index<flann::L2_Simple<float>>>(positions,
-                                                                   flann::KDTreeSingleIndexParams(kPhotonLeafSize));
-  index_->buildIndex();
+  const int levels = photons_.size() >= kSplitFrom ? kSplitLevels : 0;
+  std::vector<size_t> bounds((size_t(1) << levels) + 1, 0);
+  split(photons_, 0, photons_.size(), levels, 0, bounds);
+  cells_.resize(size_t(1) << levels);
+  tbb::parallel_for(size_t(0), cells_.size(), [&](size_t c) {
+    Cell& cell = cells_[c];
+    cell.begin = bounds[c];
+    cell.end = bounds[c + 1];
+    if (cell.begin == cell.end) return;
+    cell.lo = cell.hi = position(photons_[cell.begin]);
+    for (size_t i = cell.begin; i < cell.end; ++i) {
+      cell.lo = glm::min(cell.lo, position(photons_[i]));
+      cell.hi = glm::max(cell.hi, position(photons_[i]));
+    }
+    // Rows are the photons' positions, read in place: sizeof(Photon) bytes apart.
+    const flann::Matrix<float> positions(photons_[cell.begin].p, cell.end - cell.begin, 3, sizeof(Photon));
+    cell.index = std::make_unique<flann::Index<flann::L2_Simple<float>>>(positions,
+                                                                         flann::KDTreeSingleIndexParams(kPhotonLeafSize));
+    cell.index->buildIndex();
+  });
 }
 
 PhotonMap::~PhotonMap() = default;
 
 const std::vector<size_t>& PhotonMap::within(const Vec3& p, float radius) const {
+  thread_local std::vector<size_t> found;
   thread_local std::vector<std::vector<size_t>> indices(1);
   thread_local std::vector<std::vector<float>> dists(1);
-  indices[0].clear();
-  if (!index_) return indices[0];
+  found.clear();
   float q[3] = {p.x, p.y, p.z};
   flann::SearchParams params;
   params.sorted = false;  // every photon in the disc counts; the order does not matter
-  // L2_Simple measures squared distances, so the search radius is r².
-  index_->radiusSearch(flann::Matrix<float>(q, 1, 3), indices, dists, radius * radius, params);
-  return indices[0];
+  const float r2 = radius * radius;
+  for (const Cell& cell : cells_) {
+    if (!cell.index) continue;
+    const Vec3 d = glm::max(glm::max(cell.lo - p, p - cell.hi), Vec3(0.0f));  // to the cell's box
+    if (glm::dot(d, d) >= r2) continue;
+    // L2_Simple measures squared distances, so the search radius is r².
+    cell.index->radiusSearch(flann::Matrix<float>(q, 1, 3), indices, dists, r2, params);
+    for (const size_t i : indices[0]) found.push_back(cell.begin + i);
+  }
+  return found;
 }
 
-size_t PhotonMap::treeBytes() const { return index_ ? size_t(index_->usedMemory()) : 0; }
+size_t PhotonMap::treeBytes() const {
+  size_t bytes = 0;
+  for (const Cell& cell : cells_)
+    if (cell.index) bytes += size_t(cell.index->usedMemory());
+  return bytes;
+}
 
 }  // namespace kasha

@@ -83,12 +83,14 @@ std::vector<Photon> tracePhotons(const Scene& scene, const PhotonTracing& s, uin
                       std::to_string(kBytesPerPhoton) + " bytes from " + std::to_string(s.paths) +
                       " light subpaths; lower render/ppm/photons_per_pass)",
                   s.memoryLimit);
-  std::vector<Photon> photons;
-  photons.reserve(total);
-  for (std::vector<Photon>& part : parts) {
-    photons.insert(photons.end(), part.begin(), part.end());
-    std::vector<Photon>().swap(part);
-  }
+  // Photons in path order: each chunk's at its offset, copied in parallel, each chunk freed once copied.
+  std::vector<size_t> offset(chunks + 1, 0);
+  for (size_t c = 0; c < chunks; ++c) offset[c + 1] = offset[c] + parts[c].size();
+  std::vector<Photon> photons(total);
+  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+    std::copy(parts[c].begin(), parts[c].end(), photons.begin() + long(offset[c]));
+    std::vector<Photon>().swap(parts[c]);
+  });
   return photons;
 }
 
