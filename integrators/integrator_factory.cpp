@@ -27,8 +27,8 @@ std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "bdpt-s
 
 int defaultLanes(const std::string& name, const RenderSettings& s) {
   if (name == "lt") return kDefaultLanes;
-  // The path tracer's lanes need one sensor density and the event's own excitation for NEE.
-  if (name == "pt" && s.wavelengths.sensor.isDensity() && s.wavelengths.nee.uses(WavelengthSpec::Kind::Event))
+  // The camera lanes of pt and ppm need one sensor density and the event's own excitation for NEE.
+  if ((name == "pt" || name == "ppm") && s.wavelengths.sensor.isDensity() && s.wavelengths.nee.uses(WavelengthSpec::Kind::Event))
     return kDefaultLanes;
   return 1;
 }
@@ -45,30 +45,30 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
     if (s.heroWavelengths > 1) return std::make_unique<HeroPathTracer>(scene, s);
     return std::make_unique<PathTracer>(scene, s);
   }
+  if (name == "ppm") return std::make_unique<PpmIntegrator>(scene, s);  // checks its strategies and lanes
   if (s.heroWavelengths != 1 && name != "lt")
     throw std::invalid_argument("hero wavelengths (" + std::to_string(s.heroWavelengths) +
-                                ") are implemented by the path and light tracers only (--integrator pt or lt)");
-  if (name != "lt" && name != "ppm" && !bdpt) {
+                                ") are implemented by the path and light tracers and photon mapping only "
+                                "(--integrator pt, lt or ppm)");
+  if (name != "lt" && !bdpt) {
     std::string known;
     for (const std::string& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;
     throw std::invalid_argument("unknown integrator '" + name + "' (" + known + ")");
   }
-  // Only the path tracer overrides the material's sampling at fluorescent events (BDPT's
-  // reverse densities and the photon tracer use the material's own).
+  // Only the camera paths of pt and ppm override the material's sampling at fluorescent events
+  // (BDPT's reverse densities and the light paths use the material's own).
   requireUnused(w.fluorescence, defaults.fluorescence, WavelengthSite::Fluorescence, name);
   requireUnused(w.nee, defaults.nee, WavelengthSite::Nee, name);
   if (name == "lt") {
     requireUnused(w.sensor, defaults.sensor, WavelengthSite::Sensor, name);
     return std::make_unique<LightTracer>(scene, s);
   }
-  if (bdpt) {
-    if (name == "bdpt-shared") requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
-    const bdpt::WavelengthMode mode = name == "bdpt-shared" ? bdpt::WavelengthMode::Shared
-                                      : name == "bdpt"      ? bdpt::WavelengthMode::Unified
-                                                            : bdpt::WavelengthMode::Independent;
-    return std::make_unique<Bdpt>(scene, s, mode, mollified ? &s.mollify : nullptr);
-  }
-  return std::make_unique<PpmIntegrator>(scene, s);
+  // Every other name is a BDPT's (unknown ones were refused above).
+  if (name == "bdpt-shared") requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
+  const bdpt::WavelengthMode mode = name == "bdpt-shared" ? bdpt::WavelengthMode::Shared
+                                    : name == "bdpt"      ? bdpt::WavelengthMode::Unified
+                                                          : bdpt::WavelengthMode::Independent;
+  return std::make_unique<Bdpt>(scene, s, mode, mollified ? &s.mollify : nullptr);
 }
 
 }  // namespace kasha

@@ -2,7 +2,8 @@
 // for the elastic lobe with the photons' first vertices for the fluorescent lobe (the default),
 // next-event estimation for every lobe, and photons alone count each path exactly once, so all
 // three agree with the path tracer region by region on the fluorescent Cornell box (white light on
-// a FITC sphere: direct light through both lobes, indirect light, and the lanes).
+// a FITC sphere: direct light through both lobes, indirect light), with 4 wavelength lanes (the
+// default) and with one.
 #include <gtest/gtest.h>
 
 #include "scene/scene_loader.h"
@@ -34,22 +35,30 @@ std::vector<test::BatchStats> regions(const Scene& scene, const std::string& int
       [](int x, int y) { return (y * kRegions / kRes) * kRegions + x * kRegions / kRes; }, spp, 12, 7919);
 }
 
-class PpmDirect : public ::testing::TestWithParam<std::pair<const char*, kasha::PpmDirectLight>> {};
+struct Case {
+  const char* name;
+  kasha::PpmDirectLight direct;
+  int lanes;  // wavelength lanes of the camera paths
+};
+
+class PpmDirect : public ::testing::TestWithParam<Case> {};
 
 TEST_P(PpmDirect, AgreesWithPathTracerRegionByRegion) {
   auto scene = lowRes();
   const auto pt = regions(*scene, "pt", 64);
-  scene->render.ppm.direct = GetParam().second;
+  scene->render.ppm.direct = GetParam().direct;
+  scene->render.heroWavelengths = GetParam().lanes;
   const auto ppm = regions(*scene, "ppm", 32);
   // 12 comparisons: 4.5σ keeps the chance of a false alarm below 1e-4.
   test::expectRegionsAgree(pt, ppm, 4.5, 0.05, 0.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, PpmDirect,
-                         ::testing::Values(std::make_pair("nee_elastic", kasha::PpmDirectLight::NeeElastic),
-                                           std::make_pair("nee", kasha::PpmDirectLight::Nee),
-                                           std::make_pair("photons", kasha::PpmDirectLight::Photons)),
-                         [](const auto& info) { return std::string(info.param.first); });
+                         ::testing::Values(Case{"nee_elastic", kasha::PpmDirectLight::NeeElastic, 4},
+                                           Case{"nee_elastic_one_lane", kasha::PpmDirectLight::NeeElastic, 1},
+                                           Case{"nee", kasha::PpmDirectLight::Nee, 4},
+                                           Case{"photons", kasha::PpmDirectLight::Photons, 4}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace kasha

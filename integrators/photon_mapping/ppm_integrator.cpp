@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/memory_budget.h"
+#include "integrators/integrator_factory.h"
 #include "integrators/lane_next_event.h"
 #include "integrators/photon_mapping/photon_gather.h"
 #include "integrators/photon_mapping/photon_tracer.h"
@@ -15,9 +16,6 @@ namespace {
 // The default r_1 puts this many photons in a disc if a pass's photons spread evenly over all
 // surfaces (docs/photon-mapping.md).
 constexpr float kPhotonsPerDisc = 16.0f;
-
-// Lanes when the settings leave them to the integrator.
-constexpr int kPpmDefaultLanes = 1;
 
 // The elastic lobe for every lane, chosen with probability 1: each keeps its wavelength.
 LaneEvent elasticEvent(std::span<const float> known) {
@@ -38,13 +36,18 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
       sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
       light_(s.wavelengths.light, sources_, WavelengthSite::LightStart),
       excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
-      n_(s.heroWavelengths == kAutoLanes ? kPpmDefaultLanes : s.heroWavelengths),
+      n_(s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths),
       maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
       alwaysKernel_(s.ppm.alwaysKernel), direct_(s.ppm.direct), memoryLimit_(s.memoryLimit),
       sampler_(s.sampler) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by ppm");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by ppm");
   requireLaneSettings(s, n_, 1, "ppm");
+  // The excitation strategy serves next-event estimation's fluorescent lobe, which only "nee" has.
+  if (direct_ != PpmDirectLight::Nee && !s.wavelengths.fluorescence.uses(WavelengthSpec::Kind::Material))
+    throw WavelengthStrategyError(WavelengthSite::Fluorescence,
+                                  "fluorescence_sampling '" + s.wavelengths.fluorescence.text +
+                                      "' applies to ppm only with render/ppm/direct \"nee\" (leave it at 'material')");
   const PhotonMappingSettings& p = s.ppm;
   if (p.photonsPerPass < 0 || !(p.radius >= 0.0f) || !(p.bandwidth >= 0.0f))
     throw std::invalid_argument("ppm: photons per pass, radius and bandwidth must not be negative");
