@@ -35,19 +35,19 @@ int defaultLanes(const std::string& name, const RenderSettings& s) {
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& requested) {
   RenderSettings s = requested;
-  if (s.heroWavelengths == kAutoLanes) s.heroWavelengths = defaultLanes(name, s);
   const WavelengthSettings& w = s.wavelengths;
   const WavelengthSettings defaults;
   const bool mollified = name == "bdpt-mollified";
   const bool bdpt = name == "bdpt" || name == "bdpt-independent" || name == "bdpt-shared" || mollified;
+  if (s.heroWavelengths == kAutoLanes && !bdpt) s.heroWavelengths = defaultLanes(name, s);
   if (name == "pt") {
     requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
     if (s.heroWavelengths > 1) return std::make_unique<HeroPathTracer>(scene, s);
     return std::make_unique<PathTracer>(scene, s);
   }
-  if (s.heroWavelengths != 1 && name != "lt")
+  if (s.heroWavelengths != 1 && name != "lt" && !bdpt)
     throw std::invalid_argument("hero wavelengths (" + std::to_string(s.heroWavelengths) +
-                                ") are implemented by the path and light tracers only (--integrator pt or lt)");
+                                ") are implemented by the path and light tracers and BDPT only (--integrator pt, lt, bdpt…)");
   if (name != "lt" && name != "ppm" && !bdpt) {
     std::string known;
     for (const std::string& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;
