@@ -45,6 +45,9 @@ class Light {
   virtual ~Light() = default;
   // Samples a direction towards the light from point p at wavelength lambda.
   virtual std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const = 0;
+  // The Li of a sample sampleLi took, at another wavelength: the sample's geometry does not depend
+  // on λ, so wavelength lanes share it.
+  virtual float Li(const LightSample& s, float lambda) const = 0;
   // Solid-angle density of sampleLi choosing the point pl (normal nl) seen from p; area and
   // environment lights only (delta lights cannot be hit).
   virtual float pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const { return 0.0f; }
@@ -76,6 +79,7 @@ class AreaLight final : public Light {
  public:
   explicit AreaLight(const Shape& shape);
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  float Li(const LightSample& s, float lambda) const override;
   float pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
@@ -95,6 +99,7 @@ class PointLight final : public Light {
   PointLight(Vec3 position, Spectrum intensity, float scale)
       : Light(std::move(intensity), scale, 4.0f * kPi), pos_(position) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
@@ -111,6 +116,7 @@ class SpotLight final : public Light {
  public:
   SpotLight(Vec3 position, Vec3 direction, float coneDeg, float falloffDeg, Spectrum intensity, float scale);
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
@@ -130,6 +136,7 @@ class DistantLight final : public Light {
   DistantLight(Vec3 direction, Spectrum irradiance, float scale, SceneBounds bounds)
       : Light(std::move(irradiance), scale, kPi * sqr(bounds.radius)), dir_(glm::normalize(direction)), bounds_(bounds) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
@@ -151,6 +158,7 @@ class EnvironmentLight : public Light {
   EnvironmentLight(Spectrum radiance, float scale, SceneBounds bounds)
       : Light(std::move(radiance), scale, 4.0f * kPi * kPi * sqr(bounds.radius)), bounds_(bounds) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool atInfinity() const override { return true; }

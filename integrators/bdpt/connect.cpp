@@ -260,8 +260,8 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
     const float fx = lanes ? x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda, lambda, x1.lobe)
                            : x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda0, x1.lambda, x1.lobe);
     // The light's geometry does not depend on λ: the same point at every lane's wavelength.
-    const std::optional<LightSample> lk = lambda == lambda0 ? ls : light.sampleLi(x1.p, lambda, uPos);
-    value[k] = fx > 0.0f && lk ? x1.beta[k] * fx * std::abs(wi.z) / x1.spectralPdf * lk->Li / (pSel * ls->pdf) : 0.0f;
+    const float Li = lanes ? light.Li(*ls, lambda) : ls->Li;
+    value[k] = fx > 0.0f ? x1.beta[k] * fx * std::abs(wi.z) / x1.spectralPdf * Li / (pSel * ls->pdf) : 0.0f;
     any = any || value[k] > 0.0f;
   }
   if (!any || !visible(c, x1, x0)) return;

@@ -119,9 +119,8 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
                                                                                  e.lambda[0], lambdaOut0));
           for (int k = 0; k < e.n; ++k) {
             // The light's geometry does not depend on λ: the same point at every lane's wavelength.
-            const std::optional<LightSample> lk = k == 0 ? ls : scene.lights[li]->sampleLi(hit->p, e.lambda[k], uPos);
-            if (lk)
-              L += laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, wi, wo) * (std::abs(wi.z) * lk->Li * w / lightPdf);
+            const float Li = k == 0 ? ls->Li : scene.lights[li]->Li(*ls, e.lambda[k]);
+            L += laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, wi, wo) * (std::abs(wi.z) * Li * w / lightPdf);
           }
         }
       }
