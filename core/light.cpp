@@ -72,6 +72,8 @@ std::optional<EmissionSample> AreaLight::sampleEmission(float lambda, Vec2 uPos,
   return es;
 }
 
+float AreaLight::emitted(const EmissionSample& s, float lambda) const { return shape_.emission->eval(lambda, s.n, s.w); }
+
 void AreaLight::emissionPdfs(const Vec3&, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f / shape_.area;
   pdfDir = pdfEmissionDirection(n, w);
@@ -105,6 +107,8 @@ std::optional<EmissionSample> PointLight::sampleEmission(float lambda, Vec2, Vec
   es.deltaPos = true;
   return es;
 }
+
+float PointLight::emitted(const EmissionSample&, float lambda) const { return intensity(lambda); }
 
 void PointLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f;
@@ -156,6 +160,8 @@ std::optional<EmissionSample> SpotLight::sampleEmission(float lambda, Vec2, Vec2
   return es;
 }
 
+float SpotLight::emitted(const EmissionSample& s, float lambda) const { return emittedTowards(lambda, s.n, s.w); }
+
 void SpotLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3& w, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f;
   pdfDir = glm::dot(w, dir_) >= cosTotal_ ? 1.0f / (2.0f * kPi * (1.0f - cosTotal_)) : 0.0f;
@@ -180,6 +186,8 @@ std::optional<EmissionSample> DistantLight::sampleEmission(float lambda, Vec2 uP
   es.deltaDir = true;
   return es;
 }
+
+float DistantLight::emitted(const EmissionSample&, float lambda) const { return irradiance(lambda); }
 
 void DistantLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f / (kPi * sqr(bounds_.radius));
@@ -213,6 +221,8 @@ std::optional<EmissionSample> EnvironmentLight::sampleEmission(float lambda, Vec
   es.pdfDir = pdf;
   return es;
 }
+
+float EnvironmentLight::emitted(const EmissionSample& s, float lambda) const { return Le(lambda, -s.w); }
 
 void EnvironmentLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3& w, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f / (kPi * sqr(bounds_.radius));

@@ -53,6 +53,8 @@ class Light {
   virtual float pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const { return 0.0f; }
   // Samples the origin and direction of a light subpath at wavelength lambda.
   virtual std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const = 0;
+  // The Le of a sample sampleEmission took, at another wavelength (its geometry does not depend on λ).
+  virtual float emitted(const EmissionSample& s, float lambda) const = 0;
   // The densities sampleEmission would have for leaving point p (normal n) along w: per area
   // (per area of the disk for lights at infinity) and per steradian.
   virtual void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const = 0;
@@ -82,6 +84,7 @@ class AreaLight final : public Light {
   float Li(const LightSample& s, float lambda) const override;
   float pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  float emitted(const EmissionSample& s, float lambda) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   // Solid-angle density of sampleEmission's direction w leaving a point with normal n.
   float pdfEmissionDirection(const Vec3& n, const Vec3& w) const;
@@ -101,6 +104,7 @@ class PointLight final : public Light {
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  float emitted(const EmissionSample& s, float lambda) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   float intensity(float lambda) const { return scale_ * spectrum_(lambda); }
@@ -118,6 +122,7 @@ class SpotLight final : public Light {
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  float emitted(const EmissionSample& s, float lambda) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   float falloff(float cosTheta) const;
@@ -138,6 +143,7 @@ class DistantLight final : public Light {
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  float emitted(const EmissionSample& s, float lambda) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   bool atInfinity() const override { return true; }
@@ -160,6 +166,7 @@ class EnvironmentLight : public Light {
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  float emitted(const EmissionSample& s, float lambda) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool atInfinity() const override { return true; }
   // Radiance at lambda arriving from direction w (unit, from the scene towards the environment).

@@ -194,8 +194,7 @@ void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shar
   float beta[kMaxLanes];
   for (int k = 0; k < lanes.n; ++k) {
     // The emission's geometry does not depend on λ: the same point and direction at every lane's.
-    const std::optional<EmissionSample> ek = k == 0 ? es : L.sampleEmission(lanes.lambda[k], uPos, uDir);
-    const float Le = ek ? ek->Le : 0.0f;
+    const float Le = k == 0 ? es->Le : L.emitted(*es, lanes.lambda[k]);
     v.beta[k] = Le / (choice * start);
     beta[k] = Le * es->cosOrigin / (choice * es->pdfPos * es->pdfDir);
   }
