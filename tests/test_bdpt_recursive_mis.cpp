@@ -39,20 +39,14 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   const WalkSettings ws{6, 3, &light.density()};  // paths up to 6 scattering vertices
   std::vector<PathVertex> C, LS, LO;
   std::vector<WeightCheck> checks;
+  LaneLightTable lightTable;
   std::vector<Splat> splats;
   RayCounter counter;
   std::map<std::pair<int, int>, int> interior;  // (variant, s + t) → weights strictly inside (0, 1)
   int compared = 0;
   for (uint32_t sample = 0; sample < 20000; ++sample) {
     Sampler rng(SamplerKind::Independent, 11, sample, 0);
-    Lanes lanes;
-    lanes.n = param.lanes;
-    const float u = rng.uniform();
-    for (int k = 0; k < lanes.n; ++k) {
-      const WavelengthSample w = sensor.density().sample(laneStratum(u, k, lanes.n));
-      lanes.lambda[k] = w.lambda;
-      lanes.sensorPdf[k] = w.pdf;
-    }
+    const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, lightTable);
     if (lanes.sensorPdf[0] <= 0.0f) continue;
     const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));
     traceCameraSubpath(*scene, film, lanes, ws, rng, counter, C);

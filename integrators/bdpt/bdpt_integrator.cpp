@@ -80,22 +80,17 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   using namespace bdpt;
   thread_local std::vector<PathVertex> C, LS, LO;  // the camera subpath, the shared and own light subpaths
   if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
-  // Lane k at the stratum (u + k/n) of the sensor density's inverse CDF (pt's lanes, Wilkie14).
-  Lanes lanes;
-  lanes.n = lanes_;
-  const float u = rng.uniform();
-  for (int k = 0; k < lanes_; ++k) {
-    const WavelengthSample ws = sensor_.density().sample(laneStratum(u, k, lanes_));
-    if (ws.pdf <= 0.0f) return Vec3(0.0f);
-    lanes.lambda[k] = ws.lambda;
-    lanes.sensorPdf[k] = ws.pdf;
-  }
+  thread_local LaneLightTable lightTable;
+  const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, lightTable);
+  for (int k = 0; k < lanes_; ++k)
+    if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
   const Vec2 film = pixel + rng.uniform2();
   traceCameraSubpath(scene, film, lanes, ws_, rng, ctx.counter, C);
   LS.clear(), LO.clear();
   if (families_.shared) traceLightSubpath(scene, LightFamily::Shared, lanes, ws_, rng, ctx.counter, LS);
   if (families_.independent) traceLightSubpath(scene, LightFamily::Own, lanes, ws_, rng, ctx.counter, LO);
   Context c{scene, ws_, families_, lanes, sensor_.density(), ctx.counter};
+  c.spectralSplats = ctx.recordSpectral;
   if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;
   if (ctx.recordStrategies) {
     c.log = &ctx.strategies;

@@ -514,16 +514,20 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel); a
   // shared lane's wavelength was the sensor's sample, one of n.
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
+  Vec3 sum(0.0f);  // the lanes' XYZ, unweighted
   for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
     if (!(value[k] > 0.0f)) continue;
     const float lambdaK = lanes ? c.lanes.lambda[k] : lambda;
     float sensorWeight = perPath;
     if (family == LightFamily::Shared) sensorWeight /= float(c.lanes.n) * c.lanes.sensorPdf[k];
-    const Splat unweighted = spectralSplat(conn->pixel, lambdaK, value[k] * conn->importance * sensorWeight);
-    const Vec3 xyz = unweighted.xyz;
-    splats.push_back({conn->pixel, xyz * weight, lambdaK, unweighted.value * weight});
-    if (c.log) c.log->push_back({conn->pixel, xyz * weight, xyz, s, 1, uint8_t(variant)});
+    const float v = value[k] * conn->importance * sensorWeight;
+    // A shared lane's wavelength is the sensor's lane k (whose response is known).
+    const Vec3 xyz = lanes ? c.lanes.response[k] * v : Observer::cie1931().weight(lambdaK) * v;
+    if (c.spectralSplats) splats.push_back({conn->pixel, xyz * weight, lambdaK, v * weight});
+    sum += xyz;
   }
+  if (!c.spectralSplats) splats.push_back({conn->pixel, sum * weight});
+  if (c.log) c.log->push_back({conn->pixel, sum * weight, sum, s, 1, uint8_t(variant)});
 }
 
 void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,

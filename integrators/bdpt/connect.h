@@ -33,6 +33,8 @@ struct Context {
   // radiance turned into XYZ by W(λ_k)/(n·p(λ_k)).
   std::vector<StrategySample>* log = nullptr;
   Vec2 pixel{0.0f};
+  // Whether t = 1 splats keep each lane's wavelength (for spectral bins), or sum the lanes' XYZ.
+  bool spectralSplats = false;
 
   float lambdaCamera() const { return lanes.lambda[0]; }
   float sensorPdf() const { return lanes.sensorPdf[0]; }

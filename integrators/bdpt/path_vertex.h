@@ -21,6 +21,8 @@ struct Lanes {
   int n = 1;
   float lambda[kMaxLanes];
   float sensorPdf[kMaxLanes];  // p_sensor(λ_k); unused on an own-family subpath
+  Vec3 response[kMaxLanes];    // the sensor's XYZ response W(λ_k); unused on an own-family subpath
+  const LaneLightTable* lights = nullptr;  // the lights' powers at the lanes (more than one lane)
 };
 
 struct PathVertex {

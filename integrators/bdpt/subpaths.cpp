@@ -1,5 +1,6 @@
 #include "integrators/bdpt/subpaths.h"
 
+#include "core/color.h"
 #include "integrators/bdpt/subpath_mis.h"
 
 namespace kasha::bdpt {
@@ -129,14 +130,30 @@ void randomWalk(const Scene& scene, Ray ray, const float* betaStart, float pdfSA
 
 }  // namespace
 
+Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table) {
+  Lanes lanes;
+  lanes.n = n;
+  for (int k = 0; k < n; ++k) {
+    const WavelengthSample ws = sensor.sample(laneStratum(u, k, n));
+    lanes.lambda[k] = ws.lambda;
+    lanes.sensorPdf[k] = ws.pdf;
+    lanes.response[k] = Observer::cie1931().weight(ws.lambda);
+  }
+  if (n > 1) {
+    table.reset(scene, {lanes.lambda, size_t(n)});
+    lanes.lights = &table;
+  }
+  return lanes;
+}
+
 std::pair<size_t, float> selectLight(const Scene& scene, const Lanes& lanes, float u) {
   if (lanes.n == 1) return scene.lightSelector->select(lanes.lambda[0], u);
-  return selectLaneLight(scene, {lanes.lambda, size_t(lanes.n)}, u);
+  return lanes.lights->select(u);
 }
 
 float lightProbability(const Scene& scene, const Lanes& lanes, size_t light, float lambda0, bool cameraGroup) {
   if (lanes.n == 1 || !cameraGroup) return scene.lightSelector->probability(light, lambda0);
-  return laneLightProbability(scene, light, {lanes.lambda, size_t(lanes.n)});
+  return lanes.lights->probability(light);
 }
 
 void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, const WalkSettings& ws, Sampler& rng,

@@ -30,6 +30,11 @@ struct WalkSettings {
   const WavelengthDensity* lightWavelengths = nullptr;  // the light-start strategy's density (own family)
 };
 
+// The camera sample's n lanes from one uniform u: lane k at the stratum (u + k/n) of the sensor
+// density's inverse CDF (pt's lanes, Wilkie et al. 2014), each with its density and response;
+// with more than one, `table` is filled with the lights' powers at them.
+Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table);
+
 // The light chosen with u for the lanes (a lane's wavelength at random, then ∝ Φ_l there: the
 // mixture over the lanes, wavelength_lanes.h; with one lane, ∝ Φ_l(λ)) and its probability.
 std::pair<size_t, float> selectLight(const Scene& scene, const Lanes& lanes, float u);
