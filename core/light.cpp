@@ -37,6 +37,8 @@ std::optional<LightSample> AreaLight::sampleLi(const Vec3& p, float lambda, Vec2
   return LightSample{d, dist, Li, s.pdfArea * dist2 / cosLight, false, s.ng};
 }
 
+float AreaLight::Li(const LightSample& s, float lambda) const { return shape_.emission->eval(lambda, s.n, -s.wi); }
+
 float AreaLight::pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const {
   const Vec3 d = pl - p;
   const float dist2 = glm::dot(d, d);
@@ -70,6 +72,8 @@ std::optional<EmissionSample> AreaLight::sampleEmission(float lambda, Vec2 uPos,
   return es;
 }
 
+float AreaLight::emitted(const EmissionSample& s, float lambda) const { return shape_.emission->eval(lambda, s.n, s.w); }
+
 void AreaLight::emissionPdfs(const Vec3&, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f / shape_.area;
   pdfDir = pdfEmissionDirection(n, w);
@@ -91,6 +95,8 @@ std::optional<LightSample> PointLight::sampleLi(const Vec3& p, float lambda, Vec
   return LightSample{d / dist, dist, intensity(lambda) / dist2, 1.0f, true};
 }
 
+float PointLight::Li(const LightSample& s, float lambda) const { return intensity(lambda) / (s.dist * s.dist); }
+
 std::optional<EmissionSample> PointLight::sampleEmission(float lambda, Vec2, Vec2 uDir) const {
   EmissionSample es;
   es.p = pos_;
@@ -101,6 +107,8 @@ std::optional<EmissionSample> PointLight::sampleEmission(float lambda, Vec2, Vec
   es.deltaPos = true;
   return es;
 }
+
+float PointLight::emitted(const EmissionSample&, float lambda) const { return intensity(lambda); }
 
 void PointLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f;
@@ -136,6 +144,10 @@ std::optional<LightSample> SpotLight::sampleLi(const Vec3& p, float lambda, Vec2
   return LightSample{wi, dist, scale_ * spectrum_(lambda) * falloff(glm::dot(-wi, dir_)) / dist2, 1.0f, true};
 }
 
+float SpotLight::Li(const LightSample& s, float lambda) const {
+  return emittedTowards(lambda, Vec3(0.0f), -s.wi) / (s.dist * s.dist);
+}
+
 std::optional<EmissionSample> SpotLight::sampleEmission(float lambda, Vec2, Vec2 uDir) const {
   const Vec3 local = sampleUniformCone(uDir, cosTotal_);
   EmissionSample es;
@@ -148,6 +160,8 @@ std::optional<EmissionSample> SpotLight::sampleEmission(float lambda, Vec2, Vec2
   return es;
 }
 
+float SpotLight::emitted(const EmissionSample& s, float lambda) const { return emittedTowards(lambda, s.n, s.w); }
+
 void SpotLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3& w, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f;
   pdfDir = glm::dot(w, dir_) >= cosTotal_ ? 1.0f / (2.0f * kPi * (1.0f - cosTotal_)) : 0.0f;
@@ -158,6 +172,8 @@ void SpotLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3& w, float& pdf
 std::optional<LightSample> DistantLight::sampleLi(const Vec3&, float lambda, Vec2) const {
   return LightSample{-dir_, kInf, irradiance(lambda), 1.0f, true};
 }
+
+float DistantLight::Li(const LightSample&, float lambda) const { return irradiance(lambda); }
 
 std::optional<EmissionSample> DistantLight::sampleEmission(float lambda, Vec2 uPos, Vec2) const {
   // A uniform point on the disk of the scene's bounding radius, upstream of the scene.
@@ -170,6 +186,8 @@ std::optional<EmissionSample> DistantLight::sampleEmission(float lambda, Vec2 uP
   es.deltaDir = true;
   return es;
 }
+
+float DistantLight::emitted(const EmissionSample&, float lambda) const { return irradiance(lambda); }
 
 void DistantLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f / (kPi * sqr(bounds_.radius));
@@ -188,6 +206,8 @@ std::optional<LightSample> EnvironmentLight::sampleLi(const Vec3&, float lambda,
   return LightSample{wi, kInf, Le(lambda, wi), pdf, false};
 }
 
+float EnvironmentLight::Li(const LightSample& s, float lambda) const { return Le(lambda, s.wi); }
+
 std::optional<EmissionSample> EnvironmentLight::sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const {
   // Direction of travel w against a sampled direction towards the environment, then a uniform
   // point on the disk facing it.
@@ -201,6 +221,8 @@ std::optional<EmissionSample> EnvironmentLight::sampleEmission(float lambda, Vec
   es.pdfDir = pdf;
   return es;
 }
+
+float EnvironmentLight::emitted(const EmissionSample& s, float lambda) const { return Le(lambda, -s.w); }
 
 void EnvironmentLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3& w, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f / (kPi * sqr(bounds_.radius));

@@ -45,11 +45,16 @@ class Light {
   virtual ~Light() = default;
   // Samples a direction towards the light from point p at wavelength lambda.
   virtual std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const = 0;
+  // The Li of a sample sampleLi took, at another wavelength: the sample's geometry does not depend
+  // on λ, so wavelength lanes share it.
+  virtual float Li(const LightSample& s, float lambda) const = 0;
   // Solid-angle density of sampleLi choosing the point pl (normal nl) seen from p; area and
   // environment lights only (delta lights cannot be hit).
   virtual float pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const { return 0.0f; }
   // Samples the origin and direction of a light subpath at wavelength lambda.
   virtual std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const = 0;
+  // The Le of a sample sampleEmission took, at another wavelength (its geometry does not depend on λ).
+  virtual float emitted(const EmissionSample& s, float lambda) const = 0;
   // The densities sampleEmission would have for leaving point p (normal n) along w: per area
   // (per area of the disk for lights at infinity) and per steradian.
   virtual void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const = 0;
@@ -76,8 +81,10 @@ class AreaLight final : public Light {
  public:
   explicit AreaLight(const Shape& shape);
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  float Li(const LightSample& s, float lambda) const override;
   float pdfLi(const Vec3& p, const Vec3& pl, const Vec3& nl) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  float emitted(const EmissionSample& s, float lambda) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   // Solid-angle density of sampleEmission's direction w leaving a point with normal n.
   float pdfEmissionDirection(const Vec3& n, const Vec3& w) const;
@@ -95,7 +102,9 @@ class PointLight final : public Light {
   PointLight(Vec3 position, Spectrum intensity, float scale)
       : Light(std::move(intensity), scale, 4.0f * kPi), pos_(position) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  float emitted(const EmissionSample& s, float lambda) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   float intensity(float lambda) const { return scale_ * spectrum_(lambda); }
@@ -111,7 +120,9 @@ class SpotLight final : public Light {
  public:
   SpotLight(Vec3 position, Vec3 direction, float coneDeg, float falloffDeg, Spectrum intensity, float scale);
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  float emitted(const EmissionSample& s, float lambda) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   float falloff(float cosTheta) const;
@@ -130,7 +141,9 @@ class DistantLight final : public Light {
   DistantLight(Vec3 direction, Spectrum irradiance, float scale, SceneBounds bounds)
       : Light(std::move(irradiance), scale, kPi * sqr(bounds.radius)), dir_(glm::normalize(direction)), bounds_(bounds) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  float emitted(const EmissionSample& s, float lambda) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   bool atInfinity() const override { return true; }
@@ -151,7 +164,9 @@ class EnvironmentLight : public Light {
   EnvironmentLight(Spectrum radiance, float scale, SceneBounds bounds)
       : Light(std::move(radiance), scale, 4.0f * kPi * kPi * sqr(bounds.radius)), bounds_(bounds) {}
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
+  float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
+  float emitted(const EmissionSample& s, float lambda) const override;
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool atInfinity() const override { return true; }
   // Radiance at lambda arriving from direction w (unit, from the scene towards the environment).

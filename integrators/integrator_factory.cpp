@@ -35,21 +35,17 @@ int defaultLanes(const std::string& name, const RenderSettings& s) {
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& requested) {
   RenderSettings s = requested;
-  if (s.heroWavelengths == kAutoLanes) s.heroWavelengths = defaultLanes(name, s);
   const WavelengthSettings& w = s.wavelengths;
   const WavelengthSettings defaults;
   const bool mollified = name == "bdpt-mollified";
   const bool bdpt = name == "bdpt" || name == "bdpt-independent" || name == "bdpt-shared" || mollified;
+  if (s.heroWavelengths == kAutoLanes && !bdpt) s.heroWavelengths = defaultLanes(name, s);
   if (name == "pt") {
     requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
     if (s.heroWavelengths > 1) return std::make_unique<HeroPathTracer>(scene, s);
     return std::make_unique<PathTracer>(scene, s);
   }
   if (name == "ppm") return std::make_unique<PpmIntegrator>(scene, s);  // checks its strategies and lanes
-  if (s.heroWavelengths != 1 && name != "lt")
-    throw std::invalid_argument("hero wavelengths (" + std::to_string(s.heroWavelengths) +
-                                ") are implemented by the path and light tracers and photon mapping only "
-                                "(--integrator pt, lt or ppm)");
   if (name != "lt" && !bdpt) {
     std::string known;
     for (const std::string& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;

@@ -60,8 +60,9 @@ T laneNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3
                       : powerHeuristic(lightPdf, bsdf.directionPdf(TransportMode::Radiance, wo, wi, e.lobe, e.lambda[0],
                                                                    lambdaOut0));
   for (int k = 0; k < e.n; ++k) {
-    const std::optional<LightSample> lk = k == 0 ? ls : scene.lights[li]->sampleLi(hit.p, e.lambda[k], uPos);
-    if (lk) sum += laneWeight(bsdf, TransportMode::Radiance, known, before, e, k, wi, wo) * (std::abs(wi.z) * lk->Li * w / lightPdf);
+    // The light's geometry does not depend on λ: the same point at every lane's wavelength.
+    const float Li = k == 0 ? ls->Li : scene.lights[li]->Li(*ls, e.lambda[k]);
+    sum += laneWeight(bsdf, TransportMode::Radiance, known, before, e, k, wi, wo) * (std::abs(wi.z) * Li * w / lightPdf);
   }
   return sum;
 }

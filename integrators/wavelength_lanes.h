@@ -6,6 +6,7 @@
 // before it, Veach's multi-sample balance heuristic over the lanes' densities) — each new lane's
 // weight through that event for a direction, and ending the lanes in one chosen at random.
 #include <span>
+#include <vector>
 
 #include "core/wavelength_density.h"
 #include "materials/bsdf.h"
@@ -61,6 +62,22 @@ T laneWeight(const Bsdf& bsdf, TransportMode mode, std::span<const float> known,
 float laneLightProbability(const Scene& scene, size_t light, std::span<const float> lambda);
 // The light chosen with u and its probability P(l) (0 if no light emits at the chosen lane).
 std::pair<size_t, float> selectLaneLight(const Scene& scene, std::span<const float> lambda, float u);
+
+// The same two for many choices with one lane set: every light's power at every lane, evaluated
+// once (BDPT chooses lights and weighs them several times per camera sample).
+class LaneLightTable {
+ public:
+  void reset(const Scene& scene, std::span<const float> lambda);
+  std::pair<size_t, float> select(float u) const;                     // as selectLaneLight
+  float probability(size_t light) const { return mixture_[light]; }  // as laneLightProbability
+
+ private:
+  int n_ = 0;
+  size_t lights_ = 0;
+  std::vector<float> power_;    // Φ_l(λ_k) at k·lights + l
+  std::vector<float> total_;    // Σ_l Φ_l(λ_k)
+  std::vector<float> mixture_;  // P(l)
+};
 
 // Ends the lanes in one, chosen uniformly with u, its weight times their number: an unbiased
 // one-sample estimate of the sum over the lanes, however they were drawn.

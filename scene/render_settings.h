@@ -41,6 +41,7 @@ struct WavelengthSettings {
 };
 
 inline constexpr int kAutoLanes = 0;
+inline constexpr int kDefaultLanes = 4;  // an integrator's lanes where it carries them by default
 
 struct RenderSettings {
   int spp = 16;                 // samples per pixel (a stop condition)
@@ -50,7 +51,7 @@ struct RenderSettings {
   uint64_t seed = 1;
   SamplerKind sampler = SamplerKind::Sobol;  // random numbers of every sample (core/sampler.h)
   WavelengthSettings wavelengths;
-  // Wavelength lanes per path (hero wavelength sampling, pt and lt): 1 to 16, or kAutoLanes for the
+  // Wavelength lanes per path (hero wavelength sampling; pt, lt, bdpt): 1 to 16, or kAutoLanes for the
   // integrator's default (integrators/integrator_factory.h: 4 where the integrator and its
   // wavelength strategies carry lanes, else 1).
   int heroWavelengths = kAutoLanes;

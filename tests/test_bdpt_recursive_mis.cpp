@@ -2,7 +2,7 @@
 // path (integrators/bdpt/mis.h, §5): on subpaths traced in scenes with area, point, spot, distant
 // and environment lights, elastic, fluorescent, glossy and specular vertices, every connection's
 // weight computed both ways must agree (relative 1e-5), for each wavelength family alone and both
-// together, with and without spectral mollification.
+// together, with and without spectral mollification, and with wavelength lanes (shared family).
 #include <gtest/gtest.h>
 
 #include <map>
@@ -20,11 +20,12 @@ struct Case {
   const char* scene;
   Families families;
   float bandwidth;  // mollification's kernel half-width (nm), 0: none
+  int lanes = 1;    // wavelength lanes per camera sample (docs/bdpt-mis.md §10)
 };
 
 std::string describe(const Case& c) {
   return std::string(c.scene) + (c.families.shared ? " shared" : "") + (c.families.independent ? " own" : "") +
-         (c.bandwidth > 0.0f ? " mollified" : "");
+         (c.bandwidth > 0.0f ? " mollified" : "") + (c.lanes > 1 ? " lanes " + std::to_string(c.lanes) : "");
 }
 
 class RecursiveWeights : public ::testing::TestWithParam<Case> {};
@@ -38,25 +39,27 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   const WalkSettings ws{6, 3, &light.density()};  // paths up to 6 scattering vertices
   std::vector<PathVertex> C, LS, LO;
   std::vector<WeightCheck> checks;
+  LaneLightTable lightTable;
   std::vector<Splat> splats;
   RayCounter counter;
   std::map<std::pair<int, int>, int> interior;  // (variant, s + t) → weights strictly inside (0, 1)
   int compared = 0;
   for (uint32_t sample = 0; sample < 20000; ++sample) {
     Sampler rng(SamplerKind::Independent, 11, sample, 0);
-    const WavelengthSample w = sensor.density().sample(rng.uniform());
-    if (w.pdf <= 0.0f) continue;
+    const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, lightTable);
+    if (lanes.sensorPdf[0] <= 0.0f) continue;
     const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));
-    traceCameraSubpath(*scene, film, w.lambda, w.pdf, ws, rng, counter, C);
+    traceCameraSubpath(*scene, film, lanes, ws, rng, counter, C);
     LS.clear(), LO.clear();
-    if (param.families.shared) traceLightSubpath(*scene, LightFamily::Shared, w.lambda, ws, rng, counter, LS);
-    if (param.families.independent) traceLightSubpath(*scene, LightFamily::Own, w.lambda, ws, rng, counter, LO);
-    Context c{*scene, ws, param.families, w.lambda, w.pdf, sensor.density(), counter};
+    if (param.families.shared) traceLightSubpath(*scene, LightFamily::Shared, lanes, ws, rng, counter, LS);
+    if (param.families.independent) traceLightSubpath(*scene, LightFamily::Own, lanes, ws, rng, counter, LO);
+    Context c{*scene, ws, param.families, lanes, sensor.density(), counter};
     c.bandwidth = param.bandwidth;
     c.oracle = &checks;
     checks.clear();
     splats.clear();
-    connectSubpaths(c, C, LS, LO, rng, splats);
+    float radiance[kMaxLanes];
+    connectSubpaths(c, C, LS, LO, rng, splats, radiance);
     for (const WeightCheck& k : checks) {
       ++compared;
       ASSERT_NEAR(k.recursive, k.full, 1e-5f * std::max(k.recursive, k.full) + 1e-9f)
@@ -86,7 +89,11 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/validation/furnace_point_light.json", kBoth, 0.0f},      // a point light
                       Case{"scenes/validation/smooth_sphere_distant.json", kBoth, 0.0f},    // a distant light
                       Case{"scenes/validation/single_sphere_environment.json", kBoth, 0.0f},  // environment
-                      Case{"scenes/validation/mollify_mirror.json", kBoth, 30.0f}),        // mirror, glass, point
+                      Case{"scenes/validation/mollify_mirror.json", kBoth, 30.0f},         // mirror, glass, point
+                      // Lanes: ended at fluorescent and dispersive vertices, kept elsewhere.
+                      Case{"scenes/cornell_uv.json", kShared, 0.0f, 4},
+                      Case{"scenes/cornell_glossy.json", kShared, 0.0f, 4},
+                      Case{"scenes/validation/mollify_mirror.json", kShared, 0.0f, 4}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string name = describe(info.param);
       for (char& ch : name)

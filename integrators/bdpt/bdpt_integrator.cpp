@@ -37,6 +37,19 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bdpt::WavelengthMode mod
       ws_{s.maxDepth, s.rrDepth, &light_.density()}, mode_(mode), families_(familiesFor(scene, mode)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by bdpt (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by bdpt (its MIS weights need the light-start density)");
+  // Lanes (docs/bdpt-mis.md §10) where only the shared family runs: its weights do not depend on the
+  // lane, while the own family's compare p_light with each lane's p_sensor.
+  lanes_ = s.heroWavelengths == kAutoLanes ? (families_.independent ? 1 : kDefaultLanes) : s.heroWavelengths;
+  if (lanes_ < 1 || lanes_ > kMaxLanes)
+    throw std::invalid_argument("bdpt: hero wavelengths " + std::to_string(lanes_) + " is outside [1, " +
+                                std::to_string(kMaxLanes) + "]");
+  if (lanes_ > 1 && families_.independent)
+    throw std::invalid_argument("bdpt: hero wavelengths (" + std::to_string(lanes_) +
+                                ") need the shared wavelength family alone, and this estimator traces light subpaths "
+                                "with wavelengths of their own (" + std::string(mode == bdpt::WavelengthMode::Unified
+                                                                                  ? "the scene fluoresces"
+                                                                                  : "bdpt-independent") +
+                                "): use --hero 1, or bdpt-shared");
   if (!m) return;
   if (mode_ != bdpt::WavelengthMode::Independent)
     throw std::invalid_argument("bdpt: mollification needs the independent wavelength family");
@@ -67,24 +80,31 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   using namespace bdpt;
   thread_local std::vector<PathVertex> C, LS, LO;  // the camera subpath, the shared and own light subpaths
   if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
-  const WavelengthSample ws = sensor_.density().sample(rng.uniform());
-  if (ws.pdf <= 0.0f) return Vec3(0.0f);
+  thread_local LaneLightTable lightTable;
+  const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, lightTable);
+  for (int k = 0; k < lanes_; ++k)
+    if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
   const Vec2 film = pixel + rng.uniform2();
-  traceCameraSubpath(scene, film, ws.lambda, ws.pdf, ws_, rng, ctx.counter, C);
+  traceCameraSubpath(scene, film, lanes, ws_, rng, ctx.counter, C);
   LS.clear(), LO.clear();
-  if (families_.shared) traceLightSubpath(scene, LightFamily::Shared, ws.lambda, ws_, rng, ctx.counter, LS);
-  if (families_.independent) traceLightSubpath(scene, LightFamily::Own, ws.lambda, ws_, rng, ctx.counter, LO);
-  Context c{scene, ws_, families_, ws.lambda, ws.pdf, sensor_.density(), ctx.counter};
+  if (families_.shared) traceLightSubpath(scene, LightFamily::Shared, lanes, ws_, rng, ctx.counter, LS);
+  if (families_.independent) traceLightSubpath(scene, LightFamily::Own, lanes, ws_, rng, ctx.counter, LO);
+  Context c{scene, ws_, families_, lanes, sensor_.density(), ctx.counter};
+  c.spectralSplats = ctx.recordSpectral;
   if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;
-  const Vec3 pixelScale = Observer::cie1931().weight(ws.lambda) / ws.pdf;  // W(λ)/p(λ)
   if (ctx.recordStrategies) {
     c.log = &ctx.strategies;
     c.pixel = pixel;
-    c.pixelScale = pixelScale;
   }
 
-  const float L_pixel = connectSubpaths(c, C, LS, LO, rng, ctx.splats);
-  return sensorResponse(ctx, ws.lambda, L_pixel / ws.pdf);
+  float radiance[kMaxLanes];
+  connectSubpaths(c, C, LS, LO, rng, ctx.splats, radiance);
+  // Each lane's radiance weighted by W(λ_k)/(n·p(λ_k)): the balance heuristic over the n stratified
+  // hero techniques (every lane distributed as p).
+  Vec3 xyz(0.0f);
+  for (int k = 0; k < lanes_; ++k)
+    xyz += sensorResponse(ctx, lanes.lambda[k], radiance[k] / (float(lanes_) * lanes.sensorPdf[k]));
+  return xyz;
 }
 
 }  // namespace kasha

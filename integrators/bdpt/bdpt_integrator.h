@@ -26,6 +26,7 @@ class Bdpt final : public Integrator {
        const MollificationSettings* mollify = nullptr);
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override;
+  int lanes() const override { return lanes_; }
   std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                             RayCounter& counter) const override;
   int maxSamplesPerPass() const override;
@@ -41,6 +42,7 @@ class Bdpt final : public Integrator {
   bdpt::WavelengthMode mode_;
   bdpt::Families families_;
   float bandwidth1_ = 0.0f, alpha_ = 0.0f;
+  int lanes_ = 1;  // wavelength lanes per camera sample (docs/bdpt-mis.md §10)
 };
 
 }  // namespace kasha

@@ -51,13 +51,14 @@ struct LightEnd {
   bool finite = false;    // x_0 is at a finite position
 };
 
-LightEnd lightEnd(const Context& c, int light, float lambda0, const PathVertex& x0, const PathVertex& x1) {
+// cameraGroup: λ_0 is one of the camera sample's lanes (the path does not fluoresce).
+LightEnd lightEnd(const Context& c, int light, float lambda0, bool cameraGroup, const PathVertex& x0, const PathVertex& x1) {
   const Light& L = *c.scene.lights[size_t(light)];
   const Vec3 w = L.atInfinity() ? x0.dir : glm::normalize(x1.p - x0.p);
   float pdfPos = 0.0f, pdfDir = 0.0f;
   L.emissionPdfs(x0.p, x0.n, w, pdfPos, pdfDir);
   LightEnd e;
-  e.pdf0 = double(c.scene.lightSelector->probability(size_t(light), lambda0)) * (L.atInfinity() ? pdfDir : pdfPos);
+  e.pdf0 = double(lightProbability(c.scene, c.lanes, size_t(light), lambda0, cameraGroup)) * (L.atInfinity() ? pdfDir : pdfPos);
   if (x1.kind != Kind::Camera)
     e.pdf1 = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
   e.lightPdf = c.walk.lightWavelengths->pdf(lambda0);
@@ -82,7 +83,7 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
                 const LightEnd& end) {
   FullPath fp;
   fp.families = c.families;
-  fp.sensorPdf = c.sensorPdf;  // the camera's wavelength, unless t = 1 says otherwise
+  fp.sensorPdf = c.sensorPdf();  // the camera's wavelength, unless t = 1 says otherwise
   const int k = s + t - 1;
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {
@@ -129,10 +130,22 @@ float weigh(const Context& c, int s, int t, Variant v, const MisSums& own, const
   return w;
 }
 
-// Records a strategy's share of the sample at the camera sample's pixel (strategies with t ≥ 2).
-void record(const Context& c, int s, int t, Variant v, float value, float weight) {
+// XYZ per unit radiance of lane k at the camera: W(λ_k)/(n·p(λ_k)).
+Vec3 laneScale(const Context& c, int k) {
+  return Observer::cie1931().weight(c.lanes.lambda[k]) / (float(c.lanes.n) * c.lanes.sensorPdf[k]);
+}
+
+// Records lane k's share of a strategy at the camera sample's pixel (strategies with t ≥ 2).
+void record(const Context& c, int s, int t, Variant v, int k, float value, float weight) {
   if (c.log && value != 0.0f)
-    c.log->push_back({c.pixel, c.pixelScale * (value * weight), c.pixelScale * value, s, t, uint8_t(v)});
+    c.log->push_back({c.pixel, laneScale(c, k) * (value * weight), laneScale(c, k) * value, s, t, uint8_t(v)});
+}
+
+// The radiance an emitter vertex e sends towards `next` at wavelength lambda.
+float emitted(const Context& c, const PathVertex& e, const PathVertex& next, float lambda) {
+  if (e.kind == Kind::Infinite) return c.scene.environment()->Le(lambda, -e.dir);
+  return static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission->eval(lambda, e.n,
+                                                                                                towards(e, next));
 }
 
 bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
@@ -174,21 +187,23 @@ MisSums lightEndSum(double pCam0, double pLight0) {
 
 }  // namespace
 
-float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
+void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float* out) {
   const PathVertex& e = C[size_t(t - 1)];
-  if (e.light < 0) return 0.0f;
+  if (e.light < 0) return;
   const PathVertex& next = C[size_t(t - 2)];
-  const float Le = e.kind == Kind::Infinite
-                       ? c.scene.environment()->Le(e.lambda, -e.dir)
-                       : static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission->eval(
-                             e.lambda, e.n, towards(e, next));
-  if (!(Le > 0.0f)) return 0.0f;
-  const LightEnd end = lightEnd(c, e.light, e.lambda, e, next);
+  float Le[kMaxLanes];
+  bool any = false;
+  for (int k = e.firstLane(); k < e.endLane(c.lanes); ++k) {
+    Le[k] = emitted(c, e, next, e.lambdaOf(c.lanes, k));
+    any = any || Le[k] > 0.0f;
+  }
+  if (!any) return;
+  const LightEnd end = lightEnd(c, e.light, e.lambda, e.elasticBefore, e, next);
   const int k = t - 1;
   // The strategies with one light vertex: next-event estimation and the light vertex at x_1, or
   // for k = 1 the light seen by the camera.
   const MisSums m1 = k >= 2 ? firstVertexMultiplicity(next.connectible(), next.lobe, next.spectralPdf, end.finite)
-                            : directLightMultiplicity(e.kind == Kind::Surface, c.sensorPdf);
+                            : directLightMultiplicity(e.kind == Kind::Surface, c.sensorPdf());
   const MisSums own{1.0, 0.0, 0.0, 0.0};
   const MisSums total = own + cameraSum(C, t, end.pdf0, m1, end.pdf1);
   const float weight = weigh(c, 0, t, Variant::kStandard, own, total, factors(c, end, e.elasticBefore), [&] {
@@ -201,21 +216,26 @@ float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t) {
     }
     return misWeight(fp, 0, Variant::kStandard);
   });
-  record(c, 0, t, Variant::kStandard, e.beta * Le, weight);
-  return e.beta * Le * weight;
+  for (int j = e.firstLane(); j < e.endLane(c.lanes); ++j) {
+    const float value = e.beta[j] * Le[j];
+    record(c, 0, t, Variant::kStandard, j, value, weight);
+    out[j] += value * weight;
+  }
 }
 
-float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampler& rng) {
+void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampler& rng, float* out) {
   const PathVertex& x1 = C[size_t(t - 1)];
   const float uSel = rng.uniform();
   const Vec2 uPos = rng.uniform2();
-  if (!x1.eventSampled || !x1.connectible()) return 0.0f;
+  if (!x1.eventSampled || !x1.connectible()) return;
   const float lambda0 = x1.lambdaNext;
-  const auto [li, pSel] = c.scene.lightSelector->select(lambda0, uSel);
-  if (pSel <= 0.0f) return 0.0f;
+  // On a path that has not fluoresced the light is chosen for the lanes, as light subpaths choose it.
+  const bool cameraGroup = x1.elasticBefore && x1.lobe == SpectralLobe::Elastic;
+  const auto [li, pSel] = cameraGroup ? selectLight(c.scene, c.lanes, uSel) : c.scene.lightSelector->select(lambda0, uSel);
+  if (pSel <= 0.0f) return;
   const Light& light = *c.scene.lights[li];
   const std::optional<LightSample> ls = light.sampleLi(x1.p, lambda0, uPos);
-  if (!ls || !(ls->Li > 0.0f) || ls->pdf <= 0.0f) return 0.0f;
+  if (!ls || ls->pdf <= 0.0f) return;
   // The light vertex x_0.
   PathVertex x0;
   x0.kind = light.atInfinity() ? Kind::Infinite : Kind::Light;
@@ -231,57 +251,71 @@ float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampl
   const Bsdf& f = *x1.bsdf;
   const PathVertex& x2 = C[size_t(t - 2)];
   const Vec3 wi = f.toLocal(ls->wi), wo = f.toLocal(towards(x1, x2));
-  const float fx = x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda0, x1.lambda, x1.lobe);
-  if (!(fx > 0.0f) || !visible(c, x1, x0)) return 0.0f;
-  const LightEnd end = lightEnd(c, int(li), lambda0, x0, x1);
+  // Each lane through x_1's event: elastic at the lane's own wavelength when every lane reaches x_1.
+  float value[kMaxLanes];
+  bool any = false;
+  const bool lanes = x1.allLanes(c.lanes);
+  for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) {
+    const float lambda = lanes ? c.lanes.lambda[k] : lambda0;
+    const float fx = lanes ? x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda, lambda, x1.lobe)
+                           : x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda0, x1.lambda, x1.lobe);
+    // The light's geometry does not depend on λ: the same point at every lane's wavelength.
+    const float Li = lanes ? light.Li(*ls, lambda) : ls->Li;
+    value[k] = fx > 0.0f ? x1.beta[k] * fx * std::abs(wi.z) / x1.spectralPdf * Li / (pSel * ls->pdf) : 0.0f;
+    any = any || value[k] > 0.0f;
+  }
+  if (!any || !visible(c, x1, x0)) return;
+  const LightEnd end = lightEnd(c, int(li), lambda0, cameraGroup, x0, x1);
   const double pCam0 = cameraSide(c.scene, x1, x2, x0, x1.lobe, lambda0, x1.lambda);
   const double pLight2 = x2.kind != Kind::Camera ? lightSide(c.scene, x1, x0, x2, x1.lobe, lambda0, x1.lambda) : 0.0;
   const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite);
   const MisSums own{x1.spectralPdf * double(x1.spectralPdf), 0.0, 0.0, 0.0};
   const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1), pLight2);
-  const bool oneGroup = x1.elasticBefore && x1.lobe == SpectralLobe::Elastic;
-  const float weight = weigh(c, 1, t, Variant::kStandard, own, total, factors(c, end, oneGroup), [&] {
-    PathVertex light = x0;
-    light.pdfFwd = float(end.pdf0);
-    light.pdfRev = float(pCam0);
-    const std::vector<PathVertex> L1{light};
+  const float weight = weigh(c, 1, t, Variant::kStandard, own, total, factors(c, end, cameraGroup), [&] {
+    PathVertex lightVertex = x0;
+    lightVertex.pdfFwd = float(end.pdf0);
+    lightVertex.pdfRev = float(pCam0);
+    const std::vector<PathVertex> L1{lightVertex};
     FullPath fp = layout(c, &L1, 1, C, t, end);
     if (x2.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
     fp.specCam1 = x1.spectralPdf;
     fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
     return misWeight(fp, 1, Variant::kStandard);
   });
-  const float value = x1.beta * fx * std::abs(wi.z) / x1.spectralPdf * ls->Li / (pSel * ls->pdf);
-  record(c, 1, t, Variant::kStandard, value, weight);
-  return value * weight;
+  for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) {
+    record(c, 1, t, Variant::kStandard, k, value[k], weight);
+    out[k] += value[k] * weight;
+  }
 }
 
-float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t) {
+// The own family runs with one lane (Bdpt refuses more): lane 0 is the camera sample's wavelength.
+void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t,
+                        float* out) {
   const PathVertex& a = L[0];
   const PathVertex& b = C[size_t(t - 1)];
-  if (a.kind != Kind::Light || b.kind != Kind::Surface || !b.connectible() || !b.bsdf->has(BsdfFlags::Fluorescent)) return 0.0f;
+  if (a.kind != Kind::Light || b.kind != Kind::Surface || !b.connectible() || !b.bsdf->has(BsdfFlags::Fluorescent)) return;
   const PathVertex& bNext = C[size_t(t - 2)];
   const Vec3 d = b.p - a.p;
   const float dist2 = glm::dot(d, d);
-  if (!(dist2 > 0.0f)) return 0.0f;
+  if (!(dist2 > 0.0f)) return;
   const Vec3 w = d / std::sqrt(dist2);
   const float Le = c.scene.lights[size_t(a.light)]->emittedTowards(a.lambda, a.n, w);
-  if (!(Le > 0.0f)) return 0.0f;
+  if (!(Le > 0.0f)) return;
   const Bsdf& fb = *b.bsdf;
   const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
   // x_1 bridges the light's wavelength to the camera's with its fluorescent lobe.
   constexpr SpectralLobe F = SpectralLobe::Fluorescent;
   const float f = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, a.lambda, b.lambda, F);
-  if (!(f > 0.0f)) return 0.0f;
+  if (!(f > 0.0f)) return;
   const float cosA = glm::dot(a.n, a.n) > 0.0f ? std::abs(glm::dot(a.n, w)) : 1.0f;
   const float G = cosA * std::abs(bWi.z) / dist2;
-  const LightEnd end = lightEnd(c, a.light, a.lambda, a, b);
+  const LightEnd end = lightEnd(c, a.light, a.lambda, false, a, b);
   const double pCam0 = cameraSide(c.scene, b, bNext, a, F, a.lambda, b.lambda);
   const double pLight2 = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, F, a.lambda, b.lambda) : 0.0;
   const double specCam1 = specCamera(b, F, a.lambda, b.lambda);
   const MisSums own{0.0, 1.0, 0.0, 0.0};
   const MisSums total = firstVertexMultiplicity(true, F, specCam1, true) + lightEndSum(pCam0, a.pdfFwd) +
-                        cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, c.sensorPdf), pLight2);
+                        cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, c.sensorPdf()), pLight2);
   const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, factors(c, end, false), [&] {
     FullPath fp = layout(c, &L, 1, C, t, end);
     fp.v[1].lobe = F;
@@ -291,22 +325,26 @@ float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, con
     fp.specLightLast = t == 2 ? specLightLast(b, F, a.lambda) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
     return misWeight(fp, 1, Variant::kLightVertex);
   });
-  if (!(weight > 0.0f) || !visible(c, b, a)) return 0.0f;
-  const float value = Le * G * f * b.beta / (a.pdfFwd * a.wavelengthPdf);
-  record(c, 1, t, Variant::kLightVertex, value, weight);
-  return value * weight;
+  if (!(weight > 0.0f) || !visible(c, b, a)) return;
+  const float value = Le * G * f * b.beta[0] / (a.pdfFwd * a.wavelengthPdf);
+  record(c, 1, t, Variant::kLightVertex, 0, value, weight);
+  out[0] += value * weight;
 }
 
-float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
-              const std::vector<PathVertex>& C, int t) {
+void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+             const std::vector<PathVertex>& C, int t, float* out) {
   const PathVertex& a = L[size_t(s - 1)];
   const PathVertex& b = C[size_t(t - 1)];
-  if (a.kind != Kind::Surface || b.kind != Kind::Surface || !a.connectible() || !b.connectible()) return 0.0f;
+  if (a.kind != Kind::Surface || b.kind != Kind::Surface || !a.connectible() || !b.connectible()) return;
+  // The lanes that reach both ends (a shared subpath carries the camera sample's; an own one has
+  // one lane, and the camera subpath then has one too).
+  const int k0 = std::max(a.firstLane(), b.firstLane()), k1 = std::min(a.endLane(c.lanes), b.endLane(c.lanes));
+  if (k0 >= k1) return;
   const PathVertex& aPrev = L[size_t(s - 2)];
   const PathVertex& bNext = C[size_t(t - 2)];
   const Vec3 d = b.p - a.p;
   const float dist2 = glm::dot(d, d);
-  if (!(dist2 > 0.0f)) return 0.0f;
+  if (!(dist2 > 0.0f)) return;
   const Vec3 w = d / std::sqrt(dist2);  // from a to b
   const Bsdf &fa = *a.bsdf, &fb = *b.bsdf;
   const Vec3 aWi = fa.toLocal(towards(a, aPrev)), aWo = fa.toLocal(w);
@@ -324,7 +362,9 @@ float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fa
   Pair pairs[3];
   int n = 0;
   if (family == LightFamily::Shared) {
-    pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, c.lambdaCamera, c.lambdaCamera, Variant::kStandard};
+    // Each end's densities at its own wavelength: the lane's, or with several lanes one at which it
+    // scatters (docs/bdpt-mis.md §10).
+    pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kStandard};
   } else {
     if (a.bsdf->has(BsdfFlags::Fluorescent))
       pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, b.lambda, b.lambda, Variant::kOwn};
@@ -334,20 +374,28 @@ float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fa
       pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kMollified};
   }
   const LightEnd end = storedLightEnd(L, s);
-  float sum = 0.0f;
   bool checked = false, unoccluded = false;
   for (int i = 0; i < n; ++i) {
     const Pair& p = pairs[i];
-    const float fA = a.bsdf->eval(TransportMode::Importance, aWi, aWo, a.lambda, p.lambdaA, p.la);
-    const float fB = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, p.lambdaB, b.lambda, p.lb);
-    if (!(fA > 0.0f && fB > 0.0f)) continue;
+    // f at both ends for each lane: the shared family's elastic pair at every lane's own wavelength.
+    float fA[kMaxLanes], fB[kMaxLanes];
+    bool any = false;
+    for (int k = k0; k < k1; ++k) {
+      // An end that several lanes reach scatters each elastically at its own wavelength.
+      const float lambda = c.lanes.lambda[k];
+      const bool lanesA = a.allLanes(c.lanes), lanesB = b.allLanes(c.lanes);
+      fA[k] = a.bsdf->eval(TransportMode::Importance, aWi, aWo, lanesA ? lambda : a.lambda, lanesA ? lambda : p.lambdaA, p.la);
+      fB[k] = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, lanesB ? lambda : p.lambdaB, lanesB ? lambda : b.lambda, p.lb);
+      any = any || (fA[k] > 0.0f && fB[k] > 0.0f);
+    }
+    if (!any) continue;
     // The four densities next to the connection, for its lobes and wavelengths.
     const double pLightB = lightSide(c.scene, a, aPrev, b, p.la, a.lambda, p.lambdaA);
     const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, b.lambda) : 0.0;
     const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, b.lambda);
     const double pCamAPrev = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
     const MisSums sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA), pCamAPrev) +
-                          cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, c.sensorPdf), pLightBNext);
+                          cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, c.sensorPdf()), pLightBNext);
     const MisSums here = joinMultiplicity(true, p.la, p.lb);
     const MisSums own = p.variant == Variant::kStandard ? MisSums{0.0, 0.0, 0.0, 1.0}
                         : p.variant == Variant::kOwn    ? MisSums{0.0, 1.0, 0.0, 0.0}
@@ -371,7 +419,7 @@ float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fa
       checked = true;
       unoccluded = visible(c, a, b);
     }
-    if (!unoccluded) return 0.0f;
+    if (!unoccluded) return;
     // Mollified: the delta δ(λ_a − λ_b) of the elastic pair widened to K_h (Jung et al. 2020),
     // renormalised to its mass inside the wavelength range (docs/bdpt-mis.md eq. 5).
     const WavelengthRange& r = c.scene.range;
@@ -379,11 +427,12 @@ float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fa
                              ? wavelengthKernel(a.lambda - b.lambda, c.bandwidth) /
                                    wavelengthKernelMass(r.min - b.lambda, r.max - b.lambda, c.bandwidth)
                              : 1.0f;
-    const float value = a.beta * fA * G * fB * b.beta * kernel;
-    record(c, s, t, p.variant, value, weight);
-    sum += value * weight;
+    for (int k = k0; k < k1; ++k) {
+      const float value = a.beta[k] * fA[k] * G * fB[k] * b.beta[k] * kernel;
+      record(c, s, t, p.variant, k, value, weight);
+      out[k] += value * weight;
+    }
   }
-  return sum;
 }
 
 void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
@@ -397,15 +446,17 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   cam.p = c.scene.camera.position();
   cam.deltaPosition = true;
   // The wavelength arriving at the pinhole: the light itself for s = 1, else the one a's sampled
-  // spectral event sends towards the camera.
+  // spectral event sends towards the camera; with several lanes at a, each lane's own.
   const float lambda = s == 1 ? a.lambda : a.lambdaNext;
+  const bool lanes = a.allLanes(c.lanes);
   const Variant variant = family == LightFamily::Shared ? Variant::kStandard : Variant::kOwn;
   // The camera's density of a: its direction over the whole film times the sensor's density of the
   // wavelength arriving at it.
-  const double sensorPdf = family == LightFamily::Shared ? c.sensorPdf : c.sensor.pdf(lambda);
+  const double sensorPdf = family == LightFamily::Shared ? c.sensorPdf() : c.sensor.pdf(lambda);
   const double pCamA = toAreaDensity(c.scene.camera.directionPdf(-conn->wi) * float(sensorPdf), cam, a);
   const LightEnd end = storedLightEnd(L, s);
-  float value = 0.0f;
+  float value[kMaxLanes];
+  bool any = false;
   MisSums here, own, sides;
   bool oneGroup = true;
   double pCamAPrev = 0.0;
@@ -413,9 +464,12 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     // The light itself, seen directly (area lights only).
     if (a.kind != Kind::Light || a.deltaPosition) return;
     const AreaEmission& em = *static_cast<const AreaLight&>(*c.scene.lights[size_t(a.light)]).shape().emission;
-    const float Le = em.eval(lambda, a.n, conn->wi);
-    if (!(Le > 0.0f)) return;
-    value = Le * std::abs(glm::dot(a.n, conn->wi)) / (a.pdfFwd * (family == LightFamily::Own ? a.wavelengthPdf : 1.0f));
+    for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
+      const float Le = em.eval(lanes ? c.lanes.lambda[k] : lambda, a.n, conn->wi);
+      value[k] = Le * std::abs(glm::dot(a.n, conn->wi)) /
+                 (a.pdfFwd * (family == LightFamily::Own ? a.wavelengthPdf : 1.0f));
+      any = any || Le > 0.0f;
+    }
     here = directLightMultiplicity(true, sensorPdf);
     own = family == LightFamily::Shared ? MisSums{0.0, 0.0, 0.0, sensorPdf * sensorPdf} : MisSums{0.0, 1.0, 0.0, 0.0};
     sides = lightEndSum(pCamA, a.pdfFwd);
@@ -426,9 +480,12 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     const PathVertex& aPrev = L[size_t(s - 2)];
     const Bsdf& f = *a.bsdf;
     const Vec3 wi = f.toLocal(towards(a, aPrev)), wo = f.toLocal(conn->wi);
-    const float fa = a.bsdf->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, a.lobe);
-    if (!(fa > 0.0f)) return;
-    value = a.beta * fa * std::abs(wo.z) / a.spectralPdf;
+    for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
+      const float fa = lanes ? a.bsdf->eval(TransportMode::Importance, wi, wo, c.lanes.lambda[k], c.lanes.lambda[k], a.lobe)
+                             : a.bsdf->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, a.lobe);
+      value[k] = a.beta[k] * fa * std::abs(wo.z) / a.spectralPdf;
+      any = any || fa > 0.0f;
+    }
     pCamAPrev = cameraSide(c.scene, a, cam, aPrev, a.lobe, a.lambda, lambda);
     here = lightTracingMultiplicity(true, a.spectralPdf, sensorPdf);
     const double spec2 = double(a.spectralPdf) * a.spectralPdf;
@@ -436,6 +493,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1), pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
+  if (!any) return;
   const float weight = weigh(c, s, 1, variant, own, here + sides, factors(c, end, oneGroup), [&] {
     const std::vector<PathVertex> camOnly{cam};
     FullPath fp = layout(c, &L, s, camOnly, 1, end);
@@ -453,35 +511,43 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     return misWeight(fp, s, variant);
   });
   if (!(weight > 0.0f) || !visible(c, a, cam)) return;
-  // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel).
+  // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel); a
+  // shared lane's wavelength was the sensor's sample, one of n.
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
-  float sensorWeight = perPath;
-  if (family == LightFamily::Shared) sensorWeight /= c.sensorPdf;  // λ was the sensor's sample
-  const Splat unweighted = spectralSplat(conn->pixel, lambda, value * conn->importance * sensorWeight);
-  const Vec3 xyz = unweighted.xyz;
-  splats.push_back({conn->pixel, xyz * weight, lambda, unweighted.value * weight});
-  if (c.log) c.log->push_back({conn->pixel, xyz * weight, xyz, s, 1, uint8_t(variant)});
+  Vec3 sum(0.0f);  // the lanes' XYZ, unweighted
+  for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
+    if (!(value[k] > 0.0f)) continue;
+    const float lambdaK = lanes ? c.lanes.lambda[k] : lambda;
+    float sensorWeight = perPath;
+    if (family == LightFamily::Shared) sensorWeight /= float(c.lanes.n) * c.lanes.sensorPdf[k];
+    const float v = value[k] * conn->importance * sensorWeight;
+    // A shared lane's wavelength is the sensor's lane k (whose response is known).
+    const Vec3 xyz = lanes ? c.lanes.response[k] * v : Observer::cie1931().weight(lambdaK) * v;
+    if (c.spectralSplats) splats.push_back({conn->pixel, xyz * weight, lambdaK, v * weight});
+    sum += xyz;
+  }
+  if (!c.spectralSplats) splats.push_back({conn->pixel, sum * weight});
+  if (c.log) c.log->push_back({conn->pixel, sum * weight, sum, s, 1, uint8_t(variant)});
 }
 
-float connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,
-                      const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats) {
+void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,
+                     const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats, float* out) {
   const int maxDepth = c.walk.maxDepth;
-  // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelength.
-  float L = 0.0f;
+  std::fill(out, out + c.lanes.n, 0.0f);
+  // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelengths.
   for (int t = 2; t <= int(C.size()); ++t) {
-    L += emitterHit(c, C, t);
+    emitterHit(c, C, t, out);
     if (C[size_t(t - 1)].kind != Kind::Surface) continue;
     if (t - 1 <= maxDepth) {
-      L += nextEvent(c, C, t, rng);
-      if (!LO.empty()) L += connectLightVertex(c, LO, C, t);
+      nextEvent(c, C, t, rng, out);
+      if (!LO.empty()) connectLightVertex(c, LO, C, t, out);
     }
-    for (int s = 2; s <= int(LS.size()) && (s - 1) + (t - 1) <= maxDepth; ++s) L += connect(c, LS, LightFamily::Shared, s, C, t);
-    for (int s = 2; s <= int(LO.size()) && (s - 1) + (t - 1) <= maxDepth; ++s) L += connect(c, LO, LightFamily::Own, s, C, t);
+    for (int s = 2; s <= int(LS.size()) && (s - 1) + (t - 1) <= maxDepth; ++s) connect(c, LS, LightFamily::Shared, s, C, t, out);
+    for (int s = 2; s <= int(LO.size()) && (s - 1) + (t - 1) <= maxDepth; ++s) connect(c, LO, LightFamily::Own, s, C, t, out);
   }
   // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
   for (int s = 1; s <= int(LS.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LS, LightFamily::Shared, s, splats);
   for (int s = 1; s <= int(LO.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LO, LightFamily::Own, s, splats);
-  return L;
 }
 
 }  // namespace kasha::bdpt

@@ -21,43 +21,50 @@ struct Context {
   const Scene& scene;
   const WalkSettings& walk;
   Families families;    // the light subpaths traced with each camera subpath
-  float lambdaCamera;   // the sensor's wavelength
-  float sensorPdf;      // its density
+  // The camera sample's wavelength lanes (docs/bdpt-mis.md §10). The weights are lane 0's: with
+  // more than one lane only the shared family runs, whose weights do not depend on the lane.
+  const Lanes& lanes;
   const WavelengthDensity& sensor;  // the sensor's density, for other wavelengths' densities
   RayCounter& counter;
   // Spectral mollification (Independent only): the wavelength kernel's half-width h of this
   // pass in nm; 0 for none (docs/bdpt-mis.md §6).
   float bandwidth = 0.0f;
-  // Per-strategy records (null unless asked): strategies with t ≥ 2 record at `pixel`, their
-  // radiance turned into XYZ by `pixelScale` = W(λ)/p(λ).
+  // Per-strategy records (null unless asked): strategies with t ≥ 2 record at `pixel`, lane k's
+  // radiance turned into XYZ by W(λ_k)/(n·p(λ_k)).
   std::vector<StrategySample>* log = nullptr;
   Vec2 pixel{0.0f};
-  Vec3 pixelScale{0.0f};
+  // Whether t = 1 splats keep each lane's wavelength (for spectral bins), or sum the lanes' XYZ.
+  bool spectralSplats = false;
+
+  float lambdaCamera() const { return lanes.lambda[0]; }
+  float sensorPdf() const { return lanes.sensorPdf[0]; }
   // Tests only: every weight also recomputed over the whole path (mis.h), both recorded here.
   std::vector<WeightCheck>* oracle = nullptr;
 };
 
-// s = 0: the camera subpath's vertex C[t−1] lies on an emitter. Radiance, weighted.
-float emitterHit(const Context& c, const std::vector<PathVertex>& C, int t);
+// Strategies with t ≥ 2 add each lane's radiance at its camera wavelength, weighted, to out[k].
+// s = 0: the camera subpath's vertex C[t−1] lies on an emitter.
+void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float* out);
 // s = 1: next-event estimation from C[t−1] at the wavelength its spectral event chose.
-float nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampler& rng);
+void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampler& rng, float* out);
 // s = 1 through the own-family light subpath's vertex L[0]: its wavelength, drawn from the
 // light-start strategy, reaches the camera's through C[t−1]'s fluorescent lobe.
-float connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t);
+void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t,
+                        float* out);
 // s ≥ 2, t ≥ 2: connect L[s−1] of a light subpath of `family` and C[t−1] through every exact lobe
 // pair (two elastic lobes in the shared family, one fluorescent in the own), and through two
 // elastic lobes with the wavelength kernel when mollifying (own family).
-float connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
-              const std::vector<PathVertex>& C, int t);
+void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+             const std::vector<PathVertex>& C, int t, float* out);
 // t = 1: L[s−1] (s ≥ 1) of a light subpath of `family` seen by the pinhole, with the spectral event
-// the light subpath sampled there; appends a splat (film units) if visible.
+// the light subpath sampled there; appends a splat (film units) per lane if visible.
 void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
                      std::vector<Splat>& splats);
 
 // Every strategy of one camera sample: the camera subpath C joined to the light subpaths of the
-// shared (LS) and own (LO) families (either may be empty). Returns the pixel's radiance at the
-// camera's wavelength (weighted, t ≥ 2) and appends the t = 1 splats.
-float connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,
-                      const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats);
+// shared (LS) and own (LO) families (either may be empty). Sets out[k] to lane k's radiance at its
+// camera wavelength (weighted, t ≥ 2) and appends the t = 1 splats.
+void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,
+                     const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats, float* out);
 
 }  // namespace kasha::bdpt

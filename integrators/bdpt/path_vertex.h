@@ -9,9 +9,21 @@
 
 #include "core/math.h"
 #include "integrators/bdpt/mis_sums.h"
+#include "integrators/wavelength_lanes.h"
 #include "materials/bsdf.h"
 
 namespace kasha::bdpt {
+
+// The wavelength lanes of a subpath (docs/bdpt-mis.md §10): the camera sample's n wavelengths at the
+// strata of the sensor density, shared by the shared-family light subpath; an own-family light
+// subpath has one lane, its own wavelength.
+struct Lanes {
+  int n = 1;
+  float lambda[kMaxLanes];
+  float sensorPdf[kMaxLanes];  // p_sensor(λ_k); unused on an own-family subpath
+  Vec3 response[kMaxLanes];    // the sensor's XYZ response W(λ_k); unused on an own-family subpath
+  const LaneLightTable* lights = nullptr;  // the lights' powers at the lanes (more than one lane)
+};
 
 struct PathVertex {
   enum class Kind : uint8_t { Camera, Light, Surface, Infinite } kind = Kind::Surface;
@@ -20,9 +32,17 @@ struct PathVertex {
   Vec3 dir{0.0f};          // Infinite vertices: the direction light travels
   std::optional<Bsdf> bsdf;  // surface vertices: the scattering function there
   int light = -1;          // index of the light this vertex lies on (light vertex, or an emitter hit)
-  float beta = 0.0f;       // subpath throughput up to this vertex, its own scattering excluded
+  // Subpath throughput of each lane up to this vertex, its own scattering excluded; 0 for a lane
+  // that ended.
+  float beta[kMaxLanes] = {};
+  // The lanes that reach this vertex: -1 every lane of the subpath, each at its own wavelength; else
+  // only this one (at `lambda`), its throughput times n: a vertex whose sampling depends on the
+  // wavelength keeps one lane at random (docs/bdpt-mis.md §10).
+  int8_t lane = -1;
   // The subpath's wavelength at this vertex: arriving from the previous light-subpath vertex, or
-  // leaving towards the previous camera-subpath vertex.
+  // leaving towards the previous camera-subpath vertex. While several lanes reach a vertex, the
+  // wavelength of its densities: a lane at which it scatters (their densities are those of every
+  // lane that scatters there, docs/bdpt-mis.md §10).
   float lambda = 0.0f;
   // The spectral event sampled here (valid when `eventSampled`): it extends the subpath, and
   // next-event estimation (camera side) or the camera connection (light side) reuse it.
@@ -43,6 +63,13 @@ struct PathVertex {
   bool elasticBefore = true;
 
   bool onSurface() const { return kind == Kind::Surface; }
+  // Whether several lanes reach this vertex (each at its own wavelength).
+  bool allLanes(const Lanes& lanes) const { return lane < 0 && lanes.n > 1; }
+  // The lanes that reach this vertex, [first, last).
+  int firstLane() const { return lane < 0 ? 0 : lane; }
+  int endLane(const Lanes& lanes) const { return lane < 0 ? lanes.n : lane + 1; }
+  // Lane k's wavelength here (k one of the lanes that reach it).
+  float lambdaOf(const Lanes& lanes, int k) const { return allLanes(lanes) ? lanes.lambda[k] : lambda; }
   // Whether a connection can end here: surfaces with a non-delta lobe, lights, the camera.
   bool connectible() const { return kind != Kind::Surface || !bsdf->has(BsdfFlags::DeltaDirection); }
 };

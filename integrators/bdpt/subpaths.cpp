@@ -1,18 +1,29 @@
 #include "integrators/bdpt/subpaths.h"
 
+#include "core/color.h"
 #include "integrators/bdpt/subpath_mis.h"
 
 namespace kasha::bdpt {
 namespace {
 
+float laneSum(const float* beta, int n) {
+  float sum = 0.0f;
+  for (int k = 0; k < n; ++k) sum += beta[k];
+  return sum;
+}
+
 // Extends `path` from its last vertex along `ray` (Veach's random walk). pdfSA is the density of
 // ray's direction at the last vertex (per steradian; for a light at infinity, per unit area of
 // its disk). Camera walks run in Radiance mode, light walks in Importance mode; a walk with
 // stopAtFluorescence ends at its first fluorescent event (the shared family's light subpaths).
-void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lambda, TransportMode mode,
+void randomWalk(const Scene& scene, Ray ray, const float* betaStart, float pdfSA, const Lanes& lanes, TransportMode mode,
                 bool stopAtFluorescence, const WalkSettings& ws, Sampler& rng, RayCounter& counter, std::vector<PathVertex>& path) {
   const bool camera = mode == TransportMode::Radiance;
-  const float beta0 = beta;
+  float beta[kMaxLanes];
+  std::copy(betaStart, betaStart + lanes.n, beta);
+  const float beta0 = laneSum(beta, lanes.n);
+  float lambda = lanes.lambda[0];
+  int lane = -1;  // every lane alive, or the one kept
   int surfaces = 0;
   for (;;) {
     const std::optional<Hit> hit = scene.accel->intersect(ray);
@@ -24,7 +35,8 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
         v.kind = PathVertex::Kind::Infinite;
         v.dir = -ray.d;
         v.light = scene.environmentLight;
-        v.beta = beta;
+        std::copy(beta, beta + lanes.n, v.beta);
+        v.lane = int8_t(lane);
         v.lambda = lambda;
         v.pdfFwd = pdfSA;
         path.push_back(v);
@@ -36,9 +48,28 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
     v.kind = PathVertex::Kind::Surface;
     v.p = hit->p;
     v.n = hit->ng;
-    v.bsdf = scene.bsdf(*hit, {&lambda, 1});
+    v.bsdf = lane < 0 ? scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)}) : scene.bsdf(*hit, {&lambda, 1});
     v.light = scene.shapeLight[hit->shape];
-    v.beta = beta;
+    // Where sampling depends on the wavelength, the lanes end in one chosen at random, its weight
+    // times n (docs/bdpt-mis.md §10): every density on the subpath is then that lane's.
+    // Elsewhere the densities are those of any lane that scatters here (docs/bdpt-mis.md §10).
+    if (lanes.n > 1 && lane < 0) {
+      const float uLane = rng.uniform();
+      if (v.bsdf->has(BsdfFlags::Fluorescent) || v.bsdf->has(BsdfFlags::WavelengthDependentDirection)) {
+        lane = std::min(int(uLane * float(lanes.n)), lanes.n - 1);
+        lambda = lanes.lambda[lane];
+        for (int k = 0; k < lanes.n; ++k) beta[k] = k == lane ? beta[k] * float(lanes.n) : 0.0f;
+      } else {
+        lambda = lanes.lambda[0];
+        for (int k = 0; k < lanes.n; ++k)
+          if (beta[k] > 0.0f && v.bsdf->spectralPdf(mode, lanes.lambda[k], lanes.lambda[k], SpectralLobe::Elastic) > 0.0f) {
+            lambda = lanes.lambda[k];
+            break;
+          }
+      }
+    }
+    std::copy(beta, beta + lanes.n, v.beta);
+    v.lane = int8_t(lane);
     v.lambda = lambda;
     v.pdfFwd = prev.kind == PathVertex::Kind::Infinite ? pdfSA * std::abs(glm::dot(v.n, ray.d))  // disk → surface
                                                         : toAreaDensity(pdfSA, prev, v);
@@ -65,7 +96,6 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
         bsdf.sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) return;
     const Vec3 wi = camera ? ds->w : wKnown, wo = camera ? wKnown : ds->w;
-    const float f = bsdf.eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
     cur.specular = ds->specular;
     const float pdfFwd = sc.pdf * ds->pdf;
     const float pdfRev = bsdf.spectralPdf(flip(mode), sc.lambda, lambda, sc.lobe) *
@@ -78,59 +108,93 @@ void randomWalk(const Scene& scene, Ray ray, float beta, float pdfSA, float lamb
       before.pdfRev = 0.0f;
     else
       before.pdfRev = toAreaDensity(pdfRev, cur, before);
-    beta *= f * std::abs(ds->w.z) / pdfFwd;
-    if (!(beta > 0.0f)) return;
+    // Every lane alive here scatters elastically through a wavelength-independent density.
+    for (int k = cur.firstLane(); k < cur.endLane(lanes); ++k) {
+      const float f = cur.allLanes(lanes) ? bsdf.eval(mode, wi, wo, lanes.lambda[k], lanes.lambda[k], sc.lobe)
+                                          : bsdf.eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
+      beta[k] *= f * std::abs(ds->w.z) / pdfFwd;
+    }
+    const float sum = laneSum(beta, lanes.n);
+    if (!(sum > 0.0f)) return;
     lambda = sc.lambda;
     pdfSA = pdfFwd;
     const Vec3 w = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(cur.p, cur.n, w), w};
     if (surfaces >= ws.rrDepth) {  // Russian roulette against the starting throughput
-      const float q = std::min(1.0f, beta / beta0);
+      const float q = std::min(1.0f, sum / beta0);
       if (rng.uniform() >= q) return;
-      beta /= q;
+      for (int k = 0; k < lanes.n; ++k) beta[k] /= q;
     }
   }
 }
 
 }  // namespace
 
-void traceCameraSubpath(const Scene& scene, Vec2 filmPos, float lambda, float sensorPdf, const WalkSettings& ws,
-                        Sampler& rng, RayCounter& counter, std::vector<PathVertex>& out) {
+Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table) {
+  Lanes lanes;
+  lanes.n = n;
+  for (int k = 0; k < n; ++k) {
+    const WavelengthSample ws = sensor.sample(laneStratum(u, k, n));
+    lanes.lambda[k] = ws.lambda;
+    lanes.sensorPdf[k] = ws.pdf;
+    lanes.response[k] = Observer::cie1931().weight(ws.lambda);
+  }
+  if (n > 1) {
+    table.reset(scene, {lanes.lambda, size_t(n)});
+    lanes.lights = &table;
+  }
+  return lanes;
+}
+
+std::pair<size_t, float> selectLight(const Scene& scene, const Lanes& lanes, float u) {
+  if (lanes.n == 1) return scene.lightSelector->select(lanes.lambda[0], u);
+  return lanes.lights->select(u);
+}
+
+float lightProbability(const Scene& scene, const Lanes& lanes, size_t light, float lambda0, bool cameraGroup) {
+  if (lanes.n == 1 || !cameraGroup) return scene.lightSelector->probability(light, lambda0);
+  return lanes.lights->probability(light);
+}
+
+void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, const WalkSettings& ws, Sampler& rng,
+                        RayCounter& counter, std::vector<PathVertex>& out) {
   out.clear();
   PathVertex c;
   c.kind = PathVertex::Kind::Camera;
   c.p = scene.camera.position();
-  c.beta = 1.0f;
-  c.lambda = lambda;
+  std::fill(c.beta, c.beta + lanes.n, 1.0f);
+  c.lambda = lanes.lambda[0];
   c.pdfFwd = 1.0f;
   c.deltaPosition = true;
-  c.wavelengthPdf = sensorPdf;
+  c.wavelengthPdf = lanes.sensorPdf[0];
   out.push_back(c);
   updateSums(out, TransportMode::Radiance);
   const Ray ray = scene.camera.generateRay(filmPos);
   // The sensor samples the last wavelength group (docs/bdpt-mis.md §2).
-  const float pdfDir = scene.camera.directionPdf(ray.d) * sensorPdf;
-  randomWalk(scene, ray, 1.0f, pdfDir, lambda, TransportMode::Radiance, false, ws, rng, counter, out);
+  const float pdfDir = scene.camera.directionPdf(ray.d) * lanes.sensorPdf[0];
+  randomWalk(scene, ray, c.beta, pdfDir, lanes, TransportMode::Radiance, false, ws, rng, counter, out);
 }
 
-void traceLightSubpath(const Scene& scene, LightFamily family, float sharedLambda, const WalkSettings& ws, Sampler& rng,
+void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
                        RayCounter& counter, std::vector<PathVertex>& out) {
   out.clear();
   size_t light = 0;
-  float lambda = sharedLambda, choice = 0.0f;
+  Lanes lanes = shared;
+  float choice = 0.0f;
   const float u1 = rng.uniform(), u2 = rng.uniform();
   if (family == LightFamily::Own) {
     const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(*ws.lightWavelengths, u1, u2);
-    light = lw.light, lambda = lw.lambda, choice = lw.pdf;
+    light = lw.light, lanes.n = 1, lanes.lambda[0] = lw.lambda, choice = lw.pdf;
   } else {
-    const auto [l, p] = scene.lightSelector->select(sharedLambda, u2);
+    const auto [l, p] = selectLight(scene, lanes, u2);
     light = l, choice = p;
   }
+  const float lambda = lanes.lambda[0];
   const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
   if (choice <= 0.0f) return;
   const Light& L = *scene.lights[light];
   const std::optional<EmissionSample> es = L.sampleEmission(lambda, uPos, uDir);
-  if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f || !(es->Le > 0.0f)) return;
+  if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return;
   PathVertex v;
   v.kind = L.atInfinity() ? PathVertex::Kind::Infinite : PathVertex::Kind::Light;
   v.p = es->p;
@@ -142,14 +206,20 @@ void traceLightSubpath(const Scene& scene, LightFamily family, float sharedLambd
   // At infinity the light vertex is a direction (density per sr) and the disk position is the
   // density of the first surface point; otherwise the position is the vertex.
   const float start = L.atInfinity() ? es->pdfDir : es->pdfPos;
-  v.pdfFwd = scene.lightSelector->probability(light, lambda) * start;
+  v.pdfFwd = (lanes.n > 1 ? choice : scene.lightSelector->probability(light, lambda)) * start;
   v.wavelengthPdf = ws.lightWavelengths->pdf(lambda);
-  v.beta = es->Le / (choice * start);
+  float beta[kMaxLanes];
+  for (int k = 0; k < lanes.n; ++k) {
+    // The emission's geometry does not depend on λ: the same point and direction at every lane's.
+    const float Le = k == 0 ? es->Le : L.emitted(*es, lanes.lambda[k]);
+    v.beta[k] = Le / (choice * start);
+    beta[k] = Le * es->cosOrigin / (choice * es->pdfPos * es->pdfDir);
+  }
+  if (!(laneSum(v.beta, lanes.n) > 0.0f)) return;
   out.push_back(v);
   updateSums(out, TransportMode::Importance);
-  const float beta = es->Le * es->cosOrigin / (choice * es->pdfPos * es->pdfDir);
   const Vec3 origin = glm::dot(es->n, es->n) > 0.0f ? offsetPoint(es->p, es->n, es->w) : es->p;
-  randomWalk(scene, Ray{origin, es->w}, beta, L.atInfinity() ? es->pdfPos : es->pdfDir, lambda,
+  randomWalk(scene, Ray{origin, es->w}, beta, L.atInfinity() ? es->pdfPos : es->pdfDir, lanes,
              TransportMode::Importance, family == LightFamily::Shared, ws, rng, counter, out);
 }
 

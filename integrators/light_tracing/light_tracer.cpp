@@ -80,9 +80,9 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
   // Lane j's start weight 1/(N·p(λ_j)·P(light)), the balance heuristic over the lanes.
   float start[kMaxLanes], beta[kMaxLanes];
   for (int j = 0; j < n; ++j) {
-    const std::optional<EmissionSample> ej = j == 0 ? es : light.sampleEmission(lambda[j], uPos, uDir);
-    start[j] = ej && pdf[j] > 0.0f ? 1.0f / (float(n) * pdf[j] * pSelect) : 0.0f;
-    beta[j] = start[j] > 0.0f ? ej->Le * start[j] * es->cosOrigin / (es->pdfPos * es->pdfDir) : 0.0f;
+    const float Le = j == 0 ? es->Le : light.emitted(*es, lambda[j]);
+    start[j] = pdf[j] > 0.0f ? 1.0f / (float(n) * pdf[j] * pSelect) : 0.0f;
+    beta[j] = start[j] > 0.0f ? Le * start[j] * es->cosOrigin / (es->pdfPos * es->pdfDir) : 0.0f;
   }
 
   // The emitter seen directly (area lights; delta lights are not visible to a pinhole).
