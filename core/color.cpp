@@ -19,6 +19,26 @@ const Observer& Observer::cie1931() {
   return obs;
 }
 
+Vec3 Observer::xyz(const Spectrum& L, WavelengthRange range) const {
+  std::vector<float> knots{range.min, range.max};
+  for (const Spectrum* s : {&xbar, &ybar, &zbar, &L})
+    for (const float x : s->lambdas())
+      if (x > range.min && x < range.max) knots.push_back(x);
+  std::sort(knots.begin(), knots.end());
+  knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
+  // Each piece's ends are read on its own side of a step (right limit at a, left limit at b).
+  const auto at = [&](float l, bool left) {
+    const Vec3 w = left ? Vec3(xbar.leftLimit(l), ybar.leftLimit(l), zbar.leftLimit(l)) : Vec3(xbar(l), ybar(l), zbar(l));
+    return glm::dvec3(w) * double(left ? L.leftLimit(l) : L(l));
+  };
+  glm::dvec3 sum(0.0);
+  for (size_t i = 0; i + 1 < knots.size(); ++i) {
+    const float a = knots[i], b = knots[i + 1];
+    sum += (double(b) - double(a)) / 6.0 * (at(a, false) + 4.0 * at(0.5f * (a + b), false) + at(b, true));
+  }
+  return Vec3(sum / double(yIntegral));
+}
+
 Vec3 xyzToLinearSrgb(const Vec3& c) {
   return Vec3(3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z,
               -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z,

@@ -13,6 +13,9 @@ struct Observer {
   // The film's normalisation: XYZ = ∫ (x̄, ȳ, z̄)(λ) L(λ) dλ / ∫ȳ dλ, so a constant radiance of 1
   // has Y = 1. One wavelength sample contributes weight(λ)·L/p(λ).
   Vec3 weight(float lambda) const { return Vec3(xbar(lambda), ybar(lambda), zbar(lambda)) / yIntegral; }
+  // The film's XYZ of radiance L over the range: ∫_range weight(λ)·L(λ) dλ, exact up to rounding
+  // (both are piecewise linear, so Simpson's rule is exact between their merged knots).
+  Vec3 xyz(const Spectrum& L, WavelengthRange range) const;
 
   static const Observer& cie1931();
 };

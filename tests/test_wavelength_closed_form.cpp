@@ -22,7 +22,7 @@ struct StrategyCase {
   // uniform densities (on the UV furnace they waste most samples), so that every case keeps the
   // power the standard-error check demands.
   int sppScale = 1;
-  int hero = 1;  // wavelengths per path (path tracer)
+  int hero = 1;  // wavelengths per path (path and light tracers, bdpt-shared)
   const char* nee = "event";
 };
 
@@ -93,7 +93,10 @@ INSTANTIATE_TEST_SUITE_P(
                       StrategyCase{"pt", "cmf", "material", "light", "", 1, 1, "uniform"},
                       StrategyCase{"pt", "cmf", "uniform", "light", "", 3, 1, "absorption"},
                       StrategyCase{"pt", "cmf", "absorption", "light", "furnace_uv.json", 1, 1, "light"},
-                      StrategyCase{"pt", "cmf", "material", "light", "", 1, 1, "mix:light,absorption"}),
+                      StrategyCase{"pt", "cmf", "material", "light", "", 1, 1, "mix:light,absorption"},
+                      // BDPT's lanes (ended on arrival at the fluorescent surface, docs/bdpt-mis.md §10).
+                      StrategyCase{"bdpt-shared", "uniform", "material", "light", "", 1, 4},
+                      StrategyCase{"bdpt-shared", "mix:cmf,light", "material", "light", "", 1, 3}),
     caseName);
 
 }  // namespace

@@ -27,6 +27,10 @@ HeroPathTracer::HeroPathTracer(const Scene& scene, const RenderSettings& s)
       n_(s.heroWavelengths),
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth) {
+  directXyz_.resize(scene.shapes.size(), Vec3(0.0f));
+  for (size_t i = 0; i < scene.shapes.size(); ++i)
+    if (const std::optional<AreaEmission>& e = scene.shapes[i].emission)
+      directXyz_[i] = Observer::cie1931().xyz(e->radiance, scene.range) * e->scale;
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "with hero wavelengths (their strata need p)");
   requireLaneSettings(s, n_, 2, "hero wavelengths");
 }
@@ -78,7 +82,12 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
         w = powerHeuristic(prevDirPdf, laneLightProbability(scene, li, {prevLambda, size_t(prevN)}) *
                                            scene.lights[li]->pdfLi(prevP, hit->p, hit->ng));
       }
-      for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (shape.emission->eval(lanes.lambda[j], hit->ng, -ray.d) * w);
+      if (depth == 0) {
+        // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact.
+        if (shape.emission->twoSided || glm::dot(hit->ng, -ray.d) > 0.0f) L += directXyz_[hit->shape];
+      } else {
+        for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (shape.emission->eval(lanes.lambda[j], hit->ng, -ray.d) * w);
+      }
     }
     if (depth >= maxDepth_) break;
 

@@ -3,8 +3,8 @@
 // Hanika 2014, with pbrt-v4's stratification and lanes that pass through fluorescent events;
 // docs/wavelength-sampling.md "Lanes"). Each camera path carries N wavelengths drawn from the
 // sensor density p at the stratified points (u + j/N) mod 1 of its inverse CDF, so that every lane
-// is distributed as p and the N lanes cover it evenly (a directly seen light converges to its colour
-// at once). Every choice along the path is symmetric in the lanes (the lobe with the mean of their
+// is distributed as p and the N lanes cover it evenly. An area emitter seen directly by the camera
+// ray adds its exact XYZ instead (its L_e(λ) is known at every λ; no MIS there). Every choice along the path is symmetric in the lanes (the lobe with the mean of their
 // P_c, Jung18 eq. 7; the light ∝ Σ_j Φ_l(λ_j); directions where their density is the same for every
 // lane), so the balance heuristic over the N hero techniques (Wilkie14 eq. 8) weights every lane by
 // 1/(N·p(λ_j)). A lane carries its XYZ throughput (a 3-vector), not a scalar.
@@ -53,6 +53,9 @@ class HeroPathTracer final : public Integrator {
   WavelengthStrategy sensor_;
   FluorescenceSampling excitation_;  // λ_i given the fluorescent lobe ("material": the Bsdf's own)
   int n_, maxDepth_, rrDepth_;
+  // Per shape: the XYZ of its emission seen directly, ∫ W(λ)·L_e(λ) dλ over the scene's range (the
+  // expectation of the lanes' estimate, which the camera ray's hit does not otherwise need).
+  std::vector<Vec3> directXyz_;
 };
 
 }  // namespace kasha
