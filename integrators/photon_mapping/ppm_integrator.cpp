@@ -66,6 +66,10 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
   // A photon's first vertex is light straight from a light: needed unless next-event estimation
   // counts it for every lobe, or it serves only fluorescent lobes and the scene has none.
   firstStoredDepth_ = direct_ == PpmDirectLight::Nee || (direct_ == PpmDirectLight::NeeElastic && sources_.fluorophores.empty()) ? 2 : 1;
+  directXyz_.resize(scene.shapes.size(), Vec3(0.0f));
+  for (size_t i = 0; i < scene.shapes.size(); ++i)
+    if (const std::optional<AreaEmission>& e = scene.shapes[i].emission)
+      directXyz_[i] = Observer::cie1931().xyz(e->radiance, scene.range) * e->scale;
   bandwidth1_ = p.bandwidth > 0.0f ? p.bandwidth : 0.01f * (scene.range.max - scene.range.min);
 }
 
@@ -123,8 +127,15 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     const Shape& shape = scene.shapes[hit->shape];
     // Emission is hit only after the camera or specular vertices: next-event estimation and the
     // photons never count these paths (docs/photon-mapping.md §3).
-    if (shape.emission)
-      for (int k = 0; k < lanes.n; ++k) L += lanes.T[k] * shape.emission->eval(lanes.lambda[k], hit->ng, -ray.d);
+    if (shape.emission) {
+      if (bounces == 0 && !ctx.recordSpectral) {
+        // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact (as
+        // in the path tracer). Spectral bins need each lane's share, so they keep the lanes' estimate.
+        if (shape.emission->twoSided || glm::dot(hit->ng, -ray.d) > 0.0f) xyz += directXyz_[hit->shape];
+      } else {
+        for (int k = 0; k < lanes.n; ++k) L += lanes.T[k] * shape.emission->eval(lanes.lambda[k], hit->ng, -ray.d);
+      }
+    }
     if (bounces >= maxDepth_) break;
     const Bsdf bsdf = scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)});
     const Vec3 wo = bsdf.toLocal(-ray.d);
