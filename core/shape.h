@@ -14,9 +14,9 @@ struct AreaEmission {
   Spectrum radiance;  // L_e(λ), W·m⁻²·sr⁻¹·nm⁻¹ up to the scene's unit
   float scale = 1.0f;
   bool twoSided = false;  // else emits on the side of the geometric normal only
+  bool emitsTowards(const Vec3& ng, const Vec3& wOut) const { return twoSided || glm::dot(ng, wOut) > 0.0f; }
   float eval(float lambda, const Vec3& ng, const Vec3& wOut) const {
-    if (!twoSided && glm::dot(ng, wOut) <= 0.0f) return 0.0f;
-    return scale * radiance(lambda);
+    return emitsTowards(ng, wOut) ? scale * radiance(lambda) : 0.0f;
   }
 };
 

@@ -59,7 +59,8 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
     checks.clear();
     splats.clear();
     float radiance[kMaxLanes];
-    connectSubpaths(c, C, LS, LO, rng, splats, radiance);
+    Vec3 xyz;
+    connectSubpaths(c, C, LS, LO, rng, splats, radiance, xyz);
     for (const WeightCheck& k : checks) {
       ++compared;
       ASSERT_NEAR(k.recursive, k.full, 1e-5f * std::max(k.recursive, k.full) + 1e-9f)

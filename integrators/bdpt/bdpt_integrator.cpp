@@ -5,6 +5,7 @@
 
 #include "core/color.h"
 #include "integrators/bdpt/connect.h"
+#include "integrators/direct_emission.h"
 #include "integrators/progressive_schedule.h"
 
 namespace kasha {
@@ -34,7 +35,8 @@ struct MollifyPass final : PassData {
 Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bdpt::WavelengthMode mode, const MollificationSettings* m)
     : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
       light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
-      ws_{s.maxDepth, s.rrDepth, &light_.density()}, mode_(mode), families_(familiesFor(scene, mode)) {
+      ws_{s.maxDepth, s.rrDepth, &light_.density()}, mode_(mode), families_(familiesFor(scene, mode)),
+      directXyz_(directEmissionXyz(scene)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by bdpt (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by bdpt (its MIS weights need the light-start density)");
   // Lanes (docs/bdpt-mis.md §10) where only the shared family runs: its weights do not depend on the
@@ -91,6 +93,7 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   if (families_.independent) traceLightSubpath(scene, LightFamily::Own, lanes, ws_, rng, ctx.counter, LO);
   Context c{scene, ws_, families_, lanes, sensor_.density(), ctx.counter};
   c.spectralSplats = ctx.recordSpectral;
+  if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
   if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;
   if (ctx.recordStrategies) {
     c.log = &ctx.strategies;
@@ -98,10 +101,10 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   }
 
   float radiance[kMaxLanes];
-  connectSubpaths(c, C, LS, LO, rng, ctx.splats, radiance);
+  Vec3 xyz;
+  connectSubpaths(c, C, LS, LO, rng, ctx.splats, radiance, xyz);
   // Each lane's radiance weighted by W(λ_k)/(n·p(λ_k)): the balance heuristic over the n stratified
   // hero techniques (every lane distributed as p).
-  Vec3 xyz(0.0f);
   for (int k = 0; k < lanes_; ++k)
     xyz += sensorResponse(ctx, lanes.lambda[k], radiance[k] / (float(lanes_) * lanes.sensorPdf[k]));
   return xyz;

@@ -43,6 +43,7 @@ class Bdpt final : public Integrator {
   bdpt::Families families_;
   float bandwidth1_ = 0.0f, alpha_ = 0.0f;
   int lanes_ = 1;  // wavelength lanes per camera sample (docs/bdpt-mis.md §10)
+  std::vector<Vec3> directXyz_;  // per light: its emission's XYZ seen directly (direct_emission.h)
 };
 
 }  // namespace kasha

@@ -187,10 +187,21 @@ MisSums lightEndSum(double pCam0, double pLight0) {
 
 }  // namespace
 
-void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float* out) {
+void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float* out, Vec3& xyz) {
   const PathVertex& e = C[size_t(t - 1)];
   if (e.light < 0) return;
   const PathVertex& next = C[size_t(t - 2)];
+  if (t == 2 && e.kind == Kind::Surface && c.directXyz) {
+    // The path x_0 x_1 (the light seen by the pinhole) has two strategies, this one and the light
+    // vertex splatted to the camera; this one is exact, so it takes weight 1 and the other 0
+    // (docs/bdpt-mis.md §10).
+    const AreaEmission& em = *static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission;
+    if (!em.emitsTowards(e.n, towards(e, next))) return;
+    const Vec3& value = (*c.directXyz)[size_t(e.light)];
+    xyz += value;
+    if (c.log) c.log->push_back({c.pixel, value, value, 0, t, uint8_t(Variant::kStandard)});
+    return;
+  }
   float Le[kMaxLanes];
   bool any = false;
   for (int k = e.firstLane(); k < e.endLane(c.lanes); ++k) {
@@ -461,8 +472,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   bool oneGroup = true;
   double pCamAPrev = 0.0;
   if (s == 1) {
-    // The light itself, seen directly (area lights only).
-    if (a.kind != Kind::Light || a.deltaPosition) return;
+    // The light itself, seen directly (area lights only; weight 0 where the camera's s = 0 adds it
+    // exactly, see emitterHit).
+    if (a.kind != Kind::Light || a.deltaPosition || c.directXyz) return;
     const AreaEmission& em = *static_cast<const AreaLight&>(*c.scene.lights[size_t(a.light)]).shape().emission;
     for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
       const float Le = em.eval(lanes ? c.lanes.lambda[k] : lambda, a.n, conn->wi);
@@ -531,12 +543,14 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
 }
 
 void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,
-                     const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats, float* out) {
+                     const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats, float* out,
+                     Vec3& xyz) {
   const int maxDepth = c.walk.maxDepth;
   std::fill(out, out + c.lanes.n, 0.0f);
+  xyz = Vec3(0.0f);
   // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelengths.
   for (int t = 2; t <= int(C.size()); ++t) {
-    emitterHit(c, C, t, out);
+    emitterHit(c, C, t, out, xyz);
     if (C[size_t(t - 1)].kind != Kind::Surface) continue;
     if (t - 1 <= maxDepth) {
       nextEvent(c, C, t, rng, out);

@@ -35,6 +35,10 @@ struct Context {
   Vec2 pixel{0.0f};
   // Whether t = 1 splats keep each lane's wavelength (for spectral bins), or sum the lanes' XYZ.
   bool spectralSplats = false;
+  // Per light, the XYZ of an area emitter seen directly (integrators/direct_emission.h): s = 0, t = 2
+  // adds it exactly with weight 1, and the light vertex seen by the camera gets weight 0; null to
+  // weigh the two as usual. Only with lanes (the shared family alone) and no spectral bins.
+  const std::vector<Vec3>* directXyz = nullptr;
 
   float lambdaCamera() const { return lanes.lambda[0]; }
   float sensorPdf() const { return lanes.sensorPdf[0]; }
@@ -43,8 +47,9 @@ struct Context {
 };
 
 // Strategies with t ≥ 2 add each lane's radiance at its camera wavelength, weighted, to out[k].
-// s = 0: the camera subpath's vertex C[t−1] lies on an emitter.
-void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float* out);
+// s = 0: the camera subpath's vertex C[t−1] lies on an emitter (an area emitter seen directly adds
+// its exact XYZ to `xyz` where c.directXyz is set).
+void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float* out, Vec3& xyz);
 // s = 1: next-event estimation from C[t−1] at the wavelength its spectral event chose.
 void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampler& rng, float* out);
 // s = 1 through the own-family light subpath's vertex L[0]: its wavelength, drawn from the
@@ -63,8 +68,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
 
 // Every strategy of one camera sample: the camera subpath C joined to the light subpaths of the
 // shared (LS) and own (LO) families (either may be empty). Sets out[k] to lane k's radiance at its
-// camera wavelength (weighted, t ≥ 2) and appends the t = 1 splats.
+// camera wavelength (weighted, t ≥ 2) and xyz to what is added as XYZ, and appends the t = 1 splats.
 void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,
-                     const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats, float* out);
+                     const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats, float* out,
+                     Vec3& xyz);
 
 }  // namespace kasha::bdpt

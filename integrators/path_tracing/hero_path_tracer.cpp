@@ -5,6 +5,7 @@
 
 #include "core/color.h"
 #include "core/sampling.h"
+#include "integrators/direct_emission.h"
 #include "integrators/lane_next_event.h"
 
 namespace kasha {
@@ -26,11 +27,9 @@ HeroPathTracer::HeroPathTracer(const Scene& scene, const RenderSettings& s)
       excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
       n_(s.heroWavelengths),
       maxDepth_(s.maxDepth),
-      rrDepth_(s.rrDepth) {
-  directXyz_.resize(scene.shapes.size(), Vec3(0.0f));
-  for (size_t i = 0; i < scene.shapes.size(); ++i)
-    if (const std::optional<AreaEmission>& e = scene.shapes[i].emission)
-      directXyz_[i] = Observer::cie1931().xyz(e->radiance, scene.range) * e->scale;
+      rrDepth_(s.rrDepth),
+      directXyz_(directEmissionXyz(scene)) {
+
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "with hero wavelengths (their strata need p)");
   requireLaneSettings(s, n_, 2, "hero wavelengths");
 }
@@ -84,7 +83,7 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
       }
       if (depth == 0) {
         // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact.
-        if (shape.emission->twoSided || glm::dot(hit->ng, -ray.d) > 0.0f) L += directXyz_[hit->shape];
+        if (shape.emission->emitsTowards(hit->ng, -ray.d)) L += directXyz_[size_t(scene.shapeLight[hit->shape])];
       } else {
         for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (shape.emission->eval(lanes.lambda[j], hit->ng, -ray.d) * w);
       }

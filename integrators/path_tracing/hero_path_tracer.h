@@ -53,9 +53,7 @@ class HeroPathTracer final : public Integrator {
   WavelengthStrategy sensor_;
   FluorescenceSampling excitation_;  // λ_i given the fluorescent lobe ("material": the Bsdf's own)
   int n_, maxDepth_, rrDepth_;
-  // Per shape: the XYZ of its emission seen directly, ∫ W(λ)·L_e(λ) dλ over the scene's range (the
-  // expectation of the lanes' estimate, which the camera ray's hit does not otherwise need).
-  std::vector<Vec3> directXyz_;
+  std::vector<Vec3> directXyz_;  // per light: its emission's XYZ seen directly (direct_emission.h)
 };
 
 }  // namespace kasha

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/memory_budget.h"
+#include "integrators/direct_emission.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/lane_next_event.h"
 #include "integrators/photon_mapping/photon_gather.h"
@@ -39,7 +40,7 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
       n_(s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths),
       maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
       alwaysKernel_(s.ppm.alwaysKernel), direct_(s.ppm.direct), memoryLimit_(s.memoryLimit),
-      sampler_(s.sampler) {
+      sampler_(s.sampler), directXyz_(directEmissionXyz(scene)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by ppm");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by ppm");
   requireLaneSettings(s, n_, 1, "ppm");
@@ -66,10 +67,6 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
   // A photon's first vertex is light straight from a light: needed unless next-event estimation
   // counts it for every lobe, or it serves only fluorescent lobes and the scene has none.
   firstStoredDepth_ = direct_ == PpmDirectLight::Nee || (direct_ == PpmDirectLight::NeeElastic && sources_.fluorophores.empty()) ? 2 : 1;
-  directXyz_.resize(scene.shapes.size(), Vec3(0.0f));
-  for (size_t i = 0; i < scene.shapes.size(); ++i)
-    if (const std::optional<AreaEmission>& e = scene.shapes[i].emission)
-      directXyz_[i] = Observer::cie1931().xyz(e->radiance, scene.range) * e->scale;
   bandwidth1_ = p.bandwidth > 0.0f ? p.bandwidth : 0.01f * (scene.range.max - scene.range.min);
 }
 
@@ -131,7 +128,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
       if (bounces == 0 && !ctx.recordSpectral) {
         // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact (as
         // in the path tracer). Spectral bins need each lane's share, so they keep the lanes' estimate.
-        if (shape.emission->twoSided || glm::dot(hit->ng, -ray.d) > 0.0f) xyz += directXyz_[hit->shape];
+        if (shape.emission->emitsTowards(hit->ng, -ray.d)) xyz += directXyz_[size_t(scene.shapeLight[hit->shape])];
       } else {
         for (int k = 0; k < lanes.n; ++k) L += lanes.T[k] * shape.emission->eval(lanes.lambda[k], hit->ng, -ray.d);
       }

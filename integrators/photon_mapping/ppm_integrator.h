@@ -53,7 +53,7 @@ class PpmIntegrator final : public Integrator {
   int firstStoredDepth_;  // the photon pass stores photons from this vertex of their subpaths on
   uint64_t memoryLimit_;
   SamplerKind sampler_;
-  std::vector<Vec3> directXyz_;  // per shape: the film's XYZ of its emission, exact (Observer::xyz)
+  std::vector<Vec3> directXyz_;  // per light: the film's XYZ of its emission seen directly (direct_emission.h)
 };
 
 }  // namespace kasha
