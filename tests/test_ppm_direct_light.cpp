@@ -41,9 +41,9 @@ struct Case {
   int lanes;  // wavelength lanes of the camera paths
 };
 
-class PpmDirect : public ::testing::TestWithParam<Case> {};
+class PpmDirectSlow : public ::testing::TestWithParam<Case> {};
 
-TEST_P(PpmDirect, AgreesWithPathTracerRegionByRegion) {
+TEST_P(PpmDirectSlow, AgreesWithPathTracerRegionByRegion) {
   auto scene = lowRes();
   const auto pt = regions(*scene, "pt", 64);
   scene->render.ppm.direct = GetParam().direct;
@@ -53,7 +53,7 @@ TEST_P(PpmDirect, AgreesWithPathTracerRegionByRegion) {
   test::expectRegionsAgree(pt, ppm, 4.5, 0.05, 0.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, PpmDirect,
+INSTANTIATE_TEST_SUITE_P(Modes, PpmDirectSlow,
                          ::testing::Values(Case{"nee_elastic", kasha::PpmDirectLight::NeeElastic, 4},
                                            Case{"nee_elastic_one_lane", kasha::PpmDirectLight::NeeElastic, 1},
                                            Case{"nee", kasha::PpmDirectLight::Nee, 4},
