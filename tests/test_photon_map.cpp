@@ -18,7 +18,8 @@ std::vector<Photon> randomPhotons(size_t n, Rng& rng, bool onSphere) {
   for (size_t i = 0; i < n; ++i) {
     const Vec3 p = onSphere ? sampleUniformSphere(Vec2(rng.uniform(), rng.uniform()))
                             : Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f;
-    v[i] = {{p.x, p.y, p.z}, {0.0f, 0.0f, 1.0f}, 500.0f, 1.0f, uint32_t(i)};  // depth: the photon's name here
+    // The first lane's wavelength is the photon's name here (exact in a float below 2^24).
+    v[i] = {{p.x, p.y, p.z}, {0.0f, 0.0f, 1.0f}, 1, 1, {float(i)}, {1.0f}};
   }
   return v;
 }
@@ -40,7 +41,7 @@ void compareWithBruteForce(size_t n, bool onSphere, uint64_t seed) {
                             : Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.4f - 1.2f;
     const float r = 0.02f + 0.6f * rng.uniform() * rng.uniform();
     std::vector<size_t> got, expected;  // the photons' names (the map reorders them)
-    for (const size_t i : map.within(x, r)) got.push_back(map[i].depth);
+    for (const size_t i : map.within(x, r)) got.push_back(size_t(map[i].lambda[0]));
     for (size_t i = 0; i < n; ++i) {
       const Vec3 d = Vec3(copy[i].p[0], copy[i].p[1], copy[i].p[2]) - x;
       const float d2 = glm::dot(d, d);

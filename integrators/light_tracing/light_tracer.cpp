@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "core/color.h"
-#include "integrators/wavelength_lanes.h"
+#include "integrators/light_subpath_lanes.h"
 
 namespace kasha {
 namespace {
@@ -41,11 +41,6 @@ void splatLanes(SampleContext& ctx, Vec2 pixel, const float* lambda, const float
     if (value[k] != 0.0f) ctx.splats.push_back(spectralSplat(pixel, lambda[k], value[k] * scale));
 }
 
-float magnitude(const float* beta, int n) {
-  float m = 0.0f;
-  for (int j = 0; j < n; ++j) m += beta[j];
-  return m;
-}
 
 }  // namespace
 
@@ -65,51 +60,35 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
   // Lanes at the strata of the light-start density; the light ∝ Σ_j Φ_l(λ_j), symmetric in them.
   const float uLambda = rng.uniform(), uLight = rng.uniform();
   const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
-  float lambda[kMaxLanes], pdf[kMaxLanes];
-  for (int j = 0; j < n; ++j) {
-    const WavelengthSample s = wavelengths_.density().sample(laneStratum(uLambda, j, n));
-    lambda[j] = s.lambda;
-    pdf[j] = s.pdf;
-  }
-  const auto [li, pSelect] = selectLaneLight(scene, {lambda, size_t(n)}, uLight);
-  if (!(pSelect > 0.0f)) return Vec3(0.0f);
-  const Light& light = *scene.lights[li];
-  // The emission's geometry does not depend on λ: the same point and direction for every lane.
-  const std::optional<EmissionSample> es = light.sampleEmission(lambda[0], uPos, uDir);
-  if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return Vec3(0.0f);
-  // Lane j's start weight 1/(N·p(λ_j)·P(light)), the balance heuristic over the lanes.
-  float start[kMaxLanes], beta[kMaxLanes];
-  for (int j = 0; j < n; ++j) {
-    const float Le = j == 0 ? es->Le : light.emitted(*es, lambda[j]);
-    start[j] = pdf[j] > 0.0f ? 1.0f / (float(n) * pdf[j] * pSelect) : 0.0f;
-    beta[j] = start[j] > 0.0f ? Le * start[j] * es->cosOrigin / (es->pdfPos * es->pdfDir) : 0.0f;
-  }
+  LightStartLanes st = startLightLanes(scene, wavelengths_.density(), n, uLambda, uLight, uPos, uDir);
+  if (st.lanes.n == 0) return Vec3(0.0f);
+  const EmissionSample& es = st.es;
+  LightLanes& lanes = st.lanes;
 
   // The emitter seen directly (area lights; delta lights are not visible to a pinhole).
-  if (!es->deltaPos && !es->deltaDir && glm::dot(es->n, es->n) > 0.0f) {
-    if (const auto c = scene.camera.connect(es->p)) {
-      const auto& area = static_cast<const AreaLight&>(light);
+  if (!es.deltaPos && !es.deltaDir && glm::dot(es.n, es.n) > 0.0f) {
+    if (const auto c = scene.camera.connect(es.p)) {
+      const auto& area = static_cast<const AreaLight&>(*st.light);
       float value[kMaxLanes];
-      for (int j = 0; j < n; ++j) value[j] = area.shape().emission->eval(lambda[j], es->n, c->wi) * start[j];
-      if (contributes(ctx, lambda, value, n) && visible(scene, es->p, es->n, *c, ctx))
-        splatLanes(ctx, c->pixel, lambda, value, n, std::abs(glm::dot(es->n, c->wi)) / es->pdfPos * c->importance * perPath(scene));
+      for (int j = 0; j < n; ++j) value[j] = area.shape().emission->eval(lanes.lambda[j], es.n, c->wi) * st.start[j];
+      if (contributes(ctx, lanes.lambda, value, n) && visible(scene, es.p, es.n, *c, ctx))
+        splatLanes(ctx, c->pixel, lanes.lambda, value, n, std::abs(glm::dot(es.n, c->wi)) / es.pdfPos * c->importance * perPath(scene));
     }
   }
 
-  const float magnitude0 = magnitude(beta, n);  // Russian roulette compares the throughput with this
+  const float magnitude0 = lanes.sum();  // Russian roulette compares the throughput with this
   if (!(magnitude0 > 0.0f)) return Vec3(0.0f);
-  int lanes = n;
-  Ray ray{glm::dot(es->n, es->n) > 0.0f ? offsetPoint(es->p, es->n, es->w) : es->p, es->w};
+  Ray ray{glm::dot(es.n, es.n) > 0.0f ? offsetPoint(es.p, es.n, es.w) : es.p, es.w};
   const uint32_t firstDimension = rng.dimension();
   for (int depth = 1; depth <= maxDepth_; ++depth) {
     rng.startVertex(firstDimension, depth - 1);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++ctx.counter.closest;
     if (!hit) break;
-    const Bsdf bsdf = scene.bsdf(*hit, {lambda, size_t(lanes)});
+    const Bsdf bsdf = scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)});
     const Vec3 wi = bsdf.toLocal(-ray.d);
     // Spectral stage (Importance) of every lane: the lobe and the wavelengths leaving this vertex.
-    const std::span<const float> known(lambda, size_t(lanes));
+    const std::span<const float> known(lanes.lambda, size_t(lanes.n));
     const float uLobe = rng.uniform(), uLane = rng.uniform();
     LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Importance, known, n, uLobe);
     if (e.n == 0) break;
@@ -120,33 +99,15 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
         const Vec3 wo = bsdf.toLocal(c->wi);
         float value[kMaxLanes];
         for (int k = 0; k < e.n; ++k)
-          value[k] = laneWeight(bsdf, TransportMode::Importance, known, beta, e, k, wo, wi) * std::abs(wo.z);
+          value[k] = laneWeight(bsdf, TransportMode::Importance, known, lanes.beta, e, k, wo, wi) * std::abs(wo.z);
         if (contributes(ctx, e.lambda, value, e.n) && visible(scene, hit->p, hit->ng, *c, ctx))
           splatLanes(ctx, c->pixel, e.lambda, value, e.n, c->importance * perPath(scene));
       }
     }
     if (depth == maxDepth_) break;
-
-    // Direction at lane 0's wavelengths; every lane has the same density.
-    const float lambdaIn0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lambda[0];
-    const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(TransportMode::Importance, wi, e.lobe, lambdaIn0, e.lambda[0], rng.uniform2());
-    if (!ds || ds->pdf <= 0.0f) break;
-    float next[kMaxLanes];
-    for (int k = 0; k < e.n; ++k)
-      next[k] = laneWeight(bsdf, TransportMode::Importance, known, beta, e, k, ds->w, wi) * std::abs(ds->w.z) / ds->pdf;
-    lanes = e.n;
-    std::copy(next, next + lanes, beta);
-    std::copy(e.lambda, e.lambda + lanes, lambda);
-    const float m = magnitude(beta, lanes);
-    if (!(m > 0.0f)) break;
-    const Vec3 w = bsdf.toWorld(ds->w);
-    ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
-    if (depth >= rrDepth_) {
-      const float q = std::min(1.0f, m / magnitude0);
-      if (rng.uniform() >= q) break;
-      for (int j = 0; j < lanes; ++j) beta[j] /= q;
-    }
+    const std::optional<Vec3> w = scatterLightLanes(bsdf, wi, e, lanes, depth >= rrDepth_, magnitude0, rng);
+    if (!w) break;
+    ray = Ray{offsetPoint(hit->p, hit->ng, *w), *w};
   }
   return Vec3(0.0f);
 }

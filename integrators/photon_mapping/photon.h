@@ -1,31 +1,41 @@
 #pragma once
 // A photon: a vertex of a light subpath kept for density estimation (Jensen 1996; Hachisuka &
-// Jensen 2009). Each photon carries its own wavelength (transport.md §4).
+// Jensen 2009). The subpath carries wavelength lanes (hero wavelengths, as the light tracer's), so a
+// photon holds the lanes that arrive at its vertex, each with its own wavelength and flux
+// (transport.md §4; docs/photon-mapping.md §2): up to kPhotonLanes in one cache line, more as
+// several photons at the same vertex (the estimate sums over lanes, so the split changes nothing).
 #include <cstddef>
 #include <cstdint>
 
 namespace kasha {
 
-struct Photon {
+inline constexpr int kPhotonLanes = 4;
+
+struct alignas(64) Photon {
   float p[3];      // position; first, so that FLANN reads positions in place with stride sizeof(Photon)
   float wi[3];     // unit direction towards where the light came from, in the frame of the surface the
                    // photon landed on (its Bsdf's local, shading frame)
-  float lambda;    // wavelength of the light arriving here, nm
-  float power;     // the light subpath's throughput: flux per emitted subpath, per nm of wavelength
-                   // density already divided out (the light tracer's beta), times |ω_i·n_s|/|ω_i·n_g|
-                   // here (1 without a shading normal: Veach's f_s, docs/photon-mapping.md §3)
-  uint32_t depth;  // index of this vertex on its light subpath: 1 for the first surface hit
+  uint16_t lanes;  // lanes held, 1 to kPhotonLanes
+  uint16_t depth;  // index of this vertex on its light subpath: 1 for the first surface hit
+  float lambda[kPhotonLanes];  // each lane's wavelength of the light arriving here, nm
+  float power[kPhotonLanes];   // each lane's throughput: flux per emitted subpath, per nm of wavelength
+                               // density already divided out, with the lane's hero weight (the light
+                               // tracer's beta), times |ω_i·n_s|/|ω_i·n_g| here (1 without a shading
+                               // normal: Veach's f_s, docs/photon-mapping.md §3)
 };
-static_assert(sizeof(Photon) == 36);
+static_assert(sizeof(Photon) == 64);
+
+// Photons stored for a vertex that `lanes` lanes reach.
+constexpr size_t photonsPerVertex(int lanes) { return size_t((lanes + kPhotonLanes - 1) / kPhotonLanes); }
 
 // Leaf size of FLANN's single k-d tree (KDTreeSingleIndexParams).
-inline constexpr int kPhotonLeafSize = 10;
+inline constexpr int kPhotonLeafSize = 24;
 
-// Memory per stored photon (docs/photon-mapping.md): the record and FLANN's index over it, which
+// Memory per stored photon (docs/photon-mapping.md §5): the record and FLANN's index over it, which
 // holds a reordered copy of the positions (12 bytes), a row pointer (8) and an int permutation
 // entry (4) per point, and at most about 4/leafSize tree nodes of 40 bytes per point.
 inline constexpr size_t kIndexBytesPerPhoton = 12 + 8 + 4 + 4 * 40 / kPhotonLeafSize;
 inline constexpr size_t kBytesPerPhoton = sizeof(Photon) + kIndexBytesPerPhoton;
-static_assert(kBytesPerPhoton == 76);
+static_assert(kBytesPerPhoton == 94);
 
 }  // namespace kasha

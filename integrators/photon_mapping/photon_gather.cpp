@@ -12,19 +12,22 @@ void gatherPhotons(const PhotonPass& pass, const Bsdf& bsdf, const Vec3& p, cons
     const Photon& ph = pass.map[i];
     if (int(ph.depth) + bounces > maxDepth) continue;
     const Vec3 wi(ph.wi[0], ph.wi[1], ph.wi[2]);  // the photon's direction in its own surface frame
-    // Fluorescent lobe: exact for any pair of wavelengths (transport.md §4).
-    if (fluorescent)
-      for (int k = 0; k < lanes.n; ++k)
-        sum[k] += bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, lanes.lambda[k], SpectralLobe::Fluorescent) *
-                  ph.power;
-    if (int(ph.depth) < elasticFromDepth) continue;
-    const float fe = bsdf.eval(TransportMode::Radiance, wi, wo, ph.lambda, ph.lambda, SpectralLobe::Elastic) * ph.power;
-    if (fe <= 0.0f) continue;
-    if (exactElastic) {
-      xyz += sensorResponse(ctx, ph.lambda, fe * pass.density);  // the sensor at the photon's own wavelength
-      continue;
+    const bool elastic = int(ph.depth) >= elasticFromDepth;
+    for (int l = 0; l < ph.lanes; ++l) {
+      const float lambda = ph.lambda[l], power = ph.power[l];
+      // Fluorescent lobe: exact for any pair of wavelengths (transport.md §4).
+      if (fluorescent)
+        for (int k = 0; k < lanes.n; ++k)
+          sum[k] += bsdf.eval(TransportMode::Radiance, wi, wo, lambda, lanes.lambda[k], SpectralLobe::Fluorescent) * power;
+      if (!elastic) continue;
+      const float fe = bsdf.eval(TransportMode::Radiance, wi, wo, lambda, lambda, SpectralLobe::Elastic) * power;
+      if (fe <= 0.0f) continue;
+      if (exactElastic) {
+        xyz += sensorResponse(ctx, lambda, fe * pass.density);  // the sensor at the lane's own wavelength
+        continue;
+      }
+      for (int k = 0; k < lanes.n; ++k) sum[k] += fe * wavelengthKernel(lambda - lanes.lambda[k], pass.bandwidth);
     }
-    for (int k = 0; k < lanes.n; ++k) sum[k] += fe * wavelengthKernel(ph.lambda - lanes.lambda[k], pass.bandwidth);
   }
   for (int k = 0; k < lanes.n; ++k)
     if (sum[k] > 0.0f) L += lanes.T[k] * (sum[k] * pass.density);

@@ -36,6 +36,22 @@ void split(std::vector<Photon>& photons, size_t begin, size_t end, int levels, s
                        [&] { split(photons, mid, end, levels - 1, first + half, bounds); });
 }
 
+// Hands FLANN's search results (indices within a cell) to the map's order, as a radius search's
+// result set does (flann::RadiusResultSet: never full, the radius as the worst distance, which the
+// tree's leaves compare with before adding), without storing distances.
+class CollectWithin final : public flann::ResultSet<float> {
+ public:
+  CollectWithin(std::vector<size_t>& found, size_t offset, float r2) : found_(found), offset_(offset), r2_(r2) {}
+  bool full() const override { return true; }
+  void addPoint(float, size_t index) override { found_.push_back(offset_ + index); }
+  float worstDist() const override { return r2_; }
+
+ private:
+  std::vector<size_t>& found_;
+  size_t offset_;
+  float r2_;
+};
+
 }  // namespace
 
 PhotonMap::PhotonMap(std::vector<Photon> photons) : photons_(std::move(photons)) {
@@ -55,8 +71,8 @@ PhotonMap::PhotonMap(std::vector<Photon> photons) : photons_(std::move(photons))
     }
     // Rows are the photons' positions, read in place: sizeof(Photon) bytes apart.
     const flann::Matrix<float> positions(photons_[cell.begin].p, cell.end - cell.begin, 3, sizeof(Photon));
-    cell.index = std::make_unique<flann::Index<flann::L2_Simple<float>>>(positions,
-                                                                         flann::KDTreeSingleIndexParams(kPhotonLeafSize));
+    cell.index = std::make_unique<flann::KDTreeSingleIndex<flann::L2_Simple<float>>>(
+        positions, flann::KDTreeSingleIndexParams(kPhotonLeafSize));
     cell.index->buildIndex();
   });
 }
@@ -65,20 +81,17 @@ PhotonMap::~PhotonMap() = default;
 
 const std::vector<size_t>& PhotonMap::within(const Vec3& p, float radius) const {
   thread_local std::vector<size_t> found;
-  thread_local std::vector<std::vector<size_t>> indices(1);
-  thread_local std::vector<std::vector<float>> dists(1);
   found.clear();
   float q[3] = {p.x, p.y, p.z};
-  flann::SearchParams params;
-  params.sorted = false;  // every photon in the disc counts; the order does not matter
+  const flann::SearchParams params;  // eps = 0: exact
   const float r2 = radius * radius;
   for (const Cell& cell : cells_) {
     if (!cell.index) continue;
     const Vec3 d = glm::max(glm::max(cell.lo - p, p - cell.hi), Vec3(0.0f));  // to the cell's box
     if (glm::dot(d, d) >= r2) continue;
     // L2_Simple measures squared distances, so the search radius is r².
-    cell.index->radiusSearch(flann::Matrix<float>(q, 1, 3), indices, dists, r2, params);
-    for (const size_t i : indices[0]) found.push_back(cell.begin + i);
+    CollectWithin collect(found, cell.begin, r2);
+    cell.index->findNeighbors(collect, q, params);
   }
   return found;
 }

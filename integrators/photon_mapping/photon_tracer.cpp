@@ -8,51 +8,62 @@
 #include <cmath>
 
 #include "core/memory_budget.h"
+#include "integrators/light_subpath_lanes.h"
 
 namespace kasha {
 namespace {
 
 constexpr size_t kPathsPerChunk = 1024;
 
-// One light subpath, as the light tracer starts and continues it (without camera connections).
+// Stores the lanes of positive power at `hit`, each lane's beta times `shading`, kPhotonLanes to a photon.
+void store(const Hit& hit, const Vec3& wi, const LightLanes& lanes, float shading, int depth, std::vector<Photon>& out) {
+  Photon ph{{hit.p.x, hit.p.y, hit.p.z}, {wi.x, wi.y, wi.z}, 0, uint16_t(depth), {}, {}};
+  for (int k = 0; k < lanes.n; ++k) {
+    const float power = lanes.beta[k] * shading;
+    if (!(power > 0.0f)) continue;
+    ph.lambda[ph.lanes] = lanes.lambda[k];
+    ph.power[ph.lanes] = power;
+    if (++ph.lanes == kPhotonLanes) {
+      out.push_back(ph);
+      ph.lanes = 0;
+    }
+  }
+  if (ph.lanes > 0) out.push_back(ph);
+}
+
+// One light subpath with its lanes, as the light tracer starts and continues it (without camera
+// connections), in the light tracer's dimension layout.
 void tracePath(const Scene& scene, const PhotonTracing& s, Sampler& rng, std::vector<Photon>& out, RayCounter& counter) {
-  const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(*s.wavelengths, rng.uniform(), rng.uniform());
-  if (lw.pdf <= 0.0f) return;
+  const float uLambda = rng.uniform(), uLight = rng.uniform();
   const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
-  const std::optional<EmissionSample> es = scene.lights[lw.light]->sampleEmission(lw.lambda, uPos, uDir);
-  if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return;
-  // Flux per subpath: Le·cos/(p_pos·p_dir·p(light, λ)).
-  float beta = es->Le * es->cosOrigin / (es->pdfPos * es->pdfDir * lw.pdf);
-  if (!(beta > 0.0f)) return;
-  const float beta0 = beta;  // Russian roulette compares the throughput with the emitted weight
-  float lambda = lw.lambda;
-  Ray ray{glm::dot(es->n, es->n) > 0.0f ? offsetPoint(es->p, es->n, es->w) : es->p, es->w};
+  LightStartLanes st = startLightLanes(scene, *s.wavelengths, s.lanes, uLambda, uLight, uPos, uDir);
+  if (st.lanes.n == 0) return;
+  LightLanes& lanes = st.lanes;
+  const float beta0 = lanes.sum();  // Russian roulette compares the throughput with the emitted weight
+  if (!(beta0 > 0.0f)) return;
+  const EmissionSample& es = st.es;
+  Ray ray{glm::dot(es.n, es.n) > 0.0f ? offsetPoint(es.p, es.n, es.w) : es.p, es.w};
+  const uint32_t firstDimension = rng.dimension();
   for (int depth = 1; depth <= s.maxDepth; ++depth) {
+    rng.startVertex(firstDimension, depth - 1);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++counter.closest;
     if (!hit) break;
-    const Bsdf bsdf = scene.bsdf(*hit, {&lambda, 1});
+    const Bsdf bsdf = scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)});
     const Vec3 wi = bsdf.toLocal(-ray.d);
     // Stored as flux times |ω_i·n_s|/|ω_i·n_g| of this vertex, so that the gather's f·Φ is Veach's
     // shading-normal f_s·Φ (Veach97 §5.3): Φ is flux through the surface, not about n_s.
-    const float power = beta * bsdf.incidentShadingRatio(wi);
-    if (depth >= s.firstStoredDepth && !bsdf.has(BsdfFlags::DeltaDirection) && power > 0.0f)
-      out.push_back({{hit->p.x, hit->p.y, hit->p.z}, {wi.x, wi.y, wi.z}, lambda, power, uint32_t(depth)});
+    if (depth >= s.firstStoredDepth && !bsdf.has(BsdfFlags::DeltaDirection))
+      store(*hit, wi, lanes, bsdf.incidentShadingRatio(wi), depth, out);
     if (depth == s.maxDepth) break;
-    // Both stages in Importance mode: lobe and λ_o (Jung18 eq. 6), then the direction.
-    const std::optional<ScatterSample> ss =
-        bsdf.sample(TransportMode::Importance, wi, lambda, rng.uniform3());
-    if (!ss) break;
-    beta *= ss->f * std::abs(ss->w.z) / ss->pdf;
-    if (!(beta > 0.0f)) break;
-    lambda = ss->lambda;
-    const Vec3 w = bsdf.toWorld(ss->w);
-    ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
-    if (depth >= s.rrDepth) {
-      const float q = std::min(1.0f, beta / beta0);
-      if (rng.uniform() >= q) break;
-      beta /= q;
-    }
+    // The spectral event of every lane (Importance: the lobe and the wavelengths leaving here).
+    const float uLobe = rng.uniform(), uLane = rng.uniform();
+    LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Importance, {lanes.lambda, size_t(lanes.n)}, s.lanes, uLobe);
+    if (e.n == 0) break;
+    if (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection)) keepOneLane(e, uLane);
+    const std::optional<Vec3> w = scatterLightLanes(bsdf, wi, e, lanes, depth >= s.rrDepth, beta0, rng);
+    if (!w) break;
+    ray = Ray{offsetPoint(hit->p, hit->ng, *w), *w};
   }
 }
 

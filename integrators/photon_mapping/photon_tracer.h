@@ -1,7 +1,10 @@
 #pragma once
-// The photon pass: light subpaths in Importance mode, started with the joint (light, wavelength)
-// density of LightSelector (λ from the light-start strategy), each photon keeping its own wavelength, which the material's spectral
-// stage changes at fluorescent events (Jung18 eq. 6: P_l, then λ_o ∝ e).
+// The photon pass: light subpaths in Importance mode that carry wavelength lanes as the light
+// tracer's do (light_start_lanes.h: lanes at the strata of the light-start strategy, the light
+// symmetric in them; at each vertex one spectral event for every lane, wavelength_lanes.h: each lane
+// keeps its wavelength through the elastic lobe, a fluorescent event gives fresh lanes ∝ e, Jung18
+// eq. 6, and a direction that depends on λ keeps one lane). Each photon holds the lanes that arrive
+// at its vertex.
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +17,7 @@ namespace kasha {
 
 struct PhotonTracing {
   size_t paths = 0;      // light subpaths to trace (the photons "emitted" in the estimate)
+  int lanes = 1;         // wavelength lanes per subpath
   int maxDepth = 0;      // photons are stored at vertices firstStoredDepth..maxDepth
   int firstStoredDepth = 1;  // 2 when next-event estimation counts the light arriving straight from a light
   int rrDepth = 3;       // Russian roulette from this vertex on
@@ -23,10 +27,10 @@ struct PhotonTracing {
 };
 
 // Traces the subpaths and returns a photon for every vertex from firstStoredDepth on that has a
-// non-specular lobe. Path j
-// draws from its own stream of `seed`, and the photons come in path order, so the result does not
-// depend on the number of threads. Throws MemoryLimitError as soon as the photons stored so far
-// exceed the memory limit.
+// non-specular lobe and a lane of positive power (only those lanes are kept, kPhotonLanes to a
+// photon). Path j draws from its own stream of `seed`, and the photons come in path order, so the
+// result does not depend on the number of threads. Throws MemoryLimitError as soon as the photons
+// stored so far exceed the memory limit.
 std::vector<Photon> tracePhotons(const Scene& scene, const PhotonTracing& settings, uint64_t seed, RayCounter& counter);
 
 }  // namespace kasha

@@ -57,9 +57,11 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
   // SmallVCM's choice: as many light subpaths per iteration as pixels.
   photonsPerPass_ = p.photonsPerPass > 0 ? size_t(p.photonsPerPass)
                                          : size_t(scene.camera.width()) * size_t(scene.camera.height());
-  requireMemory(saturatingMul(photonsPerPass_, kBytesPerPhoton),
-                "the photon map of one pass (" + std::to_string(photonsPerPass_) + " photons × " +
-                    std::to_string(kBytesPerPhoton) + " bytes; lower render/ppm/photons_per_pass)",
+  // At least one vertex of every subpath, its lanes in photonsPerVertex photons.
+  const size_t minPhotons = saturatingMul(photonsPerPass_, photonsPerVertex(n_));
+  requireMemory(saturatingMul(minPhotons, kBytesPerPhoton),
+                "the photon map of one pass (" + std::to_string(minPhotons) + " photons × " +
+                    std::to_string(kBytesPerPhoton) + " bytes; lower render/ppm/photons_per_pass or the lanes)",
                 memoryLimit_);
   double area = 0.0;
   for (const Shape& shape : scene.shapes) area += shape.area;
@@ -80,6 +82,7 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
   if (maxDepth_ > 0) {
     PhotonTracing t;
     t.paths = photonsPerPass_;
+    t.lanes = n_;
     t.maxDepth = maxDepth_;
     t.rrDepth = rrDepth_;
     t.firstStoredDepth = firstStoredDepth_;

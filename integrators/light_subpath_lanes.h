@@ -1,0 +1,46 @@
+#pragma once
+// Light subpaths that carry wavelength lanes (the light tracer's and the photon pass's,
+// docs/wavelength-sampling.md "Hero wavelengths"): the start — N lanes at the strata of the
+// light-start density, a light chosen symmetrically in them (selectLaneLight), and one emission
+// sample, whose geometry does not depend on λ, serving every lane — and the step through a vertex
+// once its spectral event (sampleLaneEvent, Importance mode) is known.
+#include <optional>
+
+#include "core/light.h"
+#include "core/sampler.h"
+#include "core/wavelength_density.h"
+#include "integrators/wavelength_lanes.h"
+#include "scene/scene.h"
+
+namespace kasha {
+
+// The lanes of a light subpath segment: wavelength and throughput (flux per subpath) of each.
+struct LightLanes {
+  int n = 0;
+  float lambda[kMaxLanes];
+  float beta[kMaxLanes];
+  float sum() const;  // Σ_k beta_k: what Russian roulette compares
+};
+
+struct LightStartLanes {
+  LightLanes lanes;  // lanes.n = 0 if the start failed (no light emits at the lanes, or no emission sample)
+  const Light* light = nullptr;
+  EmissionSample es;
+  float start[kMaxLanes];  // 1/(N·p(λ_j)·P(light)): lane j's weight, the balance heuristic over the lanes;
+                           // lanes.beta[j] = L_e(λ_j)·start_j·cos/(p_pos·p_dir)
+};
+
+// Lane j at the stratum (uLambda + j/n) of `density`'s inverse CDF, the light from uLight, the
+// emission's point and direction from uPos and uDir.
+LightStartLanes startLightLanes(const Scene& scene, const WavelengthDensity& density, int n, float uLambda, float uLight,
+                                Vec2 uPos, Vec2 uDir);
+
+// Continues `lanes` (those arriving at the vertex, along -wi in the Bsdf's frame) through the
+// vertex's spectral event e: the direction at lane 0's wavelengths from the next two dimensions of
+// rng (every lane has the same direction density), each new lane's weight (laneWeight), and, with
+// `roulette`, Russian roulette against the start's throughput beta0 from one more dimension. Returns
+// the new direction in the world frame, or nullopt if the subpath ends.
+std::optional<Vec3> scatterLightLanes(const Bsdf& bsdf, const Vec3& wi, const LaneEvent& e, LightLanes& lanes,
+                                      bool roulette, float beta0, Sampler& rng);
+
+}  // namespace kasha
