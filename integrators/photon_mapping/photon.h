@@ -4,6 +4,7 @@
 // photon holds the lanes that arrive at its vertex, each with its own wavelength and flux
 // (transport.md §4; docs/photon-mapping.md §2): up to kPhotonLanes in one cache line, more as
 // several photons at the same vertex (the estimate sums over lanes, so the split changes nothing).
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -31,11 +32,13 @@ constexpr size_t photonsPerVertex(int lanes) { return size_t((lanes + kPhotonLan
 // Leaf size of FLANN's single k-d tree (KDTreeSingleIndexParams).
 inline constexpr int kPhotonLeafSize = 24;
 
-// Memory per stored photon (docs/photon-mapping.md §5): the record and FLANN's index over it, which
-// holds a reordered copy of the positions (12 bytes), a row pointer (8) and an int permutation
-// entry (4) per point, and at most about 4/leafSize tree nodes of 40 bytes per point.
+// Memory of FLANN's index per photon (docs/photon-mapping.md §5): a reordered copy of the positions
+// (12 bytes), a row pointer (8) and an int permutation entry (4) per point, and at most about
+// 4/leafSize tree nodes of 40 bytes per point.
 inline constexpr size_t kIndexBytesPerPhoton = 12 + 8 + 4 + 4 * 40 / kPhotonLeafSize;
-inline constexpr size_t kBytesPerPhoton = sizeof(Photon) + kIndexBytesPerPhoton;
-static_assert(kBytesPerPhoton == 94);
+// Peak memory per stored photon: the larger of the record with FLANN's index (64 + 30) and the
+// moment the pass's per-chunk buffers are copied into one array (two records).
+inline constexpr size_t kBytesPerPhoton = std::max(2 * sizeof(Photon), sizeof(Photon) + kIndexBytesPerPhoton);
+static_assert(kBytesPerPhoton == 128);
 
 }  // namespace kasha
