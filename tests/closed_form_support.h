@@ -97,6 +97,7 @@ inline void expectXyzAgreement(Scene& scene, const std::string& integrator, cons
     RenderOptions opt;
     opt.spp = spp;
     opt.seed = 1000 + uint64_t(b);
+    opt.sampler = settings.sampler;
     render(scene, *in, film, opt);
     const DVec3 m = film.meanXyz();
     bx.push_back(m.x), by.push_back(m.y), bz.push_back(m.z);
