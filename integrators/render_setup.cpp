@@ -63,6 +63,7 @@ nlohmann::json settingsRecord(const RenderSettings& r, const Integrator& integra
           {"light_sampling", r.wavelengths.light.text},
           {"nee_sampling", r.wavelengths.nee.text},
           {"hero_wavelengths", integrator.lanes()},
+          {"fluorescent_lanes", toString(r.fluorescentLanes)},
           {"max_depth", r.maxDepth}};
 }
 

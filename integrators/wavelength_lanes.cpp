@@ -13,7 +13,7 @@ float laneStratum(float u, int k, int n) {
 }
 
 LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, int fresh, float u,
-                          const WavelengthDensity* strategy) {
+                          const WavelengthDensity* strategy, FluorescentLanes atFluorescence) {
   const int n = int(known.size());
   // The fluorescent lobe with the mean of the lanes' probabilities: symmetric in the lanes.
   float p[kMaxLanes];
@@ -34,21 +34,38 @@ LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const 
     }
     return e;
   }
-  // A fresh set of lanes at the strata of v.
+  // A fresh set of lanes at the strata of v; ended, lane k serves known lane k alone.
   e.lobe = SpectralLobe::Fluorescent;
-  e.n = fresh;
+  e.ended = atFluorescence == FluorescentLanes::End;
+  e.n = e.ended ? n : fresh;
+  for (int k = 0; k < e.n; ++k) e.source[k] = e.ended ? k : kEveryLane;
   const float v = std::min(u / pFluor, kBelowOne);
   if (strategy) {
+    // Through: N samples of one density serve each lane before (weight 1/(N·p)); ended: lane k
+    // alone is an estimate for known lane k (weight 1/p).
+    const float samples = e.ended ? 1.0f : float(e.n);
     for (int k = 0; k < e.n; ++k) {
       const WavelengthSample s = strategy->sample(laneStratum(v, k, e.n));
       e.lambda[k] = s.lambda;
-      e.scale[k] = s.pdf > 0.0f ? 1.0f / (pFluor * float(e.n) * s.pdf) : 0.0f;
+      e.scale[k] = s.pdf > 0.0f ? 1.0f / (pFluor * samples * s.pdf) : 0.0f;
     }
     return e;
   }
-  // The Bsdf's own density given lane m's wavelength, q_m = spectralPdf / P(λ_m), for the lanes
-  // that can fluoresce: lane k is drawn from component k mod V, and the multi-sample balance
-  // heuristic (Veach97 §9.2.2) divides it by Σ_m n_m·q_m(λ_k).
+  // The Bsdf's own density given lane m's wavelength, q_m = spectralPdf / P(λ_m). Ended: lane k is
+  // drawn from q_k (weight 1/(P̄·q_k); none if lane k cannot fluoresce).
+  if (e.ended) {
+    for (int k = 0; k < e.n; ++k) {
+      e.lambda[k] = known[k];
+      e.scale[k] = 0.0f;
+      if (!(p[k] > 0.0f)) continue;
+      const SpectralChoice c = bsdf.sampleSpectral(mode, known[k], laneStratum(v, k, e.n) * p[k]);
+      e.lambda[k] = c.lambda;
+      if (c.lobe == SpectralLobe::Fluorescent && c.pdf > 0.0f) e.scale[k] = p[k] / (pFluor * c.pdf);
+    }
+    return e;
+  }
+  // Through, for the lanes that can fluoresce: lane k is drawn from component k mod V, and the
+  // multi-sample balance heuristic (Veach97 §9.2.2) divides it by Σ_m n_m·q_m(λ_k).
   int valid[kMaxLanes], count[kMaxLanes];
   int nValid = 0;
   for (int j = 0; j < n; ++j)
@@ -135,6 +152,10 @@ std::pair<size_t, float> LaneLightTable::select(float u) const {
   const size_t chosen = chooseLaneLight(n_, lights_, u, [&](int k, size_t l) { return power_[size_t(k) * lights_ + l]; });
   if (chosen == lights_) return {0, 0.0f};
   return {chosen, mixture_[chosen]};
+}
+
+bool lanesEndAt(const LaneEvent& e, const Bsdf& bsdf) {
+  return e.ended || (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection));
 }
 
 void keepOneLane(LaneEvent& e, float u) {

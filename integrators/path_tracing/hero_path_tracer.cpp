@@ -26,6 +26,7 @@ HeroPathTracer::HeroPathTracer(const Scene& scene, const RenderSettings& s)
       sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
       excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
       n_(s.heroWavelengths),
+      atFluorescence_(s.fluorescentLanes),
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth),
       directXyz_(directEmissionXyz(scene)) {
@@ -96,11 +97,13 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
     const float uLane = rng.uniform();
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));
     LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Radiance, known, n_, uLobe,
-                                  excitation_.draws(shape.material) ? &excitation_.density(shape.material) : nullptr);
+                                  excitation_.draws(shape.material) ? &excitation_.density(shape.material) : nullptr,
+                                  atFluorescence_);
     if (e.n == 0) break;
     // The lanes share one direction sample only where its density is the same for every lane:
-    // next-event estimation below weights all of them with one direction density.
-    if (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection)) keepOneLane(e, uLane);
+    // next-event estimation below weights all of them with one direction density. (And they end
+    // at a fluorescent event with --fluorescent-lanes end.)
+    if (lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
     // Direction sampling uses lane 0's wavelengths (the density is every lane's).
     const float lambdaOut0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lanes.lambda[0];
 

@@ -18,7 +18,9 @@
 // Wherever the Bsdf's elastic direction sampling depends on λ (BsdfFlags::WavelengthDependentDirection)
 // the lanes end before next-event estimation, keeping one chosen uniformly at random with its weight
 // times N (one-sample estimate of the sum over lanes; pbrt-v4's TerminateSecondary keeps the hero,
-// which is unbiased only when each lane alone is, unlike the lanes after a mixture).
+// which is unbiased only when each lane alone is, unlike the lanes after a mixture). With
+// settings.fluorescentLanes = End (an experiment) they end so at fluorescent events too, and the
+// path goes on with one lane, as ART, Mojzík et al. and pbrt-style renderers do.
 #include "scene/wavelength_strategy.h"
 #include "integrators/fluorescence_sampling.h"
 #include "integrators/integrator.h"
@@ -52,7 +54,9 @@ class HeroPathTracer final : public Integrator {
   WavelengthSources sources_;
   WavelengthStrategy sensor_;
   FluorescenceSampling excitation_;  // λ_i given the fluorescent lobe ("material": the Bsdf's own)
-  int n_, maxDepth_, rrDepth_;
+  int n_;
+  FluorescentLanes atFluorescence_;
+  int maxDepth_, rrDepth_;
   std::vector<Vec3> directXyz_;  // per light: its emission's XYZ seen directly (direct_emission.h)
 };
 
