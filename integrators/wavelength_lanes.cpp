@@ -31,6 +31,7 @@ LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const 
       e.lambda[j] = known[j];
       e.source[j] = j;
       e.scale[j] = 1.0f / (1.0f - pFluor);
+      e.odds[j] = 1.0f;
     }
     return e;
   }
@@ -38,7 +39,10 @@ LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const 
   e.lobe = SpectralLobe::Fluorescent;
   e.ended = atFluorescence == FluorescentLanes::End;
   e.n = e.ended ? n : fresh;
-  for (int k = 0; k < e.n; ++k) e.source[k] = e.ended ? k : kEveryLane;
+  for (int k = 0; k < e.n; ++k) {
+    e.source[k] = e.ended ? k : kEveryLane;
+    e.odds[k] = e.ended ? p[k] : 1.0f;
+  }
   const float v = std::min(u / pFluor, kBelowOne);
   if (strategy) {
     // Through: N samples of one density serve each lane before (weight 1/(N·p)); ended: lane k
@@ -160,10 +164,16 @@ bool lanesEndAt(const LaneEvent& e, const Bsdf& bsdf) {
 
 void keepOneLane(LaneEvent& e, float u) {
   if (e.n <= 1) return;
-  const int j = std::min(int(u * float(e.n)), e.n - 1);
+  float total = 0.0f;
+  for (int j = 0; j < e.n; ++j) total += e.odds[j];
+  // The first lane whose cumulative odds pass u·total; rounding: the last one with odds.
+  int j = 0;
+  for (float acc = e.odds[0]; j + 1 < e.n && !(u * total < acc);) acc += e.odds[++j];
+  while (j > 0 && !(e.odds[j] > 0.0f)) --j;
   e.lambda[0] = e.lambda[j];
   e.source[0] = e.source[j];
-  e.scale[0] = e.scale[j] * float(e.n);
+  e.scale[0] = e.odds[j] > 0.0f ? e.scale[j] * (total / e.odds[j]) : 0.0f;
+  e.odds[0] = 1.0f;
   e.n = 1;
 }
 

@@ -32,6 +32,9 @@ struct LaneEvent {
   // FluorescentLanes::End), or kEveryLane: a fluorescent lane that serves every lane before it.
   int source[kMaxLanes];
   bool ended = false;         // fluorescent lanes one per lane before (FluorescentLanes::End): keep one
+  // The odds of keeping lane k where the lanes end (keepOneLane): equal, but for ended fluorescent
+  // lanes the fluorescent-lobe probability at the wavelength of the lane before.
+  float odds[kMaxLanes];
 };
 inline constexpr int kEveryLane = -1;
 
@@ -42,8 +45,9 @@ inline constexpr int kEveryLane = -1;
 // given each known wavelength, as a mixture over the lanes that can fluoresce.
 // FluorescentLanes::End: new lane k at the k-th stratum serves known lane k alone, drawn as a
 // single-wavelength path draws it (the strategy, else the Bsdf's own density given known[k]);
-// e.ended asks the caller to keep one of them (keepOneLane), which makes the event a one-sample
-// estimate over the lanes before it.
+// e.ended asks the caller to keep one of them (keepOneLane, with odds P(λ_k)), which makes the
+// event a one-sample estimate over the lanes before it: lane k goes on after a fluorescent event
+// with probability P̄·P(λ_k)/(N·P̄) = P(λ_k)/N, as if a single-wavelength path at λ_k had chosen it.
 LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, int fresh, float u,
                           const WavelengthDensity* strategy = nullptr,
                           FluorescentLanes atFluorescence = FluorescentLanes::Through);
@@ -92,8 +96,9 @@ class LaneLightTable {
   std::vector<float> mixture_;  // P(l)
 };
 
-// Ends the lanes in one, chosen uniformly with u, its weight times their number: an unbiased
-// one-sample estimate of the sum over the lanes, however they were drawn.
+// Ends the lanes in one, lane j chosen with u with probability odds[j]/Σ odds (uniformly but for
+// ended fluorescent lanes), its weight divided by that probability: an unbiased one-sample
+// estimate of the sum over the lanes, however they were drawn.
 void keepOneLane(LaneEvent& e, float u);
 
 // True where the lanes of event e must end in one (keepOneLane) before next-event estimation: an

@@ -5,9 +5,8 @@
 //   lanesEndAt asks for one to be kept; through, a fresh set serves every lane;
 // - unbiased: pt (the material's own excitation density and a strategy's) and lt match the closed
 //   forms of validation.md §1 (disjoint and overlapping a/e, UV only) within 4 standard errors;
-// - the lanes really end: one bounce in the fluorescent furnace, where the re-emitted light reaches
-//   the sensor through one random wavelength instead of N stratified ones, has a much larger
-//   variance per sample with `end` than with `through` (and the same mean).
+// - the lanes really end: in the UV furnace, where every visible wavelength comes from a fluorescent
+//   event, the variance per sample is larger with `end` than with `through` (and the mean the same).
 #include <gtest/gtest.h>
 
 #include "integrators/wavelength_lanes.h"
@@ -43,18 +42,47 @@ TEST(FluorescentLanes, EndGivesOneLanePerLaneBeforeAndKeepsOne) {
     ASSERT_EQ(ended.lobe, SpectralLobe::Fluorescent);
     ASSERT_EQ(ended.n, 4);
     EXPECT_TRUE(lanesEndAt(ended, bsdf));
+    // Lane k is kept with odds P(λ_k), the fluorescent-lobe probability of the lane before.
+    float p[4], total = 0.0f;
     for (int k = 0; k < ended.n; ++k) {
       EXPECT_EQ(ended.source[k], k);
       EXPECT_GT(ended.scale[k], 0.0f);
+      p[k] = bsdf.fluorescenceProbability(mode, known[k]);
+      EXPECT_EQ(ended.odds[k], p[k]);
+      total += p[k];
     }
-    // Lane 2 kept: its own excitation (or emission) wavelength, its weight times 4.
+    // u just past the first two lanes' share keeps lane 2: its own wavelength, its weight over
+    // its probability.
     const LaneEvent before = ended;
-    keepOneLane(ended, 0.6f);
+    keepOneLane(ended, (p[0] + p[1]) / total + 1e-4f);
     EXPECT_EQ(ended.n, 1);
     EXPECT_EQ(ended.source[0], 2);
     EXPECT_EQ(ended.lambda[0], before.lambda[2]);
-    EXPECT_FLOAT_EQ(ended.scale[0], 4.0f * before.scale[2]);
+    EXPECT_FLOAT_EQ(ended.scale[0], before.scale[2] * total / p[2]);
   }
+}
+
+TEST(FluorescentLanes, KeepOneLaneKeepsEachWithItsOddsAndIsUnbiased) {
+  // Lanes of scales 1, 2, 3, 4 with odds 0, 1, 1, 2: over a fine grid of u, lane j is kept with
+  // probability odds/4, and the mean of the kept scale is the sum of the scales that can be kept.
+  const int grid = 4000;
+  double mean = 0.0;
+  int kept[4] = {};
+  for (int i = 0; i < grid; ++i) {
+    LaneEvent e;
+    e.n = 4;
+    for (int j = 0; j < 4; ++j) e.lambda[j] = 500.0f + float(j), e.source[j] = j, e.scale[j] = float(j + 1);
+    e.odds[0] = 0.0f, e.odds[1] = 1.0f, e.odds[2] = 1.0f, e.odds[3] = 2.0f;
+    keepOneLane(e, (float(i) + 0.5f) / float(grid));
+    ASSERT_EQ(e.n, 1);
+    ++kept[e.source[0]];
+    mean += e.scale[0] / grid;
+  }
+  EXPECT_EQ(kept[0], 0);
+  EXPECT_EQ(kept[1], grid / 4);
+  EXPECT_EQ(kept[2], grid / 4);
+  EXPECT_EQ(kept[3], grid / 2);
+  EXPECT_NEAR(mean, 2.0 + 3.0 + 4.0, 1e-4);
 }
 
 struct EndCase {
@@ -105,28 +133,34 @@ std::pair<double, double> meanAndVariance(const Scene& scene, const Integrator& 
   return {s.mean, s.stderr_ * s.stderr_ * double(batches)};
 }
 
-class LanesEnd : public ::testing::TestWithParam<const char*> {};
+struct VarianceCase {
+  const char* integrator;
+  int spp;
+  double minRatio;  // the variance with `end` must exceed the one with `through` by this factor
+};
 
-TEST_P(LanesEnd, OnlyTheVarianceOfOneBounceChanges) {
-  // One bounce in the fluorescent furnace: the elastic lobe keeps its lanes either way, the
-  // fluorescent lobe's re-emission (550–600 nm, where the sensor's weights vary) is seen through
-  // four stratified wavelengths, or through one random one with `end`. If the option did nothing
-  // the two variances would be the same.
-  auto scene = load("furnace_fluorescent.json");
+class LanesEnd : public ::testing::TestWithParam<VarianceCase> {};
+
+TEST_P(LanesEnd, KeepTheMeanAndRaiseTheVariance) {
+  // The UV furnace: all visible light is re-emitted, and after a fluorescent event the lanes go on
+  // as one with `end`. Measured variance ratios end/through (1024 batches): pt 13, lt 1.8; if the
+  // lanes did not end (all of them going on, each serving its own lane before) pt 4.7, lt 1.0; if
+  // the option did nothing, 1.
+  auto scene = load("furnace_uv.json");
   RenderSettings settings = scene->render;
-  settings.maxDepth = 1;
   settings.heroWavelengths = 4;
-  const std::string integrator = GetParam();
-  const int spp = integrator == "lt" ? 8 : 1, batches = 256;
-  const auto through = meanAndVariance(*scene, *makeIntegrator(integrator, *scene, settings), batches, spp);
+  const VarianceCase& vc = GetParam();
+  const int batches = 1024;
+  const auto through = meanAndVariance(*scene, *makeIntegrator(vc.integrator, *scene, settings), batches, vc.spp);
   settings.fluorescentLanes = FluorescentLanes::End;
-  const auto ended = meanAndVariance(*scene, *makeIntegrator(integrator, *scene, settings), batches, spp);
+  const auto ended = meanAndVariance(*scene, *makeIntegrator(vc.integrator, *scene, settings), batches, vc.spp);
   const double stderrOfDifference = std::sqrt((through.second + ended.second) / batches);
   EXPECT_NEAR(through.first, ended.first, 4.0 * stderrOfDifference);
-  EXPECT_GT(ended.second, 2.0 * through.second) << "variance through " << through.second << ", ended " << ended.second;
+  EXPECT_GT(ended.second, vc.minRatio * through.second) << "variance through " << through.second << ", ended " << ended.second;
 }
 
-INSTANTIATE_TEST_SUITE_P(Integrators, LanesEnd, ::testing::Values("pt", "lt"));
+INSTANTIATE_TEST_SUITE_P(Integrators, LanesEnd, ::testing::Values(VarianceCase{"pt", 1, 8.0}, VarianceCase{"lt", 8, 1.3}),
+                         [](const auto& info) { return std::string(info.param.integrator); });
 
 TEST(FluorescentLanes, EndIsRefusedWhereItIsNoExperiment) {
   auto scene = load("furnace_fluorescent.json");

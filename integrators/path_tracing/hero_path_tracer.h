@@ -19,8 +19,9 @@
 // the lanes end before next-event estimation, keeping one chosen uniformly at random with its weight
 // times N (one-sample estimate of the sum over lanes; pbrt-v4's TerminateSecondary keeps the hero,
 // which is unbiased only when each lane alone is, unlike the lanes after a mixture). With
-// settings.fluorescentLanes = End (an experiment) they end so at fluorescent events too, and the
-// path goes on with one lane, as ART, Mojzík et al. and pbrt-style renderers do.
+// settings.fluorescentLanes = End (an experiment) they end at fluorescent events too, one kept
+// with odds its fluorescent-lobe probability, and the path goes on with one lane, as ART,
+// Mojzík et al. and pbrt-style renderers do.
 #include "scene/wavelength_strategy.h"
 #include "integrators/fluorescence_sampling.h"
 #include "integrators/integrator.h"
