@@ -137,11 +137,13 @@ void LaneLightTable::reset(const Scene& scene, std::span<const float> lambda) {
   n_ = int(lambda.size());
   lights_ = scene.lights.size();
   power_.resize(size_t(n_) * lights_);
+  single_.resize(size_t(n_) * lights_);
   total_.assign(size_t(n_), 0.0f);
   mixture_.assign(lights_, 0.0f);
   for (int k = 0; k < n_; ++k)
     for (size_t l = 0; l < lights_; ++l) {
       power_[size_t(k) * lights_ + l] = scene.lights[l]->power(lambda[size_t(k)]);
+      single_[size_t(k) * lights_ + l] = scene.lightSelector->probability(l, lambda[size_t(k)]);
       total_[size_t(k)] += power_[size_t(k) * lights_ + l];
     }
   for (size_t l = 0; l < lights_; ++l) {

@@ -87,6 +87,8 @@ class LaneLightTable {
   void reset(const Scene& scene, std::span<const float> lambda);
   std::pair<size_t, float> select(float u) const;                     // as selectLaneLight
   float probability(size_t light) const { return mixture_[light]; }  // as laneLightProbability
+  // p(light | λ_k), LightSelector::probability at lane k's wavelength.
+  float laneProbability(size_t light, int k) const { return single_[size_t(k) * lights_ + light]; }
 
  private:
   int n_ = 0;
@@ -94,6 +96,7 @@ class LaneLightTable {
   std::vector<float> power_;    // Φ_l(λ_k) at k·lights + l
   std::vector<float> total_;    // Σ_l Φ_l(λ_k)
   std::vector<float> mixture_;  // P(l)
+  std::vector<float> single_;   // p(l | λ_k) at k·lights + l
 };
 
 // Ends the lanes in one, lane j chosen with u with probability odds[j]/Σ odds (uniformly but for

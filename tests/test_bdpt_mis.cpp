@@ -15,7 +15,8 @@ constexpr Families kShared{true, false}, kIndependent{false, true}, kBoth{true, 
 FullPath randomPath(const std::vector<SpectralLobe>& interior, Families families, Rng& rng) {
   FullPath p;
   p.families = families;
-  p.lightPdf = 0.01 + rng.uniform();
+  p.ownChoice = 0.01 + rng.uniform();
+  p.cameraChoice = 0.01 + rng.uniform();
   p.sensorPdf = 0.01 + rng.uniform();
   p.v.resize(interior.size() + 2);
   for (size_t i = 0; i < p.v.size(); ++i) {
@@ -127,16 +128,18 @@ TEST(BdptMis, UnifiedHasBothFamiliesWhereEachIsExact) {
   EXPECT_TRUE(strategyValid(direct, 1, Variant::kOwn));
 }
 
-// The two t = 1 strategies of an elastic path differ only in who drew its one wavelength: the
-// sensor (shared family) or the light-start strategy (own family).
+// The two t = 1 strategies of an elastic path differ only in who drew its one wavelength and chose
+// its light: the sensor and the camera family's choice (shared family), or the light-start strategy
+// with its light (own family).
 TEST(BdptMis, TheTwoLightTracingStrategiesDifferByTheirWavelengthDensities) {
   Rng rng(7);
   for (int k = 1; k <= 4; ++k) {
     FullPath p = randomPath(std::vector<SpectralLobe>(size_t(k - 1), E), kBoth, rng);
     const double ratio = misWeight(p, k, Variant::kOwn) / misWeight(p, k, Variant::kStandard);
-    EXPECT_NEAR(ratio, (p.lightPdf / p.sensorPdf) * (p.lightPdf / p.sensorPdf), 1e-5 * ratio) << k;
+    const double shared = p.sensorPdf * p.cameraChoice;
+    EXPECT_NEAR(ratio, (p.ownChoice / shared) * (p.ownChoice / shared), 1e-5 * ratio) << k;
     // The shared t = 1 against the camera hitting the light: every factor written out.
-    double light = p.sensorPdf, camera = 1.0;
+    double light = shared, camera = p.sensorPdf;
     for (int i = 0; i < k; ++i) light *= p.v[size_t(i)].pdfLight;
     if (k >= 2) light *= p.specLightLast;
     for (int i = 0; i <= k; ++i) camera *= p.v[size_t(i)].pdfCam;

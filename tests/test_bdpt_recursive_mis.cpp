@@ -2,7 +2,7 @@
 // path (integrators/bdpt/mis.h, §5): on subpaths traced in scenes with area, point, spot, distant
 // and environment lights, elastic, fluorescent, glossy and specular vertices, every connection's
 // weight computed both ways must agree (relative 1e-5), for each wavelength family alone and both
-// together, with and without spectral mollification, and with wavelength lanes (shared family).
+// together, with and without spectral mollification, and with wavelength lanes.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -46,7 +46,8 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   int compared = 0;
   for (uint32_t sample = 0; sample < 20000; ++sample) {
     Sampler rng(SamplerKind::Independent, 11, sample, 0);
-    const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, lightTable);
+    const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, lightTable,
+                                    param.families.independent ? &light.density() : nullptr);
     if (lanes.sensorPdf[0] <= 0.0f) continue;
     const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));
     traceCameraSubpath(*scene, film, lanes, ws, rng, counter, C);
@@ -91,10 +92,16 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/validation/smooth_sphere_distant.json", kBoth, 0.0f},    // a distant light
                       Case{"scenes/validation/single_sphere_environment.json", kBoth, 0.0f},  // environment
                       Case{"scenes/validation/mollify_mirror.json", kBoth, 30.0f},         // mirror, glass, point
-                      // Lanes: ended at fluorescent and dispersive vertices, kept elsewhere.
+                      // Lanes: ended at fluorescent and dispersive vertices, kept elsewhere; with
+                      // the own family, weights per lane.
                       Case{"scenes/cornell_uv.json", kShared, 0.0f, 4},
                       Case{"scenes/cornell_glossy.json", kShared, 0.0f, 4},
-                      Case{"scenes/validation/mollify_mirror.json", kShared, 0.0f, 4}),
+                      Case{"scenes/validation/mollify_mirror.json", kShared, 0.0f, 4},
+                      Case{"scenes/cornell_uv.json", kBoth, 0.0f, 4},
+                      Case{"scenes/cornell_uv.json", kOwn, 0.0f, 3},
+                      Case{"scenes/cornell_uv.json", kOwn, 20.0f, 4},
+                      Case{"scenes/validation/mollify_mirror.json", kBoth, 0.0f, 4},
+                      Case{"scenes/validation/single_sphere_environment.json", kBoth, 0.0f, 4}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string name = describe(info.param);
       for (char& ch : name)

@@ -63,7 +63,7 @@ TEST_P(FluorescentCausticAgreement, WithLightTracing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, FluorescentCausticAgreement,
-                         ::testing::Values(std::make_pair("bdpt", 64), std::make_pair("bdpt-independent", 64),
+                         ::testing::Values(std::make_pair("bdpt", 128), std::make_pair("bdpt-independent", 128),
                                            std::make_pair("ppm", 64)));
 
 }  // namespace

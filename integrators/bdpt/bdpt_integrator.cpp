@@ -39,19 +39,11 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bdpt::WavelengthMode mod
       directXyz_(directEmissionXyz(scene)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by bdpt (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by bdpt (its MIS weights need the light-start density)");
-  // Lanes (docs/bdpt-mis.md §10) where only the shared family runs: its weights do not depend on the
-  // lane, while the own family's compare p_light with each lane's p_sensor.
-  lanes_ = s.heroWavelengths == kAutoLanes ? (families_.independent ? 1 : kDefaultLanes) : s.heroWavelengths;
+  // Wavelength lanes (docs/bdpt-mis.md §10), in every family.
+  lanes_ = s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths;
   if (lanes_ < 1 || lanes_ > kMaxLanes)
     throw std::invalid_argument("bdpt: hero wavelengths " + std::to_string(lanes_) + " is outside [1, " +
                                 std::to_string(kMaxLanes) + "]");
-  if (lanes_ > 1 && families_.independent)
-    throw std::invalid_argument("bdpt: hero wavelengths (" + std::to_string(lanes_) +
-                                ") need the shared wavelength family alone, and this estimator traces light subpaths "
-                                "with wavelengths of their own (" + std::string(mode == bdpt::WavelengthMode::Unified
-                                                                                  ? "the scene fluoresces"
-                                                                                  : "bdpt-independent") +
-                                "): use --hero 1, or bdpt-shared");
   if (!m) return;
   if (mode_ != bdpt::WavelengthMode::Independent)
     throw std::invalid_argument("bdpt: mollification needs the independent wavelength family");
@@ -83,7 +75,8 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   thread_local std::vector<PathVertex> C, LS, LO;  // the camera subpath, the shared and own light subpaths
   if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
   thread_local LaneLightTable lightTable;
-  const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, lightTable);
+  const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, lightTable,
+                                  families_.independent ? &light_.density() : nullptr);
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
   const Vec2 film = pixel + rng.uniform2();

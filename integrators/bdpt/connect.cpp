@@ -43,25 +43,22 @@ double lightSide(const Scene& scene, const PathVertex& at, const PathVertex& lig
   return toArea(scene, pdf, at, target);
 }
 
-// The light end x_0 (light `light`, wavelength λ_0) seen from its neighbour x_1.
+// The light end x_0 seen from its neighbour x_1: its positional densities.
 struct LightEnd {
-  double pdf0 = 0.0;      // pL_0 = p(light | λ_0)·p_A (per sr at infinity): also next-event estimation's
-  double pdf1 = 0.0;      // pL_1: the light side's density of x_1 (0 if x_1 is the camera)
-  double lightPdf = 0.0;  // p_light(λ_0)
-  bool finite = false;    // x_0 is at a finite position
+  double pdf0 = 0.0;    // pL_0: x_0's position (per sr at infinity), also next-event estimation's
+  double pdf1 = 0.0;    // pL_1: the light side's density of x_1 (0 if x_1 is the camera)
+  bool finite = false;  // x_0 is at a finite position
 };
 
-// cameraGroup: λ_0 is one of the camera sample's lanes (the path does not fluoresce).
-LightEnd lightEnd(const Context& c, int light, float lambda0, bool cameraGroup, const PathVertex& x0, const PathVertex& x1) {
+LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathVertex& x1) {
   const Light& L = *c.scene.lights[size_t(light)];
   const Vec3 w = L.atInfinity() ? x0.dir : glm::normalize(x1.p - x0.p);
   float pdfPos = 0.0f, pdfDir = 0.0f;
   L.emissionPdfs(x0.p, x0.n, w, pdfPos, pdfDir);
   LightEnd e;
-  e.pdf0 = double(lightProbability(c.scene, c.lanes, size_t(light), lambda0, cameraGroup)) * (L.atInfinity() ? pdfDir : pdfPos);
+  e.pdf0 = L.atInfinity() ? pdfDir : pdfPos;
   if (x1.kind != Kind::Camera)
     e.pdf1 = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
-  e.lightPdf = c.walk.lightWavelengths->pdf(lambda0);
   e.finite = !L.atInfinity();
   return e;
 }
@@ -69,21 +66,47 @@ LightEnd lightEnd(const Context& c, int light, float lambda0, bool cameraGroup, 
 // The light end of a light subpath whose first s vertices a strategy uses, from what the subpath
 // stored (x_1 is the camera when s = 1).
 LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s) {
-  return {L[0].pdfFwd, s >= 2 ? double(L[1].pdfFwd) : 0.0, L[0].wavelengthPdf, L[0].kind == Kind::Light};
+  return {L[0].pdfFwd, s >= 2 ? double(L[1].pdfFwd) : 0.0, L[0].kind == Kind::Light};
 }
 
-MisFactors factors(const Context& c, const LightEnd& end, bool oneGroup) {
-  return {c.families.shared, c.families.independent, end.lightPdf,
-          c.bandwidth > 0.0f ? 1.0 / wavelengthKernel(0.0f, c.bandwidth) : 0.0, oneGroup};
+// The wavelength factors of the weights (mis_sums.h, docs/bdpt-mis.md §10) for a path whose light
+// end is `light` at wavelength lambda0 and whose last wavelength the sensor draws with sensorPdf.
+// lane: the camera sample's lane whose wavelength lambda0 is (the path has one group), or −1.
+// The camera family's light choice is the true one, the lanes' mixture, where it is the same for
+// every strategy that can make the path (one group, the shared family alone); with the own family
+// as well, every strategy's choice is taken as p(light | λ_0), a function of the path alone, so
+// that the weights stay a partition of unity for each lane (the estimates divide by the true one).
+MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup) {
+  MisFactors f;
+  f.sharedFamily = c.families.shared;
+  f.ownFamily = c.families.independent;
+  f.sensorPdf = sensorPdf;
+  f.oneGroup = oneGroup;
+  const bool table = lane >= 0 && c.lanes.lights;
+  if (table && oneGroup && !f.ownFamily) {
+    f.cameraChoice = c.lanes.lights->probability(size_t(light));
+    return f;
+  }
+  f.cameraChoice = table ? c.lanes.lights->laneProbability(size_t(light), lane)
+                         : c.scene.lightSelector->probability(size_t(light), lambda0);
+  if (f.ownFamily) {
+    const double pLight = table ? c.lanes.lightPdf[lane] : c.walk.lightWavelengths->pdf(lambda0);
+    f.ownChoice = pLight * f.cameraChoice;
+    if (c.bandwidth > 0.0f) f.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
+  }
+  return f;
 }
 
 // The full recomputation (test oracle, docs/bdpt-mis.md §5): the stored densities of L[0..s−1],
 // C[0..t−1] laid out as x_0 … x_k, with the light end's.
 FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t,
-                const LightEnd& end) {
+                const LightEnd& end, const MisFactors& f) {
   FullPath fp;
   fp.families = c.families;
-  fp.sensorPdf = c.sensorPdf();  // the camera's wavelength, unless t = 1 says otherwise
+  fp.sensorPdf = f.sensorPdf;
+  fp.cameraChoice = f.cameraChoice;
+  fp.ownChoice = f.ownChoice;
+  fp.mollifyWidth = f.mollifyWidth;
   const int k = s + t - 1;
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {
@@ -100,10 +123,8 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   if (s == 0) fp.v[0].pdfLight = end.pdf0;
   if (s <= 1 && end.pdf1 > 0.0) fp.v[1].pdfLight = end.pdf1;
   fp.v[0].connectible = true;
-  fp.pdfNee = fp.v[0].pdfLight;  // p(light | λ_0)·p_A, as the recursion has it
-  fp.lightPdf = end.lightPdf;
+  fp.pdfNee = fp.v[0].pdfLight;  // p_A: the light choice is cameraChoice
   fp.lightVertexConnectible = end.finite;
-  if (c.bandwidth > 0.0f) fp.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
   return fp;
 }
 
@@ -120,14 +141,22 @@ double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn) {
 }
 
 // A strategy's weight from the recursive sums: its own c² over the path's whole sum
-// (docs/bdpt-mis.md eq. 11). With c.oracle set, the full recomputation `full()` is recorded beside it.
+// (docs/bdpt-mis.md eq. 11). With c.oracle set, the full recomputation `full(f)` is recorded beside it.
 template <class Full>
 float weigh(const Context& c, int s, int t, Variant v, const MisSums& own, const MisSums& total, const MisFactors& f,
             Full&& full) {
   const double sum = combine(total, f);
   const float w = sum > 0.0 ? float(combine(own, f) / sum) : 0.0f;
-  if (c.oracle) c.oracle->push_back({s, t, uint8_t(v), w, full()});
+  if (c.oracle) c.oracle->push_back({s, t, uint8_t(v), w, full(f)});
   return w;
+}
+
+// The lane an own-family join at camera vertex b serves, and its factor: with several lanes at b,
+// one chosen uniformly with b's own number, its estimate times n (an unbiased one-sample estimate
+// of the sum over the lanes).
+std::pair<int, float> ownJoinLane(const Context& c, const PathVertex& b) {
+  if (!b.allLanes(c.lanes)) return {b.firstLane(), 1.0f};
+  return {std::min(int(b.laneU * float(c.lanes.n)), c.lanes.n - 1), float(c.lanes.n)};
 }
 
 // XYZ per unit radiance of lane k at the camera: W(λ_k)/(n·p(λ_k)).
@@ -181,9 +210,7 @@ MisSums lightSum(const std::vector<PathVertex>& L, int s, double pLast, const Mi
 
 // The light side's sum of a strategy whose light subpath ends at x_0 (s = 1): the camera side's
 // density pCam0 of it over the light side's, pLight0.
-MisSums lightEndSum(double pCam0, double pLight0) {
-  return extend({}, densityRatio(pCam0, pLight0), MisSums{1.0, 0.0, 0.0, 0.0});  // s' = 0: M = 1
-}
+MisSums lightEndSum(double pCam0, double pLight0) { return extend({}, densityRatio(pCam0, pLight0), hitMultiplicity()); }
 
 }  // namespace
 
@@ -209,25 +236,28 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
     any = any || Le[k] > 0.0f;
   }
   if (!any) return;
-  const LightEnd end = lightEnd(c, e.light, e.lambda, e.elasticBefore, e, next);
+  const LightEnd end = lightEnd(c, e.light, e, next);
   const int k = t - 1;
   // The strategies with one light vertex: next-event estimation and the light vertex at x_1, or
   // for k = 1 the light seen by the camera.
   const MisSums m1 = k >= 2 ? firstVertexMultiplicity(next.connectible(), next.lobe, next.spectralPdf, end.finite)
-                            : directLightMultiplicity(e.kind == Kind::Surface, c.sensorPdf());
-  const MisSums own{1.0, 0.0, 0.0, 0.0};
+                            : directLightMultiplicity(e.kind == Kind::Surface);
+  const MisSums own = hitMultiplicity();
   const MisSums total = own + cameraSum(C, t, end.pdf0, m1, end.pdf1);
-  const float weight = weigh(c, 0, t, Variant::kStandard, own, total, factors(c, end, e.elasticBefore), [&] {
-    FullPath fp = layout(c, nullptr, 0, C, t, end);
-    if (k >= 2) {
-      fp.specCam1 = next.spectralPdf;
-      fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-    } else {
-      fp.lightSeenByPinhole = e.kind == Kind::Surface;
-    }
-    return misWeight(fp, 0, Variant::kStandard);
-  });
   for (int j = e.firstLane(); j < e.endLane(c.lanes); ++j) {
+    if (!(Le[j] > 0.0f)) continue;
+    const MisFactors f = factors(c, e.light, e.lambdaOf(c.lanes, j), e.elasticBefore ? j : -1, c.lanes.sensorPdf[j],
+                                 e.elasticBefore);
+    const float weight = weigh(c, 0, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
+      FullPath fp = layout(c, nullptr, 0, C, t, end, g);
+      if (k >= 2) {
+        fp.specCam1 = next.spectralPdf;
+        fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+      } else {
+        fp.lightSeenByPinhole = e.kind == Kind::Surface;
+      }
+      return misWeight(fp, 0, Variant::kStandard);
+    });
     const float value = e.beta[j] * Le[j];
     record(c, 0, t, Variant::kStandard, j, value, weight);
     out[j] += value * weight;
@@ -276,30 +306,34 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
     any = any || value[k] > 0.0f;
   }
   if (!any || !visible(c, x1, x0)) return;
-  const LightEnd end = lightEnd(c, int(li), lambda0, cameraGroup, x0, x1);
+  const LightEnd end = lightEnd(c, int(li), x0, x1);
   const double pCam0 = cameraSide(c.scene, x1, x2, x0, x1.lobe, lambda0, x1.lambda);
   const double pLight2 = x2.kind != Kind::Camera ? lightSide(c.scene, x1, x0, x2, x1.lobe, lambda0, x1.lambda) : 0.0;
   const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite);
-  const MisSums own{x1.spectralPdf * double(x1.spectralPdf), 0.0, 0.0, 0.0};
+  MisSums own;
+  own.nee = x1.spectralPdf * double(x1.spectralPdf);
   const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1), pLight2);
-  const float weight = weigh(c, 1, t, Variant::kStandard, own, total, factors(c, end, cameraGroup), [&] {
-    PathVertex lightVertex = x0;
-    lightVertex.pdfFwd = float(end.pdf0);
-    lightVertex.pdfRev = float(pCam0);
-    const std::vector<PathVertex> L1{lightVertex};
-    FullPath fp = layout(c, &L1, 1, C, t, end);
-    if (x2.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
-    fp.specCam1 = x1.spectralPdf;
-    fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-    return misWeight(fp, 1, Variant::kStandard);
-  });
   for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) {
+    if (!(value[k] > 0.0f)) continue;
+    const MisFactors f = factors(c, int(li), lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
+                                 c.lanes.sensorPdf[k], cameraGroup);
+    const float weight = weigh(c, 1, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
+      PathVertex lightVertex = x0;
+      lightVertex.pdfFwd = float(end.pdf0);
+      lightVertex.pdfRev = float(pCam0);
+      const std::vector<PathVertex> L1{lightVertex};
+      FullPath fp = layout(c, &L1, 1, C, t, end, g);
+      if (x2.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
+      fp.specCam1 = x1.spectralPdf;
+      fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+      return misWeight(fp, 1, Variant::kStandard);
+    });
     record(c, 1, t, Variant::kStandard, k, value[k], weight);
     out[k] += value[k] * weight;
   }
 }
 
-// The own family runs with one lane (Bdpt refuses more): lane 0 is the camera sample's wavelength.
+// x_1 = b is fluorescent, so one lane reaches it (docs/bdpt-mis.md §10).
 void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t,
                         float* out) {
   const PathVertex& a = L[0];
@@ -318,17 +352,20 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   constexpr SpectralLobe F = SpectralLobe::Fluorescent;
   const float f = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, a.lambda, b.lambda, F);
   if (!(f > 0.0f)) return;
+  const int lane = b.firstLane();
   const float cosA = glm::dot(a.n, a.n) > 0.0f ? std::abs(glm::dot(a.n, w)) : 1.0f;
   const float G = cosA * std::abs(bWi.z) / dist2;
-  const LightEnd end = lightEnd(c, a.light, a.lambda, false, a, b);
+  const LightEnd end = lightEnd(c, a.light, a, b);
   const double pCam0 = cameraSide(c.scene, b, bNext, a, F, a.lambda, b.lambda);
   const double pLight2 = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, F, a.lambda, b.lambda) : 0.0;
   const double specCam1 = specCamera(b, F, a.lambda, b.lambda);
-  const MisSums own{0.0, 1.0, 0.0, 0.0};
+  MisSums own;
+  own.own = 1.0;
   const MisSums total = firstVertexMultiplicity(true, F, specCam1, true) + lightEndSum(pCam0, a.pdfFwd) +
-                        cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, c.sensorPdf()), pLight2);
-  const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, factors(c, end, false), [&] {
-    FullPath fp = layout(c, &L, 1, C, t, end);
+                        cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda), pLight2);
+  const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false);
+  const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, mf, [&](const MisFactors& g) {
+    FullPath fp = layout(c, &L, 1, C, t, end, g);
     fp.v[1].lobe = F;
     fp.v[0].pdfCam = pCam0;
     if (bNext.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
@@ -337,9 +374,9 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
     return misWeight(fp, 1, Variant::kLightVertex);
   });
   if (!(weight > 0.0f) || !visible(c, b, a)) return;
-  const float value = Le * G * f * b.beta[0] / (a.pdfFwd * a.wavelengthPdf);
-  record(c, 1, t, Variant::kLightVertex, 0, value, weight);
-  out[0] += value * weight;
+  const float value = Le * G * f * b.beta[lane] / (a.pdfFwd * a.choicePdf);
+  record(c, 1, t, Variant::kLightVertex, lane, value, weight);
+  out[lane] += value * weight;
 }
 
 void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
@@ -347,9 +384,16 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
   const PathVertex& a = L[size_t(s - 1)];
   const PathVertex& b = C[size_t(t - 1)];
   if (a.kind != Kind::Surface || b.kind != Kind::Surface || !a.connectible() || !b.connectible()) return;
-  // The lanes that reach both ends (a shared subpath carries the camera sample's; an own one has
-  // one lane, and the camera subpath then has one too).
-  const int k0 = std::max(a.firstLane(), b.firstLane()), k1 = std::min(a.endLane(c.lanes), b.endLane(c.lanes));
+  // The lanes served: those that reach both ends on a shared subpath (it carries the camera
+  // sample's); one on an own subpath, whose single wavelength meets one camera lane.
+  int k0, k1;
+  float laneScale = 1.0f;
+  if (family == LightFamily::Shared) {
+    k0 = std::max(a.firstLane(), b.firstLane()), k1 = std::min(a.endLane(c.lanes), b.endLane(c.lanes));
+  } else {
+    const auto [lane, scale] = ownJoinLane(c, b);
+    k0 = lane, k1 = lane + 1, laneScale = scale;
+  }
   if (k0 >= k1) return;
   const PathVertex& aPrev = L[size_t(s - 2)];
   const PathVertex& bNext = C[size_t(t - 2)];
@@ -361,6 +405,8 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
   const Vec3 aWi = fa.toLocal(towards(a, aPrev)), aWo = fa.toLocal(w);
   const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
   const float G = std::abs(aWo.z) * std::abs(bWi.z) / dist2;
+  // b's wavelength: an own join serves lane k0 only.
+  const float lambdaB = family == LightFamily::Own ? b.lambdaOf(c.lanes, k0) : b.lambda;
 
   // The exact lobe pairs (docs/bdpt-mis.md §4), each with the connecting segment's wavelength as
   // a and b see it; the same for both except in the mollified elastic pair (§6), where a keeps the
@@ -378,11 +424,11 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kStandard};
   } else {
     if (a.bsdf->has(BsdfFlags::Fluorescent))
-      pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, b.lambda, b.lambda, Variant::kOwn};
+      pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, lambdaB, lambdaB, Variant::kOwn};
     if (b.bsdf->has(BsdfFlags::Fluorescent))
       pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda, a.lambda, Variant::kOwn};
-    if (c.bandwidth > 0.0f && std::abs(a.lambda - b.lambda) < c.bandwidth)
-      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kMollified};
+    if (c.bandwidth > 0.0f && std::abs(a.lambda - lambdaB) < c.bandwidth)
+      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, lambdaB, Variant::kMollified};
   }
   const LightEnd end = storedLightEnd(L, s);
   bool checked = false, unoccluded = false;
@@ -392,40 +438,52 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     float fA[kMaxLanes], fB[kMaxLanes];
     bool any = false;
     for (int k = k0; k < k1; ++k) {
-      // An end that several lanes reach scatters each elastically at its own wavelength.
+      // An end that several lanes reach scatters each elastically at its own wavelength (shared).
       const float lambda = c.lanes.lambda[k];
-      const bool lanesA = a.allLanes(c.lanes), lanesB = b.allLanes(c.lanes);
+      const bool lanesA = family == LightFamily::Shared && a.allLanes(c.lanes);
+      const bool lanesB = family == LightFamily::Shared && b.allLanes(c.lanes);
       fA[k] = a.bsdf->eval(TransportMode::Importance, aWi, aWo, lanesA ? lambda : a.lambda, lanesA ? lambda : p.lambdaA, p.la);
-      fB[k] = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, lanesB ? lambda : p.lambdaB, lanesB ? lambda : b.lambda, p.lb);
+      fB[k] = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, lanesB ? lambda : p.lambdaB, lanesB ? lambda : lambdaB, p.lb);
       any = any || (fA[k] > 0.0f && fB[k] > 0.0f);
     }
     if (!any) continue;
     // The four densities next to the connection, for its lobes and wavelengths.
+    const float lambdaOutB = family == LightFamily::Shared ? b.lambda : lambdaB;
     const double pLightB = lightSide(c.scene, a, aPrev, b, p.la, a.lambda, p.lambdaA);
-    const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, b.lambda) : 0.0;
-    const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, b.lambda);
+    const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, lambdaOutB) : 0.0;
+    const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, lambdaOutB);
     const double pCamAPrev = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
     const MisSums sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA), pCamAPrev) +
-                          cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, c.sensorPdf()), pLightBNext);
+                          cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB), pLightBNext);
     const MisSums here = joinMultiplicity(true, p.la, p.lb);
-    const MisSums own = p.variant == Variant::kStandard ? MisSums{0.0, 0.0, 0.0, 1.0}
-                        : p.variant == Variant::kOwn    ? MisSums{0.0, 1.0, 0.0, 0.0}
-                                                        : MisSums{0.0, 0.0, 1.0, 0.0};
+    MisSums own;
+    (p.variant == Variant::kStandard ? own.shared : p.variant == Variant::kOwn ? own.own : own.mollified) = 1.0;
     const bool oneGroup = a.elasticBefore && b.elasticBefore && p.la == SpectralLobe::Elastic && p.lb == SpectralLobe::Elastic;
-    const float weight = weigh(c, s, t, p.variant, own, here + sides, factors(c, end, oneGroup), [&] {
-      FullPath fp = layout(c, &L, s, C, t, end);
-      fp.v[size_t(s - 1)].lobe = p.la;
-      fp.v[size_t(s)].lobe = p.lb;
-      fp.v[size_t(s)].pdfLight = pLightB;
-      fp.v[size_t(s + 1)].pdfLight = pLightBNext;
-      fp.v[size_t(s - 1)].pdfCam = pCamA;
-      fp.v[size_t(s - 2)].pdfCam = pCamAPrev;
-      const PathVertex& x1 = L[1];
-      fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
-      fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambdaB) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-      return misWeight(fp, s, p.variant);
-    });
-    if (!(weight > 0.0f)) continue;
+    float weight[kMaxLanes];
+    bool anyWeight = false;
+    for (int k = k0; k < k1; ++k) {
+      weight[k] = 0.0f;
+      if (!(fA[k] > 0.0f && fB[k] > 0.0f)) continue;
+      // The path's first wavelength: lane k's on a shared subpath, the own subpath's own.
+      const MisFactors f = family == LightFamily::Shared
+                               ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup)
+                               : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup);
+      weight[k] = weigh(c, s, t, p.variant, own, here + sides, f, [&](const MisFactors& g) {
+        FullPath fp = layout(c, &L, s, C, t, end, g);
+        fp.v[size_t(s - 1)].lobe = p.la;
+        fp.v[size_t(s)].lobe = p.lb;
+        fp.v[size_t(s)].pdfLight = pLightB;
+        fp.v[size_t(s + 1)].pdfLight = pLightBNext;
+        fp.v[size_t(s - 1)].pdfCam = pCamA;
+        fp.v[size_t(s - 2)].pdfCam = pCamAPrev;
+        const PathVertex& x1 = L[1];
+        fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+        fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambdaB) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+        return misWeight(fp, s, p.variant);
+      });
+      anyWeight = anyWeight || weight[k] > 0.0f;
+    }
+    if (!anyWeight) continue;
     if (!checked) {
       checked = true;
       unoccluded = visible(c, a, b);
@@ -435,13 +493,13 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     // renormalised to its mass inside the wavelength range (docs/bdpt-mis.md eq. 5).
     const WavelengthRange& r = c.scene.range;
     const float kernel = p.variant == Variant::kMollified
-                             ? wavelengthKernel(a.lambda - b.lambda, c.bandwidth) /
-                                   wavelengthKernelMass(r.min - b.lambda, r.max - b.lambda, c.bandwidth)
+                             ? wavelengthKernel(a.lambda - lambdaB, c.bandwidth) /
+                                   wavelengthKernelMass(r.min - lambdaB, r.max - lambdaB, c.bandwidth)
                              : 1.0f;
     for (int k = k0; k < k1; ++k) {
-      const float value = a.beta[k] * fA[k] * G * fB[k] * b.beta[k] * kernel;
-      record(c, s, t, p.variant, k, value, weight);
-      out[k] += value * weight;
+      const float value = a.beta[family == LightFamily::Shared ? k : 0] * fA[k] * G * fB[k] * b.beta[k] * kernel * laneScale;
+      record(c, s, t, p.variant, k, value, weight[k]);
+      out[k] += value * weight[k];
     }
   }
 }
@@ -460,11 +518,11 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   // spectral event sends towards the camera; with several lanes at a, each lane's own.
   const float lambda = s == 1 ? a.lambda : a.lambdaNext;
   const bool lanes = a.allLanes(c.lanes);
-  const Variant variant = family == LightFamily::Shared ? Variant::kStandard : Variant::kOwn;
-  // The camera's density of a: its direction over the whole film times the sensor's density of the
-  // wavelength arriving at it.
-  const double sensorPdf = family == LightFamily::Shared ? c.sensorPdf() : c.sensor.pdf(lambda);
-  const double pCamA = toAreaDensity(c.scene.camera.directionPdf(-conn->wi) * float(sensorPdf), cam, a);
+  const bool shared = family == LightFamily::Shared;
+  const Variant variant = shared ? Variant::kStandard : Variant::kOwn;
+  // The camera's density of a: its direction over the whole film (the sensor's density of the
+  // wavelength arriving is a factor, mis_sums.h).
+  const double pCamA = toAreaDensity(c.scene.camera.directionPdf(-conn->wi), cam, a);
   const LightEnd end = storedLightEnd(L, s);
   float value[kMaxLanes];
   bool any = false;
@@ -478,12 +536,11 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     const AreaEmission& em = *static_cast<const AreaLight&>(*c.scene.lights[size_t(a.light)]).shape().emission;
     for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
       const float Le = em.eval(lanes ? c.lanes.lambda[k] : lambda, a.n, conn->wi);
-      value[k] = Le * std::abs(glm::dot(a.n, conn->wi)) /
-                 (a.pdfFwd * (family == LightFamily::Own ? a.wavelengthPdf : 1.0f));
+      value[k] = Le * std::abs(glm::dot(a.n, conn->wi)) / (a.pdfFwd * a.choicePdf);
       any = any || Le > 0.0f;
     }
-    here = directLightMultiplicity(true, sensorPdf);
-    own = family == LightFamily::Shared ? MisSums{0.0, 0.0, 0.0, sensorPdf * sensorPdf} : MisSums{0.0, 1.0, 0.0, 0.0};
+    here = directLightMultiplicity(true);
+    (shared ? own.shared : own.ownSplat) = 1.0;
     sides = lightEndSum(pCamA, a.pdfFwd);
   } else {
     // The light side's own spectral event at a (λ_o from e when fluorescent): the sensor
@@ -499,47 +556,56 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       any = any || fa > 0.0f;
     }
     pCamAPrev = cameraSide(c.scene, a, cam, aPrev, a.lobe, a.lambda, lambda);
-    here = lightTracingMultiplicity(true, a.spectralPdf, sensorPdf);
-    const double spec2 = double(a.spectralPdf) * a.spectralPdf;
-    own = family == LightFamily::Shared ? MisSums{0.0, 0.0, 0.0, sensorPdf * sensorPdf * spec2} : MisSums{0.0, spec2, 0.0, 0.0};
+    here = lightTracingMultiplicity(true, a.spectralPdf);
+    (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
     sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1), pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
   if (!any) return;
-  const float weight = weigh(c, s, 1, variant, own, here + sides, factors(c, end, oneGroup), [&] {
-    const std::vector<PathVertex> camOnly{cam};
-    FullPath fp = layout(c, &L, s, camOnly, 1, end);
-    const int k = s;
-    fp.sensorPdf = sensorPdf;
-    fp.v[size_t(k - 1)].pdfCam = pCamA;
-    if (s == 1) {
-      fp.lightSeenByPinhole = true;
-    } else {
-      fp.v[size_t(k - 2)].pdfCam = pCamAPrev;
-      const PathVertex& x1 = L[1];
-      fp.specCam1 = s == 2 ? specCamera(x1, a.lobe, x1.lambda, lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
-      fp.specLightLast = a.spectralPdf;
-    }
-    return misWeight(fp, s, variant);
-  });
-  if (!(weight > 0.0f) || !visible(c, a, cam)) return;
+  float weight[kMaxLanes];
+  bool anyWeight = false;
+  for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
+    weight[k] = 0.0f;
+    if (!(value[k] > 0.0f)) continue;
+    // A shared lane's wavelength is the sensor's lane k; an own subpath's arrives from the light.
+    const MisFactors mf = shared ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup)
+                                 : factors(c, L[0].light, L[0].lambda, -1, c.sensor.pdf(lambda), oneGroup);
+    weight[k] = weigh(c, s, 1, variant, own, here + sides, mf, [&](const MisFactors& g) {
+      const std::vector<PathVertex> camOnly{cam};
+      FullPath fp = layout(c, &L, s, camOnly, 1, end, g);
+      const int last = s;
+      fp.v[size_t(last - 1)].pdfCam = pCamA;
+      if (s == 1) {
+        fp.lightSeenByPinhole = true;
+      } else {
+        fp.v[size_t(last - 2)].pdfCam = pCamAPrev;
+        const PathVertex& x1 = L[1];
+        fp.specCam1 = s == 2 ? specCamera(x1, a.lobe, x1.lambda, lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+        fp.specLightLast = a.spectralPdf;
+      }
+      return misWeight(fp, s, variant);
+    });
+    anyWeight = anyWeight || weight[k] > 0.0f;
+  }
+  if (!anyWeight || !visible(c, a, cam)) return;
   // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel); a
   // shared lane's wavelength was the sensor's sample, one of n.
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
-  Vec3 sum(0.0f);  // the lanes' XYZ, unweighted
+  Vec3 sum(0.0f), unweighted(0.0f);  // the lanes' XYZ
   for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
     if (!(value[k] > 0.0f)) continue;
     const float lambdaK = lanes ? c.lanes.lambda[k] : lambda;
     float sensorWeight = perPath;
-    if (family == LightFamily::Shared) sensorWeight /= float(c.lanes.n) * c.lanes.sensorPdf[k];
+    if (shared) sensorWeight /= float(c.lanes.n) * c.lanes.sensorPdf[k];
     const float v = value[k] * conn->importance * sensorWeight;
     // A shared lane's wavelength is the sensor's lane k (whose response is known).
-    const Vec3 xyz = lanes ? c.lanes.response[k] * v : Observer::cie1931().weight(lambdaK) * v;
-    if (c.spectralSplats) splats.push_back({conn->pixel, xyz * weight, lambdaK, v * weight});
-    sum += xyz;
+    const Vec3 xyz = shared ? c.lanes.response[k] * v : Observer::cie1931().weight(lambdaK) * v;
+    if (c.spectralSplats) splats.push_back({conn->pixel, xyz * weight[k], lambdaK, v * weight[k]});
+    sum += xyz * weight[k];
+    unweighted += xyz;
   }
-  if (!c.spectralSplats) splats.push_back({conn->pixel, sum * weight});
-  if (c.log) c.log->push_back({conn->pixel, sum * weight, sum, s, 1, uint8_t(variant)});
+  if (!c.spectralSplats) splats.push_back({conn->pixel, sum});
+  if (c.log) c.log->push_back({conn->pixel, sum, unweighted, s, 1, uint8_t(variant)});
 }
 
 void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,

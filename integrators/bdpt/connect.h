@@ -21,8 +21,7 @@ struct Context {
   const Scene& scene;
   const WalkSettings& walk;
   Families families;    // the light subpaths traced with each camera subpath
-  // The camera sample's wavelength lanes (docs/bdpt-mis.md §10). The weights are lane 0's: with
-  // more than one lane only the shared family runs, whose weights do not depend on the lane.
+  // The camera sample's wavelength lanes (docs/bdpt-mis.md §10); each lane has its own weights.
   const Lanes& lanes;
   const WavelengthDensity& sensor;  // the sensor's density, for other wavelengths' densities
   RayCounter& counter;
@@ -40,8 +39,6 @@ struct Context {
   // weigh the two as usual. Only with lanes (the shared family alone) and no spectral bins.
   const std::vector<Vec3>* directXyz = nullptr;
 
-  float lambdaCamera() const { return lanes.lambda[0]; }
-  float sensorPdf() const { return lanes.sensorPdf[0]; }
   // Tests only: every weight also recomputed over the whole path (mis.h), both recorded here.
   std::vector<WeightCheck>* oracle = nullptr;
 };

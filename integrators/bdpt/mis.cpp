@@ -63,11 +63,13 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
   }
   for (int i = nee ? 1 : s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
   if (s == k && k >= 2) d *= p.specLightLast;  // t = 1 samples x_{k−1}'s event on the light side
-  // The first group's wavelength: the independent family draws it at the light; the shared
-  // family's t = 1 draws it (the path's only group) at the sensor, which every other strategy
-  // has in pdfCam of x_{k−1}.
-  if (variant != Variant::kStandard && s > 0) d *= p.lightPdf;
-  else if (s == k) d *= p.sensorPdf;
+  // The light choice and the wavelength densities: the camera side's strategies choose the light
+  // with cameraChoice, the independent family the light with the first group's wavelength; every
+  // strategy but the independent family's t = 1 has the sensor draw the last group's wavelength.
+  if (s == 0) return d * p.sensorPdf;
+  if (variant == Variant::kStandard) return d * p.sensorPdf * p.cameraChoice;
+  if (s == k) return d * p.ownChoice;
+  d *= p.sensorPdf * p.ownChoice;
   // Both sides sampled the connecting group's wavelength; the kernel accepts a window ε_h of the
   // camera side's (docs/bdpt-mis.md eq. 6).
   if (variant == Variant::kMollified) d *= p.mollifyWidth;

@@ -12,10 +12,10 @@
 namespace kasha::bdpt {
 
 struct FullVertex {
-  // Light-side density of this vertex (from x_{i-1}); x_0: p(light | λ_0) times the position
-  // (per sr for a light at infinity): the light-start wavelength density is `lightPdf`.
+  // Light-side density of this vertex (from x_{i-1}); x_0: its position's (per sr for a light at
+  // infinity): the light choice is a factor of each strategy (cameraChoice, ownChoice).
   double pdfLight = 0.0;
-  // Camera-side density (from x_{i+1}); x_{k-1}: the camera direction times p_sensor(λ_{k-1}).
+  // Camera-side density (from x_{i+1}); x_{k-1}: the camera direction's (sensorPdf is a factor).
   double pdfCam = 0.0;
   SpectralLobe lobe = SpectralLobe::Elastic;  // interior vertices: the lobe the path uses here
   bool connectible = true;                    // a connection may end here (no delta lobe)
@@ -30,10 +30,15 @@ struct Families {
 struct FullPath {
   std::vector<FullVertex> v;  // x_0 … x_k; v[k] is the camera (pdfCam 1)
   Families families;
-  double lightPdf = 0.0;    // p_light(λ_0): the independent family's density of the first group's wavelength
-  double sensorPdf = 0.0;   // p_sensor(λ_{k−1}): the sensor's density of the last group's wavelength
+  // The factors of the strategies' densities (docs/bdpt-mis.md §5, §10): every strategy but the
+  // independent family's t = 1 has the sensor draw the last group's wavelength (sensorPdf); next-event
+  // estimation and the shared family choose the light with cameraChoice, the independent family the
+  // light and the first group's wavelength together with ownChoice = p_light(λ_0)·p(light | λ_0).
+  double sensorPdf = 0.0;
+  double cameraChoice = 0.0;
+  double ownChoice = 0.0;
   double specCam1 = 0.0;    // camera-side spectral density of x_1's event (next-event estimation)
-  double pdfNee = 0.0;      // next-event density of x_0 given λ_0: p(light | λ_0)·p_A (per sr at infinity)
+  double pdfNee = 0.0;      // next-event density of x_0's position given its light (per sr at infinity)
   bool lightSeenByPinhole = false;  // x_0 may connect to the camera directly (area lights)
   bool lightVertexConnectible = false;  // x_0 is at a finite position (not a light at infinity)
   double specLightLast = 0.0;  // light-side spectral density of x_{k−1}'s event (t = 1 samples it)

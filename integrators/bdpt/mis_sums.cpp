@@ -3,10 +3,16 @@
 namespace kasha::bdpt {
 
 double combine(const MisSums& m, const MisFactors& f) {
-  double sum = m.base;
-  if (f.ownFamily) sum += f.lightPdf * f.lightPdf * (m.own + f.mollifyWidth * f.mollifyWidth * m.mollified);
-  if (f.sharedFamily && f.oneGroup) sum += m.shared;
-  return sum;
+  double camera = m.nee;
+  if (f.sharedFamily && f.oneGroup) camera += m.shared;
+  double sensed = m.hit + f.cameraChoice * f.cameraChoice * camera;
+  double sum = 0.0;
+  if (f.ownFamily) {
+    const double l2 = f.ownChoice * f.ownChoice;
+    sensed += l2 * (m.own + f.mollifyWidth * f.mollifyWidth * m.mollified);
+    sum += l2 * m.ownSplat;
+  }
+  return sum + f.sensorPdf * f.sensorPdf * sensed;
 }
 
 MisSums joinMultiplicity(bool connectible, SpectralLobe la, SpectralLobe lb) {
@@ -22,24 +28,24 @@ MisSums joinMultiplicity(bool connectible, SpectralLobe la, SpectralLobe lb) {
 MisSums firstVertexMultiplicity(bool connectible, SpectralLobe lobe, double specCam1, bool finiteLight) {
   if (!connectible) return {};
   MisSums m;
-  m.base = specCam1 * specCam1;  // next-event estimation: specCam1·p_NEE, and p_NEE = pL_0
+  m.nee = specCam1 * specCam1;  // next-event estimation: specCam1·p_NEE, and p_NEE = pL_0
   if (finiteLight && lobe == SpectralLobe::Fluorescent) m.own = 1.0;
   return m;
 }
 
-MisSums lightTracingMultiplicity(bool connectible, double specLight, double sensorPdf) {
+MisSums lightTracingMultiplicity(bool connectible, double specLight) {
   if (!connectible || !(specLight > 0.0)) return {};
   MisSums m;
-  m.own = specLight * specLight;
-  m.shared = sensorPdf * sensorPdf * specLight * specLight;
+  m.shared = specLight * specLight;
+  m.ownSplat = specLight * specLight;
   return m;
 }
 
-MisSums directLightMultiplicity(bool seenByPinhole, double sensorPdf) {
+MisSums directLightMultiplicity(bool seenByPinhole) {
   if (!seenByPinhole) return {};
   MisSums m;
-  m.own = 1.0;
-  m.shared = sensorPdf * sensorPdf;
+  m.shared = 1.0;
+  m.ownSplat = 1.0;
   return m;
 }
 

@@ -2,31 +2,38 @@
 // Running sums for BDPT's recursive MIS weights (docs/bdpt-mis.md §9), in the manner of Georgiev et
 // al. 2012 (VCM's partial sums) extended with the wavelength families. The power-heuristic
 // denominator of a path is Σ_s' M_s'·P_s'², where P_s' = Π_{i<s'} pL_i · Π_{i≥s'} pC_i is the
-// positional part of strategy s' and M_s' the sum of c² over the variants valid at s' (c: a
-// variant's factor on P_s', such as its wavelength densities). M splits by what decides the
-// variants' factors and validity only once the whole path is known:
+// positional part of strategy s' (no light choice in pL_0, no sensor density in pC_{k−1}) and M_s'
+// the sum of c² over the variants valid at s' (c: a variant's factor on P_s', such as its spectral
+// densities). The factors that depend on the path's wavelengths are applied once the whole path is
+// known (docs/bdpt-mis.md §5 and §10):
 //
-//     M = base + p_light(λ_0)²·(own + ε_h²·mollified) + [path has one group]·shared
+//     M = σ²·(hit + κ²·(nee + [one group]·shared) + ℓ²·(own + ε_h²·mollified)) + ℓ²·ownSplat
 //
-// base: the camera-only strategies (s' = 0, next-event estimation); own: the own-wavelength
-// family's; mollified: its mollified joins (ε_h the kernel's width); shared: the shared family's.
+// σ: the sensor's density of the wavelength reaching the camera; κ: the camera family's light
+// choice; ℓ: the own family's joint density of light and wavelength; ε_h the mollification kernel's
+// width. hit: the camera subpath reaching the light (s' = 0); nee: next-event estimation; shared:
+// the shared family's joins and t = 1; own: the own family's joins and light vertex; mollified:
+// its mollified joins; ownSplat: its t = 1, the only strategy whose last wavelength the sensor does
+// not draw.
 #include "materials/bsdf_model.h"
 
 namespace kasha::bdpt {
 
 struct MisSums {
-  double base = 0.0, own = 0.0, mollified = 0.0, shared = 0.0;
+  double hit = 0.0, nee = 0.0, shared = 0.0, own = 0.0, mollified = 0.0, ownSplat = 0.0;
 
   MisSums operator+(const MisSums& o) const {
-    return {base + o.base, own + o.own, mollified + o.mollified, shared + o.shared};
+    return {hit + o.hit, nee + o.nee, shared + o.shared, own + o.own, mollified + o.mollified, ownSplat + o.ownSplat};
   }
-  MisSums operator*(double f) const { return {base * f, own * f, mollified * f, shared * f}; }
+  MisSums operator*(double f) const { return {hit * f, nee * f, shared * f, own * f, mollified * f, ownSplat * f}; }
 };
 
-// What decides the split's factors for one full path.
+// What decides the sums' factors for one full path (and one lane).
 struct MisFactors {
   bool sharedFamily = false, ownFamily = false;  // which light subpaths were traced
-  double lightPdf = 0.0;                         // p_light(λ_0)
+  double sensorPdf = 0.0;                        // σ = p_sensor(λ_{k−1})
+  double cameraChoice = 0.0;                     // κ = the camera family's probability of the path's light
+  double ownChoice = 0.0;                        // ℓ = p_light(λ_0)·p(light | λ_0)
   double mollifyWidth = 0.0;                     // ε_h (0: no mollified joins)
   bool oneGroup = false;                         // every interior vertex is elastic
 };
@@ -41,6 +48,9 @@ inline MisSums extend(const MisSums& before, double ratio, const MisSums& multip
   return (multiplicity + before) * (ratio * ratio);
 }
 
+// M of the camera subpath reaching the light (s' = 0).
+inline MisSums hitMultiplicity() { return {1.0, 0.0, 0.0, 0.0, 0.0, 0.0}; }
+
 // M of a join between two surface vertices with lobes la, lb (2 ≤ s' ≤ k − 1; docs/bdpt-mis.md §4):
 // the shared family's (any lobes: the path's single group is checked by `oneGroup`), the own
 // family's with exactly one fluorescent end, its mollified one with two elastic ends.
@@ -51,10 +61,10 @@ MisSums joinMultiplicity(bool connectible, SpectralLobe la, SpectralLobe lb);
 MisSums firstVertexMultiplicity(bool connectible, SpectralLobe lobe, double specCam1, bool finiteLight);
 
 // M of the two light-tracing strategies t = 1 (s' = k ≥ 2): x_{k−1} with the light side's spectral
-// density specLight; the shared one's wavelength drawn by the sensor with density sensorPdf.
-MisSums lightTracingMultiplicity(bool connectible, double specLight, double sensorPdf);
+// density specLight.
+MisSums lightTracingMultiplicity(bool connectible, double specLight);
 
-// M of the light seen by the camera (k = 1, s' = 1).
-MisSums directLightMultiplicity(bool seenByPinhole, double sensorPdf);
+// M of the light seen by the camera (k = 1, s' = 1), at the sensor's or the own family's wavelength.
+MisSums directLightMultiplicity(bool seenByPinhole);
 
 }  // namespace kasha::bdpt

@@ -3,8 +3,9 @@
 // density with which the vertex's own subpath produced it, pdfRev the density with which the
 // other subpath would have; both include the spectral event at the neighbour that sampled it
 // (lobe probability, and the per-nm density when that lobe is fluorescent), and are per unit
-// area (per steradian for a light at infinity). The light vertex's pdfFwd is p(light | λ_0) times
-// its position: the light-start wavelength density is `wavelengthPdf`.
+// area (per steradian for a light at infinity). The light vertex's pdfFwd is its position's alone
+// and the first camera hit's the camera direction's alone: the light choice and the wavelength
+// densities are factors of each strategy (mis_sums.h), applied once the path is known.
 #include <optional>
 
 #include "core/math.h"
@@ -22,6 +23,9 @@ struct Lanes {
   float lambda[kMaxLanes];
   float sensorPdf[kMaxLanes];  // p_sensor(λ_k); unused on an own-family subpath
   Vec3 response[kMaxLanes];    // the sensor's XYZ response W(λ_k); unused on an own-family subpath
+  // p_light(λ_k), the light-start density (weights of the own family against each lane; only where
+  // both run with more than one lane).
+  float lightPdf[kMaxLanes];
   const LaneLightTable* lights = nullptr;  // the lights' powers at the lanes (more than one lane)
 };
 
@@ -39,6 +43,9 @@ struct PathVertex {
   // only this one (at `lambda`), its throughput times n: a vertex whose sampling depends on the
   // wavelength keeps one lane at random (docs/bdpt-mis.md §10).
   int8_t lane = -1;
+  // The uniform number drawn where several lanes arrive: it picks the lane that goes on if the
+  // vertex ends them, or the lane an own-family join at this vertex serves (docs/bdpt-mis.md §10).
+  float laneU = 0.0f;
   // The subpath's wavelength at this vertex: arriving from the previous light-subpath vertex, or
   // leaving towards the previous camera-subpath vertex. While several lanes reach a vertex, the
   // wavelength of its densities: a lane at which it scatters (their densities are those of every
@@ -53,9 +60,9 @@ struct PathVertex {
   bool specular = false;
   float pdfFwd = 0.0f, pdfRev = 0.0f;
   bool deltaPosition = false;  // point and spot lights, the pinhole
-  // The first vertex of a subpath: the density of its wavelength under the strategy that draws the
-  // camera's (p_sensor) or an own-family light subpath's (p_light, also kept on a shared one).
-  float wavelengthPdf = 0.0f;
+  // A light subpath's first vertex: the probability with which its light was chosen (and, on an
+  // own-family subpath, its wavelength with it: p_light(λ_0)·p(light | λ_0)).
+  float choicePdf = 0.0f;
   // Recursive MIS (docs/bdpt-mis.md §9): the running sum over the strategies with at least two
   // fewer vertices on this subpath's side, and whether every interior vertex before this one on
   // the subpath scattered elastically.

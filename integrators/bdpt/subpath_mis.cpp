@@ -4,7 +4,7 @@ namespace kasha::bdpt {
 
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut) {
   if (j < 0) return {};
-  if (j == 0) return {1.0, 0.0, 0.0, 0.0};  // the camera subpath hits the light (0 where pC_0 is)
+  if (j == 0) return hitMultiplicity();  // the camera subpath hits the light (0 where pC_0 is)
   const PathVertex& v = L[size_t(j)];
   if (j == 1) {  // x_1: next-event estimation, and the light vertex through a fluorescent x_1
     const double specCam1 = v.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, v.lambda, lobe);
@@ -19,12 +19,12 @@ MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j) {
   return lightMultiplicity(L, j, L[size_t(j)].lobe, L[size_t(j)].lambdaNext);
 }
 
-MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn, double sensorPdf) {
+MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn) {
   if (j < 1) return {};
   const PathVertex& v = C[size_t(j)];
   if (j == 1) {  // t = 1: the light side samples x_{k−1}'s event
     const double specLight = v.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, v.lambda, lobe);
-    return lightTracingMultiplicity(v.connectible(), specLight, sensorPdf);
+    return lightTracingMultiplicity(v.connectible(), specLight);
   }
   const PathVertex& u = C[size_t(j - 1)];
   return joinMultiplicity(u.connectible() && v.connectible(), lobe, u.lobe);
@@ -32,7 +32,7 @@ MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe
 
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j) {
   if (j < 1) return {};
-  return cameraMultiplicity(C, j, C[size_t(j)].lobe, C[size_t(j)].lambdaNext, C[0].wavelengthPdf);
+  return cameraMultiplicity(C, j, C[size_t(j)].lobe, C[size_t(j)].lambdaNext);
 }
 
 void updateSums(std::vector<PathVertex>& path, TransportMode mode) {

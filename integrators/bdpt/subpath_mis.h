@@ -19,9 +19,8 @@ MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe 
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j);
 
 // M of the strategy with j vertices on the camera subpath C (t' = j, s' = k + 1 − j), C[j] using
-// `lobe` with `lambdaIn` arriving from the light side; sensorPdf is p_sensor of the wavelength
-// reaching the camera.
-MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn, double sensorPdf);
+// `lobe` with `lambdaIn` arriving from the light side.
+MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn);
 // The same with C[j]'s own sampled event.
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j);
 

@@ -23,7 +23,7 @@ void randomWalk(const Scene& scene, Ray ray, const float* betaStart, float pdfSA
   std::copy(betaStart, betaStart + lanes.n, beta);
   const float beta0 = laneSum(beta, lanes.n);
   float lambda = lanes.lambda[0];
-  int lane = -1;  // every lane alive, or the one kept
+  int lane = lanes.n > 1 ? -1 : 0;  // every lane alive, or the one kept (a one-lane subpath: its only lane)
   int surfaces = 0;
   for (;;) {
     const std::optional<Hit> hit = scene.accel->intersect(ray);
@@ -55,6 +55,7 @@ void randomWalk(const Scene& scene, Ray ray, const float* betaStart, float pdfSA
     // Elsewhere the densities are those of any lane that scatters here (docs/bdpt-mis.md §10).
     if (lanes.n > 1 && lane < 0) {
       const float uLane = rng.uniform();
+      v.laneU = uLane;
       if (v.bsdf->has(BsdfFlags::Fluorescent) || v.bsdf->has(BsdfFlags::WavelengthDependentDirection)) {
         lane = std::min(int(uLane * float(lanes.n)), lanes.n - 1);
         lambda = lanes.lambda[lane];
@@ -130,7 +131,8 @@ void randomWalk(const Scene& scene, Ray ray, const float* betaStart, float pdfSA
 
 }  // namespace
 
-Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table) {
+Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table,
+                  const WavelengthDensity* own) {
   Lanes lanes;
   lanes.n = n;
   for (int k = 0; k < n; ++k) {
@@ -138,6 +140,7 @@ Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, 
     lanes.lambda[k] = ws.lambda;
     lanes.sensorPdf[k] = ws.pdf;
     lanes.response[k] = Observer::cie1931().weight(ws.lambda);
+    lanes.lightPdf[k] = own && n > 1 ? own->pdf(ws.lambda) : 0.0f;
   }
   if (n > 1) {
     table.reset(scene, {lanes.lambda, size_t(n)});
@@ -151,11 +154,6 @@ std::pair<size_t, float> selectLight(const Scene& scene, const Lanes& lanes, flo
   return lanes.lights->select(u);
 }
 
-float lightProbability(const Scene& scene, const Lanes& lanes, size_t light, float lambda0, bool cameraGroup) {
-  if (lanes.n == 1 || !cameraGroup) return scene.lightSelector->probability(light, lambda0);
-  return lanes.lights->probability(light);
-}
-
 void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, const WalkSettings& ws, Sampler& rng,
                         RayCounter& counter, std::vector<PathVertex>& out) {
   out.clear();
@@ -166,12 +164,11 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
   c.lambda = lanes.lambda[0];
   c.pdfFwd = 1.0f;
   c.deltaPosition = true;
-  c.wavelengthPdf = lanes.sensorPdf[0];
   out.push_back(c);
   updateSums(out, TransportMode::Radiance);
   const Ray ray = scene.camera.generateRay(filmPos);
-  // The sensor samples the last wavelength group (docs/bdpt-mis.md §2).
-  const float pdfDir = scene.camera.directionPdf(ray.d) * lanes.sensorPdf[0];
+  // The sensor's density of the last wavelength group is a factor of the weights (mis_sums.h).
+  const float pdfDir = scene.camera.directionPdf(ray.d);
   randomWalk(scene, ray, c.beta, pdfDir, lanes, TransportMode::Radiance, false, ws, rng, counter, out);
 }
 
@@ -202,12 +199,14 @@ void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shar
   v.dir = es->w;
   v.light = int(light);
   v.lambda = lambda;
+  if (lanes.n == 1) v.lane = 0;
   v.deltaPosition = es->deltaPos;
   // At infinity the light vertex is a direction (density per sr) and the disk position is the
-  // density of the first surface point; otherwise the position is the vertex.
+  // density of the first surface point; otherwise the position is the vertex. The light choice is
+  // a factor of the weights (mis_sums.h).
   const float start = L.atInfinity() ? es->pdfDir : es->pdfPos;
-  v.pdfFwd = (lanes.n > 1 ? choice : scene.lightSelector->probability(light, lambda)) * start;
-  v.wavelengthPdf = ws.lightWavelengths->pdf(lambda);
+  v.pdfFwd = start;
+  v.choicePdf = choice;
   float beta[kMaxLanes];
   for (int k = 0; k < lanes.n; ++k) {
     // The emission's geometry does not depend on λ: the same point and direction at every lane's.

@@ -32,24 +32,21 @@ struct WalkSettings {
 
 // The camera sample's n lanes from one uniform u: lane k at the stratum (u + k/n) of the sensor
 // density's inverse CDF (pt's lanes, Wilkie et al. 2014), each with its density and response;
-// with more than one, `table` is filled with the lights' powers at them.
-Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table);
+// with more than one, `table` is filled with the lights' powers at them, and given the own family's
+// light-start density `own`, each lane's density under it.
+Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table,
+                  const WavelengthDensity* own = nullptr);
 
 // The light chosen with u for the lanes (a lane's wavelength at random, then ∝ Φ_l there: the
 // mixture over the lanes, wavelength_lanes.h; with one lane, ∝ Φ_l(λ)) and its probability.
 std::pair<size_t, float> selectLight(const Scene& scene, const Lanes& lanes, float u);
-// The probability with which a strategy chooses `light` for a path whose light end has wavelength
-// lambda0: the lanes' mixture if that wavelength is one of the camera sample's lanes (cameraGroup: the
-// path does not fluoresce), else p(light | λ_0).
-float lightProbability(const Scene& scene, const Lanes& lanes, size_t light, float lambda0, bool cameraGroup);
-
-// C[0] is the pinhole; C[1] the first hit. The lanes are the sensor's wavelengths; lane 0's density
-// is folded into C[1].pdfFwd (docs/bdpt-mis.md §2).
+// C[0] is the pinhole; C[1] the first hit. The lanes are the sensor's wavelengths; C[1].pdfFwd is
+// the camera direction's density alone (the sensor's is a factor of the weights, mis_sums.h).
 void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, const WalkSettings& ws, Sampler& rng,
                         RayCounter& counter, std::vector<PathVertex>& out);
 
-// L[0] is the light vertex, its pdfFwd the density with which it was sampled (with the light-start
-// wavelength density in the own family). A shared subpath carries the camera sample's lanes and
+// L[0] is the light vertex, its pdfFwd its position's density, its choicePdf that of its light (with
+// the light-start wavelength density in the own family). A shared subpath carries the camera sample's lanes and
 // stops at its first fluorescent event (later vertices could only form paths the shared family
 // cannot weight); an own one has one lane.
 void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
