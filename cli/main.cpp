@@ -188,7 +188,6 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   try {
     if (a.spectralBins > 0) bins = SpectralBins::fromCount(scene->range, a.spectralBins);
     if (a.spectralStep > 0.0f) bins = SpectralBins::fromStep(scene->range, a.spectralStep);
-    fitIntegratorToBins(integrator, a.integrator, *scene, r, bins);
   } catch (const std::invalid_argument& e) {
     throw UsageError(a.spectralBins > 0 ? "--spectral-bins" : "--spectral-step", "", e.what());
   }

@@ -7,7 +7,10 @@
 // ray adds its exact XYZ instead (its L_e(λ) is known at every λ; no MIS there). Every choice along the path is symmetric in the lanes (the lobe with the mean of their
 // P_c, Jung18 eq. 7; the light ∝ Σ_j Φ_l(λ_j); directions where their density is the same for every
 // lane), so the balance heuristic over the N hero techniques (Wilkie14 eq. 8) weights every lane by
-// 1/(N·p(λ_j)). A lane carries its XYZ throughput (a 3-vector), not a scalar.
+// 1/(N·p(λ_j)). A lane carries its XYZ throughput (a 3-vector), not a scalar; when the render
+// keeps spectral bins, its throughput per sensor wavelength instead (SensorShares), so that each
+// share reaches its own bin even after a fluorescent event has mixed the lanes (the directly seen
+// emitter then takes the lanes' estimate too).
 //
 // At a fluorescent event the lanes do not end. The event's value for lane j is the integral over
 // λ_i of f(λ_i → λ_o^j)·L(λ_i); the excitation density does not depend on which λ_o it serves (a
@@ -25,6 +28,7 @@
 #include "scene/wavelength_strategy.h"
 #include "integrators/fluorescence_sampling.h"
 #include "integrators/integrator.h"
+#include "integrators/sensor_shares.h"
 #include "integrators/wavelength_lanes.h"
 
 namespace kasha {
@@ -38,19 +42,12 @@ class HeroPathTracer final : public Integrator {
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override { return "pt"; }
   int lanes() const override { return n_; }
-  // No: a lane's throughput is XYZ, which after a fluorescent event mixes the sensor wavelengths
-  // of every lane before it, so no share belongs to one sensor wavelength.
-  bool keepsSpectralBins() const override { return false; }
-
-  // The lanes of a path segment: wavelength and XYZ throughput over the path density.
-  struct Lanes {
-    int n = 0;
-    float lambda[kMaxLanes];
-    Vec3 T[kMaxLanes];
-  };
 
  private:
-  Vec3 radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler& rng, RayCounter& counter) const;
+  // The radiance over density arriving along the camera ray, in the lanes' throughput type T:
+  // XYZ (Vec3), or SensorShares.
+  template <class T>
+  T radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sampler& rng, RayCounter& counter) const;
 
   WavelengthSources sources_;
   WavelengthStrategy sensor_;
