@@ -461,10 +461,9 @@ int main(int argc, char** argv) {
                      "event's own) | absorption | light | uniform | yamamoto | mix:absorption,light")
       ->check(strategy);
   render->add_option("--hero", ra.hero,
-                     "Wavelength lanes (hero wavelength sampling; pt, lt, ppm, bdpt-shared, and bdpt where nothing "
-                     "fluoresces): wavelengths per path, 1 (off) to 16; default 4 for these (1 for pt when "
-                     "--sensor-sampling is not one density or --nee-sampling is not 'event'), 1 for the other "
-                     "BDPT variants")
+                     "Wavelength lanes (hero wavelength sampling; pt, lt, ppm, every BDPT variant): wavelengths per "
+                     "path, 1 (off) to 16; default 4 (1 for pt when --sensor-sampling is not one density or "
+                     "--nee-sampling is not 'event')")
       ->check(CLI::Range(1, 16));
   render->add_option("--fluorescent-lanes", ra.fluorescentLanes,
                      "What wavelength lanes do at a fluorescent event (pt, lt): through (a fresh set serves every "

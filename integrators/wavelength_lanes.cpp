@@ -140,12 +140,15 @@ void LaneLightTable::reset(const Scene& scene, std::span<const float> lambda) {
   single_.resize(size_t(n_) * lights_);
   total_.assign(size_t(n_), 0.0f);
   mixture_.assign(lights_, 0.0f);
-  for (int k = 0; k < n_; ++k)
+  for (int k = 0; k < n_; ++k) {
+    const float selectorTotal = scene.lightSelector->totalPower(lambda[size_t(k)]);
     for (size_t l = 0; l < lights_; ++l) {
-      power_[size_t(k) * lights_ + l] = scene.lights[l]->power(lambda[size_t(k)]);
-      single_[size_t(k) * lights_ + l] = scene.lightSelector->probability(l, lambda[size_t(k)]);
-      total_[size_t(k)] += power_[size_t(k) * lights_ + l];
+      const float power = scene.lights[l]->power(lambda[size_t(k)]);
+      power_[size_t(k) * lights_ + l] = power;
+      single_[size_t(k) * lights_ + l] = selectorTotal > 0.0f ? power / selectorTotal : 0.0f;  // as probability()
+      total_[size_t(k)] += power;
     }
+  }
   for (size_t l = 0; l < lights_; ++l) {
     float sum = 0.0f;
     for (int k = 0; k < n_; ++k)

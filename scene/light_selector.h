@@ -22,6 +22,8 @@ class LightSelector {
   // Returns the index of the chosen light and its probability, or probability 0.
   std::pair<size_t, float> select(float lambda, float u) const;
   float probability(size_t light, float lambda) const;
+  // Σ_l Φ_l(λ): probability(l, λ) is lights[l]->power(λ) over it (0 where it is 0).
+  float totalPower(float lambda) const { return totalPower_(lambda); }
 
   struct LightWavelength {
     size_t light = 0;

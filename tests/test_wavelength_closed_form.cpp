@@ -99,5 +99,40 @@ INSTANTIATE_TEST_SUITE_P(
                       StrategyCase{"bdpt-shared", "mix:cmf,light", "material", "light", "", 1, 3}),
     caseName);
 
+// Every integrator with each sampler and lane count (issue 12), its default wavelength strategies,
+// on both furnaces. Light tracing needs more samples (most of its paths miss the small camera).
+using MatrixCase = std::tuple<const char*, SamplerKind, int>;
+class IntegratorSamplerLanesSlow : public ::testing::TestWithParam<MatrixCase> {};
+
+TEST_P(IntegratorSamplerLanesSlow, MatchFurnaceClosedForms) {
+  const auto [integrator, sampler, lanes] = GetParam();
+  for (const char* name : {"furnace_fluorescent.json", "furnace_uv.json"}) {
+    SCOPED_TRACE(name);
+    auto scene = load(name);
+    RenderSettings settings = scene->render;
+    settings.maxDepth = 1000;
+    settings.rrDepth = 3;
+    settings.sampler = sampler;
+    settings.heroWavelengths = lanes;
+    ASSERT_EQ(makeIntegrator(integrator, *scene, settings)->lanes(), lanes);
+    const Grid g(scene->range);
+    const Vec3 exact = toXyz(g, furnaceClosedForm(g, jung(*scene), emissionOf(*scene)));
+    expectXyzAgreement(*scene, integrator, settings, exact, 16, std::string(integrator) == "lt" ? 1024 : 128);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Everything, IntegratorSamplerLanesSlow,
+                         ::testing::Combine(::testing::Values("pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent",
+                                                              "bdpt-mollified", "ppm"),
+                                            ::testing::Values(SamplerKind::Sobol, SamplerKind::Independent),
+                                            ::testing::Values(1, 4)),
+                         [](const ::testing::TestParamInfo<MatrixCase>& info) {
+                           std::string n = std::get<0>(info.param);
+                           for (char& c : n)
+                             if (c == '-') c = '_';
+                           return n + (std::get<1>(info.param) == SamplerKind::Sobol ? "_sobol_" : "_pcg32_") +
+                                  std::to_string(std::get<2>(info.param)) + "_lanes";
+                         });
+
 }  // namespace
 }  // namespace kasha
