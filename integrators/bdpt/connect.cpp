@@ -1,5 +1,7 @@
 #include "integrators/bdpt/connect.h"
 
+#include <algorithm>
+
 #include "core/color.h"
 #include "integrators/bdpt/subpath_mis.h"
 #include "integrators/progressive_schedule.h"
@@ -159,6 +161,23 @@ std::pair<int, float> ownJoinLane(const Context& c, const PathVertex& b) {
   return {std::min(int(b.laneU * float(c.lanes.n)), c.lanes.n - 1), float(c.lanes.n)};
 }
 
+// Each lane's weight in [k0, k1) where active(k), from weighLane(k): per lane where the own family
+// runs (its factors differ between lanes), once for all otherwise (docs/bdpt-mis.md §10).
+template <class Active, class WeighLane>
+void laneWeights(const Context& c, int k0, int k1, float* w, Active&& active, WeighLane&& weighLane) {
+  int first = -1;
+  for (int k = k0; k < k1; ++k) {
+    w[k] = 0.0f;
+    if (!active(k)) continue;
+    if (first >= 0 && !c.families.independent) {
+      w[k] = w[first];
+      continue;
+    }
+    w[k] = weighLane(k);
+    first = k;
+  }
+}
+
 // XYZ per unit radiance of lane k at the camera: W(λ_k)/(n·p(λ_k)).
 Vec3 laneScale(const Context& c, int k) {
   return Observer::cie1931().weight(c.lanes.lambda[k]) / (float(c.lanes.n) * c.lanes.sensorPdf[k]);
@@ -244,11 +263,11 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
                             : directLightMultiplicity(e.kind == Kind::Surface);
   const MisSums own = hitMultiplicity();
   const MisSums total = own + cameraSum(C, t, end.pdf0, m1, end.pdf1);
-  for (int j = e.firstLane(); j < e.endLane(c.lanes); ++j) {
-    if (!(Le[j] > 0.0f)) continue;
+  float weight[kMaxLanes];
+  laneWeights(c, e.firstLane(), e.endLane(c.lanes), weight, [&](int j) { return Le[j] > 0.0f; }, [&](int j) {
     const MisFactors f = factors(c, e.light, e.lambdaOf(c.lanes, j), e.elasticBefore ? j : -1, c.lanes.sensorPdf[j],
                                  e.elasticBefore);
-    const float weight = weigh(c, 0, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
+    return weigh(c, 0, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
       FullPath fp = layout(c, nullptr, 0, C, t, end, g);
       if (k >= 2) {
         fp.specCam1 = next.spectralPdf;
@@ -258,9 +277,11 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
       }
       return misWeight(fp, 0, Variant::kStandard);
     });
+  });
+  for (int j = e.firstLane(); j < e.endLane(c.lanes); ++j) {
     const float value = e.beta[j] * Le[j];
-    record(c, 0, t, Variant::kStandard, j, value, weight);
-    out[j] += value * weight;
+    record(c, 0, t, Variant::kStandard, j, value, weight[j]);
+    out[j] += value * weight[j];
   }
 }
 
@@ -306,18 +327,19 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
     any = any || value[k] > 0.0f;
   }
   if (!any || !visible(c, x1, x0)) return;
-  const LightEnd end = lightEnd(c, int(li), x0, x1);
+  const int lightIndex = int(li);  // a structured binding cannot be captured (clang 14)
+  const LightEnd end = lightEnd(c, lightIndex, x0, x1);
   const double pCam0 = cameraSide(c.scene, x1, x2, x0, x1.lobe, lambda0, x1.lambda);
   const double pLight2 = x2.kind != Kind::Camera ? lightSide(c.scene, x1, x0, x2, x1.lobe, lambda0, x1.lambda) : 0.0;
   const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite);
   MisSums own;
   own.nee = x1.spectralPdf * double(x1.spectralPdf);
   const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1), pLight2);
-  for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) {
-    if (!(value[k] > 0.0f)) continue;
-    const MisFactors f = factors(c, int(li), lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
+  float weight[kMaxLanes];
+  laneWeights(c, x1.firstLane(), x1.endLane(c.lanes), weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
+    const MisFactors f = factors(c, lightIndex, lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
                                  c.lanes.sensorPdf[k], cameraGroup);
-    const float weight = weigh(c, 1, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
+    return weigh(c, 1, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
       PathVertex lightVertex = x0;
       lightVertex.pdfFwd = float(end.pdf0);
       lightVertex.pdfRev = float(pCam0);
@@ -328,8 +350,11 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
       fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
       return misWeight(fp, 1, Variant::kStandard);
     });
-    record(c, 1, t, Variant::kStandard, k, value[k], weight);
-    out[k] += value[k] * weight;
+  });
+  for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) {
+    if (!(value[k] > 0.0f)) continue;
+    record(c, 1, t, Variant::kStandard, k, value[k], weight[k]);
+    out[k] += value[k] * weight[k];
   }
 }
 
@@ -460,15 +485,12 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     (p.variant == Variant::kStandard ? own.shared : p.variant == Variant::kOwn ? own.own : own.mollified) = 1.0;
     const bool oneGroup = a.elasticBefore && b.elasticBefore && p.la == SpectralLobe::Elastic && p.lb == SpectralLobe::Elastic;
     float weight[kMaxLanes];
-    bool anyWeight = false;
-    for (int k = k0; k < k1; ++k) {
-      weight[k] = 0.0f;
-      if (!(fA[k] > 0.0f && fB[k] > 0.0f)) continue;
+    laneWeights(c, k0, k1, weight, [&](int k) { return fA[k] > 0.0f && fB[k] > 0.0f; }, [&](int k) {
       // The path's first wavelength: lane k's on a shared subpath, the own subpath's own.
       const MisFactors f = family == LightFamily::Shared
                                ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup)
                                : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup);
-      weight[k] = weigh(c, s, t, p.variant, own, here + sides, f, [&](const MisFactors& g) {
+      return weigh(c, s, t, p.variant, own, here + sides, f, [&](const MisFactors& g) {
         FullPath fp = layout(c, &L, s, C, t, end, g);
         fp.v[size_t(s - 1)].lobe = p.la;
         fp.v[size_t(s)].lobe = p.lb;
@@ -481,9 +503,8 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
         fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambdaB) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
         return misWeight(fp, s, p.variant);
       });
-      anyWeight = anyWeight || weight[k] > 0.0f;
-    }
-    if (!anyWeight) continue;
+    });
+    if (std::none_of(weight + k0, weight + k1, [](float w) { return w > 0.0f; })) continue;
     if (!checked) {
       checked = true;
       unoccluded = visible(c, a, b);
@@ -562,15 +583,13 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
   if (!any) return;
+  const int k0 = a.firstLane(), k1 = a.endLane(c.lanes);
   float weight[kMaxLanes];
-  bool anyWeight = false;
-  for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
-    weight[k] = 0.0f;
-    if (!(value[k] > 0.0f)) continue;
+  laneWeights(c, k0, k1, weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     // A shared lane's wavelength is the sensor's lane k; an own subpath's arrives from the light.
     const MisFactors mf = shared ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup)
                                  : factors(c, L[0].light, L[0].lambda, -1, c.sensor.pdf(lambda), oneGroup);
-    weight[k] = weigh(c, s, 1, variant, own, here + sides, mf, [&](const MisFactors& g) {
+    return weigh(c, s, 1, variant, own, here + sides, mf, [&](const MisFactors& g) {
       const std::vector<PathVertex> camOnly{cam};
       FullPath fp = layout(c, &L, s, camOnly, 1, end, g);
       const int last = s;
@@ -585,9 +604,8 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       }
       return misWeight(fp, s, variant);
     });
-    anyWeight = anyWeight || weight[k] > 0.0f;
-  }
-  if (!anyWeight || !visible(c, a, cam)) return;
+  });
+  if (std::none_of(weight + k0, weight + k1, [](float w) { return w > 0.0f; }) || !visible(c, a, cam)) return;
   // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel); a
   // shared lane's wavelength was the sensor's sample, one of n.
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
