@@ -87,6 +87,7 @@ struct RenderArgs {
   bool integratorGiven = false;  // --integrator on the command line
   std::string sensor, fluorescence, light, nee;
   int hero = 0;
+  std::string fluorescentLanes;  // empty: the scene's
   std::string sampler;
   float exposure = 0.0f;
   std::string checkpoint, resume;
@@ -139,6 +140,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   if (!a.light.empty()) r.wavelengths.light = parseWavelengthSpec(a.light);
   if (!a.nee.empty()) r.wavelengths.nee = parseWavelengthSpec(a.nee);
   if (a.hero > 0) r.heroWavelengths = a.hero;
+  if (!a.fluorescentLanes.empty()) r.fluorescentLanes = *parseFluorescentLanes(a.fluorescentLanes);  // validated
   if (!a.sampler.empty()) r.sampler = *parseSamplerKind(a.sampler);  // validated by the option's check
   r.memoryLimit = memoryLimit;
   if ((a.mollifyBandwidth >= 0.0f || a.mollifyAlpha >= 0.0f) && a.integrator != "bdpt-mollified")
@@ -161,6 +163,11 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     if (a.integratorGiven) throw UsageError("--integrator " + a.integrator, "", std::string(e.what()) + " (/render/" +
                                                                                 settingName(e.site()) + " in " + a.scene + ")");
     throw InputError(a.scene, "/render/" + std::string(settingName(e.site())), e.what());
+  } catch (const FluorescentLanesError& e) {
+    // Only --integrator can name one that refuses it (pt, the default, takes it).
+    if (!a.fluorescentLanes.empty()) throw UsageError("--fluorescent-lanes", a.fluorescentLanes, e.what());
+    throw UsageError("--integrator " + a.integrator, "",
+                     std::string(e.what()) + " (/render/fluorescent_lanes in " + a.scene + ")");
   } catch (const std::invalid_argument& e) {
     throw UsageError(a.hero > 1 ? "--hero" : "--integrator " + a.integrator, "", e.what());
   }
@@ -181,7 +188,6 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   try {
     if (a.spectralBins > 0) bins = SpectralBins::fromCount(scene->range, a.spectralBins);
     if (a.spectralStep > 0.0f) bins = SpectralBins::fromStep(scene->range, a.spectralStep);
-    fitIntegratorToBins(integrator, a.integrator, *scene, r, bins);
   } catch (const std::invalid_argument& e) {
     throw UsageError(a.spectralBins > 0 ? "--spectral-bins" : "--spectral-step", "", e.what());
   }
@@ -214,6 +220,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
                                    {"light_sampling", r.wavelengths.light.text},
                                    {"nee_sampling", r.wavelengths.nee.text},
                                    {"hero_wavelengths", integrator->lanes()},
+                                   {"fluorescent_lanes", toString(r.fluorescentLanes)},
                                    {"resolution", {width, height}},
                                    {"spectral_bins", bins.enabled() ? nlohmann::json{bins.min, bins.step, bins.count}
                                                                     : nlohmann::json(nullptr)}};
@@ -458,6 +465,11 @@ int main(int argc, char** argv) {
                      "path, 1 (off) to 16; default 4 (1 for pt when --sensor-sampling is not one density or "
                      "--nee-sampling is not 'event')")
       ->check(CLI::Range(1, 16));
+  render->add_option("--fluorescent-lanes", ra.fluorescentLanes,
+                     "What wavelength lanes do at a fluorescent event (pt, lt): through (a fresh set serves every "
+                     "lane before it, the default) | end (one lane kept at random goes on, as in ART and pbrt; an "
+                     "experiment to compare with)")
+      ->check(CLI::IsMember({"through", "end"}));
   render->add_option("--sampler", ra.sampler,
                      "Random numbers of every sample: sobol (Owen-scrambled Sobol, the default) | independent (PCG32)")
       ->check(CLI::IsMember({"sobol", "independent"}));

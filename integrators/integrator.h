@@ -91,9 +91,6 @@ class Integrator {
   }
   // The most samples per pixel one pass may take.
   virtual int maxSamplesPerPass() const { return std::numeric_limits<int>::max(); }
-  // Whether every contribution reaches the film through sensorResponse or spectralSplat at the
-  // wavelength the sensor sees, so that a render can keep spectral bins (core/spectral_film.h).
-  virtual bool keepsSpectralBins() const { return true; }
 };
 
 }  // namespace kasha

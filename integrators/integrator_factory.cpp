@@ -40,6 +40,10 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
   const bool mollified = name == "bdpt-mollified";
   const bool bdpt = name == "bdpt" || name == "bdpt-independent" || name == "bdpt-shared" || mollified;
   if (s.heroWavelengths == kAutoLanes && !bdpt) s.heroWavelengths = defaultLanes(name, s);
+  if (s.fluorescentLanes == FluorescentLanes::End && name != "pt" && name != "lt")
+    throw FluorescentLanesError("fluorescent_lanes 'end' is an experiment of pt and lt, not of " + name +
+                                (bdpt ? " (its lanes end at fluorescent vertices already)"
+                                      : " (its camera lanes go through fluorescent events; leave it at 'through')"));
   if (name == "pt") {
     requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
     if (s.heroWavelengths > 1) return std::make_unique<HeroPathTracer>(scene, s);

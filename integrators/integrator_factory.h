@@ -13,6 +13,7 @@ namespace kasha {
 // mollification of elastic connections), "ppm" (progressive photon mapping). Throws
 // std::invalid_argument otherwise.
 // settings.heroWavelengths = kAutoLanes becomes defaultLanes(name, settings) (BDPT: its own).
+// Throws FluorescentLanesError for settings.fluorescentLanes = End with any but pt and lt.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& settings);
 std::vector<std::string> integratorNames();
 

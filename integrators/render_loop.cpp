@@ -10,7 +10,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "integrators/render_setup.h"
 
 namespace kasha {
 
@@ -64,7 +63,6 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   if (opt.spectral) {
     if (opt.spectral->width() != w || opt.spectral->height() != h)
       throw std::invalid_argument("render: the spectral film's size differs from the film's");
-    requireSpectralBins(integrator, opt.spectral->bins());
     opt.spectral->setSamplesPerPixel(pass);
   }
   double lastCheckpoint = 0.0;

@@ -7,7 +7,6 @@
 #include "core/film.h"
 #include "core/memory_budget.h"
 #include "core/sampler.h"
-#include "integrators/integrator_factory.h"
 #include "integrators/render_pass.h"
 
 namespace kasha {
@@ -29,22 +28,6 @@ void requirePassMemory(const Integrator& integrator, int width, int height, int 
                 "the samples of one pass (" + std::to_string(perPass) + " per pixel)", limit);
 }
 
-void requireSpectralBins(const Integrator& integrator, const SpectralBins& bins) {
-  if (bins.enabled() && !integrator.keepsSpectralBins())
-    throw std::invalid_argument("spectral bins are not kept by " + integrator.name() +
-                                " with hero wavelengths (its lanes carry XYZ throughput, which mixes sensor "
-                                "wavelengths after a fluorescent event); render them with one wavelength per path");
-}
-
-void fitIntegratorToBins(std::unique_ptr<Integrator>& integrator, const std::string& name, const Scene& scene,
-                         RenderSettings& settings, const SpectralBins& bins) {
-  if (bins.enabled() && !integrator->keepsSpectralBins() && settings.heroWavelengths == kAutoLanes) {
-    settings.heroWavelengths = 1;
-    integrator = makeIntegrator(name, scene, settings);
-  }
-  requireSpectralBins(*integrator, bins);
-}
-
 RenderOptions renderOptions(const RenderSettings& settings, int threads) {
   RenderOptions opt;
   opt.spp = settings.spp;
@@ -63,6 +46,7 @@ nlohmann::json settingsRecord(const RenderSettings& r, const Integrator& integra
           {"light_sampling", r.wavelengths.light.text},
           {"nee_sampling", r.wavelengths.nee.text},
           {"hero_wavelengths", integrator.lanes()},
+          {"fluorescent_lanes", toString(r.fluorescentLanes)},
           {"max_depth", r.maxDepth}};
 }
 

@@ -2,8 +2,6 @@
 // What every front end (the command line, the Python module) does around render(): checking the
 // film's and a pass's memory, render options from the settings, and the settings a statistics record names.
 #include <cstdint>
-#include <memory>
-#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -23,15 +21,6 @@ void requireFilmMemory(int width, int height, const SpectralBins& bins, bool res
 // pixel, 0 for the default the integrator allows. Throws MemoryLimitError.
 void requirePassMemory(const Integrator& integrator, int width, int height, int samplesPerPass, bool spectral,
                        uint64_t limit);
-
-// Throws std::invalid_argument if `bins` are enabled and the integrator cannot keep them
-// (Integrator::keepsSpectralBins: pt with hero wavelengths).
-void requireSpectralBins(const Integrator& integrator, const SpectralBins& bins);
-// With `bins`, an integrator that cannot keep them only because its lanes were its default
-// (settings.heroWavelengths = kAutoLanes: pt's four) is made again (makeIntegrator `name`) with one
-// wavelength per path, and settings say so; then requireSpectralBins.
-void fitIntegratorToBins(std::unique_ptr<Integrator>& integrator, const std::string& name, const Scene& scene,
-                         RenderSettings& settings, const SpectralBins& bins);
 
 // The stop conditions (spp, time), seed and sampler of the settings, with `threads` (0: all cores).
 RenderOptions renderOptions(const RenderSettings& settings, int threads);

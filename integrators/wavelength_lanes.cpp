@@ -13,7 +13,7 @@ float laneStratum(float u, int k, int n) {
 }
 
 LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, int fresh, float u,
-                          const WavelengthDensity* strategy) {
+                          const WavelengthDensity* strategy, FluorescentLanes atFluorescence) {
   const int n = int(known.size());
   // The fluorescent lobe with the mean of the lanes' probabilities: symmetric in the lanes.
   float p[kMaxLanes];
@@ -31,24 +31,45 @@ LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const 
       e.lambda[j] = known[j];
       e.source[j] = j;
       e.scale[j] = 1.0f / (1.0f - pFluor);
+      e.odds[j] = 1.0f;
     }
     return e;
   }
-  // A fresh set of lanes at the strata of v.
+  // A fresh set of lanes at the strata of v; ended, lane k serves known lane k alone.
   e.lobe = SpectralLobe::Fluorescent;
-  e.n = fresh;
+  e.ended = atFluorescence == FluorescentLanes::End;
+  e.n = e.ended ? n : fresh;
+  for (int k = 0; k < e.n; ++k) {
+    e.source[k] = e.ended ? k : kEveryLane;
+    e.odds[k] = e.ended ? p[k] : 1.0f;
+  }
   const float v = std::min(u / pFluor, kBelowOne);
   if (strategy) {
+    // Through: N samples of one density serve each lane before (weight 1/(N·p)); ended: lane k
+    // alone is an estimate for known lane k (weight 1/p).
+    const float samples = e.ended ? 1.0f : float(e.n);
     for (int k = 0; k < e.n; ++k) {
       const WavelengthSample s = strategy->sample(laneStratum(v, k, e.n));
       e.lambda[k] = s.lambda;
-      e.scale[k] = s.pdf > 0.0f ? 1.0f / (pFluor * float(e.n) * s.pdf) : 0.0f;
+      e.scale[k] = s.pdf > 0.0f ? 1.0f / (pFluor * samples * s.pdf) : 0.0f;
     }
     return e;
   }
-  // The Bsdf's own density given lane m's wavelength, q_m = spectralPdf / P(λ_m), for the lanes
-  // that can fluoresce: lane k is drawn from component k mod V, and the multi-sample balance
-  // heuristic (Veach97 §9.2.2) divides it by Σ_m n_m·q_m(λ_k).
+  // The Bsdf's own density given lane m's wavelength, q_m = spectralPdf / P(λ_m). Ended: lane k is
+  // drawn from q_k (weight 1/(P̄·q_k); none if lane k cannot fluoresce).
+  if (e.ended) {
+    for (int k = 0; k < e.n; ++k) {
+      e.lambda[k] = known[k];
+      e.scale[k] = 0.0f;
+      if (!(p[k] > 0.0f)) continue;
+      const SpectralChoice c = bsdf.sampleSpectral(mode, known[k], laneStratum(v, k, e.n) * p[k]);
+      e.lambda[k] = c.lambda;
+      if (c.lobe == SpectralLobe::Fluorescent && c.pdf > 0.0f) e.scale[k] = p[k] / (pFluor * c.pdf);
+    }
+    return e;
+  }
+  // Through, for the lanes that can fluoresce: lane k is drawn from component k mod V, and the
+  // multi-sample balance heuristic (Veach97 §9.2.2) divides it by Σ_m n_m·q_m(λ_k).
   int valid[kMaxLanes], count[kMaxLanes];
   int nValid = 0;
   for (int j = 0; j < n; ++j)
@@ -142,12 +163,22 @@ std::pair<size_t, float> LaneLightTable::select(float u) const {
   return {chosen, mixture_[chosen]};
 }
 
+bool lanesEndAt(const LaneEvent& e, const Bsdf& bsdf) {
+  return e.ended || (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection));
+}
+
 void keepOneLane(LaneEvent& e, float u) {
   if (e.n <= 1) return;
-  const int j = std::min(int(u * float(e.n)), e.n - 1);
+  float total = 0.0f;
+  for (int j = 0; j < e.n; ++j) total += e.odds[j];
+  // The first lane whose cumulative odds pass u·total; rounding: the last one with odds.
+  int j = 0;
+  for (float acc = e.odds[0]; j + 1 < e.n && !(u * total < acc);) acc += e.odds[++j];
+  while (j > 0 && !(e.odds[j] > 0.0f)) --j;
   e.lambda[0] = e.lambda[j];
   e.source[0] = e.source[j];
-  e.scale[0] = e.scale[j] * float(e.n);
+  e.scale[0] = e.odds[j] > 0.0f ? e.scale[j] * (total / e.odds[j]) : 0.0f;
+  e.odds[0] = 1.0f;
   e.n = 1;
 }
 

@@ -3,13 +3,15 @@
 // at once. These are the pieces every lane-carrying integrator shares, in either transport mode:
 // the spectral event of all lanes at a vertex — elastic (each lane keeps its wavelength) or
 // fluorescent (a fresh set of N lanes at the sampled side's wavelength, each serving every lane
-// before it, Veach's multi-sample balance heuristic over the lanes' densities) — each new lane's
+// before it, Veach's multi-sample balance heuristic over the lanes' densities; or, with
+// FluorescentLanes::End, one lane per lane before it, to be ended in one) — each new lane's
 // weight through that event for a direction, and ending the lanes in one chosen at random.
 #include <span>
 #include <vector>
 
 #include "core/wavelength_density.h"
 #include "materials/bsdf.h"
+#include "scene/render_settings.h"
 #include "scene/scene.h"
 
 namespace kasha {
@@ -26,32 +28,47 @@ struct LaneEvent {
   int n = 0;                  // lanes after the event; 0 if nothing scatters
   float lambda[kMaxLanes];    // the sampled side's wavelength of each lane
   float scale[kMaxLanes];     // 1 / the event's spectral density for this lane
-  int source[kMaxLanes];      // elastic: the lane before the event that this one continues
+  // The lane before the event that this one continues (elastic, or fluorescent with
+  // FluorescentLanes::End), or kEveryLane: a fluorescent lane that serves every lane before it.
+  int source[kMaxLanes];
+  bool ended = false;         // fluorescent lanes one per lane before (FluorescentLanes::End): keep one
+  // The odds of keeping lane k where the lanes end (keepOneLane): equal, but for ended fluorescent
+  // lanes the fluorescent-lobe probability at the wavelength of the lane before.
+  float odds[kMaxLanes];
 };
+inline constexpr int kEveryLane = -1;
 
 // Chooses the lobe for every lane at once — fluorescent with the mean of the lanes' probabilities
-// (Jung18 eqs. 6/7 per lane), so the choice is symmetric in them — from the uniform u. Fluorescent:
-// `fresh` new lanes at the strata of u/P̄ of `strategy`'s inverse CDF if given (its density must not
-// depend on the known wavelength), else of the Bsdf's own densities given each known wavelength,
-// as a mixture over the lanes that can fluoresce.
+// (Jung18 eqs. 6/7 per lane), so the choice is symmetric in them — from the uniform u. Fluorescent,
+// FluorescentLanes::Through: `fresh` new lanes at the strata of u/P̄ of `strategy`'s inverse CDF
+// if given (its density must not depend on the known wavelength), else of the Bsdf's own densities
+// given each known wavelength, as a mixture over the lanes that can fluoresce.
+// FluorescentLanes::End: new lane k at the k-th stratum serves known lane k alone, drawn as a
+// single-wavelength path draws it (the strategy, else the Bsdf's own density given known[k]);
+// e.ended asks the caller to keep one of them (keepOneLane, with odds P(λ_k)), which makes the
+// event a one-sample estimate over the lanes before it: lane k goes on after a fluorescent event
+// with probability P̄·P(λ_k)/(N·P̄) = P(λ_k)/N, as if a single-wavelength path at λ_k had chosen it.
 LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, int fresh, float u,
-                          const WavelengthDensity* strategy = nullptr);
+                          const WavelengthDensity* strategy = nullptr,
+                          FluorescentLanes atFluorescence = FluorescentLanes::Through);
 
-// Lane k's weight through event e for the sampled direction wSampled (without |cos θ|): elastic,
-// its own lane's throughput times f; fluorescent, Σ_j before[j]·f(between known[j] and lambda[k]).
-// T is the throughput type (XYZ for camera paths, a scalar for light paths).
+// Lane k's weight through event e for the sampled direction wSampled (without |cos θ|): a lane
+// that continues one lane j = e.source[k] (elastic, or fluorescent with FluorescentLanes::End),
+// before[j]·f(between known[j] and lambda[k]); one that serves every lane,
+// Σ_j before[j]·f(between known[j] and lambda[k]). T is the throughput type (XYZ for camera paths,
+// a scalar for light paths).
 template <class T>
 T laneWeight(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, const T* before, const LaneEvent& e,
              int k, const Vec3& wSampled, const Vec3& wKnown) {
   const bool radiance = mode == TransportMode::Radiance;
   const Vec3& wi = radiance ? wSampled : wKnown;
   const Vec3& wo = radiance ? wKnown : wSampled;
-  if (e.lobe == SpectralLobe::Elastic)
-    return before[e.source[k]] * (bsdf.eval(mode, wi, wo, e.lambda[k], e.lambda[k], e.lobe) * e.scale[k]);
+  const auto f = [&](size_t j) {
+    return radiance ? bsdf.eval(mode, wi, wo, e.lambda[k], known[j], e.lobe) : bsdf.eval(mode, wi, wo, known[j], e.lambda[k], e.lobe);
+  };
+  if (e.source[k] != kEveryLane) return before[e.source[k]] * (f(size_t(e.source[k])) * e.scale[k]);
   T sum = before[0] * 0.0f;
-  for (size_t j = 0; j < known.size(); ++j)
-    sum += before[j] * (radiance ? bsdf.eval(mode, wi, wo, e.lambda[k], known[j], e.lobe)
-                                 : bsdf.eval(mode, wi, wo, known[j], e.lambda[k], e.lobe));
+  for (size_t j = 0; j < known.size(); ++j) sum += before[j] * f(j);
   return sum * e.scale[k];
 }
 
@@ -82,8 +99,14 @@ class LaneLightTable {
   std::vector<float> single_;   // p(l | λ_k) at k·lights + l
 };
 
-// Ends the lanes in one, chosen uniformly with u, its weight times their number: an unbiased
-// one-sample estimate of the sum over the lanes, however they were drawn.
+// Ends the lanes in one, lane j chosen with u with probability odds[j]/Σ odds (uniformly but for
+// ended fluorescent lanes), its weight divided by that probability: an unbiased one-sample
+// estimate of the sum over the lanes, however they were drawn.
 void keepOneLane(LaneEvent& e, float u);
+
+// True where the lanes of event e must end in one (keepOneLane) before next-event estimation: an
+// elastic lobe whose direction sampling depends on λ, or fluorescent lanes drawn with
+// FluorescentLanes::End.
+bool lanesEndAt(const LaneEvent& e, const Bsdf& bsdf);
 
 }  // namespace kasha

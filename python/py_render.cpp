@@ -61,7 +61,6 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
   std::unique_ptr<Integrator> integrator = makeIntegrator(req.integrator, scene, settings);
   const int w = scene.camera.width(), h = scene.camera.height();
   const SpectralBins bins = binsFor(scene, req);
-  fitIntegratorToBins(integrator, req.integrator, scene, settings, bins);
   // As on the command line, the output is checked before the first sample (core/output_file.h).
   if (!req.output.empty()) checkOutputs({{req.output, "output", ".exr", ""}});
   requireFilmMemory(w, h, bins, false, memoryLimit);

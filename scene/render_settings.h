@@ -2,6 +2,9 @@
 // Render and integrator settings: read from a scene file's "render" object and the command line,
 // used by the integrators.
 #include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "core/memory_budget.h"
 #include "core/sampler.h"
@@ -40,6 +43,25 @@ struct WavelengthSettings {
   WavelengthSpec nee = parseWavelengthSpec("event");                 // λ_i of next-event estimation at a fluorescent event (pt)
 };
 
+// What wavelength lanes do at a vertex that takes the fluorescent lobe (docs/wavelength-sampling.md
+// "Lanes through fluorescent events"): go on through it (a fresh set serves every lane before it),
+// or end in one lane chosen at random, as ART, Mojzík et al. and pbrt-style renderers do (an
+// experiment to compare with; pt and lt).
+enum class FluorescentLanes { Through, End };
+
+inline const char* toString(FluorescentLanes f) { return f == FluorescentLanes::End ? "end" : "through"; }
+// "through" or "end"; nullopt otherwise.
+inline std::optional<FluorescentLanes> parseFluorescentLanes(const std::string& text) {
+  if (text == "through") return FluorescentLanes::Through;
+  if (text == "end") return FluorescentLanes::End;
+  return std::nullopt;
+}
+
+// Thrown when an integrator cannot do what fluorescent_lanes asks (its message says why).
+struct FluorescentLanesError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
 inline constexpr int kAutoLanes = 0;
 inline constexpr int kDefaultLanes = 4;  // an integrator's lanes where it carries them by default
 
@@ -55,6 +77,7 @@ struct RenderSettings {
   // integrator's default (integrators/integrator_factory.h: 4 where the integrator and its
   // wavelength strategies carry lanes, else 1).
   int heroWavelengths = kAutoLanes;
+  FluorescentLanes fluorescentLanes = FluorescentLanes::Through;
   // Largest buffer an integrator may allocate (photon maps, ...): check with requireMemory()
   // before allocating. Set by `kasha render --memory-limit`; not a scene-file setting.
   uint64_t memoryLimit = kDefaultMemoryLimit;

@@ -143,6 +143,9 @@ struct Loader {
     r.heroWavelengths = f.integer("hero_wavelengths", r.heroWavelengths);
     if (r.heroWavelengths < 0 || r.heroWavelengths > 16)
       f.fail("hero_wavelengths", "must be in [1, 16], or 0 for the integrator's default");
+    const std::string lanes = f.string("fluorescent_lanes", toString(r.fluorescentLanes));
+    if (const auto at = parseFluorescentLanes(lanes)) r.fluorescentLanes = *at;
+    else f.fail("fluorescent_lanes", "'" + lanes + "' is not what lanes do at fluorescent events (through, end)");
     photonMapping(f);
     mollification(f);
     f.finish();

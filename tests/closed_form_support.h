@@ -86,22 +86,30 @@ inline std::vector<double> furnaceClosedForm(const Grid& g, const JungBbrrdf& m,
   return L;
 }
 
+// The mean image XYZ of each of `batches` independent renders (seeds firstSeed, firstSeed + 1, …).
+inline std::vector<DVec3> batchMeans(const Scene& scene, const Integrator& integrator, int batches, int spp,
+                                     uint64_t firstSeed, SamplerKind sampler = SamplerKind::Sobol) {
+  std::vector<DVec3> means;
+  for (int b = 0; b < batches; ++b) {
+    Film film(scene.camera.width(), scene.camera.height());
+    RenderOptions opt;
+    opt.spp = spp;
+    opt.seed = firstSeed + uint64_t(b);
+    opt.sampler = sampler;
+    render(scene, integrator, film, opt);
+    means.push_back(film.meanXyz());
+  }
+  return means;
+}
+
 // Mean image XYZ over `batches` independent renders (seeds 1000, 1001, …) of `integrator` with
 // `settings`; checks each channel within 4 standard errors of `exact`, and that the test has power.
 inline void expectXyzAgreement(Scene& scene, const std::string& integrator, const RenderSettings& settings,
                                const Vec3& exact, int batches, int spp) {
   const std::unique_ptr<Integrator> in = makeIntegrator(integrator, scene, settings);
   std::vector<double> bx, by, bz;
-  for (int b = 0; b < batches; ++b) {
-    Film film(scene.camera.width(), scene.camera.height());
-    RenderOptions opt;
-    opt.spp = spp;
-    opt.seed = 1000 + uint64_t(b);
-    opt.sampler = settings.sampler;
-    render(scene, *in, film, opt);
-    const DVec3 m = film.meanXyz();
+  for (const DVec3& m : batchMeans(scene, *in, batches, spp, 1000, settings.sampler))
     bx.push_back(m.x), by.push_back(m.y), bz.push_back(m.z);
-  }
   const BatchStats s[3] = {batchStats(bx), batchStats(by), batchStats(bz)};
   for (int c = 0; c < 3; ++c) {
     SCOPED_TRACE("channel " + std::string(1, "XYZ"[c]) + " depth " + std::to_string(settings.maxDepth));

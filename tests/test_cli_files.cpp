@@ -146,8 +146,9 @@ TEST_F(CliFiles, ConcurrentRendersToOneNameLeaveOneWholeFile) {
 TEST_F(CliFiles, CommandLineMistakesExitWith2) {
   expectRefused({"render", scene, "-q", "--integrator", "foo"}, 2, "unknown integrator 'foo'");
   expectRefused({"render", scene, "-q", "--light-sampling", "uniform"}, 2, "--light-sampling: ");
-  expectRefused({"render", scene, "-q", "--integrator", "bdpt-independent", "--hero", "4"}, 2,
-                "--hero: bdpt: hero wavelengths (4)");
+  expectRefused({"render", scene, "-q", "--fluorescent-lanes", "sideways"}, 2, "--fluorescent-lanes");
+  expectRefused({"render", scene, "-q", "--integrator", "ppm", "--fluorescent-lanes", "end"}, 2,
+                "--fluorescent-lanes: end: fluorescent_lanes 'end' is an experiment of pt and lt, not of ppm");
   expectRefused({"render", scene, "-q", "--seed", "3000000000"}, 2, "--seed: must be at most 2147483647, got '3000000000'");
   expectRefused({"compare", scene, "--reference", dir + "/ref.exr"}, 2, "give a time budget or a sample count");
   expectRefused({"compare", scene, "--reference", dir + "/ref.exr", "--spp", "1", "--integrators", "pt,foo"}, 2,

@@ -386,6 +386,8 @@ TEST_F(SceneLoader, UnknownTypes) {
               "w_F must lie in [0, 1]");
   expectError([](json& j) { j["render"] = {{"hero_wavelengths", 17}}; }, "/render/hero_wavelengths",
               "must be in [1, 16]");
+  expectError([](json& j) { j["render"] = {{"fluorescent_lanes", "sideways"}}; }, "/render/fluorescent_lanes",
+              "'sideways' is not what lanes do at fluorescent events (through, end)");
 }
 
 TEST_F(SceneLoader, MissingMaterial) {

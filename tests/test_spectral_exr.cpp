@@ -269,9 +269,10 @@ TEST_F(SpectralExr, CommandLine) {
   r = test::runKasha({"render", scene, "-q", "--no-png", "--spectral-step", "7", "-o", part}, dir + "/e1");
   EXPECT_EQ(r.code, 2);  // a command-line mistake
   EXPECT_NE(r.err.find("--spectral-step: spectral step: 7 nm does not divide"), std::string::npos) << r.err;
+  // pt keeps bins with its wavelength lanes (each lane's share per sensor wavelength).
   r = test::runKasha({"render", scene, "-q", "--no-png", "--hero", "4", "--spectral-bins", "4", "-o", part}, dir + "/e2");
-  EXPECT_EQ(r.code, 2);  // pt's wavelength lanes cannot keep bins
-  EXPECT_NE(r.err.find("--spectral-bins: spectral bins are not kept by pt with hero wavelengths"), std::string::npos) << r.err;
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(test::readTextFile(dir + "/part.stats.json")).at("hero_wavelengths"), 4);
   r = test::runKasha({"render", scene, "-q", "--no-png", "--spectral-bins", "100", "--memory-limit", "16K", "-o", part},
                      dir + "/e3");
   EXPECT_EQ(r.code, 1);

@@ -327,7 +327,8 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
     any = any || value[k] > 0.0f;
   }
   if (!any || !visible(c, x1, x0)) return;
-  const LightEnd end = lightEnd(c, int(li), x0, x1);
+  const int lightIndex = int(li);  // a structured binding cannot be captured (clang 14)
+  const LightEnd end = lightEnd(c, lightIndex, x0, x1);
   const double pCam0 = cameraSide(c.scene, x1, x2, x0, x1.lobe, lambda0, x1.lambda);
   const double pLight2 = x2.kind != Kind::Camera ? lightSide(c.scene, x1, x0, x2, x1.lobe, lambda0, x1.lambda) : 0.0;
   const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite);
@@ -336,7 +337,7 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
   const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1), pLight2);
   float weight[kMaxLanes];
   laneWeights(c, x1.firstLane(), x1.endLane(c.lanes), weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
-    const MisFactors f = factors(c, int(li), lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
+    const MisFactors f = factors(c, lightIndex, lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
                                  c.lanes.sensorPdf[k], cameraGroup);
     return weigh(c, 1, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
       PathVertex lightVertex = x0;

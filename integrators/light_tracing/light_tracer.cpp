@@ -47,6 +47,7 @@ void splatLanes(SampleContext& ctx, Vec2 pixel, const float* lambda, const float
 LightTracer::LightTracer(const Scene& scene, const RenderSettings& s)
     : wavelengths_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
       lanes_(s.heroWavelengths),
+      atFluorescence_(s.fluorescentLanes),
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth) {
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "for light subpaths");
@@ -90,9 +91,9 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     // Spectral stage (Importance) of every lane: the lobe and the wavelengths leaving this vertex.
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));
     const float uLobe = rng.uniform(), uLane = rng.uniform();
-    LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Importance, known, n, uLobe);
+    LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Importance, known, n, uLobe, nullptr, atFluorescence_);
     if (e.n == 0) break;
-    if (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection)) keepOneLane(e, uLane);
+    if (lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
 
     if (!bsdf.has(BsdfFlags::DeltaDirection)) {
       if (const auto c = scene.camera.connect(hit->p)) {

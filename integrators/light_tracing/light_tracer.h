@@ -5,8 +5,9 @@
 // strata of the light-start strategy's density (by default the scene's emitted power spectrum),
 // the light chosen ∝ Σ_j Φ_light(λ_j). At each vertex the lanes' spectral event picks the lobe
 // (Jung18 eq. 6 with the lanes' mean P_l) and the outgoing wavelengths (elastic: each its own;
-// fluorescent: N fresh lanes ∝ e serving every lane before), which the camera connection and the
-// continued path share; the sensor responds at the wavelength that arrives at it.
+// fluorescent: N fresh lanes ∝ e serving every lane before, or with settings.fluorescentLanes =
+// End one lane kept at random), which the camera connection and the continued path share; the
+// sensor responds at the wavelength that arrives at it.
 #include "scene/wavelength_strategy.h"
 #include "integrators/integrator.h"
 
@@ -24,7 +25,9 @@ class LightTracer final : public Integrator {
 
  private:
   WavelengthStrategy wavelengths_;
-  int lanes_, maxDepth_, rrDepth_;
+  int lanes_;
+  FluorescentLanes atFluorescence_;
+  int maxDepth_, rrDepth_;
 };
 
 }  // namespace kasha

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "core/color.h"
 #include "core/sampling.h"
@@ -11,11 +12,13 @@
 namespace kasha {
 namespace {
 
-using Lanes = HeroPathTracer::Lanes;
+float sum(const Vec3& t) { return t.x + t.y + t.z; }
+float sum(const SensorShares& t) { return t.sum(); }
 
-float magnitude(const Lanes& lanes) {
+template <class T>
+float magnitude(const CameraLanesOf<T>& lanes) {
   float m = 0.0f;
-  for (int j = 0; j < lanes.n; ++j) m += lanes.T[j].x + lanes.T[j].y + lanes.T[j].z;
+  for (int j = 0; j < lanes.n; ++j) m += sum(lanes.T[j]);
   return m;
 }
 
@@ -26,6 +29,7 @@ HeroPathTracer::HeroPathTracer(const Scene& scene, const RenderSettings& s)
       sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
       excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
       n_(s.heroWavelengths),
+      atFluorescence_(s.fluorescentLanes),
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth),
       directXyz_(directEmissionXyz(scene)) {
@@ -39,18 +43,41 @@ Vec3 HeroPathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, S
   const float u = rng.uniform();
   const Vec2 jitter = rng.uniform2();
   // Lane j at the stratum (u + j/N) of p's inverse CDF: distributed as p, weighted by 1/(N·p(λ_j)).
-  Lanes lanes;
-  lanes.n = n_;
+  float lambda[kMaxLanes], pdf[kMaxLanes];
   for (int j = 0; j < n_; ++j) {
     const WavelengthSample s = p.sample(laneStratum(u, j, n_));
-    lanes.lambda[j] = s.lambda;
-    lanes.T[j] = s.pdf > 0.0f ? Observer::cie1931().weight(s.lambda) / (float(n_) * s.pdf) : Vec3(0.0f);
+    lambda[j] = s.lambda;
+    pdf[j] = s.pdf;
   }
-  return radiance(scene, scene.camera.generateRay(pixel + jitter), lanes, rng, ctx.counter);
+  const Ray ray = scene.camera.generateRay(pixel + jitter);
+  if (!ctx.recordSpectral) {
+    // The lanes' XYZ throughput W(λ_j)/(N·p(λ_j)).
+    CameraLanesOf<Vec3> lanes;
+    lanes.n = n_;
+    for (int j = 0; j < n_; ++j) {
+      lanes.lambda[j] = lambda[j];
+      lanes.T[j] = pdf[j] > 0.0f ? Observer::cie1931().weight(lambda[j]) / (float(n_) * pdf[j]) : Vec3(0.0f);
+    }
+    return radiance(scene, ray, lanes, rng, ctx.counter);
+  }
+  // Each lane in its own share of the sensor, which responds at the end (transport.md §1).
+  CameraLanes lanes;
+  lanes.n = n_;
+  for (int j = 0; j < n_; ++j) {
+    lanes.lambda[j] = lambda[j];
+    lanes.T[j].v[j] = pdf[j] > 0.0f ? 1.0f / (float(n_) * pdf[j]) : 0.0f;
+  }
+  const SensorShares L = radiance(scene, ray, lanes, rng, ctx.counter);
+  Vec3 xyz(0.0f);
+  for (int j = 0; j < n_; ++j)
+    if (L.v[j] != 0.0f) xyz += sensorResponse(ctx, lambda[j], L.v[j]);
+  return xyz;
 }
 
-Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler& rng, RayCounter& counter) const {
-  Vec3 L(0.0f);
+template <class T>
+T HeroPathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sampler& rng,
+                           RayCounter& counter) const {
+  T L = lanes.T[0] * 0.0f;
   const float magnitude0 = magnitude(lanes);  // Russian roulette compares the throughput with this
   float prevDirPdf = 0.0f;     // solid-angle density of the direction that led here
   bool prevSpecular = true;    // the camera ray counts as specular: no MIS on direct hits
@@ -81,11 +108,12 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
         w = powerHeuristic(prevDirPdf, laneLightProbability(scene, li, {prevLambda, size_t(prevN)}) *
                                            scene.lights[li]->pdfLi(prevP, hit->p, hit->ng));
       }
-      if (depth == 0) {
-        // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact.
-        if (shape.emission->emitsTowards(hit->ng, -ray.d)) L += directXyz_[size_t(scene.shapeLight[hit->shape])];
-      } else {
+      // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact.
+      // Spectral bins need each lane's share: with SensorShares the lanes estimate it.
+      if (depth > 0 || !std::is_same_v<T, Vec3>) {
         for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (shape.emission->eval(lanes.lambda[j], hit->ng, -ray.d) * w);
+      } else if constexpr (std::is_same_v<T, Vec3>) {
+        if (shape.emission->emitsTowards(hit->ng, -ray.d)) L += directXyz_[size_t(scene.shapeLight[hit->shape])];
       }
     }
     if (depth >= maxDepth_) break;
@@ -96,11 +124,13 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
     const float uLane = rng.uniform();
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));
     LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Radiance, known, n_, uLobe,
-                                  excitation_.draws(shape.material) ? &excitation_.density(shape.material) : nullptr);
+                                  excitation_.draws(shape.material) ? &excitation_.density(shape.material) : nullptr,
+                                  atFluorescence_);
     if (e.n == 0) break;
     // The lanes share one direction sample only where its density is the same for every lane:
-    // next-event estimation below weights all of them with one direction density.
-    if (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection)) keepOneLane(e, uLane);
+    // next-event estimation below weights all of them with one direction density. (And they end
+    // at a fluorescent event with --fluorescent-lanes end.)
+    if (lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
     // Direction sampling uses lane 0's wavelengths (the density is every lane's).
     const float lambdaOut0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lanes.lambda[0];
 
@@ -116,7 +146,7 @@ Vec3 HeroPathTracer::radiance(const Scene& scene, Ray ray, Lanes& lanes, Sampler
     const std::optional<DirectionSample> ds =
         bsdf.sampleDirection(TransportMode::Radiance, wo, e.lobe, e.lambda[0], lambdaOut0, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
-    Lanes next;
+    CameraLanesOf<T> next;
     next.n = e.n;
     for (int k = 0; k < e.n; ++k) {
       next.lambda[k] = e.lambda[k];

@@ -5,7 +5,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/photon_mapping/photon_map.h"
-#include "integrators/photon_mapping/sensor_shares.h"
+#include "integrators/sensor_shares.h"
 
 namespace kasha {
 

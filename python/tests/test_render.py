@@ -60,8 +60,6 @@ def test_errors_carry_kashas_message(tmp_path):
         kasha.render(scene, spp=-3)
     with pytest.raises(ValueError, match="spectral_bins"):
         kasha.render(scene, spp=1, spectral_bins=-2)
-    with pytest.raises(ValueError, match="not kept by pt with hero wavelengths"):
-        kasha.render(scene, spp=1, spectral_bins=4, hero_wavelengths=4)
     with pytest.raises(kasha.InputError, match=r"/materials/nope: no such material"):
         scene.set_material("nope", c=0.5)
     with pytest.raises(KeyError, match="/materials/wall/nothing"):

@@ -25,10 +25,9 @@ def test_furnace_bins_match_the_closed_form_spectrum(integrator):
         result = kasha.render(scene, integrator=integrator, spectral_step=10, **sensor)
         mean, sigma = pixel_mean_and_sigma(result["spectral"])
     wl, width = result["wavelengths"], result["bin_width"]
-    # lt, bdpt and ppm keep bins with their default four wavelength lanes (one splat per lane;
-    # BDPT and ppm keep each sensor wavelength's share apart); pt's default lanes give way to one
-    # wavelength per path, since its XYZ lane throughputs cannot be binned.
-    assert result["stats"]["hero_wavelengths"] == (1 if integrator == "pt" else 4)
+    # Every integrator keeps bins with its default four wavelength lanes (lt: one splat per lane;
+    # pt and ppm: the lanes keep each sensor wavelength's share apart).
+    assert result["stats"]["hero_wavelengths"] == 4
     assert width == pytest.approx(10.0) and len(wl) == 47 and wl[0] == pytest.approx(365.0)
     exact = np.array([bin_average(c - width / 2, c + width / 2, 1.0) for c in wl])
     assert np.all(sigma > 0)

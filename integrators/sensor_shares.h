@@ -1,0 +1,50 @@
+#pragma once
+// The throughput of a camera path's wavelength lanes kept apart per sensor wavelength of the camera
+// sample: component j is the share that reaches the sensor at the sample's j-th wavelength, so
+// every contribution goes through sensorResponse at the wavelength the sensor sees (spectral bins
+// stay exact) even where a fluorescent event mixes the lanes (laneWeight sums over them). Photon
+// mapping's camera paths carry it always, the path tracer's when the render keeps spectral bins
+// (otherwise an XYZ 3-vector). It has the operations laneWeight and laneNextEvent need.
+#include "integrators/wavelength_lanes.h"
+
+namespace kasha {
+
+struct SensorShares {
+  float v[kMaxLanes] = {};
+
+  SensorShares operator*(float s) const {
+    SensorShares r;
+    for (int j = 0; j < kMaxLanes; ++j) r.v[j] = v[j] * s;
+    return r;
+  }
+  SensorShares& operator+=(const SensorShares& o) {
+    for (int j = 0; j < kMaxLanes; ++j) v[j] += o.v[j];
+    return *this;
+  }
+  SensorShares& operator/=(float s) {
+    for (float& x : v) x /= s;
+    return *this;
+  }
+  float sum() const {
+    float s = 0.0f;
+    for (const float x : v) s += x;
+    return s;
+  }
+  bool anyPositive() const {
+    for (const float x : v)
+      if (x > 0.0f) return true;
+    return false;
+  }
+};
+
+// The lanes of a camera path segment: wavelength and throughput (over the path density) of each,
+// the throughput XYZ (Vec3) or SensorShares.
+template <class Throughput>
+struct CameraLanesOf {
+  int n = 0;
+  float lambda[kMaxLanes];
+  Throughput T[kMaxLanes];
+};
+using CameraLanes = CameraLanesOf<SensorShares>;
+
+}  // namespace kasha
