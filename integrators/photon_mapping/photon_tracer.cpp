@@ -60,7 +60,7 @@ void tracePath(const Scene& scene, const PhotonTracing& s, Sampler& rng, std::ve
     const float uLobe = rng.uniform(), uLane = rng.uniform();
     LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Importance, {lanes.lambda, size_t(lanes.n)}, s.lanes, uLobe);
     if (e.n == 0) break;
-    if (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection)) keepOneLane(e, uLane);
+    if (lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
     const std::optional<Vec3> w = scatterLightLanes(bsdf, wi, e, lanes, depth >= s.rrDepth, beta0, rng);
     if (!w) break;
     ray = Ray{offsetPoint(hit->p, hit->ng, *w), *w};
