@@ -473,10 +473,9 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     }
     if (!any) continue;
     // The four densities next to the connection, for its lobes and wavelengths.
-    const float lambdaOutB = family == LightFamily::Shared ? b.lambda : lambdaB;
     const double pLightB = lightSide(c.scene, a, aPrev, b, p.la, a.lambda, p.lambdaA);
-    const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, lambdaOutB) : 0.0;
-    const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, lambdaOutB);
+    const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, lambdaB) : 0.0;
+    const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, lambdaB);
     const double pCamAPrev = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
     const MisSums sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA), pCamAPrev) +
                           cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB), pLightBNext);
