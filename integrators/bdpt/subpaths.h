@@ -30,7 +30,7 @@ struct WalkSettings {
   int rrDepth = 3;
   const WavelengthDensity* lightWavelengths = nullptr;  // the light-start strategy's density (own family)
   // Set where the unified estimator merges both families into one light subpath (docs/bdpt-mis.md
-  // §11): how that subpath starts; every walk then marks the vertices that stop the shared lanes.
+  // §11): how that subpath starts.
   const LightFirstStart* lightFirst = nullptr;
 };
 
@@ -59,9 +59,10 @@ void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shar
 // The unified estimator's one light subpath for both families (docs/bdpt-mis.md §11), started by
 // ws.lightFirst: the light with Q(l), its own wavelength with p_l(λ). One walk, two views of it: LO
 // the own wavelength's (as traceLightSubpath's own family; its choicePdf Q(l)·p_l(λ_0)), LS the
-// camera sample's lanes (choicePdf Q(l)), which stop on arrival at a vertex whose sampling depends
-// on the wavelength (stopsShared). Vertex i of both is the same point; either may end first.
-void traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
-                             RayCounter& counter, std::vector<PathVertex>& LS, std::vector<PathVertex>& LO);
+// camera sample's lanes (as its shared family; choicePdf Q(l)). Where sampling depends on the
+// wavelength and both go on, LS forks and goes on alone. Returns how many vertices the two views
+// share (each the same point in both; all of them if LS never forked).
+int traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
+                            RayCounter& counter, std::vector<PathVertex>& LS, std::vector<PathVertex>& LO);
 
 }  // namespace kasha::bdpt
