@@ -2,10 +2,10 @@
 // Next-event estimation for the wavelength lanes of a camera path (Radiance mode), shared by the
 // path tracer with lanes and photon mapping (docs/wavelength-sampling.md "Hero wavelengths",
 // docs/photon-mapping.md §3). One light is chosen for the lanes after the vertex's spectral event
-// (a LaneLightTable of the event's lanes, kNeeLightsByPower), one point on it serves every lane (a
-// light's geometry does not depend on λ), and lane k of the event adds
-// laneWeight(k)·|cos θ_i|·L_i(λ_k)·w/(P(l)·p_light); the shadow ray is traced only if some lane gets light:
-// for a fluorescent event the excitation lanes λ_k were drawn as the path tracer draws them
+// (LaneLightChoice: after the lanes' weights and the lights' power at them), one point on it serves
+// every lane (a light's geometry does not depend on λ), and lane k of the event adds
+// laneWeight(k)·|cos θ_i|·L_i(λ_k)·w/(P(l)·p_light), the shadow ray traced only if some lane gets
+// light. For a fluorescent event the excitation lanes λ_k were drawn as the path tracer draws them
 // (sampleLaneEvent: Jung18 eq. 7's P_c, then λ_i from the fluorescence strategy or the material).
 #include <cmath>
 #include <span>
@@ -15,6 +15,7 @@
 #include "core/sampling.h"
 #include "scene/render_settings.h"
 #include "scene/wavelength_strategy.h"
+#include "integrators/lane_light_choice.h"
 #include "integrators/shadow_ray.h"
 #include "integrators/wavelength_lanes.h"
 
@@ -47,7 +48,7 @@ enum class NeeWeight {
 // zero at a purely specular vertex. T is the lanes' throughput type.
 template <class T>
 T laneNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, std::span<const float> known,
-                const T* before, const LaneEvent& e, const LaneLightTable& lights, float lambdaOut0, float uLight,
+                const T* before, const LaneEvent& e, const LaneLightChoice& lights, float lambdaOut0, float uLight,
                 Vec2 uPos, NeeWeight weighting, RayCounter& counter) {
   T sum = before[0] * 0.0f;
   if (e.n == 0 || bsdf.has(BsdfFlags::DeltaDirection)) return sum;

@@ -133,30 +133,13 @@ std::pair<size_t, float> selectLaneLight(const Scene& scene, std::span<const flo
   return {chosen, laneLightProbability(scene, chosen, lambda)};
 }
 
-void laneImportance(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, const float* beforeMagnitude,
-                    const LaneEvent& e, float* importance) {
-  float every = 0.0f;    // what a fluorescent lane serving every lane serves
-  int fluorescing = -1;  // a lane before that can fluoresce: its excitation density q_j ∝ absorption
-  for (size_t j = 0; j < known.size(); ++j) {
-    every += beforeMagnitude[j];
-    if (fluorescing < 0 && e.lobe == SpectralLobe::Fluorescent && bsdf.fluorescenceProbability(mode, known[j]) > 0.0f)
-      fluorescing = int(j);
-  }
-  for (int k = 0; k < e.n; ++k) {
-    importance[k] = (e.source[k] == kEveryLane ? every : beforeMagnitude[e.source[k]]) * e.scale[k];
-    if (e.lobe == SpectralLobe::Fluorescent)
-      importance[k] *= fluorescing < 0 ? 0.0f : bsdf.spectralPdf(mode, known[size_t(fluorescing)], e.lambda[k], e.lobe);
-  }
-}
-
-void LaneLightTable::reset(const Scene& scene, std::span<const float> lambda, float byPower, const float* importance) {
+void LaneLightTable::reset(const Scene& scene, std::span<const float> lambda) {
   n_ = int(lambda.size());
   lights_ = scene.lights.size();
   power_.resize(size_t(n_) * lights_);
   single_.resize(size_t(n_) * lights_);
   total_.assign(size_t(n_), 0.0f);
   mixture_.assign(lights_, 0.0f);
-  float all = 0.0f;  // Σ_k I_k·Φ(λ_k)
   for (int k = 0; k < n_; ++k) {
     const float selectorTotal = scene.lightSelector->totalPower(lambda[size_t(k)]);
     for (size_t l = 0; l < lights_; ++l) {
@@ -165,34 +148,17 @@ void LaneLightTable::reset(const Scene& scene, std::span<const float> lambda, fl
       single_[size_t(k) * lights_ + l] = selectorTotal > 0.0f ? power / selectorTotal : 0.0f;  // as probability()
       total_[size_t(k)] += power;
     }
-    all += (importance ? importance[k] : 1.0f) * total_[size_t(k)];
   }
-  float sumMixture = 0.0f;
   for (size_t l = 0; l < lights_; ++l) {
-    float byLane = 0.0f, byPowerSum = 0.0f;
-    for (int k = 0; k < n_; ++k) {
-      const float power = power_[size_t(k) * lights_ + l];
-      if (total_[size_t(k)] > 0.0f) byLane += power / total_[size_t(k)];
-      byPowerSum += (importance ? importance[k] : 1.0f) * power;
-    }
-    mixture_[l] = (all > 0.0f ? byPower * byPowerSum / all : 0.0f) + (1.0f - byPower) * byLane / float(n_);
-    sumMixture += mixture_[l];
+    float sum = 0.0f;
+    for (int k = 0; k < n_; ++k)
+      if (total_[size_t(k)] > 0.0f) sum += power_[size_t(k) * lights_ + l] / total_[size_t(k)];
+    mixture_[l] = sum / float(n_);
   }
-  if (sumMixture > 0.0f)
-    for (float& p : mixture_) p /= sumMixture;
 }
 
 std::pair<size_t, float> LaneLightTable::select(float u) const {
-  // Inverting the CDF of P(l) keeps u's stratification in the choice (whatever the lanes).
-  size_t chosen = lights_;
-  float acc = 0.0f;
-  for (size_t l = 0; l < lights_ && chosen == lights_; ++l) {
-    acc += mixture_[l];
-    if (mixture_[l] > 0.0f && u < acc) chosen = l;
-  }
-  if (chosen == lights_)  // rounding: the last light with P(l) > 0
-    for (size_t l = 0; l < lights_; ++l)
-      if (mixture_[l] > 0.0f) chosen = l;
+  const size_t chosen = chooseLaneLight(n_, lights_, u, [&](int k, size_t l) { return power_[size_t(k) * lights_ + l]; });
   if (chosen == lights_) return {0, 0.0f};
   return {chosen, mixture_[chosen]};
 }

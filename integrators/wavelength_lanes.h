@@ -74,37 +74,19 @@ T laneWeight(const Bsdf& bsdf, TransportMode mode, std::span<const float> known,
 
 // Light selection symmetric in the lanes: a lane J uniformly, then light l ∝ Φ_l(λ_J), so that
 // P(l) = (1/N)·Σ_k Φ_l(λ_k)/Σ_l' Φ_l'(λ_k) (the mixture over the N hero techniques). Each lane
-// gets its share of the choices, however different the lights' powers at the lanes are. Light
-// subpaths start with it (their lanes were drawn from the lights' power already).
+// gets its share of the choices, however different the lights' powers at the lanes are
+// (∝ Σ_k Φ_l(λ_k) would almost never pick a weak white light beside a strong UV one).
 float laneLightProbability(const Scene& scene, size_t light, std::span<const float> lambda);
 // The light chosen with u and its probability P(l) (0 if no light emits at the chosen lane).
 std::pair<size_t, float> selectLaneLight(const Scene& scene, std::span<const float> lambda, float u);
 
-// Next-event estimation's light choice for the lanes after an event (LaneLightTable, with each
-// lane's importance from laneImportance): P(l) ∝ α·Σ_k I_k·Φ_l(λ_k)/Σ_k I_k·Φ(λ_k) + (1 − α)/N·Σ_k
-// Φ_l(λ_k)/Φ(λ_k), Φ the lights' power. The first part follows each lane's expected share of the
-// light (a lane inside a narrow UV source, where the lights are bright, gets the light sample); the
-// second keeps a share for every lane however weak the lights are at it
-// (docs/wavelength-sampling.md "Choosing the light").
-inline constexpr float kNeeLightsByPower = 0.9f;
-
-// Lane k's importance I_k after event e, for the light choice: the throughput magnitude of the
-// lanes before it serves (beforeMagnitude[j] for lane j) times e.scale[k], and for a fluorescent
-// lane times the Bsdf's own excitation (emission) density at its wavelength, which is ∝ the
-// absorption (Kasha's rule), so that I_k follows lane k's weight without a direction.
-void laneImportance(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, const float* beforeMagnitude,
-                    const LaneEvent& e, float* importance);
-
-// The light choice for many choices with one lane set: every light's power at every lane,
-// evaluated once. P(l) ∝ byPower·Σ_k I_k·Φ_l(λ_k)/Σ_k I_k·Φ(λ_k) + (1 − byPower)/N·Σ_k
-// Φ_l(λ_k)/Φ(λ_k) (I_k = 1 without importance), normalised over the lights that emit at some lane,
-// and a light is chosen by inverting its CDF. byPower = 0: selectLaneLight's P(l) (BDPT's).
+// The same two for many choices with one lane set: every light's power at every lane, evaluated
+// once (BDPT chooses lights and weighs them several times per camera sample).
 class LaneLightTable {
  public:
-  void reset(const Scene& scene, std::span<const float> lambda, float byPower = 0.0f,
-             const float* importance = nullptr);
-  std::pair<size_t, float> select(float u) const;                     // the light and P(l)
-  float probability(size_t light) const { return mixture_[light]; }  // P(l)
+  void reset(const Scene& scene, std::span<const float> lambda);
+  std::pair<size_t, float> select(float u) const;                     // as selectLaneLight
+  float probability(size_t light) const { return mixture_[light]; }  // as laneLightProbability
   // p(light | λ_k), LightSelector::probability at lane k's wavelength.
   float laneProbability(size_t light, int k) const { return single_[size_t(k) * lights_ + light]; }
 

@@ -1,6 +1,6 @@
 // Next-event estimation's light choice for wavelength lanes (docs/wavelength-sampling.md "Choosing
-// the light"): LaneLightTable with the lanes' importance (laneImportance).
-// - without the power share it is the per-lane mixture of selectLaneLight (BDPT's choice);
+// the light"): LaneLightChoice with the lanes' importance (laneImportance).
+// - without the power share it is the per-lane mixture of selectLaneLight (light subpaths' choice);
 // - with it, a lane inside a strong narrow UV light takes that light, unless its importance is 0;
 // - select() chooses each light with the probability it reports;
 // - laneImportance follows each lane's weight: equal for fluorescent lanes drawn from the
@@ -12,7 +12,7 @@
 
 #include <memory>
 
-#include "integrators/wavelength_lanes.h"
+#include "integrators/lane_light_choice.h"
 #include "tests/closed_form_support.h"
 
 namespace kasha {
@@ -31,8 +31,9 @@ constexpr float kLanes[4] = {365.0f, 450.0f, 550.0f, 650.0f};
 
 TEST(LaneLightChoice, WithoutThePowerShareItIsEachLanesMixture) {
   const auto scene = load("single_plane_uv_white.json");
-  LaneLightTable table;
-  table.reset(*scene, kLanes);
+  LaneLightChoice table;
+  const float equal[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+  table.reset(*scene, kLanes, equal, 0.0f);
   for (size_t l = 0; l < 2; ++l)
     EXPECT_NEAR(table.probability(l), laneLightProbability(*scene, l, kLanes), 1e-6f) << "light " << l;
   // Each lane gets a quarter: the UV light only through lane 0's quarter.
@@ -51,24 +52,24 @@ TEST(LaneLightChoice, ThePowerShareFollowsTheLanesWeightedPower) {
     all += uv.power(l) + white.power(l);
     uvShare += uv.power(l) / (uv.power(l) + white.power(l)) / 4.0f;
   }
-  LaneLightTable table;
+  LaneLightChoice table;
   const float equal[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-  table.reset(*scene, kLanes, alpha, equal);
+  table.reset(*scene, kLanes, equal);
   EXPECT_NEAR(table.probability(0), alpha * uvPower / all + (1.0f - alpha) * uvShare, 1e-5f);
   EXPECT_NEAR(table.probability(0) + table.probability(1), 1.0f, 1e-6f);
   EXPECT_GT(table.probability(0), 0.85f);  // lane 0's light, thousands of times brighter
   // A lane of importance 0 asks for nothing: the UV light keeps only the defensive share.
   const float noUv[4] = {0.0f, 1.0f, 1.0f, 1.0f};
-  table.reset(*scene, kLanes, alpha, noUv);
+  table.reset(*scene, kLanes, noUv);
   EXPECT_NEAR(table.probability(0), (1.0f - alpha) * uvShare, 1e-5f);
   EXPECT_GT(table.probability(0), 0.0f);
 }
 
 TEST(LaneLightChoice, SelectChoosesEachLightWithItsProbability) {
   const auto scene = load("single_plane_uv_white.json");
-  LaneLightTable table;
+  LaneLightChoice table;
   const float importance[4] = {0.5f, 2.0f, 1.0f, 3.0f};
-  table.reset(*scene, kLanes, kNeeLightsByPower, importance);
+  table.reset(*scene, kLanes, importance);
   const int grid = 100000;
   int chosen[2] = {};
   for (int i = 0; i < grid; ++i) {

@@ -7,6 +7,7 @@
 #include "core/color.h"
 #include "core/sampling.h"
 #include "integrators/direct_emission.h"
+#include "integrators/lane_light_choice.h"
 #include "integrators/lane_next_event.h"
 
 namespace kasha {
@@ -84,7 +85,7 @@ T HeroPathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes,
   Vec3 prevP = ray.o;
   // Next-event estimation's light choice at this vertex and at the last one (the emitter-hit MIS
   // weight needs its P(l)).
-  thread_local LaneLightTable lightChoice[2];
+  thread_local LaneLightChoice lightChoice[2];
   int current = 0;
   const uint32_t firstDimension = rng.dimension();
   for (int depth = 0;; ++depth) {
@@ -138,12 +139,12 @@ T HeroPathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes,
     // Next-event estimation for every lane through one light sample.
     const float uLight = rng.uniform();
     const Vec2 uPos = rng.uniform2();
-    LaneLightTable& lights = lightChoice[current];
+    LaneLightChoice& lights = lightChoice[current];
     if (!bsdf.has(BsdfFlags::DeltaDirection)) {
       float before[kMaxLanes], importance[kMaxLanes];
       for (int j = 0; j < lanes.n; ++j) before[j] = sum(lanes.T[j]);
       laneImportance(bsdf, TransportMode::Radiance, known, before, e, importance);
-      lights.reset(scene, {e.lambda, size_t(e.n)}, kNeeLightsByPower, importance);
+      lights.reset(scene, {e.lambda, size_t(e.n)}, importance);
     }
     L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, e, lights, lambdaOut0, uLight, uPos,
                        NeeWeight::PowerHeuristic, counter);
