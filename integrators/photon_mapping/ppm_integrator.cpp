@@ -153,9 +153,16 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
       // Light sampling is the only estimator of direct light here (the path continues through
       // specular directions only): no MIS weight. "nee-elastic": the elastic lobe of every lane
       // for sure; "nee": the lobe of the spectral event e.
-      if (direct_ != PpmDirectLight::Photons)
-        L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, direct_ == PpmDirectLight::Nee ? e : elasticEvent(known),
+      if (direct_ != PpmDirectLight::Photons) {
+        const LaneEvent& direct = direct_ == PpmDirectLight::Nee ? e : elasticEvent(known);
+        thread_local LaneLightChoice lights;
+        float before[kMaxLanes], importance[kMaxLanes];
+        for (int j = 0; j < lanes.n; ++j) before[j] = lanes.T[j].sum();
+        laneImportance(bsdf, TransportMode::Radiance, known, before, direct, importance);
+        lights.reset(scene, {direct.lambda, size_t(direct.n)}, importance);
+        L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, direct, lights,
                            /*lambdaOut0, unused without MIS*/ 0.0f, uLight, uPos, NeeWeight::Alone, ctx.counter);
+      }
     }
     if (e.n == 0) break;
     // Lanes end where the path tracer ends them: a direction that depends on λ keeps one.
