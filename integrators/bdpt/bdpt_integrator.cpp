@@ -81,7 +81,7 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
   thread_local LaneLightTable lightTable;
   const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, lightTable,
-                                  families_.independent && !lightFirst_ ? &light_.density() : nullptr);
+                                  families_.independent && !lightFirst_ ? &light_.density() : nullptr, lightFirst_.get());
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
   const Vec2 film = pixel + rng.uniform2();

@@ -78,7 +78,9 @@ LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s) {
 // every strategy that can make the path (one group, the shared family alone); with the own family
 // as well, every strategy's choice is taken as p(light | λ_0), a function of the path alone, so
 // that the weights stay a partition of unity for each lane (the estimates divide by the true one).
-MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup) {
+// ownStart: the own family's ℓ where the caller knows it (an own subpath's L[0].choicePdf), else 0.
+MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup,
+                   float ownStart = 0.0f) {
   MisFactors f;
   f.sharedFamily = c.families.shared;
   f.ownFamily = c.families.independent;
@@ -92,9 +94,14 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
   f.cameraChoice = table ? c.lanes.lights->laneProbability(size_t(light), lane)
                          : c.scene.lightSelector->probability(size_t(light), lambda0);
   if (f.ownFamily && c.walk.lightFirst) {
-    // The merged subpath's start (light_first.h): Q(l)·p_l(λ_0).
+    // The merged subpath's start (light_first.h): Q(l)·p_l(λ_0), tabulated at the lanes.
     const LightFirstStart& start = *c.walk.lightFirst;
-    f.ownChoice = double(start.lightProbability(size_t(light))) * start.wavelengthPdf(size_t(light), lambda0);
+    if (ownStart > 0.0f)
+      f.ownChoice = ownStart;
+    else if (table && c.lanes.ownStart)
+      f.ownChoice = c.lanes.ownStart[size_t(lane) * c.scene.lights.size() + size_t(light)];
+    else
+      f.ownChoice = double(start.lightProbability(size_t(light))) * start.wavelengthPdf(size_t(light), lambda0);
   } else if (f.ownFamily) {
     const double pLight = table ? c.lanes.lightPdf[lane] : c.walk.lightWavelengths->pdf(lambda0);
     f.ownChoice = pLight * f.cameraChoice;
@@ -392,7 +399,8 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   own.own = 1.0;
   const MisSums total = firstVertexMultiplicity(true, F, specCam1, true) + lightEndSum(pCam0, a.pdfFwd) +
                         cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda), pLight2);
-  const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false);
+  const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false,
+                                c.walk.lightFirst ? a.choicePdf : 0.0f);
   const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, mf, [&](const MisFactors& g) {
     FullPath fp = layout(c, &L, 1, C, t, end, g);
     fp.v[1].lobe = F;
@@ -492,7 +500,8 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
       // The path's first wavelength: lane k's on a shared subpath, the own subpath's own.
       const MisFactors f = family == LightFamily::Shared
                                ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup)
-                               : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup);
+                               : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup,
+                                         c.walk.lightFirst ? L[0].choicePdf : 0.0f);
       return weigh(c, s, t, p.variant, own, here + sides, f, [&](const MisFactors& g) {
         FullPath fp = layout(c, &L, s, C, t, end, g);
         fp.v[size_t(s - 1)].lobe = p.la;
@@ -591,7 +600,8 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   laneWeights(c, k0, k1, weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     // A shared lane's wavelength is the sensor's lane k; an own subpath's arrives from the light.
     const MisFactors mf = shared ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup)
-                                 : factors(c, L[0].light, L[0].lambda, -1, c.sensor.pdf(lambda), oneGroup);
+                                 : factors(c, L[0].light, L[0].lambda, -1, c.sensor.pdf(lambda), oneGroup,
+                                           c.walk.lightFirst ? L[0].choicePdf : 0.0f);
     return weigh(c, s, 1, variant, own, here + sides, mf, [&](const MisFactors& g) {
       const std::vector<PathVertex> camOnly{cam};
       FullPath fp = layout(c, &L, s, camOnly, 1, end, g);

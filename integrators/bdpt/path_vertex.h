@@ -27,6 +27,9 @@ struct Lanes {
   // both run with more than one lane).
   float lightPdf[kMaxLanes];
   const LaneLightTable* lights = nullptr;  // the lights' powers at the lanes (more than one lane)
+  // The merged light subpath's own start density at the lanes (docs/bdpt-mis.md §11):
+  // Q(l)·p_l(λ_k) at k·lights + l (more than one lane, where the unified estimator merges).
+  const float* ownStart = nullptr;
 };
 
 struct PathVertex {

@@ -225,7 +225,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
 }  // namespace
 
 Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table,
-                  const WavelengthDensity* own) {
+                  const WavelengthDensity* own, const LightFirstStart* merged) {
   Lanes lanes;
   lanes.n = n;
   for (int k = 0; k < n; ++k) {
@@ -238,6 +238,15 @@ Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, 
   if (n > 1) {
     table.reset(scene, {lanes.lambda, size_t(n)});
     lanes.lights = &table;
+  }
+  if (n > 1 && merged) {
+    thread_local std::vector<float> ownStart;
+    const size_t lights = scene.lights.size();
+    ownStart.resize(size_t(n) * lights);
+    for (int k = 0; k < n; ++k)
+      for (size_t l = 0; l < lights; ++l)
+        ownStart[size_t(k) * lights + l] = merged->lightProbability(l) * merged->wavelengthPdf(l, lanes.lambda[k]);
+    lanes.ownStart = ownStart.data();
   }
   return lanes;
 }

@@ -37,9 +37,10 @@ struct WalkSettings {
 // The camera sample's n lanes from one uniform u: lane k at the stratum (u + k/n) of the sensor
 // density's inverse CDF (pt's lanes, Wilkie et al. 2014), each with its density and response;
 // with more than one, `table` is filled with the lights' powers at them, and given the own family's
-// light-start density `own`, each lane's density under it.
+// light-start density `own`, each lane's density under it, or given the merged subpath's start
+// `merged`, its density Q(l)·p_l at each lane for each light.
 Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table,
-                  const WavelengthDensity* own = nullptr);
+                  const WavelengthDensity* own = nullptr, const LightFirstStart* merged = nullptr);
 
 // The light chosen with u for the lanes (a lane's wavelength at random, then ∝ Φ_l there: the
 // mixture over the lanes, wavelength_lanes.h; with one lane, ∝ Φ_l(λ)) and its probability.
