@@ -94,6 +94,7 @@ struct RenderArgs {
   double checkpointInterval = 60.0;
   std::string memoryLimit = "8G";
   float mollifyBandwidth = -1.0f, mollifyAlpha = -1.0f;  // negative: the scene's
+  std::string ppmDirect, ppmNeeWavelengths;              // empty: the scene's render/ppm
   std::string strategyImages;  // directory for one image per BDPT strategy
   bool strategyUnweighted = false;
   int strategyDepth = 4;
@@ -148,6 +149,11 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
                      "only for --integrator bdpt-mollified");
   if (a.mollifyBandwidth >= 0.0f) r.mollify.bandwidth = a.mollifyBandwidth;
   if (a.mollifyAlpha >= 0.0f) r.mollify.alpha = a.mollifyAlpha;
+  if ((!a.ppmDirect.empty() || !a.ppmNeeWavelengths.empty()) && a.integrator != "ppm")
+    throw UsageError(a.ppmDirect.empty() ? "--ppm-nee-wavelengths" : "--ppm-direct", "", "only for --integrator ppm");
+  if (!a.ppmDirect.empty())  // validated by the option's check
+    r.ppm.direct = a.ppmDirect == "nee" ? PpmDirectLight::Nee : a.ppmDirect == "photons" ? PpmDirectLight::Photons : PpmDirectLight::NeeElastic;
+  if (!a.ppmNeeWavelengths.empty()) r.ppm.neeWavelengths = a.ppmNeeWavelengths;
   std::unique_ptr<Integrator> integrator;
   try {
     integrator = makeIntegrator(a.integrator, *scene, r);
@@ -421,6 +427,13 @@ int main(int argc, char** argv) {
       ->check(numberCheck(Sign::NonNegative, false));
   render->add_option("--mollify-alpha", ra.mollifyAlpha, "bdpt-mollified: bandwidth reduction alpha in (0, 1)")
       ->check(numberCheck(Sign::Positive, false) & CLI::Range(0.0, 0.999999));
+  render->add_option("--ppm-direct", ra.ppmDirect,
+                     "ppm: estimator of light straight from a light (render/ppm/direct): nee-elastic | nee | photons")
+      ->check(CLI::IsMember({"nee-elastic", "nee", "photons"}));
+  render->add_option("--ppm-nee-wavelengths", ra.ppmNeeWavelengths,
+                     "ppm: wavelengths of next-event estimation's elastic lobe at the first vertex "
+                     "(render/ppm/nee_wavelengths): cmf*light | camera | a one-density strategy such as mix:cmf,light")
+      ->check([](const std::string& s) { return ppmNeeWavelengthsError(s); });
   render->add_option("--strategy-images", ra.strategyImages,
                      "BDPT: also write one image per (s, t) strategy (MIS-weighted) into this directory");
   render->add_flag("--strategy-unweighted", ra.strategyUnweighted, "With --strategy-images: also the unweighted images");

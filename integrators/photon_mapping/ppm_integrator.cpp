@@ -7,6 +7,7 @@
 #include "integrators/direct_emission.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/lane_next_event.h"
+#include "integrators/photon_mapping/direct_light_wavelengths.h"
 #include "integrators/photon_mapping/photon_gather.h"
 #include "integrators/photon_mapping/photon_tracer.h"
 #include "integrators/progressive_schedule.h"
@@ -36,6 +37,7 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
     : sources_(scene),
       sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
       light_(s.wavelengths.light, sources_, WavelengthSite::LightStart),
+      directLanes_(directLightWavelengths(sources_, s.ppm.neeWavelengths)),
       excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
       n_(s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths),
       maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
@@ -96,6 +98,27 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
   return std::make_unique<PhotonPass>(std::move(photons), radius(firstSample), bandwidth(firstSample), photonsPerPass_);
 }
 
+Vec3 PpmIntegrator::directElasticOwnLanes(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, float uLanes,
+                                          float uLight, Vec2 uPos, SampleContext& ctx) const {
+  // Lane j at the stratum (u + j/N) of the density's inverse CDF, weighted by 1/(N·p(λ_j)) and in
+  // its own sensor share (Wilkie14 eq. 8): the camera ray and its first hit do not depend on λ, so
+  // these lanes estimate ∫ W(λ)·L_direct,elastic(λ) dλ as well as the camera's (§3).
+  CameraLanes own;
+  own.n = n_;
+  for (int j = 0; j < n_; ++j) {
+    const WavelengthSample s = directLanes_->sample(laneStratum(uLanes, j, n_));
+    own.lambda[j] = s.lambda;
+    own.T[j].v[j] = s.pdf > 0.0f ? 1.0f / (float(n_) * s.pdf) : 0.0f;
+  }
+  const std::span<const float> known(own.lambda, size_t(n_));
+  const SensorShares direct = laneNextEvent(scene, hit, bsdf, wo, known, own.T, elasticEvent(known),
+                                            /*lambdaOut0, unused without MIS*/ 0.0f, uLight, uPos, NeeWeight::Alone, ctx.counter);
+  Vec3 xyz(0.0f);
+  for (int j = 0; j < n_; ++j)
+    if (direct.v[j] != 0.0f) xyz += sensorResponse(ctx, own.lambda[j], direct.v[j]);
+  return xyz;
+}
+
 Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   const auto& pass = static_cast<const PhotonPass&>(*ctx.pass);
   const WavelengthDensity& p = sensor_.density();
@@ -140,7 +163,8 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     const Bsdf bsdf = scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)});
     const Vec3 wo = bsdf.toLocal(-ray.d);
     const float uLobe = rng.uniform(), uLane = rng.uniform(), uLight = rng.uniform();
-    const Vec2 uPos = rng.uniform2();
+    const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
+    const float uDirectLanes = rng.uniform();  // the vertex block's last dimension (docs/sampler.md)
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));
     // The spectral event of every lane (Jung18 eq. 7, λ_i as the path tracer draws it): next-event
     // estimation's lobe, and the lobe whose direction continues the path if it is specular.
@@ -153,7 +177,9 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
       // Light sampling is the only estimator of direct light here (the path continues through
       // specular directions only): no MIS weight. "nee-elastic": the elastic lobe of every lane
       // for sure; "nee": the lobe of the spectral event e.
-      if (direct_ != PpmDirectLight::Photons)
+      if (direct_ == PpmDirectLight::NeeElastic && bounces == 0 && directLanes_)
+        xyz += directElasticOwnLanes(scene, *hit, bsdf, wo, uDirectLanes, uLight, uPos, ctx);
+      else if (direct_ != PpmDirectLight::Photons)
         L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, direct_ == PpmDirectLight::Nee ? e : elasticEvent(known),
                            /*lambdaOut0, unused without MIS*/ 0.0f, uLight, uPos, NeeWeight::Alone, ctx.counter);
     }
@@ -162,7 +188,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     if (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection)) keepOneLane(e, uLane);
     const float lambdaOut0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lanes.lambda[0];
     const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(TransportMode::Radiance, wo, e.lobe, e.lambda[0], lambdaOut0, rng.uniform2());
+        bsdf.sampleDirection(TransportMode::Radiance, wo, e.lobe, e.lambda[0], lambdaOut0, uDir);
     // The gather covers every non-specular lobe; a sampled specular direction continues the path.
     if (!ds || !ds->specular || !(ds->pdf > 0.0f)) break;
     CameraLanes next;
