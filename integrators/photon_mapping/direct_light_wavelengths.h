@@ -12,14 +12,15 @@
 
 namespace kasha {
 
-// Share of the colour-matching density in "cmf*light" (defensive importance sampling, Hesterberg
-// 1995): it keeps every wavelength the sensor sees covered, whatever the tabulated product misses.
-inline constexpr float kDefensiveColorMatching = 0.1f;
+// Share of the colour-matching density in "cmf*light": it keeps every wavelength the sensor sees
+// covered (defensive importance sampling, Hesterberg 1995), whatever the tabulated products miss,
+// and the four lanes' strata close to the colour-matching ones under broad lights.
+inline constexpr float kColorMatchingShare = 0.1f;
 
 // The density of render/ppm/nee_wavelengths `setting` (ppmNeeWavelengthsError has accepted it),
-// or nullopt for "camera" (the camera path's own lanes). "cmf*light":
-// (1 − κ)·(x̄+ȳ+z̄)(λ)·Σ_l Φ_l(λ)/∫… + κ·p_cmf(λ), κ = kDefensiveColorMatching (the product
-// tabulated every 0.5 nm where the observer sees; p_cmf alone if no light emits there). Anything
+// or nullopt for "camera" (the camera path's own lanes). "cmf*light", tabulated every 0.5 nm where
+// the observer sees: (1 − κ)·(1/3)·Σ_c c̄(λ)·Σ_l Φ_l(λ)/∫c̄·ΣΦ over c̄ = x̄, ȳ, z̄ + κ·p_cmf(λ),
+// κ = kColorMatchingShare (the channels no light reaches left out; p_cmf alone if none). Anything
 // else is a wavelength strategy built at the sensor site. Throws std::invalid_argument (naming the
 // setting) if the strategy does not apply to the scene.
 std::optional<WavelengthDensity> directLightWavelengths(const WavelengthSources& sources, const std::string& setting);

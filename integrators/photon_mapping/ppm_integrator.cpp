@@ -1,5 +1,6 @@
 #include "integrators/photon_mapping/ppm_integrator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -29,6 +30,19 @@ LaneEvent elasticEvent(std::span<const float> known) {
     e.scale[j] = 1.0f;
   }
   return e;
+}
+
+// Lane j at the stratum (u + j/n) of p's inverse CDF, weighted by 1/(n·p(λ_j)) in its own sensor
+// share (Wilkie14 eq. 8, as the path tracer's lanes).
+CameraLanes stratifiedLanes(const WavelengthDensity& p, float u, int n) {
+  CameraLanes lanes;
+  lanes.n = n;
+  for (int j = 0; j < n; ++j) {
+    const WavelengthSample s = p.sample(laneStratum(u, j, n));
+    lanes.lambda[j] = s.lambda;
+    lanes.T[j].v[j] = s.pdf > 0.0f ? 1.0f / (float(n) * s.pdf) : 0.0f;
+  }
+  return lanes;
 }
 
 }  // namespace
@@ -100,16 +114,9 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
 
 Vec3 PpmIntegrator::directElasticOwnLanes(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, float uLanes,
                                           float uLight, Vec2 uPos, SampleContext& ctx) const {
-  // Lane j at the stratum (u + j/N) of the density's inverse CDF, weighted by 1/(N·p(λ_j)) and in
-  // its own sensor share (Wilkie14 eq. 8): the camera ray and its first hit do not depend on λ, so
-  // these lanes estimate ∫ W(λ)·L_direct,elastic(λ) dλ as well as the camera's (§3).
-  CameraLanes own;
-  own.n = n_;
-  for (int j = 0; j < n_; ++j) {
-    const WavelengthSample s = directLanes_->sample(laneStratum(uLanes, j, n_));
-    own.lambda[j] = s.lambda;
-    own.T[j].v[j] = s.pdf > 0.0f ? 1.0f / (float(n_) * s.pdf) : 0.0f;
-  }
+  // The camera ray and its first hit do not depend on λ, so lanes of another density estimate
+  // ∫ W(λ)·L_direct,elastic(λ) dλ as well as the camera's (§3).
+  const CameraLanes own = stratifiedLanes(*directLanes_, uLanes, n_);
   const std::span<const float> known(own.lambda, size_t(n_));
   const SensorShares direct = laneNextEvent(scene, hit, bsdf, wo, known, own.T, elasticEvent(known),
                                             /*lambdaOut0, unused without MIS*/ 0.0f, uLight, uPos, NeeWeight::Alone, ctx.counter);
@@ -124,16 +131,9 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
   const WavelengthDensity& p = sensor_.density();
   const float u = rng.uniform();
   const Vec2 jitter = rng.uniform2();
-  // Lane j at the stratum (u + j/N) of p's inverse CDF, weighted by 1/(N·p(λ_j)) (Wilkie14 eq. 8,
-  // as the path tracer's lanes), in its own share of the sensor.
-  float sensorLambda[kMaxLanes];
-  CameraLanes lanes;
-  lanes.n = n_;
-  for (int j = 0; j < n_; ++j) {
-    const WavelengthSample s = p.sample(laneStratum(u, j, n_));
-    sensorLambda[j] = lanes.lambda[j] = s.lambda;
-    lanes.T[j].v[j] = s.pdf > 0.0f ? 1.0f / (float(n_) * s.pdf) : 0.0f;
-  }
+  CameraLanes lanes = stratifiedLanes(p, u, n_);
+  float sensorLambda[kMaxLanes];  // the wavelength each sensor share is seen at
+  std::copy(lanes.lambda, lanes.lambda + n_, sensorLambda);
   Ray ray = scene.camera.generateRay(pixel + jitter);
   SensorShares L;    // radiance over density arriving at each sensor wavelength
   Vec3 xyz(0.0f);    // elastic photons seen at their own wavelengths
