@@ -28,8 +28,9 @@ struct PhotonMappingSettings {
   PpmDirectLight direct = PpmDirectLight::NeeElastic;
   // The wavelengths of next-event estimation's elastic lobe at the first camera vertex, where the
   // sensor can be evaluated at any wavelength (docs/photon-mapping.md §3): "cmf*light" (lanes of
-  // their own ∝ (x̄+ȳ+z̄)·Σ_l Φ_l with a defensive colour-matching share), "camera" (the camera
-  // path's lanes), or a wavelength strategy that is one density ("mix:cmf,light", ...).
+  // their own, a third of the density for each of x̄·Σ_l Φ_l, ȳ·Σ_l Φ_l, z̄·Σ_l Φ_l, with a
+  // defensive colour-matching share), "camera" (the camera path's lanes), or a wavelength strategy
+  // that is one density ("mix:cmf,light", ...).
   std::string neeWavelengths = "cmf*light";
 };
 
