@@ -21,11 +21,13 @@ struct Case {
   Families families;
   float bandwidth;  // mollification's kernel half-width (nm), 0: none
   int lanes = 1;    // wavelength lanes per camera sample (docs/bdpt-mis.md §10)
+  bool merged = false;  // both families on one light subpath (the unified estimator, §11)
 };
 
 std::string describe(const Case& c) {
   return std::string(c.scene) + (c.families.shared ? " shared" : "") + (c.families.independent ? " own" : "") +
-         (c.bandwidth > 0.0f ? " mollified" : "") + (c.lanes > 1 ? " lanes " + std::to_string(c.lanes) : "");
+         (c.bandwidth > 0.0f ? " mollified" : "") + (c.lanes > 1 ? " lanes " + std::to_string(c.lanes) : "") +
+         (c.merged ? " merged" : "");
 }
 
 class RecursiveWeights : public ::testing::TestWithParam<Case> {};
@@ -36,7 +38,8 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   const WavelengthSources sources(*scene);
   const WavelengthStrategy sensor(scene->render.wavelengths.sensor, sources, WavelengthSite::Sensor);
   const WavelengthStrategy light(scene->render.wavelengths.light, sources, WavelengthSite::LightStart);
-  const WalkSettings ws{6, 3, &light.density()};  // paths up to 6 scattering vertices
+  const LightFirstStart lightFirst(*scene, scene->render.wavelengths.light);
+  const WalkSettings ws{6, 3, &light.density(), param.merged ? &lightFirst : nullptr};  // paths up to 6 scattering vertices
   std::vector<PathVertex> C, LS, LO;
   std::vector<WeightCheck> checks;
   LaneLightTable lightTable;
@@ -47,13 +50,17 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   for (uint32_t sample = 0; sample < 20000; ++sample) {
     Sampler rng(SamplerKind::Independent, 11, sample, 0);
     const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, lightTable,
-                                    param.families.independent ? &light.density() : nullptr);
+                                    param.families.independent && !param.merged ? &light.density() : nullptr);
     if (lanes.sensorPdf[0] <= 0.0f) continue;
     const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));
     traceCameraSubpath(*scene, film, lanes, ws, rng, counter, C);
     LS.clear(), LO.clear();
-    if (param.families.shared) traceLightSubpath(*scene, LightFamily::Shared, lanes, ws, rng, counter, LS);
-    if (param.families.independent) traceLightSubpath(*scene, LightFamily::Own, lanes, ws, rng, counter, LO);
+    if (param.merged) {
+      traceMergedLightSubpath(*scene, lanes, ws, rng, counter, LS, LO);
+    } else {
+      if (param.families.shared) traceLightSubpath(*scene, LightFamily::Shared, lanes, ws, rng, counter, LS);
+      if (param.families.independent) traceLightSubpath(*scene, LightFamily::Own, lanes, ws, rng, counter, LO);
+    }
     Context c{*scene, ws, param.families, lanes, sensor.density(), counter};
     c.bandwidth = param.bandwidth;
     c.oracle = &checks;
@@ -101,7 +108,17 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/cornell_uv.json", kOwn, 0.0f, 3},
                       Case{"scenes/cornell_uv.json", kOwn, 20.0f, 4},
                       Case{"scenes/validation/mollify_mirror.json", kBoth, 0.0f, 4},
-                      Case{"scenes/validation/single_sphere_environment.json", kBoth, 0.0f, 4}),
+                      Case{"scenes/validation/single_sphere_environment.json", kBoth, 0.0f, 4},
+                      // The merged light subpath: the shared lanes stop where sampling depends on
+                      // the wavelength (fluorescent, dispersive, glossy-coated vertices).
+                      Case{"scenes/cornell_uv.json", kBoth, 0.0f, 1, true},
+                      Case{"scenes/cornell_uv.json", kBoth, 0.0f, 4, true},
+                      Case{"scenes/uv_caustic.json", kBoth, 0.0f, 4, true},
+                      Case{"scenes/validation/furnace_fluorescent.json", kBoth, 0.0f, 4, true},  // a fluorescent emitter
+                      Case{"scenes/validation/mollify_mirror.json", kBoth, 0.0f, 4, true},
+                      Case{"scenes/validation/furnace_point_light.json", kBoth, 0.0f, 4, true},
+                      Case{"scenes/validation/smooth_sphere_distant.json", kBoth, 0.0f, 4, true},
+                      Case{"scenes/validation/single_sphere_environment.json", kBoth, 0.0f, 4, true}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string name = describe(info.param);
       for (char& ch : name)

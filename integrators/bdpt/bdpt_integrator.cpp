@@ -40,6 +40,11 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bdpt::WavelengthMode mod
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by bdpt (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by bdpt (its MIS weights need the light-start density)");
   // Wavelength lanes (docs/bdpt-mis.md §10), in every family.
+  // The unified estimator carries both families on one light subpath (docs/bdpt-mis.md §11).
+  if (mode_ == bdpt::WavelengthMode::Unified && families_.independent) {
+    lightFirst_ = std::make_unique<bdpt::LightFirstStart>(scene, s.wavelengths.light);
+    ws_.lightFirst = lightFirst_.get();
+  }
   lanes_ = s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths;
   if (lanes_ < 1 || lanes_ > kMaxLanes)
     throw std::invalid_argument("bdpt: hero wavelengths " + std::to_string(lanes_) + " is outside [1, " +
@@ -76,14 +81,18 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
   thread_local LaneLightTable lightTable;
   const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, lightTable,
-                                  families_.independent ? &light_.density() : nullptr);
+                                  families_.independent && !lightFirst_ ? &light_.density() : nullptr);
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
   const Vec2 film = pixel + rng.uniform2();
   traceCameraSubpath(scene, film, lanes, ws_, rng, ctx.counter, C);
   LS.clear(), LO.clear();
-  if (families_.shared) traceLightSubpath(scene, LightFamily::Shared, lanes, ws_, rng, ctx.counter, LS);
-  if (families_.independent) traceLightSubpath(scene, LightFamily::Own, lanes, ws_, rng, ctx.counter, LO);
+  if (lightFirst_) {
+    traceMergedLightSubpath(scene, lanes, ws_, rng, ctx.counter, LS, LO);
+  } else {
+    if (families_.shared) traceLightSubpath(scene, LightFamily::Shared, lanes, ws_, rng, ctx.counter, LS);
+    if (families_.independent) traceLightSubpath(scene, LightFamily::Own, lanes, ws_, rng, ctx.counter, LO);
+  }
   Context c{scene, ws_, families_, lanes, sensor_.density(), ctx.counter};
   c.spectralSplats = ctx.recordSpectral;
   if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;

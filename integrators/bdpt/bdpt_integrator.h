@@ -5,12 +5,16 @@
 // joined to elastic camera vertices on paths that never fluoresce, and light subpaths drawing their
 // own from the light-start strategy, by default the lights' power spectrum (Independent), joined
 // through a connection vertex that evaluates its fluorescent lobe. `bdpt` (Unified) combines both
-// in one MIS (docs/bdpt-mis.md §5); `bdpt-shared` and `bdpt-independent` are each family alone.
+// in one MIS (docs/bdpt-mis.md §5), on one light subpath that carries both (§11); `bdpt-shared`
+// and `bdpt-independent` are each family alone.
 // The sensor and light-start strategies must be densities (single or mix:), which enter the MIS
 // weights. Optionally (Independent only) spectral mollification joins elastic connection
 // vertices through a wavelength kernel whose half-width shrinks pass by pass (docs/bdpt-mis.md
 // §6); each pass then takes one sample per pixel.
 #include "scene/wavelength_strategy.h"
+#include <memory>
+
+#include "integrators/bdpt/light_first.h"
 #include "integrators/bdpt/mis.h"
 #include "integrators/bdpt/subpaths.h"
 #include "integrators/integrator.h"
@@ -44,6 +48,8 @@ class Bdpt final : public Integrator {
   float bandwidth1_ = 0.0f, alpha_ = 0.0f;
   int lanes_ = 1;  // wavelength lanes per camera sample (docs/bdpt-mis.md §10)
   std::vector<Vec3> directXyz_;  // per light: its emission's XYZ seen directly (direct_emission.h)
+  // The unified estimator's merged light subpath starts here (both families run; docs/bdpt-mis.md §11).
+  std::unique_ptr<bdpt::LightFirstStart> lightFirst_;
 };
 
 }  // namespace kasha

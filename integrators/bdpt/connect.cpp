@@ -91,7 +91,11 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
   }
   f.cameraChoice = table ? c.lanes.lights->laneProbability(size_t(light), lane)
                          : c.scene.lightSelector->probability(size_t(light), lambda0);
-  if (f.ownFamily) {
+  if (f.ownFamily && c.walk.lightFirst) {
+    // The merged subpath's start (light_first.h): Q(l)·p_l(λ_0).
+    const LightFirstStart& start = *c.walk.lightFirst;
+    f.ownChoice = double(start.lightProbability(size_t(light))) * start.wavelengthPdf(size_t(light), lambda0);
+  } else if (f.ownFamily) {
     const double pLight = table ? c.lanes.lightPdf[lane] : c.walk.lightWavelengths->pdf(lambda0);
     f.ownChoice = pLight * f.cameraChoice;
     if (c.bandwidth > 0.0f) f.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
@@ -113,11 +117,11 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {
     const PathVertex& v = (*L)[size_t(i)];
-    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible()};
+    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible(), v.stopsShared};
   }
   for (int j = 0; j < t; ++j) {
     const PathVertex& v = C[size_t(j)];
-    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible()};
+    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible(), v.stopsShared};
   }
   fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
   fp.v[size_t(k)].pdfLight = 0.0;
@@ -210,12 +214,25 @@ bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
 // The camera side's sum at a connection through C[t−1] (docs/bdpt-mis.md eq. 10): C[t−1] with the
 // light side's density pLast and `mLast` the M of the strategy with t − 1 camera vertices; C[t−2]
 // with the light side's density pBefore.
-MisSums cameraSum(const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast, double pBefore) {
+// Every strategy in it has C[t−2], C[t−1] (unless C[t−1] is the light end x_0, s = 0) and the
+// light subpath's vertex `a` inside its light subpath: where one of them stops the merged shared
+// lanes, or they stopped before a (aBlocks), those strategies lose their shared part
+// (docs/bdpt-mis.md §11).
+MisSums cameraSum(const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast, double pBefore,
+                  bool aBlocks = false, bool bIsLight = false) {
   const PathVertex& b = C[size_t(t - 1)];
   const PathVertex& bNext = C[size_t(t - 2)];
-  return sideSum(b.sums, densityRatio(pBefore, bNext.pdfFwd), cameraMultiplicity(C, t - 2), densityRatio(pLast, b.pdfFwd),
-                 mLast);
+  MisSums sum = b.sums;
+  if (bNext.stopsShared) sum.shared = 0.0;
+  sum = extend(sum, densityRatio(pBefore, bNext.pdfFwd), cameraMultiplicity(C, t - 2));
+  if (b.stopsShared && !bIsLight) sum.shared = 0.0;
+  sum = extend(sum, densityRatio(pLast, b.pdfFwd), mLast);
+  if (aBlocks) sum.shared = 0.0;
+  return sum;
 }
+
+// Whether the merged shared lanes cannot go past a light subpath's vertex a (docs/bdpt-mis.md §11).
+bool blocksShared(const PathVertex& a) { return a.stopsShared || !a.sharedReach; }
 
 // The light side's sum at a connection through L[s−1] (s ≥ 2; eq. 10): L[s−1] with the camera
 // side's density pLast and `mLast` the M of the strategy with s − 1 light vertices; L[s−2] with
@@ -223,8 +240,8 @@ MisSums cameraSum(const std::vector<PathVertex>& C, int t, double pLast, const M
 MisSums lightSum(const std::vector<PathVertex>& L, int s, double pLast, const MisSums& mLast, double pBefore) {
   const PathVertex& a = L[size_t(s - 1)];
   const PathVertex& aPrev = L[size_t(s - 2)];
-  return sideSum(a.sums, densityRatio(pBefore, aPrev.pdfFwd), lightMultiplicity(L, s - 2), densityRatio(pLast, a.pdfFwd),
-                 mLast);
+  return extend(extend(a.sums, densityRatio(pBefore, aPrev.pdfFwd), lightMultiplicity(L, s - 2)),
+                densityRatio(pLast, a.pdfFwd), mLast);
 }
 
 // The light side's sum of a strategy whose light subpath ends at x_0 (s = 1): the camera side's
@@ -262,7 +279,7 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
   const MisSums m1 = k >= 2 ? firstVertexMultiplicity(next.connectible(), next.lobe, next.spectralPdf, end.finite)
                             : directLightMultiplicity(e.kind == Kind::Surface);
   const MisSums own = hitMultiplicity();
-  const MisSums total = own + cameraSum(C, t, end.pdf0, m1, end.pdf1);
+  const MisSums total = own + cameraSum(C, t, end.pdf0, m1, end.pdf1, false, true);
   float weight[kMaxLanes];
   laneWeights(c, e.firstLane(), e.endLane(c.lanes), weight, [&](int j) { return Le[j] > 0.0f; }, [&](int j) {
     const MisFactors f = factors(c, e.light, e.lambdaOf(c.lanes, j), e.elasticBefore ? j : -1, c.lanes.sensorPdf[j],
@@ -405,7 +422,7 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
 }
 
 void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
-             const std::vector<PathVertex>& C, int t, float* out) {
+             const std::vector<PathVertex>& C, int t, float* out, VisibilityMemo* memo) {
   const PathVertex& a = L[size_t(s - 1)];
   const PathVertex& b = C[size_t(t - 1)];
   if (a.kind != Kind::Surface || b.kind != Kind::Surface || !a.connectible() || !b.connectible()) return;
@@ -478,8 +495,10 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, lambdaB);
     const double pCamAPrev = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
     const MisSums sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA), pCamAPrev) +
-                          cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB), pLightBNext);
-    const MisSums here = joinMultiplicity(true, p.la, p.lb);
+                          cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB), pLightBNext,
+                                    blocksShared(a));
+    MisSums here = joinMultiplicity(true, p.la, p.lb);
+    if (!a.sharedReach) here.shared = 0.0;
     MisSums own;
     (p.variant == Variant::kStandard ? own.shared : p.variant == Variant::kOwn ? own.own : own.mollified) = 1.0;
     const bool oneGroup = a.elasticBefore && b.elasticBefore && p.la == SpectralLobe::Elastic && p.lb == SpectralLobe::Elastic;
@@ -506,7 +525,7 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     if (std::none_of(weight + k0, weight + k1, [](float w) { return w > 0.0f; })) continue;
     if (!checked) {
       checked = true;
-      unoccluded = visible(c, a, b);
+      unoccluded = memo ? memo->get(s, t, [&] { return visible(c, a, b); }) : visible(c, a, b);
     }
     if (!unoccluded) return;
     // Mollified: the delta δ(λ_a − λ_b) of the elastic pair widened to K_h (Jung et al. 2020),
@@ -525,7 +544,7 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
 }
 
 void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
-                     std::vector<Splat>& splats) {
+                     std::vector<Splat>& splats, VisibilityMemo* memo) {
   const PathVertex& a = L[size_t(s - 1)];
   if (a.kind == Kind::Infinite || !a.connectible()) return;
   const std::optional<Camera::Connection> conn = c.scene.camera.connect(a.p);
@@ -577,6 +596,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     }
     pCamAPrev = cameraSide(c.scene, a, cam, aPrev, a.lobe, a.lambda, lambda);
     here = lightTracingMultiplicity(true, a.spectralPdf);
+    if (blocksShared(a)) here.shared = 0.0;
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
     sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1), pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
@@ -604,7 +624,8 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       return misWeight(fp, s, variant);
     });
   });
-  if (std::none_of(weight + k0, weight + k1, [](float w) { return w > 0.0f; }) || !visible(c, a, cam)) return;
+  if (std::none_of(weight + k0, weight + k1, [](float w) { return w > 0.0f; })) return;
+  if (!(memo ? memo->get(s, 1, [&] { return visible(c, a, cam); }) : visible(c, a, cam))) return;
   // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel); a
   // shared lane's wavelength was the sensor's sample, one of n.
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
@@ -629,6 +650,10 @@ void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const s
                      const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats, float* out,
                      Vec3& xyz) {
   const int maxDepth = c.walk.maxDepth;
+  // The merged subpath's two views share their vertices' visibility (docs/bdpt-mis.md §11).
+  thread_local VisibilityMemo sharedVisibility;
+  VisibilityMemo* memo = c.walk.lightFirst ? &sharedVisibility : nullptr;
+  if (memo) memo->reset(int(std::max(LS.size(), LO.size())), int(C.size()));
   std::fill(out, out + c.lanes.n, 0.0f);
   xyz = Vec3(0.0f);
   // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelengths.
@@ -639,12 +664,14 @@ void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const s
       nextEvent(c, C, t, rng, out);
       if (!LO.empty()) connectLightVertex(c, LO, C, t, out);
     }
-    for (int s = 2; s <= int(LS.size()) && (s - 1) + (t - 1) <= maxDepth; ++s) connect(c, LS, LightFamily::Shared, s, C, t, out);
-    for (int s = 2; s <= int(LO.size()) && (s - 1) + (t - 1) <= maxDepth; ++s) connect(c, LO, LightFamily::Own, s, C, t, out);
+    for (int s = 2; s <= int(LS.size()) && (s - 1) + (t - 1) <= maxDepth; ++s)
+      connect(c, LS, LightFamily::Shared, s, C, t, out, memo);
+    for (int s = 2; s <= int(LO.size()) && (s - 1) + (t - 1) <= maxDepth; ++s)
+      connect(c, LO, LightFamily::Own, s, C, t, out, memo);
   }
   // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
-  for (int s = 1; s <= int(LS.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LS, LightFamily::Shared, s, splats);
-  for (int s = 1; s <= int(LO.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LO, LightFamily::Own, s, splats);
+  for (int s = 1; s <= int(LS.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LS, LightFamily::Shared, s, splats, memo);
+  for (int s = 1; s <= int(LO.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LO, LightFamily::Own, s, splats, memo);
 }
 
 }  // namespace kasha::bdpt

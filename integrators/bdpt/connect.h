@@ -17,6 +17,29 @@ struct WeightCheck {
   float recursive, full;
 };
 
+// Visibility between light-subpath vertex s−1 and camera-subpath vertex t−1 (t = 1: the pinhole),
+// kept for the merged light subpath's second view, whose vertex s−1 is the same point
+// (docs/bdpt-mis.md §11): one shadow ray serves both families.
+class VisibilityMemo {
+ public:
+  // Forgets everything; s up to lightVertices, t up to cameraVertices.
+  void reset(int lightVertices, int cameraVertices) {
+    stride_ = cameraVertices + 1;
+    known_.assign(size_t((lightVertices + 1) * stride_), int8_t(-1));
+  }
+  // The remembered answer for (s, t), or test()'s, remembered.
+  template <class Test>
+  bool get(int s, int t, Test&& test) {
+    int8_t& k = known_[size_t(s * stride_ + t)];
+    if (k < 0) k = test() ? 1 : 0;
+    return k == 1;
+  }
+
+ private:
+  std::vector<int8_t> known_;
+  int stride_ = 0;
+};
+
 struct Context {
   const Scene& scene;
   const WalkSettings& walk;
@@ -56,12 +79,13 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
 // s ≥ 2, t ≥ 2: connect L[s−1] of a light subpath of `family` and C[t−1] through every exact lobe
 // pair (two elastic lobes in the shared family, one fluorescent in the own), and through two
 // elastic lobes with the wavelength kernel when mollifying (own family).
+// With `memo`, visibility is remembered for the other view of a merged light subpath.
 void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
-             const std::vector<PathVertex>& C, int t, float* out);
+             const std::vector<PathVertex>& C, int t, float* out, VisibilityMemo* memo = nullptr);
 // t = 1: L[s−1] (s ≥ 1) of a light subpath of `family` seen by the pinhole, with the spectral event
 // the light subpath sampled there; appends a splat (film units) per lane if visible.
 void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
-                     std::vector<Splat>& splats);
+                     std::vector<Splat>& splats, VisibilityMemo* memo = nullptr);
 
 // Every strategy of one camera sample: the camera subpath C joined to the light subpaths of the
 // shared (LS) and own (LO) families (either may be empty). Sets out[k] to lane k's radiance at its

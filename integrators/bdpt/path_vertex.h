@@ -68,6 +68,12 @@ struct PathVertex {
   // the subpath scattered elastically.
   MisSums sums;
   bool elasticBefore = true;
+  // The merged light subpath of the unified estimator (docs/bdpt-mis.md §11): whether the shared
+  // lanes stop here (sampling here depends on the wavelength: fluorescent or wavelength-dependent
+  // direction), and, on a light subpath, whether they can reach this vertex (none of the vertices
+  // between the light and it stops them). Always false / true where no subpath is merged.
+  bool stopsShared = false;
+  bool sharedReach = true;
 
   bool onSurface() const { return kind == Kind::Surface; }
   // Whether several lanes reach this vertex (each at its own wavelength).

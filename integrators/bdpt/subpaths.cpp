@@ -1,5 +1,7 @@
 #include "integrators/bdpt/subpaths.h"
 
+#include <algorithm>
+
 #include "core/color.h"
 #include "integrators/bdpt/subpath_mis.h"
 
@@ -12,119 +14,190 @@ float laneSum(const float* beta, int n) {
   return sum;
 }
 
-// Extends `path` from its last vertex along `ray` (Veach's random walk). pdfSA is the density of
-// ray's direction at the last vertex (per steradian; for a light at infinity, per unit area of
-// its disk). Camera walks run in Radiance mode, light walks in Importance mode; a walk with
-// stopAtFluorescence ends at its first fluorescent event (the shared family's light subpaths).
-void randomWalk(const Scene& scene, Ray ray, const float* betaStart, float pdfSA, const Lanes& lanes, TransportMode mode,
-                bool stopAtFluorescence, const WalkSettings& ws, Sampler& rng, RayCounter& counter, std::vector<PathVertex>& path) {
+// One subpath traced along a walk's rays: a walk carries one, or two where the unified estimator
+// merges its light subpaths (docs/bdpt-mis.md §11).
+struct Track {
+  const Lanes* lanes = nullptr;
+  std::vector<PathVertex>* path = nullptr;
+  float beta[kMaxLanes] = {};
+  float beta0 = 0.0f;  // the lanes' starting throughput, for Russian roulette
+  float lambda = 0.0f;
+  int lane = 0;        // -1 every lane alive, else the one kept (a one-lane subpath: its only lane)
+  float pdfSA = 0.0f;  // density of the ray's direction at the last vertex, its spectral event included
+  bool alive = true;
+  bool stopAtFluorescence = false;  // the shared family alone: ends at its first fluorescent event
+  bool stopAtLaneEnd = false;       // the merged shared lanes: end on arrival where stopsShared
+  SpectralChoice event;             // the spectral event sampled at the last vertex
+};
+
+Track startTrack(const Lanes& lanes, std::vector<PathVertex>& path, const float* betaStart, float pdfSA) {
+  Track tr;
+  tr.lanes = &lanes;
+  tr.path = &path;
+  std::copy(betaStart, betaStart + lanes.n, tr.beta);
+  tr.beta0 = laneSum(tr.beta, lanes.n);
+  tr.lambda = lanes.lambda[0];
+  tr.lane = lanes.n > 1 ? -1 : 0;
+  tr.pdfSA = pdfSA;
+  return tr;
+}
+
+// Appends the surface vertex at `hit`, reached along `ray`, to the track's subpath.
+void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int light, bool merged, TransportMode mode,
+            Sampler& rng) {
+  const Lanes& lanes = *tr.lanes;
+  std::vector<PathVertex>& path = *tr.path;
+  const PathVertex& prev = path.back();
+  PathVertex v;
+  v.kind = PathVertex::Kind::Surface;
+  v.p = hit.p;
+  v.n = hit.ng;
+  v.bsdf = bsdf;
+  v.light = light;
+  const bool lambdaDependent = bsdf.has(BsdfFlags::Fluorescent) || bsdf.has(BsdfFlags::WavelengthDependentDirection);
+  v.stopsShared = merged && lambdaDependent;
+  v.sharedReach = prev.sharedReach && !prev.stopsShared;
+  // Where sampling depends on the wavelength, the lanes end in one chosen at random, its weight
+  // times n (docs/bdpt-mis.md §10): every density on the subpath is then that lane's.
+  // Elsewhere the densities are those of any lane that scatters here (docs/bdpt-mis.md §10).
+  if (lanes.n > 1 && tr.lane < 0) {
+    const float uLane = rng.uniform();
+    v.laneU = uLane;
+    if (lambdaDependent) {
+      tr.lane = std::min(int(uLane * float(lanes.n)), lanes.n - 1);
+      tr.lambda = lanes.lambda[tr.lane];
+      for (int k = 0; k < lanes.n; ++k) tr.beta[k] = k == tr.lane ? tr.beta[k] * float(lanes.n) : 0.0f;
+    } else {
+      tr.lambda = lanes.lambda[0];
+      for (int k = 0; k < lanes.n; ++k)
+        if (tr.beta[k] > 0.0f && bsdf.spectralPdf(mode, lanes.lambda[k], lanes.lambda[k], SpectralLobe::Elastic) > 0.0f) {
+          tr.lambda = lanes.lambda[k];
+          break;
+        }
+    }
+  }
+  std::copy(tr.beta, tr.beta + lanes.n, v.beta);
+  v.lane = int8_t(tr.lane);
+  v.lambda = tr.lambda;
+  v.pdfFwd = prev.kind == PathVertex::Kind::Infinite ? tr.pdfSA * std::abs(glm::dot(v.n, ray.d))  // disk → surface
+                                                      : toAreaDensity(tr.pdfSA, prev, v);
+  path.push_back(v);
+  updateSums(path, mode);
+  if (tr.stopAtLaneEnd && v.stopsShared) tr.alive = false;
+}
+
+// The track's spectral event at its last vertex, sampled with u; false if it cannot go on.
+bool sampleEvent(Track& tr, TransportMode mode, float u) {
+  PathVertex& cur = tr.path->back();
+  const SpectralChoice sc = cur.bsdf->sampleSpectral(mode, tr.lambda, u);
+  if (sc.pdf <= 0.0f) return false;
+  cur.lobe = sc.lobe;
+  cur.lambdaNext = sc.lambda;
+  cur.spectralPdf = sc.pdf;
+  cur.eventSampled = true;
+  tr.event = sc;
+  return true;
+}
+
+// The track's throughput and densities through its last vertex's event along the sampled
+// direction ds (local frame; wKnown the direction it arrived from); false if no lane goes on.
+bool scatter(Track& tr, const Scene& scene, TransportMode mode, const Vec3& wKnown, const DirectionSample& ds) {
   const bool camera = mode == TransportMode::Radiance;
-  float beta[kMaxLanes];
-  std::copy(betaStart, betaStart + lanes.n, beta);
-  const float beta0 = laneSum(beta, lanes.n);
-  float lambda = lanes.lambda[0];
-  int lane = lanes.n > 1 ? -1 : 0;  // every lane alive, or the one kept (a one-lane subpath: its only lane)
+  std::vector<PathVertex>& path = *tr.path;
+  const Lanes& lanes = *tr.lanes;
+  PathVertex& cur = path.back();
+  const Bsdf& bsdf = *cur.bsdf;
+  const SpectralChoice& sc = tr.event;
+  const float lambdaIn = camera ? sc.lambda : tr.lambda, lambdaOut = camera ? tr.lambda : sc.lambda;
+  const Vec3 wi = camera ? ds.w : wKnown, wo = camera ? wKnown : ds.w;
+  cur.specular = ds.specular;
+  const float pdfFwd = sc.pdf * ds.pdf;
+  const float pdfRev = bsdf.spectralPdf(flip(mode), sc.lambda, tr.lambda, sc.lobe) *
+                       bsdf.directionPdf(flip(mode), ds.w, wKnown, sc.lobe, lambdaIn, lambdaOut);
+  // The other side's density of the previous vertex. A delta light or the pinhole cannot be
+  // reached by the other side at all.
+  PathVertex& before = path[path.size() - 2];
+  if (before.kind == PathVertex::Kind::Camera || before.deltaPosition ||
+      (before.kind == PathVertex::Kind::Infinite && scene.lights[size_t(before.light)]->isDelta()))
+    before.pdfRev = 0.0f;
+  else
+    before.pdfRev = toAreaDensity(pdfRev, cur, before);
+  // Every lane alive here scatters elastically through a wavelength-independent density.
+  for (int k = cur.firstLane(); k < cur.endLane(lanes); ++k) {
+    const float f = cur.allLanes(lanes) ? bsdf.eval(mode, wi, wo, lanes.lambda[k], lanes.lambda[k], sc.lobe)
+                                        : bsdf.eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
+    tr.beta[k] *= f * std::abs(ds.w.z) / pdfFwd;
+  }
+  tr.lambda = sc.lambda;
+  tr.pdfSA = pdfFwd;
+  return laneSum(tr.beta, lanes.n) > 0.0f;
+}
+
+// Extends the tracks' subpaths from their last vertex (one point) along `ray` (Veach's random
+// walk). Camera walks run in Radiance mode, light walks in Importance mode. Where two tracks share
+// the walk (the merged light subpath), the vertices where both go on stop neither's lanes: both
+// scatter elastically there with a wavelength-independent direction density, which the first live
+// track samples.
+void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, TransportMode mode, const WalkSettings& ws,
+                Sampler& rng, RayCounter& counter) {
+  const bool camera = mode == TransportMode::Radiance;
+  const bool merged = ws.lightFirst != nullptr;
   int surfaces = 0;
   for (;;) {
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++counter.closest;
-    PathVertex& prev = path.back();
     if (!hit) {
+      Track& tr = tracks[0];
       if (camera && scene.environment()) {  // the camera path escapes to the environment
         PathVertex v;
         v.kind = PathVertex::Kind::Infinite;
         v.dir = -ray.d;
         v.light = scene.environmentLight;
-        std::copy(beta, beta + lanes.n, v.beta);
-        v.lane = int8_t(lane);
-        v.lambda = lambda;
-        v.pdfFwd = pdfSA;
-        path.push_back(v);
-        updateSums(path, mode);
+        std::copy(tr.beta, tr.beta + tr.lanes->n, v.beta);
+        v.lane = int8_t(tr.lane);
+        v.lambda = tr.lambda;
+        v.pdfFwd = tr.pdfSA;
+        tr.path->push_back(v);
+        updateSums(*tr.path, mode);
       }
       return;
     }
-    PathVertex v;
-    v.kind = PathVertex::Kind::Surface;
-    v.p = hit->p;
-    v.n = hit->ng;
-    v.bsdf = lane < 0 ? scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)}) : scene.bsdf(*hit, {&lambda, 1});
-    v.light = scene.shapeLight[hit->shape];
-    // Where sampling depends on the wavelength, the lanes end in one chosen at random, its weight
-    // times n (docs/bdpt-mis.md §10): every density on the subpath is then that lane's.
-    // Elsewhere the densities are those of any lane that scatters here (docs/bdpt-mis.md §10).
-    if (lanes.n > 1 && lane < 0) {
-      const float uLane = rng.uniform();
-      v.laneU = uLane;
-      if (v.bsdf->has(BsdfFlags::Fluorescent) || v.bsdf->has(BsdfFlags::WavelengthDependentDirection)) {
-        lane = std::min(int(uLane * float(lanes.n)), lanes.n - 1);
-        lambda = lanes.lambda[lane];
-        for (int k = 0; k < lanes.n; ++k) beta[k] = k == lane ? beta[k] * float(lanes.n) : 0.0f;
-      } else {
-        lambda = lanes.lambda[0];
-        for (int k = 0; k < lanes.n; ++k)
-          if (beta[k] > 0.0f && v.bsdf->spectralPdf(mode, lanes.lambda[k], lanes.lambda[k], SpectralLobe::Elastic) > 0.0f) {
-            lambda = lanes.lambda[k];
-            break;
-          }
-      }
-    }
-    std::copy(beta, beta + lanes.n, v.beta);
-    v.lane = int8_t(lane);
-    v.lambda = lambda;
-    v.pdfFwd = prev.kind == PathVertex::Kind::Infinite ? pdfSA * std::abs(glm::dot(v.n, ray.d))  // disk → surface
-                                                        : toAreaDensity(pdfSA, prev, v);
-    path.push_back(v);
-    updateSums(path, mode);
+    const Bsdf bsdf = scene.bsdf(*hit, {tracks[0].lanes->lambda, size_t(tracks[0].lanes->n)});
+    const int light = scene.shapeLight[hit->shape];
+    for (int i = 0; i < nTracks; ++i)
+      if (tracks[i].alive) arrive(tracks[i], *hit, ray, bsdf, light, merged, mode, rng);
     ++surfaces;
     // Vertices up to maxDepth sample their spectral event (used by next-event estimation and
     // the camera connection); camera vertices then extend up to maxDepth (the next one may be an
     // emitter hit), light vertices while a path through the next one can end within maxDepth.
     if (surfaces > ws.maxDepth) return;
-    PathVertex& cur = path.back();
-    const Bsdf& bsdf = *cur.bsdf;
     const Vec3 wKnown = bsdf.toLocal(-ray.d);
-    const SpectralChoice sc = bsdf.sampleSpectral(mode, lambda, rng.uniform());
-    if (sc.pdf <= 0.0f) return;
-    cur.lobe = sc.lobe;
-    cur.lambdaNext = sc.lambda;
-    cur.spectralPdf = sc.pdf;
-    cur.eventSampled = true;
+    const float uSpectral = rng.uniform();
+    for (int i = 0; i < nTracks; ++i)
+      if (tracks[i].alive && !sampleEvent(tracks[i], mode, uSpectral)) tracks[i].alive = false;
     if (!camera && surfaces == ws.maxDepth) return;
-    if (stopAtFluorescence && sc.lobe == SpectralLobe::Fluorescent) return;
-    const float lambdaIn = camera ? sc.lambda : lambda, lambdaOut = camera ? lambda : sc.lambda;
-    const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, rng.uniform2());
+    for (int i = 0; i < nTracks; ++i)
+      if (tracks[i].stopAtFluorescence && tracks[i].event.lobe == SpectralLobe::Fluorescent) tracks[i].alive = false;
+    const Track* driver = std::find_if(tracks, tracks + nTracks, [](const Track& t) { return t.alive; });
+    if (driver == tracks + nTracks) return;
+    const SpectralChoice& sc = driver->event;
+    const float lambdaIn = camera ? sc.lambda : driver->lambda, lambdaOut = camera ? driver->lambda : sc.lambda;
+    const std::optional<DirectionSample> ds = bsdf.sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) return;
-    const Vec3 wi = camera ? ds->w : wKnown, wo = camera ? wKnown : ds->w;
-    cur.specular = ds->specular;
-    const float pdfFwd = sc.pdf * ds->pdf;
-    const float pdfRev = bsdf.spectralPdf(flip(mode), sc.lambda, lambda, sc.lobe) *
-                         bsdf.directionPdf(flip(mode), ds->w, wKnown, sc.lobe, lambdaIn, lambdaOut);
-    // The other side's density of the previous vertex. A delta light or the pinhole cannot be
-    // reached by the other side at all.
-    PathVertex& before = path[path.size() - 2];
-    if (before.kind == PathVertex::Kind::Camera || before.deltaPosition ||
-        (before.kind == PathVertex::Kind::Infinite && scene.lights[size_t(before.light)]->isDelta()))
-      before.pdfRev = 0.0f;
-    else
-      before.pdfRev = toAreaDensity(pdfRev, cur, before);
-    // Every lane alive here scatters elastically through a wavelength-independent density.
-    for (int k = cur.firstLane(); k < cur.endLane(lanes); ++k) {
-      const float f = cur.allLanes(lanes) ? bsdf.eval(mode, wi, wo, lanes.lambda[k], lanes.lambda[k], sc.lobe)
-                                          : bsdf.eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
-      beta[k] *= f * std::abs(ds->w.z) / pdfFwd;
+    float q = 0.0f;
+    for (int i = 0; i < nTracks; ++i) {
+      Track& tr = tracks[i];
+      if (tr.alive && !scatter(tr, scene, mode, wKnown, *ds)) tr.alive = false;
+      if (tr.alive) q = std::max(q, laneSum(tr.beta, tr.lanes->n) / tr.beta0);
     }
-    const float sum = laneSum(beta, lanes.n);
-    if (!(sum > 0.0f)) return;
-    lambda = sc.lambda;
-    pdfSA = pdfFwd;
+    if (std::none_of(tracks, tracks + nTracks, [](const Track& t) { return t.alive; })) return;
     const Vec3 w = bsdf.toWorld(ds->w);
-    ray = Ray{offsetPoint(cur.p, cur.n, w), w};
+    ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
     if (surfaces >= ws.rrDepth) {  // Russian roulette against the starting throughput
-      const float q = std::min(1.0f, sum / beta0);
+      q = std::min(1.0f, q);
       if (rng.uniform() >= q) return;
-      for (int k = 0; k < lanes.n; ++k) beta[k] /= q;
+      for (int i = 0; i < nTracks; ++i)
+        for (int k = 0; k < tracks[i].lanes->n; ++k) tracks[i].beta[k] /= q;
     }
   }
 }
@@ -169,8 +242,49 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
   const Ray ray = scene.camera.generateRay(filmPos);
   // The sensor's density of the last wavelength group is a factor of the weights (mis_sums.h).
   const float pdfDir = scene.camera.directionPdf(ray.d);
-  randomWalk(scene, ray, c.beta, pdfDir, lanes, TransportMode::Radiance, false, ws, rng, counter, out);
+  Track tr = startTrack(lanes, out, c.beta, pdfDir);
+  randomWalk(scene, ray, &tr, 1, TransportMode::Radiance, ws, rng, counter);
 }
+
+namespace {
+
+// A light subpath's first vertex L[0] on light `light` from its emission sample (taken at
+// sampledLambda), with its lanes' throughput Le/(choice·pL_0) and the throughput leaving along the
+// sample's direction (betaOut); false if no lane carries light.
+bool startLightVertex(const Light& L, size_t light, const EmissionSample& es, float sampledLambda, const Lanes& lanes,
+                      float choice, PathVertex& v, float* betaOut) {
+  v.kind = L.atInfinity() ? PathVertex::Kind::Infinite : PathVertex::Kind::Light;
+  v.p = es.p;
+  v.n = es.n;
+  v.dir = es.w;
+  v.light = int(light);
+  v.lambda = lanes.lambda[0];
+  if (lanes.n == 1) v.lane = 0;
+  v.deltaPosition = es.deltaPos;
+  // At infinity the light vertex is a direction (density per sr) and the disk position is the
+  // density of the first surface point; otherwise the position is the vertex. The light choice is
+  // a factor of the weights (mis_sums.h).
+  const float start = L.atInfinity() ? es.pdfDir : es.pdfPos;
+  v.pdfFwd = start;
+  v.choicePdf = choice;
+  for (int k = 0; k < lanes.n; ++k) {
+    // The emission's geometry does not depend on λ: the same point and direction at every lane's.
+    const float Le = lanes.lambda[k] == sampledLambda ? es.Le : L.emitted(es, lanes.lambda[k]);
+    v.beta[k] = Le / (choice * start);
+    betaOut[k] = Le * es.cosOrigin / (choice * es.pdfPos * es.pdfDir);
+  }
+  return laneSum(v.beta, lanes.n) > 0.0f;
+}
+
+Ray emissionRay(const EmissionSample& es) {
+  const Vec3 origin = glm::dot(es.n, es.n) > 0.0f ? offsetPoint(es.p, es.n, es.w) : es.p;
+  return Ray{origin, es.w};
+}
+
+// The density of the emission ray's direction (per unit area of the disk for a light at infinity).
+float emissionDirectionPdf(const Light& L, const EmissionSample& es) { return L.atInfinity() ? es.pdfPos : es.pdfDir; }
+
+}  // namespace
 
 void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
                        RayCounter& counter, std::vector<PathVertex>& out) {
@@ -186,40 +300,52 @@ void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shar
     const auto [l, p] = selectLight(scene, lanes, u2);
     light = l, choice = p;
   }
-  const float lambda = lanes.lambda[0];
   const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
   if (choice <= 0.0f) return;
   const Light& L = *scene.lights[light];
-  const std::optional<EmissionSample> es = L.sampleEmission(lambda, uPos, uDir);
+  const std::optional<EmissionSample> es = L.sampleEmission(lanes.lambda[0], uPos, uDir);
   if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return;
   PathVertex v;
-  v.kind = L.atInfinity() ? PathVertex::Kind::Infinite : PathVertex::Kind::Light;
-  v.p = es->p;
-  v.n = es->n;
-  v.dir = es->w;
-  v.light = int(light);
-  v.lambda = lambda;
-  if (lanes.n == 1) v.lane = 0;
-  v.deltaPosition = es->deltaPos;
-  // At infinity the light vertex is a direction (density per sr) and the disk position is the
-  // density of the first surface point; otherwise the position is the vertex. The light choice is
-  // a factor of the weights (mis_sums.h).
-  const float start = L.atInfinity() ? es->pdfDir : es->pdfPos;
-  v.pdfFwd = start;
-  v.choicePdf = choice;
   float beta[kMaxLanes];
-  for (int k = 0; k < lanes.n; ++k) {
-    // The emission's geometry does not depend on λ: the same point and direction at every lane's.
-    const float Le = k == 0 ? es->Le : L.emitted(*es, lanes.lambda[k]);
-    v.beta[k] = Le / (choice * start);
-    beta[k] = Le * es->cosOrigin / (choice * es->pdfPos * es->pdfDir);
-  }
-  if (!(laneSum(v.beta, lanes.n) > 0.0f)) return;
+  if (!startLightVertex(L, light, *es, lanes.lambda[0], lanes, choice, v, beta)) return;
   out.push_back(v);
   updateSums(out, TransportMode::Importance);
-  const Vec3 origin = glm::dot(es->n, es->n) > 0.0f ? offsetPoint(es->p, es->n, es->w) : es->p;
-  randomWalk(scene, Ray{origin, es->w}, beta, L.atInfinity() ? es->pdfPos : es->pdfDir, lanes,
-             TransportMode::Importance, family == LightFamily::Shared, ws, rng, counter, out);
+  Track tr = startTrack(lanes, out, beta, emissionDirectionPdf(L, *es));
+  tr.stopAtFluorescence = family == LightFamily::Shared;
+  randomWalk(scene, emissionRay(*es), &tr, 1, TransportMode::Importance, ws, rng, counter);
+}
+
+void traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
+                             RayCounter& counter, std::vector<PathVertex>& LS, std::vector<PathVertex>& LO) {
+  LS.clear(), LO.clear();
+  const float uLight = rng.uniform(), uLambda = rng.uniform();
+  const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
+  const LightFirstStart::Draw d = ws.lightFirst->sample(uLight, uLambda);
+  if (!(d.lightPdf > 0.0f)) return;
+  Lanes own = shared;
+  own.n = 1, own.lambda[0] = d.lambda;
+  const Light& L = *scene.lights[d.light];
+  // The emission's geometry does not depend on λ: one sample serves both views.
+  const std::optional<EmissionSample> es = L.sampleEmission(d.lambda, uPos, uDir);
+  if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return;
+  Track tracks[2];
+  int n = 0;
+  PathVertex v;
+  float beta[kMaxLanes];
+  const float pdfDir = emissionDirectionPdf(L, *es);
+  if (startLightVertex(L, d.light, *es, d.lambda, own, d.lightPdf * d.wavelengthPdf, v, beta)) {
+    LO.push_back(v);
+    updateSums(LO, TransportMode::Importance);
+    tracks[n++] = startTrack(own, LO, beta, pdfDir);
+  }
+  v = PathVertex{};
+  if (startLightVertex(L, d.light, *es, d.lambda, shared, d.lightPdf, v, beta)) {
+    LS.push_back(v);
+    updateSums(LS, TransportMode::Importance);
+    tracks[n] = startTrack(shared, LS, beta, pdfDir);
+    tracks[n++].stopAtLaneEnd = true;
+  }
+  if (n > 0) randomWalk(scene, emissionRay(*es), tracks, n, TransportMode::Importance, ws, rng, counter);
 }
 
 }  // namespace kasha::bdpt

@@ -5,6 +5,7 @@
 #include "core/sampler.h"
 #include "scene/scene.h"
 #include "core/wavelength_density.h"
+#include "integrators/bdpt/light_first.h"
 #include "integrators/bdpt/path_vertex.h"
 #include "integrators/integrator.h"
 
@@ -15,7 +16,7 @@ namespace kasha::bdpt {
 enum class WavelengthMode : uint8_t {
   Shared,       // the light subpath starts at the camera sample's wavelength
   Independent,  // the light subpath draws its own wavelength from the light-start strategy
-  Unified,      // both: a shared one, and (in scenes that fluoresce) one of its own
+  Unified,      // both: in scenes that fluoresce, one light subpath read as both (docs/bdpt-mis.md §11)
 };
 
 // The wavelength of one light subpath.
@@ -28,6 +29,9 @@ struct WalkSettings {
   int maxDepth = 64;  // maximum number of scattering vertices on a full path
   int rrDepth = 3;
   const WavelengthDensity* lightWavelengths = nullptr;  // the light-start strategy's density (own family)
+  // Set where the unified estimator merges both families into one light subpath (docs/bdpt-mis.md
+  // §11): how that subpath starts; every walk then marks the vertices that stop the shared lanes.
+  const LightFirstStart* lightFirst = nullptr;
 };
 
 // The camera sample's n lanes from one uniform u: lane k at the stratum (u + k/n) of the sensor
@@ -51,5 +55,13 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
 // cannot weight); an own one has one lane.
 void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
                        RayCounter& counter, std::vector<PathVertex>& out);
+
+// The unified estimator's one light subpath for both families (docs/bdpt-mis.md §11), started by
+// ws.lightFirst: the light with Q(l), its own wavelength with p_l(λ). One walk, two views of it: LO
+// the own wavelength's (as traceLightSubpath's own family; its choicePdf Q(l)·p_l(λ_0)), LS the
+// camera sample's lanes (choicePdf Q(l)), which stop on arrival at a vertex whose sampling depends
+// on the wavelength (stopsShared). Vertex i of both is the same point; either may end first.
+void traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
+                             RayCounter& counter, std::vector<PathVertex>& LS, std::vector<PathVertex>& LO);
 
 }  // namespace kasha::bdpt
