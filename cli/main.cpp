@@ -42,6 +42,7 @@
 #include "integrators/bdpt/strategy_images.h"
 #include "scene/wavelength_strategy.h"
 #include "integrators/integrator_factory.h"
+#include "integrators/photon_mapping/direct_light_wavelengths.h"
 #include "integrators/render_loop.h"
 #include "integrators/render_setup.h"
 #include "materials/jung_bbrrdf.h"
@@ -169,6 +170,9 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     if (a.integratorGiven) throw UsageError("--integrator " + a.integrator, "", std::string(e.what()) + " (/render/" +
                                                                                 settingName(e.site()) + " in " + a.scene + ")");
     throw InputError(a.scene, "/render/" + std::string(settingName(e.site())), e.what());
+  } catch (const PpmNeeWavelengthsError& e) {
+    if (!a.ppmNeeWavelengths.empty()) throw UsageError("--ppm-nee-wavelengths", "", e.what());
+    throw InputError(a.scene, "/render/ppm/nee_wavelengths", e.what());
   } catch (const FluorescentLanesError& e) {
     // Only --integrator can name one that refuses it (pt, the default, takes it).
     if (!a.fluorescentLanes.empty()) throw UsageError("--fluorescent-lanes", a.fluorescentLanes, e.what());

@@ -54,7 +54,7 @@ std::optional<WavelengthDensity> directLightWavelengths(const WavelengthSources&
     const WavelengthSpec spec = parseWavelengthSpec(setting);
     return WavelengthStrategy(spec, sources, WavelengthSite::Sensor).density();
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("ppm: render/ppm/nee_wavelengths '" + setting + "': " + e.what());
+    throw PpmNeeWavelengthsError("'" + setting + "': " + e.what());
   }
 }
 

@@ -177,7 +177,9 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
       // Light sampling is the only estimator of direct light here (the path continues through
       // specular directions only): no MIS weight. "nee-elastic": the elastic lobe of every lane
       // for sure; "nee": the lobe of the spectral event e.
-      if (direct_ == PpmDirectLight::NeeElastic && bounces == 0 && directLanes_)
+      // Spectral bins keep the camera's lanes: their density is the one the bins asked for, while
+      // the own lanes follow the observer, whose far-red tail they would reach only rarely (§3).
+      if (direct_ == PpmDirectLight::NeeElastic && bounces == 0 && directLanes_ && !ctx.recordSpectral)
         xyz += directElasticOwnLanes(scene, *hit, bsdf, wo, uDirectLanes, uLight, uPos, ctx);
       else if (direct_ != PpmDirectLight::Photons)
         L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, direct_ == PpmDirectLight::Nee ? e : elasticEvent(known),
