@@ -1,10 +1,11 @@
 #pragma once
 // Next-event estimation for the wavelength lanes of a camera path (Radiance mode), shared by the
 // path tracer with lanes and photon mapping (docs/wavelength-sampling.md "Hero wavelengths",
-// docs/photon-mapping.md §3). One light is chosen symmetrically in the lanes after the vertex's
-// spectral event (selectLaneLight), one point on it serves every lane (a light's geometry does not
-// depend on λ), and lane k of the event adds laneWeight(k)·|cos θ_i|·L_i(λ_k)·w/(P(l)·p_light):
-// for a fluorescent event the excitation lanes λ_k were drawn as the path tracer draws them
+// docs/photon-mapping.md §3). One light is chosen for the lanes after the vertex's spectral event
+// (LaneLightChoice: after the lanes' weights and the lights' power at them), one point on it serves
+// every lane (a light's geometry does not depend on λ), and lane k of the event adds
+// laneWeight(k)·|cos θ_i|·L_i(λ_k)·w/(P(l)·p_light), the shadow ray traced only if some lane gets
+// light. For a fluorescent event the excitation lanes λ_k were drawn as the path tracer draws them
 // (sampleLaneEvent: Jung18 eq. 7's P_c, then λ_i from the fluorescence strategy or the material).
 #include <cmath>
 #include <span>
@@ -14,6 +15,7 @@
 #include "core/sampling.h"
 #include "scene/render_settings.h"
 #include "scene/wavelength_strategy.h"
+#include "integrators/lane_light_choice.h"
 #include "integrators/shadow_ray.h"
 #include "integrators/wavelength_lanes.h"
 
@@ -40,19 +42,20 @@ enum class NeeWeight {
 
 // The contribution of one light sample to every lane of event `e` at the non-specular vertex
 // `hit` (outgoing direction wo in the Bsdf's frame); `before[j]` is lane j's throughput before
-// the event at the known wavelength known[j], lambdaOut0 the outgoing wavelength the direction
-// sampling of the event's lane 0 uses (for the power heuristic). uLight chooses the light, uPos
-// the point on it. Returns zero at a purely specular vertex. T is the lanes' throughput type.
+// the event at the known wavelength known[j], `lights` the light choice for the event's lanes
+// (reset with e.lambda), lambdaOut0 the outgoing wavelength the direction sampling of the event's
+// lane 0 uses (for the power heuristic). uLight chooses the light, uPos the point on it. Returns
+// zero at a purely specular vertex. T is the lanes' throughput type.
 template <class T>
 T laneNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, std::span<const float> known,
-                const T* before, const LaneEvent& e, float lambdaOut0, float uLight, Vec2 uPos, NeeWeight weighting,
-                RayCounter& counter) {
+                const T* before, const LaneEvent& e, const LaneLightChoice& lights, float lambdaOut0, float uLight,
+                Vec2 uPos, NeeWeight weighting, RayCounter& counter) {
   T sum = before[0] * 0.0f;
   if (e.n == 0 || bsdf.has(BsdfFlags::DeltaDirection)) return sum;
-  const auto [li, pSelect] = selectLaneLight(scene, {e.lambda, size_t(e.n)}, uLight);
+  const auto [li, pSelect] = lights.select(uLight);
   if (!(pSelect > 0.0f)) return sum;
   const std::optional<LightSample> ls = scene.lights[li]->sampleLi(hit.p, e.lambda[0], uPos);
-  if (!ls || !(ls->pdf > 0.0f) || !lightVisible(scene, hit, *ls, counter)) return sum;
+  if (!ls || !(ls->pdf > 0.0f)) return sum;
   const Vec3 wi = bsdf.toLocal(ls->wi);
   const float lightPdf = pSelect * ls->pdf;
   const float w = ls->delta || weighting == NeeWeight::Alone
@@ -62,8 +65,11 @@ T laneNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3
   for (int k = 0; k < e.n; ++k) {
     // The light's geometry does not depend on λ: the same point at every lane's wavelength.
     const float Li = k == 0 ? ls->Li : scene.lights[li]->Li(*ls, e.lambda[k]);
-    sum += laneWeight(bsdf, TransportMode::Radiance, known, before, e, k, wi, wo) * (std::abs(wi.z) * Li * w / lightPdf);
+    if (Li > 0.0f)
+      sum += laneWeight(bsdf, TransportMode::Radiance, known, before, e, k, wi, wo) * (std::abs(wi.z) * Li * w / lightPdf);
   }
+  // The shadow ray only where it can change the estimate.
+  if (sum == before[0] * 0.0f || !lightVisible(scene, hit, *ls, counter)) return before[0] * 0.0f;
   return sum;
 }
 

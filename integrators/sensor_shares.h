@@ -30,6 +30,7 @@ struct SensorShares {
     for (const float x : v) s += x;
     return s;
   }
+  bool operator==(const SensorShares&) const = default;
   bool anyPositive() const {
     for (const float x : v)
       if (x > 0.0f) return true;

@@ -147,19 +147,27 @@ TEST(ClosedForm, SingleScatteringSphereUnderEnvironment) {
 void checkPlane(const std::string& name) {
   auto scene = load(name);
   const JungBbrrdf& m = jung(*scene);
-  const auto& light = dynamic_cast<const DistantLight&>(*scene->lights.at(0));
-  const float cosTheta = std::abs(light.direction().y);
   const Grid g(scene->range);
-  const double absorbed = g.integrate(g.sample([&](double l) { return m.c() * m.a(float(l)) * light.irradiance(float(l)); }));
-  const std::vector<double> L = g.sample([&](double l) {
-    const float lf = float(l);
-    return cosTheta * ((1.0 - m.c() * m.a(lf)) * m.r(lf) * light.irradiance(lf) + m.q() * m.e(lf) * absorbed) / kPi;
-  });
+  // Single scattering is linear in the lights: the sum of each distant light's closed form.
+  std::vector<double> L(g.sample([](double) { return 0.0; }));
+  for (const auto& l : scene->lights) {
+    const auto& light = dynamic_cast<const DistantLight&>(*l);
+    const float cosTheta = std::abs(light.direction().y);
+    const double absorbed = g.integrate(g.sample([&](double x) { return m.c() * m.a(float(x)) * light.irradiance(float(x)); }));
+    const std::vector<double> Ll = g.sample([&](double x) {
+      const float xf = float(x);
+      return cosTheta * ((1.0 - m.c() * m.a(xf)) * m.r(xf) * light.irradiance(xf) + m.q() * m.e(xf) * absorbed) / kPi;
+    });
+    for (size_t i = 0; i < L.size(); ++i) L[i] += Ll[i];
+  }
   expectAgreement(*scene, 1000, toXyz(g, L));
 }
 
 TEST(ClosedForm, SingleScatteringPlaneUnderDistantLight) { checkPlane("single_plane_distant.json"); }
 TEST(ClosedForm, SingleScatteringPlaneUnderUvLightIsPurelyFluorescent) { checkPlane("single_plane_uv.json"); }
+// A strong narrow UV light beside a dim white one: next-event estimation's light choice for the
+// lanes (weighted by the lights' power at each lane) must stay unbiased for both.
+TEST(ClosedForm, SingleScatteringPlaneUnderUvAndWhiteLights) { checkPlane("single_plane_uv_white.json"); }
 
 }  // namespace
 }  // namespace kasha

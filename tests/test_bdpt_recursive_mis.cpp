@@ -50,18 +50,21 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   for (uint32_t sample = 0; sample < 20000; ++sample) {
     Sampler rng(SamplerKind::Independent, 11, sample, 0);
     const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, lightTable,
-                                    param.families.independent && !param.merged ? &light.density() : nullptr);
+                                    param.families.independent && !param.merged ? &light.density() : nullptr,
+                                    param.merged ? &lightFirst : nullptr);
     if (lanes.sensorPdf[0] <= 0.0f) continue;
     const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));
     traceCameraSubpath(*scene, film, lanes, ws, rng, counter, C);
     LS.clear(), LO.clear();
+    int sharedLightVertices = 0;
     if (param.merged) {
-      traceMergedLightSubpath(*scene, lanes, ws, rng, counter, LS, LO);
+      sharedLightVertices = traceMergedLightSubpath(*scene, lanes, ws, rng, counter, LS, LO);
     } else {
       if (param.families.shared) traceLightSubpath(*scene, LightFamily::Shared, lanes, ws, rng, counter, LS);
       if (param.families.independent) traceLightSubpath(*scene, LightFamily::Own, lanes, ws, rng, counter, LO);
     }
     Context c{*scene, ws, param.families, lanes, sensor.density(), counter};
+    c.sharedLightVertices = sharedLightVertices;
     c.bandwidth = param.bandwidth;
     c.oracle = &checks;
     checks.clear();
@@ -109,7 +112,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/cornell_uv.json", kOwn, 20.0f, 4},
                       Case{"scenes/validation/mollify_mirror.json", kBoth, 0.0f, 4},
                       Case{"scenes/validation/single_sphere_environment.json", kBoth, 0.0f, 4},
-                      // The merged light subpath: the shared lanes stop where sampling depends on
+                      // The merged light subpath: the shared lanes fork where sampling depends on
                       // the wavelength (fluorescent, dispersive, glossy-coated vertices).
                       Case{"scenes/cornell_uv.json", kBoth, 0.0f, 1, true},
                       Case{"scenes/cornell_uv.json", kBoth, 0.0f, 4, true},

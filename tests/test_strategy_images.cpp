@@ -107,11 +107,8 @@ TEST_F(StrategyImagesCli, WritesOneImagePerStrategy) {
                                 dir + "/run");
   ASSERT_EQ(r.code, 0) << r.err;
   // Depth 2 in the furnace: s = 0, NEE and light tracing for each length, the light-vertex
-  // strategy (the walls fluoresce), and the connection s = 2, t = 2 of each family. Light tracing
-  // is the own family's: the walls fluoresce, so the merged subpath's shared lanes stop at the
-  // first one (docs/bdpt-mis.md §11).
-  for (const char* stem : {"s0_t2", "s0_t3", "s0_t4", "s1_t2", "s1_t3", "s2_t1_own", "s3_t1_own", "s1_t2_light_vertex",
-                           "s2_t2", "s2_t2_own"})
+  // strategy (the walls fluoresce), and the fluorescent connection s = 2, t = 2.
+  for (const char* stem : {"s0_t2", "s0_t3", "s0_t4", "s1_t2", "s1_t3", "s2_t1", "s3_t1", "s1_t2_light_vertex", "s2_t2"})
     for (const char* ext : {".exr", ".png"}) {
       EXPECT_TRUE(fs::is_regular_file(out + "/" + stem + ext)) << stem << ext;
       EXPECT_TRUE(fs::is_regular_file(out + "/" + stem + "_unweighted" + ext)) << stem << ext;

@@ -81,19 +81,21 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
   thread_local LaneLightTable lightTable;
   const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, lightTable,
-                                  families_.independent && !lightFirst_ ? &light_.density() : nullptr);
+                                  families_.independent && !lightFirst_ ? &light_.density() : nullptr, lightFirst_.get());
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
   const Vec2 film = pixel + rng.uniform2();
   traceCameraSubpath(scene, film, lanes, ws_, rng, ctx.counter, C);
   LS.clear(), LO.clear();
+  int sharedLightVertices = 0;
   if (lightFirst_) {
-    traceMergedLightSubpath(scene, lanes, ws_, rng, ctx.counter, LS, LO);
+    sharedLightVertices = traceMergedLightSubpath(scene, lanes, ws_, rng, ctx.counter, LS, LO);
   } else {
     if (families_.shared) traceLightSubpath(scene, LightFamily::Shared, lanes, ws_, rng, ctx.counter, LS);
     if (families_.independent) traceLightSubpath(scene, LightFamily::Own, lanes, ws_, rng, ctx.counter, LO);
   }
   Context c{scene, ws_, families_, lanes, sensor_.density(), ctx.counter};
+  c.sharedLightVertices = sharedLightVertices;
   c.spectralSplats = ctx.recordSpectral;
   if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
   if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;

@@ -78,7 +78,9 @@ LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s) {
 // every strategy that can make the path (one group, the shared family alone); with the own family
 // as well, every strategy's choice is taken as p(light | λ_0), a function of the path alone, so
 // that the weights stay a partition of unity for each lane (the estimates divide by the true one).
-MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup) {
+// ownStart: the own family's ℓ where the caller knows it (an own subpath's L[0].choicePdf), else 0.
+MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup,
+                   float ownStart = 0.0f) {
   MisFactors f;
   f.sharedFamily = c.families.shared;
   f.ownFamily = c.families.independent;
@@ -92,9 +94,14 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
   f.cameraChoice = table ? c.lanes.lights->laneProbability(size_t(light), lane)
                          : c.scene.lightSelector->probability(size_t(light), lambda0);
   if (f.ownFamily && c.walk.lightFirst) {
-    // The merged subpath's start (light_first.h): Q(l)·p_l(λ_0).
+    // The merged subpath's start (light_first.h): Q(l)·p_l(λ_0), tabulated at the lanes.
     const LightFirstStart& start = *c.walk.lightFirst;
-    f.ownChoice = double(start.lightProbability(size_t(light))) * start.wavelengthPdf(size_t(light), lambda0);
+    if (ownStart > 0.0f)
+      f.ownChoice = ownStart;
+    else if (table && c.lanes.ownStart)
+      f.ownChoice = c.lanes.ownStart[size_t(lane) * c.scene.lights.size() + size_t(light)];
+    else
+      f.ownChoice = double(start.lightProbability(size_t(light))) * start.wavelengthPdf(size_t(light), lambda0);
   } else if (f.ownFamily) {
     const double pLight = table ? c.lanes.lightPdf[lane] : c.walk.lightWavelengths->pdf(lambda0);
     f.ownChoice = pLight * f.cameraChoice;
@@ -117,11 +124,11 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {
     const PathVertex& v = (*L)[size_t(i)];
-    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible(), v.stopsShared};
+    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible()};
   }
   for (int j = 0; j < t; ++j) {
     const PathVertex& v = C[size_t(j)];
-    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible(), v.stopsShared};
+    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible()};
   }
   fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
   fp.v[size_t(k)].pdfLight = 0.0;
@@ -214,25 +221,12 @@ bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
 // The camera side's sum at a connection through C[t−1] (docs/bdpt-mis.md eq. 10): C[t−1] with the
 // light side's density pLast and `mLast` the M of the strategy with t − 1 camera vertices; C[t−2]
 // with the light side's density pBefore.
-// Every strategy in it has C[t−2], C[t−1] (unless C[t−1] is the light end x_0, s = 0) and the
-// light subpath's vertex `a` inside its light subpath: where one of them stops the merged shared
-// lanes, or they stopped before a (aBlocks), those strategies lose their shared part
-// (docs/bdpt-mis.md §11).
-MisSums cameraSum(const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast, double pBefore,
-                  bool aBlocks = false, bool bIsLight = false) {
+MisSums cameraSum(const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast, double pBefore) {
   const PathVertex& b = C[size_t(t - 1)];
   const PathVertex& bNext = C[size_t(t - 2)];
-  MisSums sum = b.sums;
-  if (bNext.stopsShared) sum.shared = 0.0;
-  sum = extend(sum, densityRatio(pBefore, bNext.pdfFwd), cameraMultiplicity(C, t - 2));
-  if (b.stopsShared && !bIsLight) sum.shared = 0.0;
-  sum = extend(sum, densityRatio(pLast, b.pdfFwd), mLast);
-  if (aBlocks) sum.shared = 0.0;
-  return sum;
+  return sideSum(b.sums, densityRatio(pBefore, bNext.pdfFwd), cameraMultiplicity(C, t - 2), densityRatio(pLast, b.pdfFwd),
+                 mLast);
 }
-
-// Whether the merged shared lanes cannot go past a light subpath's vertex a (docs/bdpt-mis.md §11).
-bool blocksShared(const PathVertex& a) { return a.stopsShared || !a.sharedReach; }
 
 // The light side's sum at a connection through L[s−1] (s ≥ 2; eq. 10): L[s−1] with the camera
 // side's density pLast and `mLast` the M of the strategy with s − 1 light vertices; L[s−2] with
@@ -240,8 +234,8 @@ bool blocksShared(const PathVertex& a) { return a.stopsShared || !a.sharedReach;
 MisSums lightSum(const std::vector<PathVertex>& L, int s, double pLast, const MisSums& mLast, double pBefore) {
   const PathVertex& a = L[size_t(s - 1)];
   const PathVertex& aPrev = L[size_t(s - 2)];
-  return extend(extend(a.sums, densityRatio(pBefore, aPrev.pdfFwd), lightMultiplicity(L, s - 2)),
-                densityRatio(pLast, a.pdfFwd), mLast);
+  return sideSum(a.sums, densityRatio(pBefore, aPrev.pdfFwd), lightMultiplicity(L, s - 2), densityRatio(pLast, a.pdfFwd),
+                 mLast);
 }
 
 // The light side's sum of a strategy whose light subpath ends at x_0 (s = 1): the camera side's
@@ -279,7 +273,7 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
   const MisSums m1 = k >= 2 ? firstVertexMultiplicity(next.connectible(), next.lobe, next.spectralPdf, end.finite)
                             : directLightMultiplicity(e.kind == Kind::Surface);
   const MisSums own = hitMultiplicity();
-  const MisSums total = own + cameraSum(C, t, end.pdf0, m1, end.pdf1, false, true);
+  const MisSums total = own + cameraSum(C, t, end.pdf0, m1, end.pdf1);
   float weight[kMaxLanes];
   laneWeights(c, e.firstLane(), e.endLane(c.lanes), weight, [&](int j) { return Le[j] > 0.0f; }, [&](int j) {
     const MisFactors f = factors(c, e.light, e.lambdaOf(c.lanes, j), e.elasticBefore ? j : -1, c.lanes.sensorPdf[j],
@@ -405,7 +399,8 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   own.own = 1.0;
   const MisSums total = firstVertexMultiplicity(true, F, specCam1, true) + lightEndSum(pCam0, a.pdfFwd) +
                         cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda), pLight2);
-  const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false);
+  const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false,
+                                c.walk.lightFirst ? a.choicePdf : 0.0f);
   const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, mf, [&](const MisFactors& g) {
     FullPath fp = layout(c, &L, 1, C, t, end, g);
     fp.v[1].lobe = F;
@@ -495,10 +490,8 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, lambdaB);
     const double pCamAPrev = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
     const MisSums sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA), pCamAPrev) +
-                          cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB), pLightBNext,
-                                    blocksShared(a));
-    MisSums here = joinMultiplicity(true, p.la, p.lb);
-    if (!a.sharedReach) here.shared = 0.0;
+                          cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB), pLightBNext);
+    const MisSums here = joinMultiplicity(true, p.la, p.lb);
     MisSums own;
     (p.variant == Variant::kStandard ? own.shared : p.variant == Variant::kOwn ? own.own : own.mollified) = 1.0;
     const bool oneGroup = a.elasticBefore && b.elasticBefore && p.la == SpectralLobe::Elastic && p.lb == SpectralLobe::Elastic;
@@ -507,7 +500,8 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
       // The path's first wavelength: lane k's on a shared subpath, the own subpath's own.
       const MisFactors f = family == LightFamily::Shared
                                ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup)
-                               : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup);
+                               : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup,
+                                         c.walk.lightFirst ? L[0].choicePdf : 0.0f);
       return weigh(c, s, t, p.variant, own, here + sides, f, [&](const MisFactors& g) {
         FullPath fp = layout(c, &L, s, C, t, end, g);
         fp.v[size_t(s - 1)].lobe = p.la;
@@ -596,7 +590,6 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     }
     pCamAPrev = cameraSide(c.scene, a, cam, aPrev, a.lobe, a.lambda, lambda);
     here = lightTracingMultiplicity(true, a.spectralPdf);
-    if (blocksShared(a)) here.shared = 0.0;
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
     sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1), pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
@@ -607,7 +600,8 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   laneWeights(c, k0, k1, weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     // A shared lane's wavelength is the sensor's lane k; an own subpath's arrives from the light.
     const MisFactors mf = shared ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup)
-                                 : factors(c, L[0].light, L[0].lambda, -1, c.sensor.pdf(lambda), oneGroup);
+                                 : factors(c, L[0].light, L[0].lambda, -1, c.sensor.pdf(lambda), oneGroup,
+                                           c.walk.lightFirst ? L[0].choicePdf : 0.0f);
     return weigh(c, s, 1, variant, own, here + sides, mf, [&](const MisFactors& g) {
       const std::vector<PathVertex> camOnly{cam};
       FullPath fp = layout(c, &L, s, camOnly, 1, end, g);
@@ -650,10 +644,10 @@ void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const s
                      const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats, float* out,
                      Vec3& xyz) {
   const int maxDepth = c.walk.maxDepth;
-  // The merged subpath's two views share their vertices' visibility (docs/bdpt-mis.md §11).
+  // The merged subpath's two views share their common vertices' visibility (docs/bdpt-mis.md §11).
   thread_local VisibilityMemo sharedVisibility;
-  VisibilityMemo* memo = c.walk.lightFirst ? &sharedVisibility : nullptr;
-  if (memo) memo->reset(int(std::max(LS.size(), LO.size())), int(C.size()));
+  VisibilityMemo* memo = c.sharedLightVertices > 0 ? &sharedVisibility : nullptr;
+  if (memo) memo->reset(std::min(c.sharedLightVertices, int(std::min(LS.size(), LO.size()))), int(C.size()));
   std::fill(out, out + c.lanes.n, 0.0f);
   xyz = Vec3(0.0f);
   // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelengths.

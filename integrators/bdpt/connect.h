@@ -18,18 +18,20 @@ struct WeightCheck {
 };
 
 // Visibility between light-subpath vertex s−1 and camera-subpath vertex t−1 (t = 1: the pinhole),
-// kept for the merged light subpath's second view, whose vertex s−1 is the same point
-// (docs/bdpt-mis.md §11): one shadow ray serves both families.
+// kept for the merged light subpath's second view, whose vertex s−1 is the same point while the two
+// views share their vertices (docs/bdpt-mis.md §11): one shadow ray serves both families there.
 class VisibilityMemo {
  public:
-  // Forgets everything; s up to lightVertices, t up to cameraVertices.
-  void reset(int lightVertices, int cameraVertices) {
+  // Forgets everything; keeps s up to sharedVertices, t up to cameraVertices.
+  void reset(int sharedVertices, int cameraVertices) {
+    shared_ = sharedVertices;
     stride_ = cameraVertices + 1;
-    known_.assign(size_t((lightVertices + 1) * stride_), int8_t(-1));
+    known_.assign(size_t((sharedVertices + 1) * stride_), int8_t(-1));
   }
-  // The remembered answer for (s, t), or test()'s, remembered.
+  // The remembered answer for (s, t), or test()'s (remembered where s ≤ sharedVertices).
   template <class Test>
   bool get(int s, int t, Test&& test) {
+    if (s > shared_) return test();
     int8_t& k = known_[size_t(s * stride_ + t)];
     if (k < 0) k = test() ? 1 : 0;
     return k == 1;
@@ -37,7 +39,7 @@ class VisibilityMemo {
 
  private:
   std::vector<int8_t> known_;
-  int stride_ = 0;
+  int shared_ = 0, stride_ = 0;
 };
 
 struct Context {
@@ -61,6 +63,10 @@ struct Context {
   // adds it exactly with weight 1, and the light vertex seen by the camera gets weight 0; null to
   // weigh the two as usual. Only with lanes (the shared family alone) and no spectral bins.
   const std::vector<Vec3>* directXyz = nullptr;
+
+  // The merged light subpath (docs/bdpt-mis.md §11): how many leading vertices its two views share
+  // (traceMergedLightSubpath); 0 where the light subpaths are separate.
+  int sharedLightVertices = 0;
 
   // Tests only: every weight also recomputed over the whole path (mis.h), both recorded here.
   std::vector<WeightCheck>* oracle = nullptr;

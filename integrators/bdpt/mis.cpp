@@ -33,11 +33,6 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
       // The shared family's light subpath and the camera's last group are one draw: exact only
       // when the path has one group (docs/bdpt-mis.md §4).
       if (!p.families.shared || !elastic) return false;
-      // The merged subpath's shared lanes stop on arrival at a vertex whose sampling depends on
-      // the wavelength (docs/bdpt-mis.md §11).
-      for (int i = 1; i <= s - 2; ++i)
-        if (p.v[size_t(i)].stopsShared) return false;
-      if (s == k && p.v[size_t(k - 1)].stopsShared) return false;
       break;
     case Variant::kOwn:
       if (s == 1) return false;

@@ -19,10 +19,6 @@ struct FullVertex {
   double pdfCam = 0.0;
   SpectralLobe lobe = SpectralLobe::Elastic;  // interior vertices: the lobe the path uses here
   bool connectible = true;                    // a connection may end here (no delta lobe)
-  // The unified estimator's merged light subpath cannot carry the shared lanes past this vertex
-  // (docs/bdpt-mis.md §11): no shared strategy has it inside its light subpath, nor samples its
-  // event on the light side.
-  bool stopsShared = false;
 };
 
 // Which light subpaths a camera sample is combined with (each at most one per camera sample).

@@ -27,6 +27,9 @@ struct Lanes {
   // both run with more than one lane).
   float lightPdf[kMaxLanes];
   const LaneLightTable* lights = nullptr;  // the lights' powers at the lanes (more than one lane)
+  // The merged light subpath's own start density at the lanes (docs/bdpt-mis.md §11):
+  // Q(l)·p_l(λ_k) at k·lights + l (more than one lane, where the unified estimator merges).
+  const float* ownStart = nullptr;
 };
 
 struct PathVertex {
@@ -68,12 +71,6 @@ struct PathVertex {
   // the subpath scattered elastically.
   MisSums sums;
   bool elasticBefore = true;
-  // The merged light subpath of the unified estimator (docs/bdpt-mis.md §11): whether the shared
-  // lanes stop here (sampling here depends on the wavelength: fluorescent or wavelength-dependent
-  // direction), and, on a light subpath, whether they can reach this vertex (none of the vertices
-  // between the light and it stops them). Always false / true where no subpath is merged.
-  bool stopsShared = false;
-  bool sharedReach = true;
 
   bool onSurface() const { return kind == Kind::Surface; }
   // Whether several lanes reach this vertex (each at its own wavelength).

@@ -11,9 +11,7 @@ MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe 
     return firstVertexMultiplicity(v.connectible(), lobe, specCam1, L[0].kind == PathVertex::Kind::Light);
   }
   const PathVertex& u = L[size_t(j - 1)];
-  MisSums m = joinMultiplicity(u.connectible() && v.connectible(), u.lobe, lobe);
-  if (!u.sharedReach) m.shared = 0.0;  // the merged shared lanes stopped before u (docs/bdpt-mis.md §11)
-  return m;
+  return joinMultiplicity(u.connectible() && v.connectible(), u.lobe, lobe);
 }
 
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j) {
@@ -26,9 +24,7 @@ MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe
   const PathVertex& v = C[size_t(j)];
   if (j == 1) {  // t = 1: the light side samples x_{k−1}'s event
     const double specLight = v.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, v.lambda, lobe);
-    MisSums m = lightTracingMultiplicity(v.connectible(), specLight);
-    if (v.stopsShared) m.shared = 0.0;  // the merged shared lanes do not sample x_{k−1}'s event (§11)
-    return m;
+    return lightTracingMultiplicity(v.connectible(), specLight);
   }
   const PathVertex& u = C[size_t(j - 1)];
   return joinMultiplicity(u.connectible() && v.connectible(), lobe, u.lobe);
@@ -51,11 +47,7 @@ void updateSums(std::vector<PathVertex>& path, TransportMode mode) {
   const PathVertex& back1 = path[j - 1];
   const double r = densityRatio(back2.pdfRev, back2.pdfFwd);
   const MisSums m = mode == TransportMode::Radiance ? cameraMultiplicity(path, int(j - 2)) : lightMultiplicity(path, int(j - 2));
-  // On the camera side the strategies of back1's sum have back2 inside their light subpath: where
-  // it stops the merged shared lanes, they lose their shared part (docs/bdpt-mis.md §11).
-  MisSums before = back1.sums;
-  if (mode == TransportMode::Radiance && back2.stopsShared) before.shared = 0.0;
-  v.sums = extend(before, r, m);
+  v.sums = extend(back1.sums, r, m);
   v.elasticBefore = back1.elasticBefore && back1.lobe == SpectralLobe::Elastic;
 }
 

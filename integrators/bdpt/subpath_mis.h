@@ -29,4 +29,11 @@ MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j);
 // before has its reverse density.
 void updateSums(std::vector<PathVertex>& path, TransportMode mode);
 
+// R_n of one side at a connection through its vertex v_{n−1} (docs/bdpt-mis.md eq. 10): from the
+// sum stored at v_{n−1}, the ratio and M recomputed at v_{n−2} and at v_{n−1}.
+inline MisSums sideSum(const MisSums& stored, double ratioBefore, const MisSums& before, double ratioLast,
+                       const MisSums& last) {
+  return extend(extend(stored, ratioBefore, before), ratioLast, last);
+}
+
 }  // namespace kasha::bdpt

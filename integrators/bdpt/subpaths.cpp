@@ -1,6 +1,7 @@
 #include "integrators/bdpt/subpaths.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "core/color.h"
 #include "integrators/bdpt/subpath_mis.h"
@@ -25,10 +26,20 @@ struct Track {
   int lane = 0;        // -1 every lane alive, else the one kept (a one-lane subpath: its only lane)
   float pdfSA = 0.0f;  // density of the ray's direction at the last vertex, its spectral event included
   bool alive = true;
-  bool stopAtFluorescence = false;  // the shared family alone: ends at its first fluorescent event
-  bool stopAtLaneEnd = false;       // the merged shared lanes: end on arrival where stopsShared
-  SpectralChoice event;             // the spectral event sampled at the last vertex
+  bool stopAtFluorescence = false;  // the shared family: ends at its first fluorescent event
+  // The merged subpath's shared lanes (docs/bdpt-mis.md §11): where sampling depends on the
+  // wavelength and the own view goes on too, they leave the walk and go on alone from there
+  // (forked, with the ray that reached the vertex and the walk's count of surfaces).
+  bool forkWhereLambdaDependent = false;
+  bool forked = false;
+  Ray forkRay;
+  int forkSurfaces = 0;
+  SpectralChoice event;  // the spectral event sampled at the last vertex
 };
+
+bool lambdaDependent(const Bsdf& bsdf) {
+  return bsdf.has(BsdfFlags::Fluorescent) || bsdf.has(BsdfFlags::WavelengthDependentDirection);
+}
 
 Track startTrack(const Lanes& lanes, std::vector<PathVertex>& path, const float* betaStart, float pdfSA) {
   Track tr;
@@ -43,8 +54,7 @@ Track startTrack(const Lanes& lanes, std::vector<PathVertex>& path, const float*
 }
 
 // Appends the surface vertex at `hit`, reached along `ray`, to the track's subpath.
-void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int light, bool merged, TransportMode mode,
-            Sampler& rng) {
+void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int light, TransportMode mode, Sampler& rng) {
   const Lanes& lanes = *tr.lanes;
   std::vector<PathVertex>& path = *tr.path;
   const PathVertex& prev = path.back();
@@ -54,16 +64,13 @@ void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int lig
   v.n = hit.ng;
   v.bsdf = bsdf;
   v.light = light;
-  const bool lambdaDependent = bsdf.has(BsdfFlags::Fluorescent) || bsdf.has(BsdfFlags::WavelengthDependentDirection);
-  v.stopsShared = merged && lambdaDependent;
-  v.sharedReach = prev.sharedReach && !prev.stopsShared;
   // Where sampling depends on the wavelength, the lanes end in one chosen at random, its weight
   // times n (docs/bdpt-mis.md §10): every density on the subpath is then that lane's.
   // Elsewhere the densities are those of any lane that scatters here (docs/bdpt-mis.md §10).
   if (lanes.n > 1 && tr.lane < 0) {
     const float uLane = rng.uniform();
     v.laneU = uLane;
-    if (lambdaDependent) {
+    if (lambdaDependent(bsdf)) {
       tr.lane = std::min(int(uLane * float(lanes.n)), lanes.n - 1);
       tr.lambda = lanes.lambda[tr.lane];
       for (int k = 0; k < lanes.n; ++k) tr.beta[k] = k == tr.lane ? tr.beta[k] * float(lanes.n) : 0.0f;
@@ -83,7 +90,6 @@ void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int lig
                                                       : toAreaDensity(tr.pdfSA, prev, v);
   path.push_back(v);
   updateSums(path, mode);
-  if (tr.stopAtLaneEnd && v.stopsShared) tr.alive = false;
 }
 
 // The track's spectral event at its last vertex, sampled with u; false if it cannot go on.
@@ -133,44 +139,57 @@ bool scatter(Track& tr, const Scene& scene, TransportMode mode, const Vec3& wKno
   return laneSum(tr.beta, lanes.n) > 0.0f;
 }
 
-// Extends the tracks' subpaths from their last vertex (one point) along `ray` (Veach's random
-// walk). Camera walks run in Radiance mode, light walks in Importance mode. Where two tracks share
-// the walk (the merged light subpath), the vertices where both go on stop neither's lanes: both
-// scatter elastically there with a wavelength-independent direction density, which the first live
-// track samples.
+// Extends the tracks' subpaths along `ray` from their last vertex (one point), or with atVertex from
+// the vertex `ray` reached, after `surfaces` surface vertices (Veach's random walk). Camera walks run
+// in Radiance mode, light walks in Importance mode. Where two tracks share the walk (the merged
+// light subpath, docs/bdpt-mis.md §11), they go on together through the vertices whose sampling
+// does not depend on λ: both scatter elastically there with a wavelength-independent direction
+// density, which the first live track samples. At any other, a forking track leaves the walk.
 void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, TransportMode mode, const WalkSettings& ws,
-                Sampler& rng, RayCounter& counter) {
+                Sampler& rng, RayCounter& counter, int surfaces = 0, bool atVertex = false) {
   const bool camera = mode == TransportMode::Radiance;
-  const bool merged = ws.lightFirst != nullptr;
-  int surfaces = 0;
-  for (;;) {
-    const std::optional<Hit> hit = scene.accel->intersect(ray);
-    ++counter.closest;
-    if (!hit) {
-      Track& tr = tracks[0];
-      if (camera && scene.environment()) {  // the camera path escapes to the environment
-        PathVertex v;
-        v.kind = PathVertex::Kind::Infinite;
-        v.dir = -ray.d;
-        v.light = scene.environmentLight;
-        std::copy(tr.beta, tr.beta + tr.lanes->n, v.beta);
-        v.lane = int8_t(tr.lane);
-        v.lambda = tr.lambda;
-        v.pdfFwd = tr.pdfSA;
-        tr.path->push_back(v);
-        updateSums(*tr.path, mode);
+  auto live = [&] { return std::find_if(tracks, tracks + nTracks, [](const Track& t) { return t.alive; }); };
+  for (bool arrived = atVertex;; arrived = false) {
+    if (!arrived) {
+      const std::optional<Hit> hit = scene.accel->intersect(ray);
+      ++counter.closest;
+      if (!hit) {
+        Track& tr = tracks[0];
+        if (camera && scene.environment()) {  // the camera path escapes to the environment
+          PathVertex v;
+          v.kind = PathVertex::Kind::Infinite;
+          v.dir = -ray.d;
+          v.light = scene.environmentLight;
+          std::copy(tr.beta, tr.beta + tr.lanes->n, v.beta);
+          v.lane = int8_t(tr.lane);
+          v.lambda = tr.lambda;
+          v.pdfFwd = tr.pdfSA;
+          tr.path->push_back(v);
+          updateSums(*tr.path, mode);
+        }
+        return;
       }
-      return;
+      const Bsdf bsdf = scene.bsdf(*hit, {tracks[0].lanes->lambda, size_t(tracks[0].lanes->n)});
+      const int light = scene.shapeLight[hit->shape];
+      int alive = 0;
+      for (int i = 0; i < nTracks; ++i)
+        if (tracks[i].alive) arrive(tracks[i], *hit, ray, bsdf, light, mode, rng), ++alive;
+      ++surfaces;
+      if (alive > 1 && lambdaDependent(bsdf))
+        for (int i = 0; i < nTracks; ++i)
+          if (tracks[i].alive && tracks[i].forkWhereLambdaDependent) {
+            tracks[i].alive = false;
+            tracks[i].forked = true;
+            tracks[i].forkRay = ray;
+            tracks[i].forkSurfaces = surfaces;
+          }
     }
-    const Bsdf bsdf = scene.bsdf(*hit, {tracks[0].lanes->lambda, size_t(tracks[0].lanes->n)});
-    const int light = scene.shapeLight[hit->shape];
-    for (int i = 0; i < nTracks; ++i)
-      if (tracks[i].alive) arrive(tracks[i], *hit, ray, bsdf, light, merged, mode, rng);
-    ++surfaces;
     // Vertices up to maxDepth sample their spectral event (used by next-event estimation and
     // the camera connection); camera vertices then extend up to maxDepth (the next one may be an
     // emitter hit), light vertices while a path through the next one can end within maxDepth.
     if (surfaces > ws.maxDepth) return;
+    const PathVertex& at = live()->path->back();
+    const Bsdf& bsdf = *at.bsdf;
     const Vec3 wKnown = bsdf.toLocal(-ray.d);
     const float uSpectral = rng.uniform();
     for (int i = 0; i < nTracks; ++i)
@@ -178,7 +197,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
     if (!camera && surfaces == ws.maxDepth) return;
     for (int i = 0; i < nTracks; ++i)
       if (tracks[i].stopAtFluorescence && tracks[i].event.lobe == SpectralLobe::Fluorescent) tracks[i].alive = false;
-    const Track* driver = std::find_if(tracks, tracks + nTracks, [](const Track& t) { return t.alive; });
+    const Track* driver = live();
     if (driver == tracks + nTracks) return;
     const SpectralChoice& sc = driver->event;
     const float lambdaIn = camera ? sc.lambda : driver->lambda, lambdaOut = camera ? driver->lambda : sc.lambda;
@@ -190,14 +209,15 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
       if (tr.alive && !scatter(tr, scene, mode, wKnown, *ds)) tr.alive = false;
       if (tr.alive) q = std::max(q, laneSum(tr.beta, tr.lanes->n) / tr.beta0);
     }
-    if (std::none_of(tracks, tracks + nTracks, [](const Track& t) { return t.alive; })) return;
+    if (live() == tracks + nTracks) return;
     const Vec3 w = bsdf.toWorld(ds->w);
-    ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
+    ray = Ray{offsetPoint(at.p, at.n, w), w};
     if (surfaces >= ws.rrDepth) {  // Russian roulette against the starting throughput
       q = std::min(1.0f, q);
       if (rng.uniform() >= q) return;
       for (int i = 0; i < nTracks; ++i)
-        for (int k = 0; k < tracks[i].lanes->n; ++k) tracks[i].beta[k] /= q;
+        if (tracks[i].alive)
+          for (int k = 0; k < tracks[i].lanes->n; ++k) tracks[i].beta[k] /= q;
     }
   }
 }
@@ -205,7 +225,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
 }  // namespace
 
 Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table,
-                  const WavelengthDensity* own) {
+                  const WavelengthDensity* own, const LightFirstStart* merged) {
   Lanes lanes;
   lanes.n = n;
   for (int k = 0; k < n; ++k) {
@@ -218,6 +238,15 @@ Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, 
   if (n > 1) {
     table.reset(scene, {lanes.lambda, size_t(n)});
     lanes.lights = &table;
+  }
+  if (n > 1 && merged) {
+    thread_local std::vector<float> ownStart;
+    const size_t lights = scene.lights.size();
+    ownStart.resize(size_t(n) * lights);
+    for (int k = 0; k < n; ++k)
+      for (size_t l = 0; l < lights; ++l)
+        ownStart[size_t(k) * lights + l] = merged->lightProbability(l) * merged->wavelengthPdf(l, lanes.lambda[k]);
+    lanes.ownStart = ownStart.data();
   }
   return lanes;
 }
@@ -315,19 +344,19 @@ void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shar
   randomWalk(scene, emissionRay(*es), &tr, 1, TransportMode::Importance, ws, rng, counter);
 }
 
-void traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
-                             RayCounter& counter, std::vector<PathVertex>& LS, std::vector<PathVertex>& LO) {
+int traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
+                            RayCounter& counter, std::vector<PathVertex>& LS, std::vector<PathVertex>& LO) {
   LS.clear(), LO.clear();
   const float uLight = rng.uniform(), uLambda = rng.uniform();
   const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
   const LightFirstStart::Draw d = ws.lightFirst->sample(uLight, uLambda);
-  if (!(d.lightPdf > 0.0f)) return;
+  if (!(d.lightPdf > 0.0f)) return 0;
   Lanes own = shared;
   own.n = 1, own.lambda[0] = d.lambda;
   const Light& L = *scene.lights[d.light];
   // The emission's geometry does not depend on λ: one sample serves both views.
   const std::optional<EmissionSample> es = L.sampleEmission(d.lambda, uPos, uDir);
-  if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return;
+  if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return 0;
   Track tracks[2];
   int n = 0;
   PathVertex v;
@@ -343,9 +372,17 @@ void traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const Walk
     LS.push_back(v);
     updateSums(LS, TransportMode::Importance);
     tracks[n] = startTrack(shared, LS, beta, pdfDir);
-    tracks[n++].stopAtLaneEnd = true;
+    tracks[n].stopAtFluorescence = true;
+    tracks[n++].forkWhereLambdaDependent = true;
   }
-  if (n > 0) randomWalk(scene, emissionRay(*es), tracks, n, TransportMode::Importance, ws, rng, counter);
+  if (n == 0) return 0;
+  randomWalk(scene, emissionRay(*es), tracks, n, TransportMode::Importance, ws, rng, counter);
+  Track& lanes = tracks[n - 1];
+  if (!lanes.forked) return std::numeric_limits<int>::max();
+  // The shared lanes go on alone from the vertex where they forked, as a shared subpath would.
+  lanes.alive = true;
+  randomWalk(scene, lanes.forkRay, &lanes, 1, TransportMode::Importance, ws, rng, counter, lanes.forkSurfaces, true);
+  return lanes.forkSurfaces + 1;
 }
 
 }  // namespace kasha::bdpt

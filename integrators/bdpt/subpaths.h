@@ -30,16 +30,17 @@ struct WalkSettings {
   int rrDepth = 3;
   const WavelengthDensity* lightWavelengths = nullptr;  // the light-start strategy's density (own family)
   // Set where the unified estimator merges both families into one light subpath (docs/bdpt-mis.md
-  // §11): how that subpath starts; every walk then marks the vertices that stop the shared lanes.
+  // §11): how that subpath starts.
   const LightFirstStart* lightFirst = nullptr;
 };
 
 // The camera sample's n lanes from one uniform u: lane k at the stratum (u + k/n) of the sensor
 // density's inverse CDF (pt's lanes, Wilkie et al. 2014), each with its density and response;
 // with more than one, `table` is filled with the lights' powers at them, and given the own family's
-// light-start density `own`, each lane's density under it.
+// light-start density `own`, each lane's density under it, or given the merged subpath's start
+// `merged`, its density Q(l)·p_l at each lane for each light.
 Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table,
-                  const WavelengthDensity* own = nullptr);
+                  const WavelengthDensity* own = nullptr, const LightFirstStart* merged = nullptr);
 
 // The light chosen with u for the lanes (a lane's wavelength at random, then ∝ Φ_l there: the
 // mixture over the lanes, wavelength_lanes.h; with one lane, ∝ Φ_l(λ)) and its probability.
@@ -59,9 +60,10 @@ void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shar
 // The unified estimator's one light subpath for both families (docs/bdpt-mis.md §11), started by
 // ws.lightFirst: the light with Q(l), its own wavelength with p_l(λ). One walk, two views of it: LO
 // the own wavelength's (as traceLightSubpath's own family; its choicePdf Q(l)·p_l(λ_0)), LS the
-// camera sample's lanes (choicePdf Q(l)), which stop on arrival at a vertex whose sampling depends
-// on the wavelength (stopsShared). Vertex i of both is the same point; either may end first.
-void traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
-                             RayCounter& counter, std::vector<PathVertex>& LS, std::vector<PathVertex>& LO);
+// camera sample's lanes (as its shared family; choicePdf Q(l)). Where sampling depends on the
+// wavelength and both go on, LS forks and goes on alone. Returns how many vertices the two views
+// share (each the same point in both; all of them if LS never forked).
+int traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
+                            RayCounter& counter, std::vector<PathVertex>& LS, std::vector<PathVertex>& LO);
 
 }  // namespace kasha::bdpt

@@ -7,6 +7,7 @@
 #include "core/color.h"
 #include "core/sampling.h"
 #include "integrators/direct_emission.h"
+#include "integrators/lane_light_choice.h"
 #include "integrators/lane_next_event.h"
 
 namespace kasha {
@@ -82,9 +83,10 @@ T HeroPathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes,
   float prevDirPdf = 0.0f;     // solid-angle density of the direction that led here
   bool prevSpecular = true;    // the camera ray counts as specular: no MIS on direct hits
   Vec3 prevP = ray.o;
-  // The wavelengths next-event estimation chose its light with at the last vertex.
-  float prevLambda[kMaxWavelengths];
-  int prevN = 0;
+  // Next-event estimation's light choice at this vertex and at the last one (the emitter-hit MIS
+  // weight needs its P(l)).
+  thread_local LaneLightChoice lightChoice[2];
+  int current = 0;
   const uint32_t firstDimension = rng.dimension();
   for (int depth = 0;; ++depth) {
     rng.startVertex(firstDimension, depth);
@@ -94,7 +96,7 @@ T HeroPathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes,
       if (const EnvironmentLight* env = scene.environment()) {
         float w = 1.0f;
         if (!prevSpecular)
-          w = powerHeuristic(prevDirPdf, laneLightProbability(scene, size_t(scene.environmentLight), {prevLambda, size_t(prevN)}) *
+          w = powerHeuristic(prevDirPdf, lightChoice[current ^ 1].probability(size_t(scene.environmentLight)) *
                                              env->pdfDirection(ray.d));
         for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (env->Le(lanes.lambda[j], ray.d) * w);
       }
@@ -105,7 +107,7 @@ T HeroPathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes,
       float w = 1.0f;
       if (!prevSpecular) {
         const size_t li = size_t(scene.shapeLight[hit->shape]);
-        w = powerHeuristic(prevDirPdf, laneLightProbability(scene, li, {prevLambda, size_t(prevN)}) *
+        w = powerHeuristic(prevDirPdf, lightChoice[current ^ 1].probability(li) *
                                            scene.lights[li]->pdfLi(prevP, hit->p, hit->ng));
       }
       // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact.
@@ -137,10 +139,15 @@ T HeroPathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes,
     // Next-event estimation for every lane through one light sample.
     const float uLight = rng.uniform();
     const Vec2 uPos = rng.uniform2();
-    prevN = e.n;
-    std::copy(e.lambda, e.lambda + e.n, prevLambda);
-    L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, e, lambdaOut0, uLight, uPos, NeeWeight::PowerHeuristic,
-                       counter);
+    LaneLightChoice& lights = lightChoice[current];
+    if (!bsdf.has(BsdfFlags::DeltaDirection)) {
+      float before[kMaxLanes], importance[kMaxLanes];
+      for (int j = 0; j < lanes.n; ++j) before[j] = sum(lanes.T[j]);
+      laneImportance(bsdf, TransportMode::Radiance, known, before, e, importance);
+      lights.reset(scene, {e.lambda, size_t(e.n)}, importance);
+    }
+    L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, e, lights, lambdaOut0, uLight, uPos,
+                       NeeWeight::PowerHeuristic, counter);
 
     // Direction stage at lane 0's wavelengths; every lane has the same density.
     const std::optional<DirectionSample> ds =
@@ -157,6 +164,7 @@ T HeroPathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes,
     if (!(m > 0.0f)) break;
     prevDirPdf = ds->pdf;
     prevSpecular = ds->specular;
+    current ^= 1;
     prevP = hit->p;
     const Vec3 wiWorld = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, wiWorld), wiWorld};

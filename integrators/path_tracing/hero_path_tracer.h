@@ -5,8 +5,8 @@
 // sensor density p at the stratified points (u + j/N) mod 1 of its inverse CDF, so that every lane
 // is distributed as p and the N lanes cover it evenly. An area emitter seen directly by the camera
 // ray adds its exact XYZ instead (its L_e(λ) is known at every λ; no MIS there). Every choice along the path is symmetric in the lanes (the lobe with the mean of their
-// P_c, Jung18 eq. 7; the light ∝ Σ_j Φ_l(λ_j); directions where their density is the same for every
-// lane), so the balance heuristic over the N hero techniques (Wilkie14 eq. 8) weights every lane by
+// P_c, Jung18 eq. 7; the light from the lanes' weights and the lights' power at them, LaneLightChoice;
+// directions where their density is the same for every lane), so the balance heuristic over the N hero techniques (Wilkie14 eq. 8) weights every lane by
 // 1/(N·p(λ_j)). A lane carries its XYZ throughput (a 3-vector), not a scalar; when the render
 // keeps spectral bins, its throughput per sensor wavelength instead (SensorShares), so that each
 // share reaches its own bin even after a fluorescent event has mixed the lanes (the directly seen

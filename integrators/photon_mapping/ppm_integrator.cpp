@@ -45,6 +45,21 @@ CameraLanes stratifiedLanes(const WavelengthDensity& p, float u, int n) {
   return lanes;
 }
 
+// Next-event estimation for event `direct` of `lanes` (known: their wavelengths before it), its
+// light chosen after the lanes' importance (lane_light_choice.h), weight 1: no other estimator
+// counts these paths (§3).
+SensorShares lanesNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, const CameraLanes& lanes,
+                            const LaneEvent& direct, float uLight, Vec2 uPos, RayCounter& counter) {
+  const std::span<const float> known(lanes.lambda, size_t(lanes.n));
+  thread_local LaneLightChoice lights;
+  float before[kMaxLanes], importance[kMaxLanes];
+  for (int j = 0; j < lanes.n; ++j) before[j] = lanes.T[j].sum();
+  laneImportance(bsdf, TransportMode::Radiance, known, before, direct, importance);
+  lights.reset(scene, {direct.lambda, size_t(direct.n)}, importance);
+  return laneNextEvent(scene, hit, bsdf, wo, known, lanes.T, direct, lights, /*lambdaOut0, unused without MIS*/ 0.0f,
+                       uLight, uPos, NeeWeight::Alone, counter);
+}
+
 }  // namespace
 
 PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
@@ -117,9 +132,8 @@ Vec3 PpmIntegrator::directElasticOwnLanes(const Scene& scene, const Hit& hit, co
   // The camera ray and its first hit do not depend on λ, so lanes of another density estimate
   // ∫ W(λ)·L_direct,elastic(λ) dλ as well as the camera's (§3).
   const CameraLanes own = stratifiedLanes(*directLanes_, uLanes, n_);
-  const std::span<const float> known(own.lambda, size_t(n_));
-  const SensorShares direct = laneNextEvent(scene, hit, bsdf, wo, known, own.T, elasticEvent(known),
-                                            /*lambdaOut0, unused without MIS*/ 0.0f, uLight, uPos, NeeWeight::Alone, ctx.counter);
+  const SensorShares direct =
+      lanesNextEvent(scene, hit, bsdf, wo, own, elasticEvent({own.lambda, size_t(n_)}), uLight, uPos, ctx.counter);
   Vec3 xyz(0.0f);
   for (int j = 0; j < n_; ++j)
     if (direct.v[j] != 0.0f) xyz += sensorResponse(ctx, own.lambda[j], direct.v[j]);
@@ -182,8 +196,8 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
       if (direct_ == PpmDirectLight::NeeElastic && bounces == 0 && directLanes_ && !ctx.recordSpectral)
         xyz += directElasticOwnLanes(scene, *hit, bsdf, wo, uDirectLanes, uLight, uPos, ctx);
       else if (direct_ != PpmDirectLight::Photons)
-        L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, direct_ == PpmDirectLight::Nee ? e : elasticEvent(known),
-                           /*lambdaOut0, unused without MIS*/ 0.0f, uLight, uPos, NeeWeight::Alone, ctx.counter);
+        L += lanesNextEvent(scene, *hit, bsdf, wo, lanes, direct_ == PpmDirectLight::Nee ? e : elasticEvent(known), uLight,
+                            uPos, ctx.counter);
     }
     if (e.n == 0) break;
     // Lanes end where the path tracer ends them: a direction that depends on λ keeps one.
