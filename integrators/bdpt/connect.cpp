@@ -78,14 +78,16 @@ LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s) {
 // every strategy that can make the path (one group, the shared family alone); with the own family
 // as well, every strategy's choice is taken as p(light | λ_0), a function of the path alone, so
 // that the weights stay a partition of unity for each lane (the estimates divide by the true one).
-// ownStart: the own family's ℓ where the caller knows it (an own subpath's L[0].choicePdf), else 0.
+// lanesKept: every interior vertex of the path keeps the lanes (MisFactors::laneGain). ownStart: the
+// own family's ℓ where the caller knows it (an own subpath's L[0].choicePdf), else 0.
 MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup,
-                   float ownStart = 0.0f) {
+                   bool lanesKept, float ownStart = 0.0f) {
   MisFactors f;
   f.sharedFamily = c.families.shared;
   f.ownFamily = c.families.independent;
   f.sensorPdf = sensorPdf;
   f.oneGroup = oneGroup;
+  if (lanesKept && f.ownFamily) f.laneGain = c.lanes.n;
   const bool table = lane >= 0 && c.lanes.lights;
   if (table && oneGroup && !f.ownFamily) {
     f.cameraChoice = c.lanes.lights->probability(size_t(light));
@@ -117,6 +119,7 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   FullPath fp;
   fp.families = c.families;
   fp.sensorPdf = f.sensorPdf;
+  fp.laneGain = f.laneGain;
   fp.cameraChoice = f.cameraChoice;
   fp.ownChoice = f.ownChoice;
   fp.mollifyWidth = f.mollifyWidth;
@@ -277,7 +280,7 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
   float weight[kMaxLanes];
   laneWeights(c, e.firstLane(), e.endLane(c.lanes), weight, [&](int j) { return Le[j] > 0.0f; }, [&](int j) {
     const MisFactors f = factors(c, e.light, e.lambdaOf(c.lanes, j), e.elasticBefore ? j : -1, c.lanes.sensorPdf[j],
-                                 e.elasticBefore);
+                                 e.elasticBefore, next.lanesKept);
     return weigh(c, 0, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
       FullPath fp = layout(c, nullptr, 0, C, t, end, g);
       if (k >= 2) {
@@ -349,7 +352,7 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
   float weight[kMaxLanes];
   laneWeights(c, x1.firstLane(), x1.endLane(c.lanes), weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     const MisFactors f = factors(c, lightIndex, lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
-                                 c.lanes.sensorPdf[k], cameraGroup);
+                                 c.lanes.sensorPdf[k], cameraGroup, x1.lanesKept);
     return weigh(c, 1, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
       PathVertex lightVertex = x0;
       lightVertex.pdfFwd = float(end.pdf0);
@@ -399,7 +402,7 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   own.own = 1.0;
   const MisSums total = firstVertexMultiplicity(true, F, specCam1, true) + lightEndSum(pCam0, a.pdfFwd) +
                         cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda), pLight2);
-  const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false,
+  const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false, false,
                                 c.walk.lightFirst ? a.choicePdf : 0.0f);
   const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, mf, [&](const MisFactors& g) {
     FullPath fp = layout(c, &L, 1, C, t, end, g);
@@ -495,12 +498,14 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     MisSums own;
     (p.variant == Variant::kStandard ? own.shared : p.variant == Variant::kOwn ? own.own : own.mollified) = 1.0;
     const bool oneGroup = a.elasticBefore && b.elasticBefore && p.la == SpectralLobe::Elastic && p.lb == SpectralLobe::Elastic;
+    const bool lanesKept = a.lanesKept && b.lanesKept;
     float weight[kMaxLanes];
     laneWeights(c, k0, k1, weight, [&](int k) { return fA[k] > 0.0f && fB[k] > 0.0f; }, [&](int k) {
       // The path's first wavelength: lane k's on a shared subpath, the own subpath's own.
       const MisFactors f = family == LightFamily::Shared
-                               ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup)
-                               : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup,
+                               ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup,
+                                         lanesKept)
+                               : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup, lanesKept,
                                          c.walk.lightFirst ? L[0].choicePdf : 0.0f);
       return weigh(c, s, t, p.variant, own, here + sides, f, [&](const MisFactors& g) {
         FullPath fp = layout(c, &L, s, C, t, end, g);
@@ -599,8 +604,10 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   float weight[kMaxLanes];
   laneWeights(c, k0, k1, weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     // A shared lane's wavelength is the sensor's lane k; an own subpath's arrives from the light.
-    const MisFactors mf = shared ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup)
-                                 : factors(c, L[0].light, L[0].lambda, -1, c.sensor.pdf(lambda), oneGroup,
+    const bool lanesKept = s == 1 || a.lanesKept;
+    const MisFactors mf = shared ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup,
+                                           lanesKept)
+                                 : factors(c, L[0].light, L[0].lambda, -1, c.sensor.pdf(lambda), oneGroup, lanesKept,
                                            c.walk.lightFirst ? L[0].choicePdf : 0.0f);
     return weigh(c, s, 1, variant, own, here + sides, mf, [&](const MisFactors& g) {
       const std::vector<PathVertex> camOnly{cam};

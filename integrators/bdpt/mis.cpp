@@ -66,8 +66,8 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
   // The light choice and the wavelength densities: the camera side's strategies choose the light
   // with cameraChoice, the independent family the light with the first group's wavelength; every
   // strategy but the independent family's t = 1 has the sensor draw the last group's wavelength.
-  if (s == 0) return d * p.sensorPdf;
-  if (variant == Variant::kStandard) return d * p.sensorPdf * p.cameraChoice;
+  if (s == 0) return d * p.sensorPdf * p.laneGain;
+  if (variant == Variant::kStandard) return d * p.sensorPdf * p.cameraChoice * p.laneGain;
   if (s == k) return d * p.ownChoice;
   d *= p.sensorPdf * p.ownChoice;
   // Both sides sampled the connecting group's wavelength; the kernel accepts a window ε_h of the

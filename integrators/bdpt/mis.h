@@ -42,6 +42,9 @@ struct FullPath {
   bool lightSeenByPinhole = false;  // x_0 may connect to the camera directly (area lights)
   bool lightVertexConnectible = false;  // x_0 is at a finite position (not a light at infinity)
   double specLightLast = 0.0;  // light-side spectral density of x_{k−1}'s event (t = 1 samples it)
+  // The camera sample's lanes' gain on the sensor's density of the camera-side and shared strategies
+  // (MisFactors::laneGain, docs/bdpt-mis.md §10).
+  double laneGain = 1.0;
   // Spectral mollification (independent family, docs/bdpt-mis.md §6): the kernel's effective width
   // ε_h = 1/K_h(0) in nm, which turns a mollified connection's density into one over the path
   // measure; 0: no mollified strategies.

@@ -5,7 +5,7 @@ namespace kasha::bdpt {
 double combine(const MisSums& m, const MisFactors& f) {
   double camera = m.nee;
   if (f.sharedFamily && f.oneGroup) camera += m.shared;
-  double sensed = m.hit + f.cameraChoice * f.cameraChoice * camera;
+  double sensed = f.laneGain * f.laneGain * (m.hit + f.cameraChoice * f.cameraChoice * camera);
   double sum = 0.0;
   if (f.ownFamily) {
     const double l2 = f.ownChoice * f.ownChoice;

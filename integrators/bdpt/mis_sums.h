@@ -7,11 +7,11 @@
 // densities). The factors that depend on the path's wavelengths are applied once the whole path is
 // known (docs/bdpt-mis.md §5 and §10):
 //
-//     M = σ²·(hit + κ²·(nee + [one group]·shared) + ℓ²·(own + ε_h²·mollified)) + ℓ²·ownSplat
+//     M = σ²·(g²·(hit + κ²·(nee + [one group]·shared)) + ℓ²·(own + ε_h²·mollified)) + ℓ²·ownSplat
 //
 // σ: the sensor's density of the wavelength reaching the camera; κ: the camera family's light
 // choice; ℓ: the own family's joint density of light and wavelength; ε_h the mollification kernel's
-// width. hit: the camera subpath reaching the light (s' = 0); nee: next-event estimation; shared:
+// width; g the lanes' gain (MisFactors::laneGain). hit: the camera subpath reaching the light (s' = 0); nee: next-event estimation; shared:
 // the shared family's joins and t = 1; own: the own family's joins and light vertex; mollified:
 // its mollified joins; ownSplat: its t = 1, the only strategy whose last wavelength the sensor does
 // not draw.
@@ -36,6 +36,10 @@ struct MisFactors {
   double ownChoice = 0.0;                        // ℓ = p_light(λ_0)·p(light | λ_0)
   double mollifyWidth = 0.0;                     // ε_h (0: no mollified joins)
   bool oneGroup = false;                         // every interior vertex is elastic
+  // n where every interior vertex keeps the wavelength lanes, else 1: the camera sample's n lanes
+  // then sample the path's wavelength with density n·σ for every strategy that has σ
+  // (docs/bdpt-mis.md §10); set only where the own family runs (elsewhere it would cancel).
+  double laneGain = 1.0;
 };
 
 // The sum's value for one path.

@@ -71,6 +71,9 @@ struct PathVertex {
   // the subpath scattered elastically.
   MisSums sums;
   bool elasticBefore = true;
+  // Whether no vertex of the subpath up to this one (included) makes sampling depend on λ: the
+  // wavelength lanes reach it all (docs/bdpt-mis.md §10).
+  bool lanesKept = true;
 
   bool onSurface() const { return kind == Kind::Surface; }
   // Whether several lanes reach this vertex (each at its own wavelength).

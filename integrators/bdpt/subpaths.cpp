@@ -64,6 +64,7 @@ void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int lig
   v.n = hit.ng;
   v.bsdf = bsdf;
   v.light = light;
+  v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf);
   // Where sampling depends on the wavelength, the lanes end in one chosen at random, its weight
   // times n (docs/bdpt-mis.md §10): every density on the subpath is then that lane's.
   // Elsewhere the densities are those of any lane that scatters here (docs/bdpt-mis.md §10).
