@@ -42,6 +42,7 @@
 #include "integrators/bdpt/strategy_images.h"
 #include "scene/wavelength_strategy.h"
 #include "integrators/integrator_factory.h"
+#include "integrators/photon_mapping/direct_light_wavelengths.h"
 #include "integrators/render_loop.h"
 #include "integrators/render_setup.h"
 #include "materials/jung_bbrrdf.h"
@@ -94,6 +95,7 @@ struct RenderArgs {
   double checkpointInterval = 60.0;
   std::string memoryLimit = "8G";
   float mollifyBandwidth = -1.0f, mollifyAlpha = -1.0f;  // negative: the scene's
+  std::string ppmDirect, ppmNeeWavelengths;              // empty: the scene's render/ppm
   std::string strategyImages;  // directory for one image per BDPT strategy
   bool strategyUnweighted = false;
   int strategyDepth = 4;
@@ -148,6 +150,11 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
                      "only for --integrator bdpt-mollified");
   if (a.mollifyBandwidth >= 0.0f) r.mollify.bandwidth = a.mollifyBandwidth;
   if (a.mollifyAlpha >= 0.0f) r.mollify.alpha = a.mollifyAlpha;
+  if ((!a.ppmDirect.empty() || !a.ppmNeeWavelengths.empty()) && a.integrator != "ppm")
+    throw UsageError(a.ppmDirect.empty() ? "--ppm-nee-wavelengths" : "--ppm-direct", "", "only for --integrator ppm");
+  if (!a.ppmDirect.empty())  // validated by the option's check
+    r.ppm.direct = a.ppmDirect == "nee" ? PpmDirectLight::Nee : a.ppmDirect == "photons" ? PpmDirectLight::Photons : PpmDirectLight::NeeElastic;
+  if (!a.ppmNeeWavelengths.empty()) r.ppm.neeWavelengths = a.ppmNeeWavelengths;
   std::unique_ptr<Integrator> integrator;
   try {
     integrator = makeIntegrator(a.integrator, *scene, r);
@@ -163,6 +170,9 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     if (a.integratorGiven) throw UsageError("--integrator " + a.integrator, "", std::string(e.what()) + " (/render/" +
                                                                                 settingName(e.site()) + " in " + a.scene + ")");
     throw InputError(a.scene, "/render/" + std::string(settingName(e.site())), e.what());
+  } catch (const PpmNeeWavelengthsError& e) {
+    if (!a.ppmNeeWavelengths.empty()) throw UsageError("--ppm-nee-wavelengths", "", e.what());
+    throw InputError(a.scene, "/render/ppm/nee_wavelengths", e.what());
   } catch (const FluorescentLanesError& e) {
     // Only --integrator can name one that refuses it (pt, the default, takes it).
     if (!a.fluorescentLanes.empty()) throw UsageError("--fluorescent-lanes", a.fluorescentLanes, e.what());
@@ -421,6 +431,13 @@ int main(int argc, char** argv) {
       ->check(numberCheck(Sign::NonNegative, false));
   render->add_option("--mollify-alpha", ra.mollifyAlpha, "bdpt-mollified: bandwidth reduction alpha in (0, 1)")
       ->check(numberCheck(Sign::Positive, false) & CLI::Range(0.0, 0.999999));
+  render->add_option("--ppm-direct", ra.ppmDirect,
+                     "ppm: estimator of light straight from a light (render/ppm/direct): nee-elastic | nee | photons")
+      ->check(CLI::IsMember({"nee-elastic", "nee", "photons"}));
+  render->add_option("--ppm-nee-wavelengths", ra.ppmNeeWavelengths,
+                     "ppm: wavelengths of next-event estimation's elastic lobe at the first vertex "
+                     "(render/ppm/nee_wavelengths): cmf*light | camera | a one-density strategy such as mix:cmf,light")
+      ->check([](const std::string& s) { return ppmNeeWavelengthsError(s); });
   render->add_option("--strategy-images", ra.strategyImages,
                      "BDPT: also write one image per (s, t) strategy (MIS-weighted) into this directory");
   render->add_flag("--strategy-unweighted", ra.strategyUnweighted, "With --strategy-images: also the unweighted images");

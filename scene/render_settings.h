@@ -26,7 +26,24 @@ struct PhotonMappingSettings {
   float bandwidth = 0.0f;      // half-width h_1 of the elastic wavelength kernel, nm; 0: 1% of the range
   bool alwaysKernel = false;   // elastic lobe through the kernel even where the sensor is evaluated exactly
   PpmDirectLight direct = PpmDirectLight::NeeElastic;
+  // The wavelengths of next-event estimation's elastic lobe at the first camera vertex, where the
+  // sensor can be evaluated at any wavelength (docs/photon-mapping.md §3): "cmf*light" (lanes of
+  // their own, a third of the density for each of x̄·Σ_l Φ_l, ȳ·Σ_l Φ_l, z̄·Σ_l Φ_l, with a
+  // defensive colour-matching share), "camera" (the camera path's lanes), or a wavelength strategy
+  // that is one density ("mix:cmf,light", ...).
+  std::string neeWavelengths = "cmf*light";
 };
+
+// Why `text` is not a value of render/ppm/nee_wavelengths, or an empty string if it is one.
+inline std::string ppmNeeWavelengthsError(const std::string& text) {
+  if (text == "camera" || text == "cmf*light") return {};
+  try {
+    if (!parseWavelengthSpec(text).isDensity()) return "'" + text + "' is not one density (use a single strategy or mix:)";
+  } catch (const std::invalid_argument& e) {
+    return "expected \"cmf*light\", \"camera\" or a wavelength strategy: " + std::string(e.what());
+  }
+  return {};
+}
 
 // Spectral mollification of BDPT's elastic connections (integrator "bdpt-mollified",
 // docs/bdpt-mis.md §6); a zero bandwidth is derived from the scene.

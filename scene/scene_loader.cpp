@@ -181,6 +181,8 @@ struct Loader {
     else if (direct == "nee") p.direct = PpmDirectLight::Nee;
     else if (direct == "photons") p.direct = PpmDirectLight::Photons;
     else f.fail("direct", "expected \"nee-elastic\", \"nee\" or \"photons\"");
+    p.neeWavelengths = f.string("nee_wavelengths", p.neeWavelengths);
+    if (const std::string why = ppmNeeWavelengthsError(p.neeWavelengths); !why.empty()) f.fail("nee_wavelengths", why);
     f.finish();
   }
 

@@ -138,7 +138,9 @@ TEST(ClosedForm, SingleScatteringSphereUnderEnvironment) {
   // The worked example: 0.10 / 0.50 / 1.22 in the three bands.
   EXPECT_NEAR(L[size_t((425.0 - scene->range.min) / kStep)], 0.10, 1e-3);
   EXPECT_NEAR(L[size_t((575.0 - scene->range.min) / kStep)], 1.22, 1e-3);
-  expectAgreement(*scene, 1000, toXyz(g, L), 16, 512);
+  // 32 batches: with 16, ppm's batch means estimated the standard error of Z anywhere between 0.6
+  // and 1.3 times its typical value over 12 sets of seeds (the 0.6 one put it 4.5σ off).
+  expectAgreement(*scene, 1000, toXyz(g, L), 32, 256);
 }
 
 // validation.md §2, distant light: L_o = cos θ·[(1 − c·a)·r·E + Q·e·∫ c·a·E dλ] / π.

@@ -149,6 +149,17 @@ TEST_F(CliFiles, CommandLineMistakesExitWith2) {
   expectRefused({"render", scene, "-q", "--fluorescent-lanes", "sideways"}, 2, "--fluorescent-lanes");
   expectRefused({"render", scene, "-q", "--integrator", "ppm", "--fluorescent-lanes", "end"}, 2,
                 "--fluorescent-lanes: end: fluorescent_lanes 'end' is an experiment of pt and lt, not of ppm");
+  expectRefused({"render", scene, "-q", "--ppm-direct", "photons"}, 2, "--ppm-direct: only for --integrator ppm");
+  expectRefused({"render", scene, "-q", "--integrator", "ppm", "--ppm-nee-wavelengths", "camera,cmf"}, 2,
+                "--ppm-nee-wavelengths");
+  expectRefused({"render", scene, "-q", "--integrator", "ppm", "--ppm-direct", "both"}, 2, "--ppm-direct");
+  expectRefused({"render", scene, "-q", "--integrator", "ppm", "--ppm-nee-wavelengths", "emission"}, 2,
+                "--ppm-nee-wavelengths: 'emission': wavelength strategy 'emission': the scene has no fluorescent material");
+  std::string text = kScene;
+  text.replace(text.find("\"max_depth\": 2"), 14, "\"max_depth\": 2, \"ppm\": {\"nee_wavelengths\": \"emission\"}");
+  const std::string ppmScene = write("ppm.json", text);
+  expectRefused({"render", ppmScene, "-q", "--integrator", "ppm"}, 1,
+                ppmScene + ": /render/ppm/nee_wavelengths: 'emission': wavelength strategy 'emission'");
   expectRefused({"render", scene, "-q", "--seed", "3000000000"}, 2, "--seed: must be at most 2147483647, got '3000000000'");
   expectRefused({"compare", scene, "--reference", dir + "/ref.exr"}, 2, "give a time budget or a sample count");
   expectRefused({"compare", scene, "--reference", dir + "/ref.exr", "--spp", "1", "--integrators", "pt,foo"}, 2,

@@ -380,6 +380,10 @@ TEST_F(SceneLoader, UnknownTypes) {
   expectError([](json& j) { j["render"] = {{"mollify", {{"bandwidth", -2}}}}; }, "/render/mollify/bandwidth",
               "must not be negative");
   expectError([](json& j) { j["render"] = {{"mollify", {{"h", 2}}}}; }, "/render/mollify/h", "unknown field");
+  expectError([](json& j) { j["render"] = {{"ppm", {{"nee_wavelengths", "cmf*sun"}}}}; }, "/render/ppm/nee_wavelengths",
+              "expected \"cmf*light\", \"camera\" or a wavelength strategy");
+  expectError([](json& j) { j["render"] = {{"ppm", {{"nee_wavelengths", "ms-power:cmf,light"}}}}; },
+              "/render/ppm/nee_wavelengths", "'ms-power:cmf,light' is not one density");
   expectError([](json& j) { j["render"] = {{"fluorescence_sampling", "mix:light"}}; }, "/render/fluorescence_sampling",
               "a combination needs at least two components");
   expectError([](json& j) { j["render"] = {{"light_sampling", "yamamoto=2"}}; }, "/render/light_sampling",

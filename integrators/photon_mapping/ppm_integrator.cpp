@@ -1,5 +1,6 @@
 #include "integrators/photon_mapping/ppm_integrator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -7,6 +8,7 @@
 #include "integrators/direct_emission.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/lane_next_event.h"
+#include "integrators/photon_mapping/direct_light_wavelengths.h"
 #include "integrators/photon_mapping/photon_gather.h"
 #include "integrators/photon_mapping/photon_tracer.h"
 #include "integrators/progressive_schedule.h"
@@ -30,12 +32,41 @@ LaneEvent elasticEvent(std::span<const float> known) {
   return e;
 }
 
+// Lane j at the stratum (u + j/n) of p's inverse CDF, weighted by 1/(n·p(λ_j)) in its own sensor
+// share (Wilkie14 eq. 8, as the path tracer's lanes).
+CameraLanes stratifiedLanes(const WavelengthDensity& p, float u, int n) {
+  CameraLanes lanes;
+  lanes.n = n;
+  for (int j = 0; j < n; ++j) {
+    const WavelengthSample s = p.sample(laneStratum(u, j, n));
+    lanes.lambda[j] = s.lambda;
+    lanes.T[j].v[j] = s.pdf > 0.0f ? 1.0f / (float(n) * s.pdf) : 0.0f;
+  }
+  return lanes;
+}
+
+// Next-event estimation for event `direct` of `lanes` (known: their wavelengths before it), its
+// light chosen after the lanes' importance (lane_light_choice.h), weight 1: no other estimator
+// counts these paths (§3).
+SensorShares lanesNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, const CameraLanes& lanes,
+                            const LaneEvent& direct, float uLight, Vec2 uPos, RayCounter& counter) {
+  const std::span<const float> known(lanes.lambda, size_t(lanes.n));
+  thread_local LaneLightChoice lights;
+  float before[kMaxLanes], importance[kMaxLanes];
+  for (int j = 0; j < lanes.n; ++j) before[j] = lanes.T[j].sum();
+  laneImportance(bsdf, TransportMode::Radiance, known, before, direct, importance);
+  lights.reset(scene, {direct.lambda, size_t(direct.n)}, importance);
+  return laneNextEvent(scene, hit, bsdf, wo, known, lanes.T, direct, lights, /*lambdaOut0, unused without MIS*/ 0.0f,
+                       uLight, uPos, NeeWeight::Alone, counter);
+}
+
 }  // namespace
 
 PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
     : sources_(scene),
       sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
       light_(s.wavelengths.light, sources_, WavelengthSite::LightStart),
+      directLanes_(directLightWavelengths(sources_, s.ppm.neeWavelengths)),
       excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
       n_(s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths),
       maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
@@ -96,21 +127,27 @@ std::unique_ptr<const PassData> PpmIntegrator::beginPass(const Scene& scene, int
   return std::make_unique<PhotonPass>(std::move(photons), radius(firstSample), bandwidth(firstSample), photonsPerPass_);
 }
 
+Vec3 PpmIntegrator::directElasticOwnLanes(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, float uLanes,
+                                          float uLight, Vec2 uPos, SampleContext& ctx) const {
+  // The camera ray and its first hit do not depend on λ, so lanes of another density estimate
+  // ∫ W(λ)·L_direct,elastic(λ) dλ as well as the camera's (§3).
+  const CameraLanes own = stratifiedLanes(*directLanes_, uLanes, n_);
+  const SensorShares direct =
+      lanesNextEvent(scene, hit, bsdf, wo, own, elasticEvent({own.lambda, size_t(n_)}), uLight, uPos, ctx.counter);
+  Vec3 xyz(0.0f);
+  for (int j = 0; j < n_; ++j)
+    if (direct.v[j] != 0.0f) xyz += sensorResponse(ctx, own.lambda[j], direct.v[j]);
+  return xyz;
+}
+
 Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   const auto& pass = static_cast<const PhotonPass&>(*ctx.pass);
   const WavelengthDensity& p = sensor_.density();
   const float u = rng.uniform();
   const Vec2 jitter = rng.uniform2();
-  // Lane j at the stratum (u + j/N) of p's inverse CDF, weighted by 1/(N·p(λ_j)) (Wilkie14 eq. 8,
-  // as the path tracer's lanes), in its own share of the sensor.
-  float sensorLambda[kMaxLanes];
-  CameraLanes lanes;
-  lanes.n = n_;
-  for (int j = 0; j < n_; ++j) {
-    const WavelengthSample s = p.sample(laneStratum(u, j, n_));
-    sensorLambda[j] = lanes.lambda[j] = s.lambda;
-    lanes.T[j].v[j] = s.pdf > 0.0f ? 1.0f / (float(n_) * s.pdf) : 0.0f;
-  }
+  CameraLanes lanes = stratifiedLanes(p, u, n_);
+  float sensorLambda[kMaxLanes];  // the wavelength each sensor share is seen at
+  std::copy(lanes.lambda, lanes.lambda + n_, sensorLambda);
   Ray ray = scene.camera.generateRay(pixel + jitter);
   SensorShares L;    // radiance over density arriving at each sensor wavelength
   Vec3 xyz(0.0f);    // elastic photons seen at their own wavelengths
@@ -140,7 +177,8 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     const Bsdf bsdf = scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)});
     const Vec3 wo = bsdf.toLocal(-ray.d);
     const float uLobe = rng.uniform(), uLane = rng.uniform(), uLight = rng.uniform();
-    const Vec2 uPos = rng.uniform2();
+    const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
+    const float uDirectLanes = rng.uniform();  // the vertex block's last dimension (docs/sampler.md)
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));
     // The spectral event of every lane (Jung18 eq. 7, λ_i as the path tracer draws it): next-event
     // estimation's lobe, and the lobe whose direction continues the path if it is specular.
@@ -153,23 +191,20 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
       // Light sampling is the only estimator of direct light here (the path continues through
       // specular directions only): no MIS weight. "nee-elastic": the elastic lobe of every lane
       // for sure; "nee": the lobe of the spectral event e.
-      if (direct_ != PpmDirectLight::Photons) {
-        const LaneEvent& direct = direct_ == PpmDirectLight::Nee ? e : elasticEvent(known);
-        thread_local LaneLightChoice lights;
-        float before[kMaxLanes], importance[kMaxLanes];
-        for (int j = 0; j < lanes.n; ++j) before[j] = lanes.T[j].sum();
-        laneImportance(bsdf, TransportMode::Radiance, known, before, direct, importance);
-        lights.reset(scene, {direct.lambda, size_t(direct.n)}, importance);
-        L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, direct, lights,
-                           /*lambdaOut0, unused without MIS*/ 0.0f, uLight, uPos, NeeWeight::Alone, ctx.counter);
-      }
+      // Spectral bins keep the camera's lanes: their density is the one the bins asked for, while
+      // the own lanes follow the observer, whose far-red tail they would reach only rarely (§3).
+      if (direct_ == PpmDirectLight::NeeElastic && bounces == 0 && directLanes_ && !ctx.recordSpectral)
+        xyz += directElasticOwnLanes(scene, *hit, bsdf, wo, uDirectLanes, uLight, uPos, ctx);
+      else if (direct_ != PpmDirectLight::Photons)
+        L += lanesNextEvent(scene, *hit, bsdf, wo, lanes, direct_ == PpmDirectLight::Nee ? e : elasticEvent(known), uLight,
+                            uPos, ctx.counter);
     }
     if (e.n == 0) break;
     // Lanes end where the path tracer ends them: a direction that depends on λ keeps one.
     if (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection)) keepOneLane(e, uLane);
     const float lambdaOut0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lanes.lambda[0];
     const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(TransportMode::Radiance, wo, e.lobe, e.lambda[0], lambdaOut0, rng.uniform2());
+        bsdf.sampleDirection(TransportMode::Radiance, wo, e.lobe, e.lambda[0], lambdaOut0, uDir);
     // The gather covers every non-specular lobe; a sampled specular direction continues the path.
     if (!ds || !ds->specular || !(ds->pdf > 0.0f)) break;
     CameraLanes next;

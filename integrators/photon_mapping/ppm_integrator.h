@@ -10,13 +10,16 @@
 // non-specular lobe adds the photons within r_i, Σ f·Φ_p / (π r_i² N), N the subpaths of the pass,
 // and direct light of the elastic lobe by next-event estimation (lane_next_event.h), so that the
 // photons' first vertices count for the fluorescent lobe only and every path is counted by exactly
-// one of the two (§3; render/ppm/direct "nee": next-event estimation for every lobe, photons from
+// one of the two (§3; at the first vertex next-event estimation draws wavelength lanes of its own,
+// render/ppm/nee_wavelengths; render/ppm/direct "nee": next-event estimation for every lobe, photons from
 // their second vertex on; "photons": no next-event estimation). The
 // fluorescent lobe is evaluated exactly from the photon's wavelength to each lane's. The elastic
 // lobe needs λ_photon = λ_camera: where the camera path does not depend on its wavelengths (the
 // first vertex) the sensor is evaluated at the photon's own wavelength, which is exact; behind
 // specular vertices (or always, if asked) an Epanechnikov kernel of half-width h_i = h_1·r_i/r_1
 // in wavelength stands in for the delta. Emission seen along the camera path is added exactly.
+#include <optional>
+
 #include "scene/wavelength_strategy.h"
 #include "integrators/fluorescence_sampling.h"
 #include "integrators/integrator.h"
@@ -42,8 +45,14 @@ class PpmIntegrator final : public Integrator {
   float bandwidth(int sample) const;
 
  private:
+  // Next-event estimation of the elastic lobe at the first camera vertex with lanes of its own from
+  // directLanes_ (uLanes their strata, uLight the light, uPos the point on it): the XYZ it adds.
+  Vec3 directElasticOwnLanes(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, float uLanes,
+                             float uLight, Vec2 uPos, SampleContext& ctx) const;
+
   WavelengthSources sources_;
   WavelengthStrategy sensor_, light_;
+  std::optional<WavelengthDensity> directLanes_;  // own lanes of first-vertex elastic NEE (none: the camera's)
   FluorescenceSampling excitation_;  // λ_i of next-event estimation's fluorescent lobe ("material": the Bsdf's own)
   int n_, maxDepth_, rrDepth_;
   size_t photonsPerPass_;
