@@ -87,7 +87,7 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
   f.ownFamily = c.families.independent;
   f.sensorPdf = sensorPdf;
   f.oneGroup = oneGroup;
-  if (lanesKept && f.ownFamily) f.laneGain = c.lanes.n;
+  if (lanesKept && f.ownFamily && c.walk.lightFirst) f.laneGain = c.lanes.n;
   const bool table = lane >= 0 && c.lanes.lights;
   if (table && oneGroup && !f.ownFamily) {
     f.cameraChoice = c.lanes.lights->probability(size_t(light));

@@ -38,7 +38,8 @@ struct MisFactors {
   bool oneGroup = false;                         // every interior vertex is elastic
   // n where every interior vertex keeps the wavelength lanes, else 1: the camera sample's n lanes
   // then sample the path's wavelength with density n·σ for every strategy that has σ
-  // (docs/bdpt-mis.md §10); set only where the own family runs (elsewhere it would cancel).
+  // (docs/bdpt-mis.md §10); set only in the unified estimator where both families run (with the
+  // shared family alone it would cancel; bdpt-independent keeps the weights without it).
   double laneGain = 1.0;
 };
 
