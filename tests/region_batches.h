@@ -23,6 +23,19 @@ inline void useSquareCamera(Scene& scene, int res) {
   scene.camera = Camera(c.position(), c.position() + c.forward(), Vec3(0, 1, 0), c.fovYDegrees(), res, res);
 }
 
+// The scene's camera, from where it stands, turned to `target` with a vertical field of view of
+// fovY degrees, at res × res pixels.
+inline void aimCamera(Scene& scene, Vec3 target, float fovY, int res) {
+  scene.camera = Camera(scene.camera.position(), target, Vec3(0, 1, 0), fovY, res, res);
+}
+
+// Photon mapping's defaults scale with the pixel count (one photon per pixel and pass), far too few
+// at the agreement tests' resolutions: a fixed number of photons per pass and first-pass radius.
+inline void setPhotons(Scene& scene, int perPass, float radius) {
+  scene.render.ppm.photonsPerPass = perPass;
+  scene.render.ppm.radius = radius;
+}
+
 // Stats of region r, channel c at index r·3 + c. Batch b uses seed seedStep·(b + 1).
 inline std::vector<BatchStats> regionBatches(const Scene& scene, const Integrator& integrator, int width, int height,
                                              int regions, const std::function<int(int x, int y)>& regionOf, int spp,

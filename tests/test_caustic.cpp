@@ -6,6 +6,7 @@
 #include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
+#include "tests/region_batches.h"
 #include "tests/support.h"
 
 namespace kasha {
@@ -15,12 +16,9 @@ constexpr int kRes = 16, kRegions = 2;
 
 std::unique_ptr<Scene> lowRes() {
   auto scene = loadScene(test::sourcePath("scenes/uv_caustic.json"));
-  const Camera& c = scene->camera;
   // Look straight at the caustic so that every region holds some of it.
-  scene->camera = Camera(c.position(), Vec3(0, 0, 0), Vec3(0, 1, 0), 6.0f, kRes, kRes);
-  // Photon mapping: its defaults scale with the pixel count, far too coarse for 16×16 pixels.
-  scene->render.ppm.photonsPerPass = 10000;
-  scene->render.ppm.radius = 0.01f;
+  test::aimCamera(*scene, Vec3(0, 0, 0), 6.0f, kRes);
+  test::setPhotons(*scene, 10000, 0.01f);
   return scene;
 }
 
