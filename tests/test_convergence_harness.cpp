@@ -138,6 +138,37 @@ TEST_F(Harness, TinyReportSlow) {
   EXPECT_EQ(log().find("reused"), std::string::npos) << log();
 }
 
+// bench/convergence/region_errors.py on the tiny report's renders: a region covering the whole image
+// gives each configuration the mean over seeds of run.py's relMSE at the largest budget; a region of a
+// scene the report does not have is an error naming the file and the scene.
+TEST_F(Harness, RegionErrorsSlow) {
+  ASSERT_EQ(runHarness(), 0) << log();
+  std::ofstream(dir + "/regions.json") << R"({"tiny": {"whole": [0, 0, 1, 1], "corner": [0, 0, 0.5, 0.5]}})";
+  const std::string cmd = "python3 '" KASHA_SOURCE_DIR "/bench/convergence/region_errors.py' '" + dir +
+                          "/report.json' '" + dir + "/regions.json' --build-dir '" KASHA_BINARY_DIR "' >'" + dir +
+                          "/regions.md' 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::ifstream f(dir + "/regions.md");
+  std::stringstream md;
+  md << f.rdbuf();
+  std::map<std::string, double> mean;  // config → mean relMSE over seeds at the largest budget, 2
+  for (const auto& r : readCsv(dir + "/out/runs.csv"))
+    if (r.at("budget") == "2") mean[r.at("config")] += std::stod(r.at("relmse")) / 2.0;
+  for (const auto& [config, expected] : mean) {
+    const auto row = md.str().find("| " + config + " | ");
+    ASSERT_NE(row, std::string::npos) << md.str();
+    std::string cell = md.str().substr(row + config.size() + 5);  // the first region's cell
+    cell.erase(0, cell.find_first_not_of('*'));                       // the best is in bold
+    EXPECT_NEAR(std::stod(cell), expected, 5e-3 * expected) << config << "\n" << md.str();
+  }
+  std::ofstream(dir + "/regions.json") << R"({"other": {"whole": [0, 0, 1, 1]}})";
+  const std::string bad = "python3 '" KASHA_SOURCE_DIR "/bench/convergence/region_errors.py' '" + dir +
+                          "/report.json' '" + dir + "/regions.json' >'" + dir + "/log' 2>&1";
+  const int status = std::system(bad.c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1);
+  EXPECT_NE(log().find(dir + "/regions.json: /other: no such scene"), std::string::npos) << log();
+}
+
 TEST_F(Harness, BadConfigurationNamesFileAndField) {
   std::ofstream(dir + "/report.json") << R"({"output": "out", "work": "work", "seeds": [1, 2],
       "budget": {"kind": "minutes", "values": [1]}, "reference": {"integrator": "pt", "time": 1},

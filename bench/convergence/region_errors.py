@@ -67,7 +67,8 @@ def scene_table(kasha, cfg, sc, boxes):
         means[c["label"]] = {n: statistics.mean(v) for n, v in per.items()}
         rows.append((c["label"], {n: (statistics.mean(v), statistics.stdev(v)) for n, v in per.items()}))
     best = {n: min(means, key=lambda label: means[label][n]) for n in names}
-    out = [f"{sc['name']}: relMSE per region at {budget:g} {cfg['budget']['kind']} "
+    unit = "s" if cfg["budget"]["kind"] == "time" else "spp"
+    out = [f"{sc['name']}: relMSE per region at {budget:g} {unit} "
            f"(mean ± sd over seeds {', '.join(map(str, cfg['seeds']))}; **best**)", "",
            "| configuration | " + " | ".join(f"{n} {boxes[n]}" for n in names) + " |",
            "|---|" + "---|" * len(names)]
