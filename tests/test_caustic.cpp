@@ -18,7 +18,8 @@ std::unique_ptr<Scene> lowRes() {
   const Camera& c = scene->camera;
   // Look straight at the caustic so that every region holds some of it.
   scene->camera = Camera(c.position(), Vec3(0, 0, 0), Vec3(0, 1, 0), 6.0f, kRes, kRes);
-  // Photon mapping: its defaults scale with the pixel count, far too coarse for 16×16 pixels.
+  // Photon mapping and vertex merging: their defaults scale with the pixel count, far too coarse for
+  // 16×16 pixels.
   scene->render.ppm.photonsPerPass = 10000;
   scene->render.ppm.radius = 0.01f;
   return scene;
@@ -64,7 +65,7 @@ TEST_P(FluorescentCausticAgreement, WithLightTracing) {
 
 INSTANTIATE_TEST_SUITE_P(Integrators, FluorescentCausticAgreement,
                          ::testing::Values(std::make_pair("bdpt", 128), std::make_pair("bdpt-independent", 128),
-                                           std::make_pair("ppm", 64)));
+                                           std::make_pair("ppm", 64), std::make_pair("vcm", 64), std::make_pair("bpm", 64)));
 
 }  // namespace
 }  // namespace kasha

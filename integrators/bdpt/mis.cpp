@@ -12,9 +12,15 @@ bool allElastic(const FullPath& p) {
 bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
   const int k = int(p.v.size()) - 1;
   if (s < 0 || s > k) return false;
+  if (variant == Variant::kMerge || variant == Variant::kMergeOwn) {  // both sides sample x_s
+    if (!(p.mergeEta > 0.0) || s < 1 || s > k - 1 || !p.v[size_t(s)].connectible) return false;
+    if (variant == Variant::kMerge) return p.families.shared && elastic;
+    return p.families.independent && p.v[size_t(s)].lobe == SpectralLobe::Fluorescent;
+  }
   const bool own = variant != Variant::kStandard;  // every other variant is the independent family's
   if (own && !p.families.independent) return false;
   if (s == 0) return variant == Variant::kStandard && p.v[0].pdfCam > 0.0;  // the camera subpath hits the emitter
+  if (!p.connections) return false;
   if (k == 1) {  // s = t = 1: the light seen directly, at the sensor's or the light's wavelength
     if (!p.lightSeenByPinhole) return false;
     return variant == Variant::kOwn || (variant == Variant::kStandard && p.families.shared);
@@ -37,6 +43,9 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
     case Variant::kOwn:
       if (s == 1) return false;
       break;
+    case Variant::kMerge:
+    case Variant::kMergeOwn:
+      return false;  // decided above
   }
   if (s == k)  // t = 1: light tracing, x_{k−1}'s event sampled by the light side
     return p.v[size_t(k - 1)].connectible && p.specLightLast > 0.0;
@@ -54,6 +63,14 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
 // whether or not the strategy is valid.
 double strategyDensity(const FullPath& p, int s, Variant variant) {
   const int k = int(p.v.size()) - 1;
+  if (variant == Variant::kMerge || variant == Variant::kMergeOwn) {
+    // Both sides sample x_s; the kernel accepts a disc of area π r² around it, one of N light
+    // subpaths (η = N·π r²).
+    double d = p.mergeEta;
+    for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
+    for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
+    return variant == Variant::kMerge ? d * p.sensorPdf * p.cameraChoice * p.laneGain : d * p.sensorPdf * p.ownChoice;
+  }
   const bool nee = s == 1 && k >= 2 && variant == Variant::kStandard;
   double d = 1.0;
   if (nee) {
@@ -98,6 +115,10 @@ float misWeight(const FullPath& p, int s, Variant variant) {
   }
   if (k >= 2) add(1, Variant::kLightVertex);
   for (int i = 2; i < k; ++i) add(i, Variant::kMollified);
+  for (int i = 1; i < k; ++i) {
+    add(i, Variant::kMerge);
+    add(i, Variant::kMergeOwn);
+  }
   return float(1.0 / sum);
 }
 
