@@ -39,7 +39,8 @@ double weightSum(const FullPath& p) {
   for (int s = 0; s <= k; ++s) sum += misWeight(p, s, Variant::kStandard) + misWeight(p, s, Variant::kOwn);
   if (k >= 2) sum += misWeight(p, 1, Variant::kLightVertex);
   for (int s = 2; s < k; ++s) sum += misWeight(p, s, Variant::kMollified);
-  for (int m = 1; m < k; ++m) sum += misWeight(p, m, Variant::kMerge) + misWeight(p, m, Variant::kMergeOwn);
+  for (int m = 1; m < k; ++m)
+    sum += misWeight(p, m, Variant::kMerge) + misWeight(p, m, Variant::kMergeOwn) + misWeight(p, m, Variant::kMergeMollified);
   return sum;
 }
 
@@ -76,6 +77,14 @@ TEST(BdptMis, MergesAreExactWhereEachFamilySamplesTheGroupsOnce) {
   EXPECT_TRUE(strategyValid(p, 1, Variant::kMerge));
   EXPECT_TRUE(strategyValid(p, 2, Variant::kMerge));
   EXPECT_FALSE(strategyValid(p, 2, Variant::kMergeOwn));
+  EXPECT_FALSE(strategyValid(p, 2, Variant::kMergeMollified));  // no kernel
+  p.mollifyWidth = 5.0;
+  EXPECT_TRUE(strategyValid(p, 2, Variant::kMergeMollified));  // an own vertex through an elastic x_2
+  FullPath q = randomPath({F}, kBoth, rng);
+  q.mergeEta = 2.0;
+  q.mollifyWidth = 5.0;
+  EXPECT_FALSE(strategyValid(q, 1, Variant::kMergeMollified));  // a fluorescent x_1 merges exactly
+  EXPECT_TRUE(strategyValid(q, 1, Variant::kMergeOwn));
   p.v[2].connectible = false;  // a specular vertex cannot merge
   EXPECT_FALSE(strategyValid(p, 2, Variant::kMerge));
   p.connections = false;

@@ -2,7 +2,8 @@
 // the whole path (integrators/bdpt/mis.h): on subpaths traced as vcm traces them (both wavelength
 // families on one light subpath where the scene fluoresces, lanes, elastic, fluorescent, glossy and
 // specular vertices), every connection's and every merge's weight computed both ways must agree
-// (relative 1e-5), with connections and merges (vcm) and merges alone (bpm).
+// (relative 1e-5), with connections and merges (vcm) and merges alone (bpm), with and without the
+// wavelength kernel that lets own light vertices merge through elastic lobes.
 #include <gtest/gtest.h>
 
 #include "integrators/bdpt/connect.h"
@@ -21,10 +22,12 @@ struct Case {
   const char* scene;
   bool connections;
   int lanes;
+  float bandwidth = 0.0f;  // the wavelength kernel's half-width (nm): own merges through elastic lobes
 };
 
 std::string describe(const Case& c) {
-  return std::string(c.scene) + (c.connections ? " vcm" : " bpm") + " lanes " + std::to_string(c.lanes);
+  return std::string(c.scene) + (c.connections ? " vcm" : " bpm") + " lanes " + std::to_string(c.lanes) +
+         (c.bandwidth > 0.0f ? " kernel" : "");
 }
 
 class MergeWeights : public ::testing::TestWithParam<Case> {};
@@ -63,6 +66,7 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
       traceLightSubpath(*scene, LightFamily::Shared, lanes, ws, rng, counter, LS);
     Context c{*scene, ws, families, lanes, sensor.density(), counter};
     c.sharedLightVertices = sharedLightVertices;
+    c.bandwidth = param.bandwidth;
     c.oracle = &checks;
     checks.clear();
     splats.clear();
@@ -78,8 +82,7 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
         for (int t = 2; t <= int(C.size()) && v.depth + t - 2 <= ws.maxDepth; ++t)
           if (mergeable(C[size_t(t - 1)])) merge(c, C, t, v, radiance, L);
     }
-    for (const WeightCheck& k : checks)
-      merges += k.variant == uint8_t(Variant::kMerge) || k.variant == uint8_t(Variant::kMergeOwn);
+    for (const WeightCheck& k : checks) merges += isMerge(Variant(k.variant));
     ASSERT_TRUE(tally.add(checks, sample)) << describe(param);
   }
   EXPECT_GT(merges, 2000) << describe(param);
@@ -90,6 +93,8 @@ INSTANTIATE_TEST_SUITE_P(
     Scenes, MergeWeights,
     ::testing::Values(Case{"scenes/cornell_uv.json", true, 4},     // both families, UV spot, fluorescence
                       Case{"scenes/cornell_uv.json", false, 4},
+                      Case{"scenes/cornell_uv.json", true, 4, 20.0f},  // and the wavelength kernel
+                      Case{"scenes/cornell_uv.json", false, 1, 20.0f},
                       Case{"scenes/cornell_uv.json", true, 1},
                       Case{"scenes/cornell_glossy.json", true, 4},  // glossy, elastic: the shared family alone
                       Case{"scenes/cornell_glossy.json", false, 1},

@@ -77,8 +77,8 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
   } else if (f.ownFamily) {
     const double pLight = table ? c.lanes.lightPdf[lane] : c.walk.lightWavelengths->pdf(lambda0);
     f.ownChoice = pLight * f.cameraChoice;
-    if (c.bandwidth > 0.0f) f.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
   }
+  if (f.ownFamily && c.bandwidth > 0.0f) f.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
   return f;
 }
 

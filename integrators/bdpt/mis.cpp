@@ -12,10 +12,12 @@ bool allElastic(const FullPath& p) {
 bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
   const int k = int(p.v.size()) - 1;
   if (s < 0 || s > k) return false;
-  if (variant == Variant::kMerge || variant == Variant::kMergeOwn) {  // both sides sample x_s
+  if (isMerge(variant)) {  // both sides sample x_s
     if (!(p.mergeEta > 0.0) || s < 1 || s > k - 1 || !p.v[size_t(s)].connectible) return false;
     if (variant == Variant::kMerge) return p.families.shared && elastic;
-    return p.families.independent && p.v[size_t(s)].lobe == SpectralLobe::Fluorescent;
+    const bool fluorescent = p.v[size_t(s)].lobe == SpectralLobe::Fluorescent;
+    if (variant == Variant::kMergeOwn) return p.families.independent && fluorescent;
+    return p.families.independent && !fluorescent && p.mollifyWidth > 0.0;
   }
   const bool own = variant != Variant::kStandard;  // every other variant is the independent family's
   if (own && !p.families.independent) return false;
@@ -45,6 +47,7 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
       break;
     case Variant::kMerge:
     case Variant::kMergeOwn:
+    case Variant::kMergeMollified:
       return false;  // decided above
   }
   if (s == k)  // t = 1: light tracing, x_{k−1}'s event sampled by the light side
@@ -63,13 +66,16 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
 // whether or not the strategy is valid.
 double strategyDensity(const FullPath& p, int s, Variant variant) {
   const int k = int(p.v.size()) - 1;
-  if (variant == Variant::kMerge || variant == Variant::kMergeOwn) {
+  if (isMerge(variant)) {
     // Both sides sample x_s; the kernel accepts a disc of area π r² around it, one of N light
-    // subpaths (η = N·π r²).
+    // subpaths (η = N·π r²), and through an elastic x_s an own light vertex's wavelength within a
+    // window ε_h of the camera's (as a mollified join, eq. 6).
     double d = p.mergeEta;
     for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
     for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
-    return variant == Variant::kMerge ? d * p.sensorPdf * p.cameraChoice * p.laneGain : d * p.sensorPdf * p.ownChoice;
+    if (variant == Variant::kMerge) return d * p.sensorPdf * p.cameraChoice * p.laneGain;
+    d *= p.sensorPdf * p.ownChoice;
+    return variant == Variant::kMergeMollified ? d * p.mollifyWidth : d;
   }
   const bool nee = s == 1 && k >= 2 && variant == Variant::kStandard;
   double d = 1.0;
@@ -118,6 +124,7 @@ float misWeight(const FullPath& p, int s, Variant variant) {
   for (int i = 1; i < k; ++i) {
     add(i, Variant::kMerge);
     add(i, Variant::kMergeOwn);
+    add(i, Variant::kMergeMollified);
   }
   return float(1.0 / sum);
 }

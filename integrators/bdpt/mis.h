@@ -64,10 +64,14 @@ struct FullPath {
 //   fluorescent lobe evaluated;
 // - kMollified: 2 ≤ s ≤ k − 1, two elastic ends whose wavelengths the two sides chose apart,
 //   joined through a wavelength kernel (docs/bdpt-mis.md §6);
-// - kMerge, kMergeOwn: vertex merging at x_s (1 ≤ s ≤ k − 1, both sides sample x_s), with a light
-//   subpath of the shared family (a path of one group) or of the own family (x_s fluorescent)
+// - kMerge, kMergeOwn, kMergeMollified: vertex merging at x_s (1 ≤ s ≤ k − 1, both sides sample
+//   x_s), with a light subpath of the shared family (a path of one group), of the own family through
+//   a fluorescent x_s, or of the own family through an elastic x_s and the wavelength kernel
 //   (docs/bdpt-mis.md §12).
-enum class Variant : uint8_t { kStandard, kLightVertex, kMollified, kOwn, kMerge, kMergeOwn };
+enum class Variant : uint8_t { kStandard, kLightVertex, kMollified, kOwn, kMerge, kMergeOwn, kMergeMollified };
+
+// Whether a variant is one of vertex merging's.
+inline bool isMerge(Variant v) { return v == Variant::kMerge || v == Variant::kMergeOwn || v == Variant::kMergeMollified; }
 
 // Weight of strategy (s, variant). Returns 0 if the strategy itself cannot produce the path.
 float misWeight(const FullPath& path, int s, Variant variant);

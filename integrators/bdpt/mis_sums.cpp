@@ -55,7 +55,10 @@ MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, con
   const double v = st.mergeEta * density;
   MisSums m;
   m.shared = v * v;
-  if (lobe == SpectralLobe::Fluorescent) m.own = v * v;
+  if (lobe == SpectralLobe::Fluorescent)
+    m.own = v * v;
+  else
+    m.mollified = v * v;
   return m;
 }
 

@@ -86,8 +86,8 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st);
 
 // The merges at vertex x_m with lobe `lobe`, relative to the strategy that has x_m as its last vertex
 // on the side that sampled it with density `density` (docs/bdpt-mis.md §12): (η·density)², in the
-// shared family's part (any lobe: the single group is checked by `oneGroup`) and, for a fluorescent
-// lobe, the own family's.
+// shared family's part (any lobe: the single group is checked by `oneGroup`) and the own family's:
+// exact for a fluorescent lobe, through the wavelength kernel (the mollified part) for an elastic one.
 MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, const Strategies& st);
 
 }  // namespace kasha::bdpt

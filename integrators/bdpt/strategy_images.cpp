@@ -11,7 +11,7 @@ namespace kasha::bdpt {
 
 std::string strategyName(int s, int t, uint8_t variant) {
   // Every merge at camera vertex t − 1 in one image, whichever light vertex it used.
-  if (variant == uint8_t(Variant::kMerge) || variant == uint8_t(Variant::kMergeOwn)) return "merge_t" + std::to_string(t);
+  if (isMerge(Variant(variant))) return "merge_t" + std::to_string(t);
   std::string name = "s" + std::to_string(s) + "_t" + std::to_string(t);
   if (variant == uint8_t(Variant::kLightVertex)) name += "_light_vertex";
   if (variant == uint8_t(Variant::kMollified)) name += "_mollified";

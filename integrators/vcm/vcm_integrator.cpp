@@ -25,6 +25,7 @@ struct VcmPass final : PassData {
   bdpt::Lanes lanes;
   bdpt::WalkSettings walk;
   float radius = 0.0f;
+  float bandwidth = 0.0f;  // the wavelength kernel's half-width (own merges through an elastic lobe); 0: none
   std::unique_ptr<LightVertexMap> vertices;  // null without merges
 };
 
@@ -54,13 +55,20 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
   const PhotonMappingSettings& p = s.ppm;
   if (p.photonsPerPass < 0 || !(p.radius >= 0.0f))
     throw std::invalid_argument(name() + ": render/ppm/photons_per_pass and radius must not be negative");
-  // Consistency of the merges (two dimensions in space) needs α in (0, 1).
-  if (!(p.alpha > 0.0f && p.alpha < 1.0f)) throw std::invalid_argument(name() + ": render/ppm/alpha must be in (0, 1)");
+  if (!(p.bandwidth >= 0.0f)) throw std::invalid_argument(name() + ": render/ppm/bandwidth must not be negative");
+  // Consistency of the merges through the wavelength kernel (two dimensions in space, one in
+  // wavelength) needs α > 1/3.
+  if (!(p.alpha > 1.0f / 3.0f && p.alpha < 1.0f))
+    throw std::invalid_argument(name() + ": render/ppm/alpha must be in (1/3, 1)");
   // SmallVCM's choice: as many light subpaths per pass as pixels.
   paths_ = p.photonsPerPass > 0 ? size_t(p.photonsPerPass) : size_t(scene.camera.width()) * size_t(scene.camera.height());
   double area = 0.0;
   for (const Shape& shape : scene.shapes) area += shape.area;
   radius1_ = p.radius > 0.0f ? p.radius : float(std::sqrt(kVerticesPerDisc * area / (kPi * double(paths_))));
+  // Own light vertices merge through an elastic lobe with a wavelength kernel, as photon mapping's
+  // (render/ppm/bandwidth, by default 1% of the range), shrinking with the radius.
+  if (parts_ != Parts::Connections && families_.independent)
+    bandwidth1_ = p.bandwidth > 0.0f ? p.bandwidth : 0.01f * (scene.range.max - scene.range.min);
   ws_.strategies.connections = parts_ != Parts::Merges;
 }
 
@@ -79,6 +87,7 @@ std::unique_ptr<const PassData> Vcm::beginPass(const Scene& scene, int firstSamp
                                   lightFirst_.get());
   pass->walk = ws_;
   pass->radius = radius(firstSample);
+  pass->bandwidth = bandwidth1_ * pass->radius / radius1_;
   if (parts_ == Parts::Connections) return pass;
   pass->walk.strategies.mergeEta = double(paths_) * kPi * double(pass->radius) * pass->radius;
   LightVertexTracing t;
@@ -103,6 +112,7 @@ Vec3 Vcm::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContex
   traceCameraSubpath(scene, film, lanes, pass.walk, rng, ctx.counter, C);
   Context c{scene, pass.walk, families_, lanes, sensor_.density(), ctx.counter};
   c.spectralSplats = ctx.recordSpectral;
+  c.bandwidth = pass.bandwidth;
   if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
   if (ctx.recordStrategies) {
     c.log = &ctx.strategies;

@@ -6,9 +6,11 @@
 // photons_per_pass, by default one per pixel) at one set of wavelength lanes shared by every camera
 // sample of the pass, so that a merge through an elastic vertex meets light at exactly the camera's
 // wavelengths; an own-family light vertex merges through a fluorescent camera vertex, whose lobe
-// takes it from its own wavelength to the camera's. The radius shrinks pass by pass as in `ppm`
-// (render/ppm/radius, alpha). `vc` has the connections alone, `bpm` the merges alone (with the
-// camera subpath reaching the light), as SmallVCM's algorithm list.
+// takes it from its own wavelength to the camera's, or an elastic one through a wavelength kernel
+// (with the own family's mollified joins, docs/bdpt-mis.md §6). The radius and the kernel shrink pass
+// by pass as in `ppm` (render/ppm/radius, bandwidth, alpha). `vc` has the connections alone (no
+// kernel), `bpm` the merges alone (with the camera subpath reaching the light), as SmallVCM's
+// algorithm list.
 #include <memory>
 
 #include "integrators/bdpt/light_first.h"
@@ -47,6 +49,7 @@ class Vcm final : public Integrator {
   int lanes_;
   size_t paths_;
   float radius1_, alpha_;
+  float bandwidth1_ = 0.0f;  // the first pass's wavelength kernel half-width (0: no kernel)
   uint64_t memoryLimit_;
   SamplerKind sampler_;
   std::vector<Vec3> directXyz_;  // per light: its emission's XYZ seen directly (direct_emission.h)
