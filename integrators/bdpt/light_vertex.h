@@ -18,7 +18,9 @@ struct LightVertex {
   // The direction towards the previous vertex, where the light came from, in this vertex's shading
   // frame (as a photon's, photon.h): a merge reads it in the camera vertex's frame.
   float wi[3];
-  float beta[kLightVertexLanes];  // throughput of each lane arriving here (PathVertex::beta)
+  // Throughput of each lane arriving here (PathVertex::beta; where the subpath ended its lanes on
+  // arrival, every lane's that arrived, PathVertex::betaArriving, and lane −1).
+  float beta[kLightVertexLanes];
   float lambda;     // the wavelength arriving here where one lane does (PathVertex::lambda)
   float lambda0;    // the subpath's first wavelength (an own subpath's own)
   float ownStart;   // an own subpath's ℓ (its L[0].choicePdf), 0 on a shared one

@@ -73,6 +73,8 @@ void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int lig
     const float uLane = rng.uniform();
     v.laneU = uLane;
     if (lambdaDependent(bsdf)) {
+      v.lanesEndHere = true;
+      std::copy(tr.beta, tr.beta + lanes.n, v.betaArriving);
       tr.lane = std::min(int(uLane * float(lanes.n)), lanes.n - 1);
       tr.lambda = lanes.lambda[tr.lane];
       for (int k = 0; k < lanes.n; ++k) tr.beta[k] = k == tr.lane ? tr.beta[k] * float(lanes.n) : 0.0f;

@@ -15,8 +15,13 @@ namespace kasha {
 namespace {
 
 // The default r_1 puts this many light vertices in a disc if a pass's vertices spread evenly over
-// all surfaces (as photon mapping's, docs/photon-mapping.md).
-constexpr float kVerticesPerDisc = 16.0f;
+// all surfaces. Photon mapping's default holds 16 photons (docs/photon-mapping.md); merged with
+// the connections, a radius that large gives the merges most of the weight of diffuse light (η is
+// large) and their noise with it, so vcm's holds one, as small as SmallVCM's (0.3% of the scene's
+// radius): merges then carry mostly the paths that connections cannot make, such as caustics.
+constexpr float kVerticesPerDisc = 1.0f;
+// Light subpaths of the pilot that counts the vertices a pass keeps per subpath.
+constexpr size_t kPilotPaths = 1024;
 
 // What every camera sample of a pass shares: its wavelength lanes, the walk with this pass's η, and
 // the light vertices to merge with.
@@ -64,7 +69,21 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
   paths_ = p.photonsPerPass > 0 ? size_t(p.photonsPerPass) : size_t(scene.camera.width()) * size_t(scene.camera.height());
   double area = 0.0;
   for (const Shape& shape : scene.shapes) area += shape.area;
-  radius1_ = p.radius > 0.0f ? p.radius : float(std::sqrt(kVerticesPerDisc * area / (kPi * double(paths_))));
+  // A subpath keeps several vertices in a closed, bright scene: count them on a pilot of subpaths
+  // (at the lanes of the first pass), so that the default radius holds kVerticesPerDisc of them.
+  double kept = double(paths_);
+  if (p.radius <= 0.0f && parts_ != Parts::Connections) {
+    bdpt::LaneTables tables;
+    const bdpt::Lanes lanes = bdpt::sensorLanes(scene, sensor_.density(), 0.5f, lanes_, tables, nullptr, lightFirst_.get());
+    LightVertexTracing pilot;
+    pilot.paths = std::min(kPilotPaths, paths_);
+    pilot.sampler = sampler_;
+    pilot.memoryLimit = UINT64_MAX;  // at most kPilotPaths·max_depth·2 vertices
+    RayCounter rays;
+    const size_t n = traceLightVertices(scene, lanes, ws_, pilot, 0x9e3779b97f4a7c15ULL, rays).size();
+    kept = std::max(1.0, double(n) * double(paths_) / double(pilot.paths));
+  }
+  radius1_ = p.radius > 0.0f ? p.radius : float(std::sqrt(kVerticesPerDisc * area / (kPi * kept)));
   // Own light vertices merge through an elastic lobe with a wavelength kernel, as photon mapping's
   // (render/ppm/bandwidth, by default 1% of the range), shrinking with the radius.
   if (parts_ != Parts::Connections && families_.independent)
