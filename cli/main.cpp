@@ -40,6 +40,7 @@
 #include "scene/scene_loader.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/strategy_images.h"
+#include "integrators/vcm/vcm_integrator.h"
 #include "scene/wavelength_strategy.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/photon_mapping/direct_light_wavelengths.h"
@@ -203,10 +204,10 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   }
   std::unique_ptr<bdpt::StrategyImages> strategies;
   if (!a.strategyImages.empty()) {
-    if (!dynamic_cast<const Bdpt*>(integrator.get()))
+    if (!dynamic_cast<const Bdpt*>(integrator.get()) && !dynamic_cast<const Vcm*>(integrator.get()))
       throw UsageError("--strategy-images", "",
-                       "only the BDPT integrators have (s, t) strategies (bdpt, bdpt-shared, bdpt-independent, bdpt-mollified), "
-                       "not '" + a.integrator + "'");
+                       "only the BDPT integrators have (s, t) strategies (bdpt, bdpt-shared, bdpt-independent, "
+                       "bdpt-mollified, vcm, vc, bpm), not '" + a.integrator + "'");
     if (!checkpoint.empty()) throw UsageError("--strategy-images", "", "cannot be combined with --checkpoint or --resume");
     std::error_code ec;
     std::filesystem::create_directories(a.strategyImages, ec);
@@ -424,7 +425,8 @@ int main(int argc, char** argv) {
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")
       ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 4096));
   render->add_option("--integrator", ra.integrator,
-                     "Integrator: pt | lt | bdpt (both wavelength families) | bdpt-shared | bdpt-independent | bdpt-mollified | ppm")
+                     "Integrator: pt | lt | bdpt (both wavelength families) | bdpt-shared | bdpt-independent | bdpt-mollified | ppm | "
+                     "vcm (bdpt's connections and vertex merging) | vc (its connections) | bpm (its merges)")
       ->check(kIntegratorName);
   render->add_option("--mollify-bandwidth", ra.mollifyBandwidth,
                      "bdpt-mollified: wavelength kernel half-width of the first pass in nm (0: 2% of the range)")
@@ -471,7 +473,7 @@ int main(int argc, char** argv) {
                      "light | absorption | yamamoto | mix:absorption,light")
       ->check(strategy);
   render->add_option("--light-sampling", ra.light,
-                     "Light subpath wavelength (lt, bdpt, bdpt-independent, ppm), e.g. light | uniform | mix:light,absorption")
+                     "Light subpath wavelength (lt, bdpt, bdpt-independent, ppm, vcm, vc, bpm), e.g. light | uniform | mix:light,absorption")
       ->check(strategy);
   render->add_option("--nee-sampling", ra.nee,
                      "Excitation wavelength of next-event estimation after a fluorescent event (pt): event (the "

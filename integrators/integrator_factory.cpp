@@ -8,6 +8,7 @@
 #include "integrators/light_tracing/light_tracer.h"
 #include "integrators/path_tracing/path_tracer.h"
 #include "integrators/photon_mapping/ppm_integrator.h"
+#include "integrators/vcm/vcm_integrator.h"
 
 namespace kasha {
 namespace {
@@ -23,7 +24,7 @@ void requireUnused(const WavelengthSpec& spec, const WavelengthSpec& fallback, W
 
 }  // namespace
 
-std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent", "bdpt-mollified", "ppm"}; }
+std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent", "bdpt-mollified", "ppm", "vcm", "vc", "bpm"}; }
 
 int defaultLanes(const std::string& name, const RenderSettings& s) {
   if (name == "lt") return kDefaultLanes;
@@ -38,7 +39,8 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
   const WavelengthSettings& w = s.wavelengths;
   const WavelengthSettings defaults;
   const bool mollified = name == "bdpt-mollified";
-  const bool bdpt = name == "bdpt" || name == "bdpt-independent" || name == "bdpt-shared" || mollified;
+  const bool vcm = name == "vcm" || name == "vc" || name == "bpm";
+  const bool bdpt = name == "bdpt" || name == "bdpt-independent" || name == "bdpt-shared" || mollified || vcm;
   if (s.heroWavelengths == kAutoLanes && !bdpt) s.heroWavelengths = defaultLanes(name, s);
   if (s.fluorescentLanes == FluorescentLanes::End && name != "pt" && name != "lt")
     throw FluorescentLanesError("fluorescent_lanes 'end' is an experiment of pt and lt, not of " + name +
@@ -62,6 +64,11 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
   if (name == "lt") {
     requireUnused(w.sensor, defaults.sensor, WavelengthSite::Sensor, name);
     return std::make_unique<LightTracer>(scene, s);
+  }
+  if (vcm) {
+    const Vcm::Parts parts = name == "vc" ? Vcm::Parts::Connections : name == "bpm" ? Vcm::Parts::Merges
+                                                                                  : Vcm::Parts::ConnectionsAndMerges;
+    return std::make_unique<Vcm>(scene, s, parts);
   }
   // Every other name is a BDPT's (unknown ones were refused above).
   if (name == "bdpt-shared") requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);

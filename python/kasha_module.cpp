@@ -131,7 +131,7 @@ PYBIND11_MODULE(kasha, m) {
       py::arg("seed") = py::none(), py::arg("threads") = 0, py::arg("spectral_bins") = 0,
       py::arg("spectral_step") = 0.0f, py::arg("strategy_images") = false, py::arg("strategy_depth") = 4,
       py::arg("memory_limit") = "8G", py::arg("progress") = py::none(), py::arg("output") = "",
-      "Renders `scene` with an integrator (pt, lt, bdpt, bdpt-shared, bdpt-independent, bdpt-mollified, ppm) "
+      "Renders `scene` with an integrator (pt, lt, bdpt, bdpt-shared, bdpt-independent, bdpt-mollified, ppm, vcm, vc, bpm) "
       "for `spp` samples per pixel and/or `time` seconds (whole passes). Further keyword arguments are keys of "
       "the scene's render object: max_depth, sensor_sampling, fluorescence_sampling, nee_sampling, "
       "light_sampling, hero_wavelengths, mollify, ppm, ... (docs/scene-format.md).\n\n"

@@ -17,7 +17,7 @@ const std::string gIntegrator = KASHA_TEST_INTEGRATOR;
 // mapping (its photons land everywhere, and the test images hold only 64 pixels, so 64 photons a
 // pass): they get more samples so that every test keeps its power (the standard-error check
 // below). Photon mapping's kernels add no bias here (docs/photon-mapping.md, "Validation").
-const int gSppScale = gIntegrator == "lt" ? 8 : gIntegrator == "ppm" ? 2 : 1;
+const int gSppScale = gIntegrator == "lt" ? 8 : gIntegrator == "ppm" || gIntegrator == "bpm" ? 2 : 1;
 
 // Mean image XYZ over `batches` independent renders; checks each channel within 4σ.
 void expectAgreement(Scene& scene, int maxDepth, const Vec3& exact, int batches = 16, int spp = 256,

@@ -29,8 +29,9 @@ inline void aimCamera(Scene& scene, Vec3 target, float fovY, int res) {
   scene.camera = Camera(scene.camera.position(), target, Vec3(0, 1, 0), fovY, res, res);
 }
 
-// Photon mapping's defaults scale with the pixel count (one photon per pixel and pass), far too few
-// at the agreement tests' resolutions: a fixed number of photons per pass and first-pass radius.
+// Photon mapping's and vertex merging's defaults scale with the pixel count (one photon per pixel and
+// pass), far too few at the agreement tests' resolutions: a fixed number of photons per pass and
+// first-pass radius (render.ppm).
 inline void setPhotons(Scene& scene, int perPass, float radius) {
   scene.render.ppm.photonsPerPass = perPass;
   scene.render.ppm.radius = radius;

@@ -39,6 +39,8 @@ double weightSum(const FullPath& p) {
   for (int s = 0; s <= k; ++s) sum += misWeight(p, s, Variant::kStandard) + misWeight(p, s, Variant::kOwn);
   if (k >= 2) sum += misWeight(p, 1, Variant::kLightVertex);
   for (int s = 2; s < k; ++s) sum += misWeight(p, s, Variant::kMollified);
+  for (int m = 1; m < k; ++m)
+    sum += misWeight(p, m, Variant::kMerge) + misWeight(p, m, Variant::kMergeOwn) + misWeight(p, m, Variant::kMergeMollified);
   return sum;
 }
 
@@ -52,7 +54,50 @@ TEST(BdptMis, WeightsArePartitionOfUnity) {
         EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
         p.mollifyWidth = 0.1 + 10.0 * rng.uniform();  // with the mollified strategies (§6)
         EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
+        p.mergeEta = 0.1 + 10.0 * rng.uniform();  // with vertex merging (§12)
+        EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
+        p.connections = false;  // merges alone (bpm)
+        EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
       }
+}
+
+TEST(BdptMis, MergesAreExactWhereEachFamilySamplesTheGroupsOnce) {
+  // docs/bdpt-mis.md §12: a shared-family merge needs a path of one group; an own-family merge a
+  // fluorescent merge vertex, whatever the other lobes; bpm has no connections but the camera's hit.
+  Rng rng(8);
+  FullPath p = randomPath({E, F, E}, kBoth, rng);  // x_0 … x_4
+  p.mergeEta = 2.0;
+  EXPECT_FALSE(strategyValid(p, 1, Variant::kMerge));
+  EXPECT_FALSE(strategyValid(p, 1, Variant::kMergeOwn));
+  EXPECT_TRUE(strategyValid(p, 2, Variant::kMergeOwn));
+  EXPECT_FALSE(strategyValid(p, 0, Variant::kMergeOwn));  // x_0 is on the light
+  EXPECT_FALSE(strategyValid(p, 4, Variant::kMergeOwn));  // x_4 is the pinhole
+  p = randomPath({E, E}, kBoth, rng);
+  p.mergeEta = 2.0;
+  EXPECT_TRUE(strategyValid(p, 1, Variant::kMerge));
+  EXPECT_TRUE(strategyValid(p, 2, Variant::kMerge));
+  EXPECT_FALSE(strategyValid(p, 2, Variant::kMergeOwn));
+  EXPECT_FALSE(strategyValid(p, 2, Variant::kMergeMollified));  // no kernel
+  p.mollifyWidth = 5.0;
+  EXPECT_TRUE(strategyValid(p, 2, Variant::kMergeMollified));  // an own vertex through an elastic x_2
+  FullPath q = randomPath({F}, kBoth, rng);
+  q.mergeEta = 2.0;
+  q.mollifyWidth = 5.0;
+  EXPECT_FALSE(strategyValid(q, 1, Variant::kMergeMollified));  // a fluorescent x_1 merges exactly
+  EXPECT_TRUE(strategyValid(q, 1, Variant::kMergeOwn));
+  p.v[2].connectible = false;  // a specular vertex cannot merge
+  EXPECT_FALSE(strategyValid(p, 2, Variant::kMerge));
+  p.connections = false;
+  EXPECT_TRUE(strategyValid(p, 0, Variant::kStandard));
+  EXPECT_FALSE(strategyValid(p, 1, Variant::kStandard));
+  EXPECT_FALSE(strategyValid(p, 3, Variant::kStandard));
+  // A merge's density is both sides' at its vertex times η: against the connection that ends there.
+  p = randomPath({E, E}, kShared, rng);
+  p.mergeEta = 3.0;
+  const double ratio = misWeight(p, 1, Variant::kMerge) / misWeight(p, 1, Variant::kStandard);
+  const double nee = p.specCam1 * p.pdfNee * p.v[1].pdfCam * p.v[2].pdfCam;
+  const double merge = p.mergeEta * p.v[0].pdfLight * p.v[1].pdfLight * p.v[1].pdfCam * p.v[2].pdfCam;
+  EXPECT_NEAR(ratio, (merge / nee) * (merge / nee), 1e-6 * ratio);  // the weights are floats
 }
 
 TEST(BdptMis, MollifiedStrategiesJoinTwoElasticVerticesInTheIndependentFamily) {

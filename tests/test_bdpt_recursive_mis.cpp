@@ -5,13 +5,12 @@
 // together, with and without spectral mollification, and with wavelength lanes.
 #include <gtest/gtest.h>
 
-#include <map>
-
 #include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/subpaths.h"
 #include "scene/scene_loader.h"
 #include "scene/wavelength_strategy.h"
 #include "tests/support.h"
+#include "tests/weight_checks.h"
 
 namespace kasha::bdpt {
 namespace {
@@ -39,17 +38,16 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   const WavelengthStrategy sensor(scene->render.wavelengths.sensor, sources, WavelengthSite::Sensor);
   const WavelengthStrategy light(scene->render.wavelengths.light, sources, WavelengthSite::LightStart);
   const LightFirstStart lightFirst(*scene, scene->render.wavelengths.light);
-  const WalkSettings ws{6, 3, &light.density(), param.merged ? &lightFirst : nullptr};  // paths up to 6 scattering vertices
+  const WalkSettings ws{6, 3, &light.density(), param.merged ? &lightFirst : nullptr, {}};  // paths up to 6 scattering vertices
   std::vector<PathVertex> C, LS, LO;
   std::vector<WeightCheck> checks;
-  LaneLightTable lightTable;
+  LaneTables laneTables;
   std::vector<Splat> splats;
   RayCounter counter;
-  std::map<std::pair<int, int>, int> interior;  // (variant, s + t) → weights strictly inside (0, 1)
-  int compared = 0;
+  test::WeightTally tally;
   for (uint32_t sample = 0; sample < 20000; ++sample) {
     Sampler rng(SamplerKind::Independent, 11, sample, 0);
-    const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, lightTable,
+    const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, laneTables,
                                     param.families.independent && !param.merged ? &light.density() : nullptr,
                                     param.merged ? &lightFirst : nullptr);
     if (lanes.sensorPdf[0] <= 0.0f) continue;
@@ -72,20 +70,9 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
     float radiance[kMaxLanes];
     Vec3 xyz;
     connectSubpaths(c, C, LS, LO, rng, splats, radiance, xyz);
-    for (const WeightCheck& k : checks) {
-      ++compared;
-      ASSERT_NEAR(k.recursive, k.full, 1e-5f * std::max(k.recursive, k.full) + 1e-9f)
-          << "s = " << k.s << ", t = " << k.t << ", variant " << int(k.variant) << ", sample " << sample;
-      if (k.full > 1e-3f && k.full < 0.999f) ++interior[{k.variant, k.s + k.t}];
-    }
+    ASSERT_TRUE(tally.add(checks, sample)) << describe(param);
   }
-  // The comparison is not vacuous: many connections, of several lengths, with weights strictly
-  // between 0 and 1 (where a wrong term would show).
-  EXPECT_GT(compared, 2000) << describe(param);
-  int inside = 0;
-  for (const auto& [key, n] : interior) inside += n;
-  EXPECT_GT(inside, 200) << describe(param);
-  EXPECT_GE(interior.size(), 2u) << describe(param) << ": (variant, length) classes with weights inside (0, 1)";
+  tally.expectPower(2000, describe(param));
 }
 
 constexpr Families kShared{true, false}, kOwn{false, true}, kBoth{true, true};

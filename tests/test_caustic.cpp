@@ -18,7 +18,7 @@ std::unique_ptr<Scene> lowRes() {
   auto scene = loadScene(test::sourcePath("scenes/uv_caustic.json"));
   // Look straight at the caustic so that every region holds some of it.
   test::aimCamera(*scene, Vec3(0, 0, 0), 6.0f, kRes);
-  test::setPhotons(*scene, 10000, 0.01f);
+  test::setPhotons(*scene, 10000, 0.01f);  // photon mapping and vertex merging
   return scene;
 }
 
@@ -63,6 +63,9 @@ TEST_P(FluorescentCausticAgreement, WithLightTracing) {
 INSTANTIATE_TEST_SUITE_P(Integrators, FluorescentCausticAgreement,
                          ::testing::Values(std::make_pair("bdpt", 128), std::make_pair("bdpt-independent", 128),
                                            std::make_pair("ppm", 64)));
+// Vertex connection and merging (issue 14): long under the sanitizers, which skip "Slow".
+INSTANTIATE_TEST_SUITE_P(VertexMergingSlow, FluorescentCausticAgreement,
+                         ::testing::Values(std::make_pair("vcm", 64), std::make_pair("bpm", 64)));
 
 }  // namespace
 }  // namespace kasha

@@ -42,9 +42,9 @@ bdpt::StrategyImages renderWithStrategies(const Scene& scene, const std::string&
 
 TEST(StrategyImages, WeightedImagesSumToTheRender) {
   // The furnace with images up to 2 scattering events (longer paths go to "deeper"); the mirror
-  // room (glass, floor, wall, mirror) up to 4, where only mollified connections render it.
+  // room (glass, floor, wall, mirror) up to 4, where only mollified connections (and merges) render it.
   for (const auto& [name, depth] : {std::pair{"furnace_fluorescent.json", 2}, std::pair{"mollify_mirror.json", 4}})
-    for (const char* integrator : {"bdpt-shared", "bdpt-independent", "bdpt-mollified"}) {
+    for (const char* integrator : {"bdpt-shared", "bdpt-independent", "bdpt-mollified", "vcm", "bpm"}) {
       SCOPED_TRACE(std::string(name) + " " + integrator);
       auto scene = load(name);
       Film film(scene->camera.width(), scene->camera.height());
@@ -52,6 +52,8 @@ TEST(StrategyImages, WeightedImagesSumToTheRender) {
       if (depth == 2) EXPECT_TRUE(images.images().count("deeper"));
       if (depth == 2) EXPECT_GE(images.images().size(), 5u);
       if (depth == 4 && std::string(integrator) == "bdpt-mollified") EXPECT_TRUE(images.images().count("s3_t3_mollified"));
+      if (depth == 2 && (std::string(integrator) == "vcm" || std::string(integrator) == "bpm"))  // all merges per camera vertex
+        EXPECT_TRUE(images.images().count("merge_t2") && images.images().count("merge_t3"));
       for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
           double sum[3] = {0, 0, 0}, magnitude = 0.0;

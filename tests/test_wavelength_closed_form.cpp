@@ -110,7 +110,8 @@ INSTANTIATE_TEST_SUITE_P(
     caseName);
 
 // Every integrator with each sampler and lane count (issue 12), its default wavelength strategies,
-// on both furnaces. Light tracing needs more samples (most of its paths miss the small camera).
+// on both furnaces. Light tracing needs more samples (most of its paths miss the small camera), and
+// so do vcm and bpm (below).
 using MatrixCase = std::tuple<const char*, SamplerKind, int>;
 class IntegratorSamplerLanesSlow : public ::testing::TestWithParam<MatrixCase> {};
 
@@ -123,13 +124,16 @@ TEST_P(IntegratorSamplerLanesSlow, MatchFurnaceClosedForms) {
     settings.sampler = sampler;
     settings.heroWavelengths = lanes;
     ASSERT_EQ(makeIntegrator(integrator, *scene, settings)->lanes(), lanes);
-    expectXyzAgreement(*scene, integrator, settings, furnaceXyz(*scene), 16, std::string(integrator) == "lt" ? 1024 : 128);
+    // Vertex merging's passes share their wavelengths over the image (docs/bdpt-mis.md §12): with
+    // one lane drawn by PCG32 its colour noise needs twice the passes for the test's power.
+    const std::string n = integrator;
+    expectXyzAgreement(*scene, integrator, settings, furnaceXyz(*scene), 16, n == "lt" ? 1024 : n == "vcm" || n == "bpm" ? 256 : 128);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Everything, IntegratorSamplerLanesSlow,
                          ::testing::Combine(::testing::Values("pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent",
-                                                              "bdpt-mollified", "ppm"),
+                                                              "bdpt-mollified", "ppm", "vcm", "vc", "bpm"),
                                             ::testing::Values(SamplerKind::Sobol, SamplerKind::Independent),
                                             ::testing::Values(1, 4)),
                          [](const ::testing::TestParamInfo<MatrixCase>& info) {

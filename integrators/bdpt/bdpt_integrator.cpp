@@ -11,20 +11,6 @@
 namespace kasha {
 namespace {
 
-bool sceneFluoresces(const Scene& scene) {
-  for (const auto& m : scene.materials)
-    if (has(m->flags(), BsdfFlags::Fluorescent)) return true;
-  return false;
-}
-
-// The light subpaths of each camera sample (docs/bdpt-mis.md §5): the unified estimator traces an
-// own-wavelength one only where some path can fluoresce, since on elastic paths the shared family
-// has every strategy the own one has.
-bdpt::Families familiesFor(const Scene& scene, bdpt::WavelengthMode mode) {
-  using M = bdpt::WavelengthMode;
-  return {mode != M::Independent, mode == M::Independent || (mode == M::Unified && sceneFluoresces(scene))};
-}
-
 struct MollifyPass final : PassData {
   explicit MollifyPass(float h) : bandwidth(h) {}
   float bandwidth;
@@ -35,7 +21,7 @@ struct MollifyPass final : PassData {
 Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bdpt::WavelengthMode mode, const MollificationSettings* m)
     : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
       light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
-      ws_{s.maxDepth, s.rrDepth, &light_.density()}, mode_(mode), families_(familiesFor(scene, mode)),
+      ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}}, mode_(mode), families_(bdpt::familiesFor(scene, mode)),
       directXyz_(directEmissionXyz(scene)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by bdpt (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by bdpt (its MIS weights need the light-start density)");
@@ -79,8 +65,8 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   using namespace bdpt;
   thread_local std::vector<PathVertex> C, LS, LO;  // the camera subpath, the shared and own light subpaths
   if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
-  thread_local LaneLightTable lightTable;
-  const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, lightTable,
+  thread_local LaneTables laneTables;
+  const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, laneTables,
                                   families_.independent && !lightFirst_ ? &light_.density() : nullptr, lightFirst_.get());
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);

@@ -3,249 +3,10 @@
 #include <algorithm>
 
 #include "core/color.h"
-#include "integrators/bdpt/subpath_mis.h"
+#include "integrators/bdpt/connect_parts.h"
 #include "integrators/progressive_schedule.h"
 
 namespace kasha::bdpt {
-namespace {
-
-using Kind = PathVertex::Kind;
-
-Vec3 towards(const PathVertex& from, const PathVertex& to) {
-  return to.kind == Kind::Infinite ? -to.dir : glm::normalize(to.p - from.p);
-}
-
-// Area density at `target` (per sr at infinity) of a solid-angle density at `at`; vertices no
-// other strategy can sample (the pinhole, delta lights) get 0.
-double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathVertex& target) {
-  if (target.kind == Kind::Camera || target.deltaPosition) return 0.0;
-  if (target.kind == Kind::Infinite) return scene.lights[size_t(target.light)]->isDelta() ? 0.0 : pdfSA;
-  return toAreaDensity(pdfSA, at, target);
-}
-
-// Camera-side (Radiance) density of `target` sampled at `at`, whose camera-side neighbour is
-// `camNext`: the spectral event (lobe, λ_in given λ_out) and the direction.
-double cameraSide(const Scene& scene, const PathVertex& at, const PathVertex& camNext, const PathVertex& target,
-                  SpectralLobe lobe, float lambdaIn, float lambdaOut) {
-  const Bsdf& f = *at.bsdf;
-  const Vec3 wo = f.toLocal(towards(at, camNext)), wi = f.toLocal(towards(at, target));
-  const float pdf = at.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe) *
-                    at.bsdf->directionPdf(TransportMode::Radiance, wo, wi, lobe, lambdaIn, lambdaOut);
-  return toArea(scene, pdf, at, target);
-}
-
-// Light-side (Importance) density of `target` sampled at `at`, whose light-side neighbour is
-// `lightPrev`.
-double lightSide(const Scene& scene, const PathVertex& at, const PathVertex& lightPrev, const PathVertex& target,
-                 SpectralLobe lobe, float lambdaIn, float lambdaOut) {
-  const Bsdf& f = *at.bsdf;
-  const Vec3 wi = f.toLocal(towards(at, lightPrev)), wo = f.toLocal(towards(at, target));
-  const float pdf = at.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe) *
-                    at.bsdf->directionPdf(TransportMode::Importance, wi, wo, lobe, lambdaIn, lambdaOut);
-  return toArea(scene, pdf, at, target);
-}
-
-// The light end x_0 seen from its neighbour x_1: its positional densities.
-struct LightEnd {
-  double pdf0 = 0.0;    // pL_0: x_0's position (per sr at infinity), also next-event estimation's
-  double pdf1 = 0.0;    // pL_1: the light side's density of x_1 (0 if x_1 is the camera)
-  bool finite = false;  // x_0 is at a finite position
-};
-
-LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathVertex& x1) {
-  const Light& L = *c.scene.lights[size_t(light)];
-  const Vec3 w = L.atInfinity() ? x0.dir : glm::normalize(x1.p - x0.p);
-  float pdfPos = 0.0f, pdfDir = 0.0f;
-  L.emissionPdfs(x0.p, x0.n, w, pdfPos, pdfDir);
-  LightEnd e;
-  e.pdf0 = L.atInfinity() ? pdfDir : pdfPos;
-  if (x1.kind != Kind::Camera)
-    e.pdf1 = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
-  e.finite = !L.atInfinity();
-  return e;
-}
-
-// The light end of a light subpath whose first s vertices a strategy uses, from what the subpath
-// stored (x_1 is the camera when s = 1).
-LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s) {
-  return {L[0].pdfFwd, s >= 2 ? double(L[1].pdfFwd) : 0.0, L[0].kind == Kind::Light};
-}
-
-// The wavelength factors of the weights (mis_sums.h, docs/bdpt-mis.md §10) for a path whose light
-// end is `light` at wavelength lambda0 and whose last wavelength the sensor draws with sensorPdf.
-// lane: the camera sample's lane whose wavelength lambda0 is (the path has one group), or −1.
-// The camera family's light choice is the true one, the lanes' mixture, where it is the same for
-// every strategy that can make the path (one group, the shared family alone); with the own family
-// as well, every strategy's choice is taken as p(light | λ_0), a function of the path alone, so
-// that the weights stay a partition of unity for each lane (the estimates divide by the true one).
-// lanesKept: every interior vertex of the path keeps the lanes (MisFactors::laneGain). ownStart: the
-// own family's ℓ where the caller knows it (an own subpath's L[0].choicePdf), else 0.
-MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup,
-                   bool lanesKept, float ownStart = 0.0f) {
-  MisFactors f;
-  f.sharedFamily = c.families.shared;
-  f.ownFamily = c.families.independent;
-  f.sensorPdf = sensorPdf;
-  f.oneGroup = oneGroup;
-  if (lanesKept && f.ownFamily && c.walk.lightFirst) f.laneGain = c.lanes.n;
-  const bool table = lane >= 0 && c.lanes.lights;
-  if (table && oneGroup && !f.ownFamily) {
-    f.cameraChoice = c.lanes.lights->probability(size_t(light));
-    return f;
-  }
-  f.cameraChoice = table ? c.lanes.lights->laneProbability(size_t(light), lane)
-                         : c.scene.lightSelector->probability(size_t(light), lambda0);
-  if (f.ownFamily && c.walk.lightFirst) {
-    // The merged subpath's start (light_first.h): Q(l)·p_l(λ_0), tabulated at the lanes.
-    const LightFirstStart& start = *c.walk.lightFirst;
-    if (ownStart > 0.0f)
-      f.ownChoice = ownStart;
-    else if (table && c.lanes.ownStart)
-      f.ownChoice = c.lanes.ownStart[size_t(lane) * c.scene.lights.size() + size_t(light)];
-    else
-      f.ownChoice = double(start.lightProbability(size_t(light))) * start.wavelengthPdf(size_t(light), lambda0);
-  } else if (f.ownFamily) {
-    const double pLight = table ? c.lanes.lightPdf[lane] : c.walk.lightWavelengths->pdf(lambda0);
-    f.ownChoice = pLight * f.cameraChoice;
-    if (c.bandwidth > 0.0f) f.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
-  }
-  return f;
-}
-
-// The full recomputation (test oracle, docs/bdpt-mis.md §5): the stored densities of L[0..s−1],
-// C[0..t−1] laid out as x_0 … x_k, with the light end's.
-FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t,
-                const LightEnd& end, const MisFactors& f) {
-  FullPath fp;
-  fp.families = c.families;
-  fp.sensorPdf = f.sensorPdf;
-  fp.laneGain = f.laneGain;
-  fp.cameraChoice = f.cameraChoice;
-  fp.ownChoice = f.ownChoice;
-  fp.mollifyWidth = f.mollifyWidth;
-  const int k = s + t - 1;
-  fp.v.resize(size_t(k + 1));
-  for (int i = 0; i < s; ++i) {
-    const PathVertex& v = (*L)[size_t(i)];
-    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible()};
-  }
-  for (int j = 0; j < t; ++j) {
-    const PathVertex& v = C[size_t(j)];
-    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible()};
-  }
-  fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
-  fp.v[size_t(k)].pdfLight = 0.0;
-  // The light end where no light subpath vertex stores it.
-  if (s == 0) fp.v[0].pdfLight = end.pdf0;
-  if (s <= 1 && end.pdf1 > 0.0) fp.v[1].pdfLight = end.pdf1;
-  fp.v[0].connectible = true;
-  fp.pdfNee = fp.v[0].pdfLight;  // p_A: the light choice is cameraChoice
-  fp.lightVertexConnectible = end.finite;
-  return fp;
-}
-
-// Camera-side spectral density of x_1's event (needed by next-event estimation's density).
-double specCamera(const PathVertex& x1, SpectralLobe lobe, float lambda0, float lambda1) {
-  return x1.bsdf->spectralPdf(TransportMode::Radiance, lambda1, lambda0, lobe);
-}
-
-// Light-side spectral density of x_{k−1}'s event, which the t = 1 strategy samples: x_{k−1} is
-// the camera subpath's first hit C[1], with its own sampled event unless it is a connection
-// vertex (then `lobe`/`lambdaIn` give the connection's).
-double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn) {
-  return c1.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, c1.lambda, lobe);
-}
-
-// A strategy's weight from the recursive sums: its own c² over the path's whole sum
-// (docs/bdpt-mis.md eq. 11). With c.oracle set, the full recomputation `full(f)` is recorded beside it.
-template <class Full>
-float weigh(const Context& c, int s, int t, Variant v, const MisSums& own, const MisSums& total, const MisFactors& f,
-            Full&& full) {
-  const double sum = combine(total, f);
-  const float w = sum > 0.0 ? float(combine(own, f) / sum) : 0.0f;
-  if (c.oracle) c.oracle->push_back({s, t, uint8_t(v), w, full(f)});
-  return w;
-}
-
-// The lane an own-family join at camera vertex b serves, and its factor: with several lanes at b,
-// one chosen uniformly with b's own number, its estimate times n (an unbiased one-sample estimate
-// of the sum over the lanes).
-std::pair<int, float> ownJoinLane(const Context& c, const PathVertex& b) {
-  if (!b.allLanes(c.lanes)) return {b.firstLane(), 1.0f};
-  return {std::min(int(b.laneU * float(c.lanes.n)), c.lanes.n - 1), float(c.lanes.n)};
-}
-
-// Each lane's weight in [k0, k1) where active(k), from weighLane(k): per lane where the own family
-// runs (its factors differ between lanes), once for all otherwise (docs/bdpt-mis.md §10).
-template <class Active, class WeighLane>
-void laneWeights(const Context& c, int k0, int k1, float* w, Active&& active, WeighLane&& weighLane) {
-  int first = -1;
-  for (int k = k0; k < k1; ++k) {
-    w[k] = 0.0f;
-    if (!active(k)) continue;
-    if (first >= 0 && !c.families.independent) {
-      w[k] = w[first];
-      continue;
-    }
-    w[k] = weighLane(k);
-    first = k;
-  }
-}
-
-// XYZ per unit radiance of lane k at the camera: W(λ_k)/(n·p(λ_k)).
-Vec3 laneScale(const Context& c, int k) {
-  return Observer::cie1931().weight(c.lanes.lambda[k]) / (float(c.lanes.n) * c.lanes.sensorPdf[k]);
-}
-
-// Records lane k's share of a strategy at the camera sample's pixel (strategies with t ≥ 2).
-void record(const Context& c, int s, int t, Variant v, int k, float value, float weight) {
-  if (c.log && value != 0.0f)
-    c.log->push_back({c.pixel, laneScale(c, k) * (value * weight), laneScale(c, k) * value, s, t, uint8_t(v)});
-}
-
-// The radiance an emitter vertex e sends towards `next` at wavelength lambda.
-float emitted(const Context& c, const PathVertex& e, const PathVertex& next, float lambda) {
-  if (e.kind == Kind::Infinite) return c.scene.environment()->Le(lambda, -e.dir);
-  return static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission->eval(lambda, e.n,
-                                                                                                towards(e, next));
-}
-
-bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
-  ++c.counter.shadow;
-  if (b.kind == Kind::Infinite) return !c.scene.accel->occluded(offsetPoint(a.p, a.n, -b.dir), -b.dir, kInf);
-  const Vec3 d = b.p - a.p;
-  const float dist = glm::length(d);
-  const Vec3 w = d / dist;
-  const Vec3 o = glm::dot(a.n, a.n) > 0.0f ? offsetPoint(a.p, a.n, w) : a.p;
-  const float shorten = glm::dot(b.n, b.n) > 0.0f ? rayEpsilon(b.p) : 0.0f;
-  return !c.scene.accel->occluded(o, w, dist * (1.0f - 1e-4f) - shorten - rayEpsilon(a.p));
-}
-
-// The camera side's sum at a connection through C[t−1] (docs/bdpt-mis.md eq. 10): C[t−1] with the
-// light side's density pLast and `mLast` the M of the strategy with t − 1 camera vertices; C[t−2]
-// with the light side's density pBefore.
-MisSums cameraSum(const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast, double pBefore) {
-  const PathVertex& b = C[size_t(t - 1)];
-  const PathVertex& bNext = C[size_t(t - 2)];
-  return sideSum(b.sums, densityRatio(pBefore, bNext.pdfFwd), cameraMultiplicity(C, t - 2), densityRatio(pLast, b.pdfFwd),
-                 mLast);
-}
-
-// The light side's sum at a connection through L[s−1] (s ≥ 2; eq. 10): L[s−1] with the camera
-// side's density pLast and `mLast` the M of the strategy with s − 1 light vertices; L[s−2] with
-// the camera side's density pBefore.
-MisSums lightSum(const std::vector<PathVertex>& L, int s, double pLast, const MisSums& mLast, double pBefore) {
-  const PathVertex& a = L[size_t(s - 1)];
-  const PathVertex& aPrev = L[size_t(s - 2)];
-  return sideSum(a.sums, densityRatio(pBefore, aPrev.pdfFwd), lightMultiplicity(L, s - 2), densityRatio(pLast, a.pdfFwd),
-                 mLast);
-}
-
-// The light side's sum of a strategy whose light subpath ends at x_0 (s = 1): the camera side's
-// density pCam0 of it over the light side's, pLight0.
-MisSums lightEndSum(double pCam0, double pLight0) { return extend({}, densityRatio(pCam0, pLight0), hitMultiplicity()); }
-
-}  // namespace
 
 void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float* out, Vec3& xyz) {
   const PathVertex& e = C[size_t(t - 1)];
@@ -273,10 +34,11 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
   const int k = t - 1;
   // The strategies with one light vertex: next-event estimation and the light vertex at x_1, or
   // for k = 1 the light seen by the camera.
-  const MisSums m1 = k >= 2 ? firstVertexMultiplicity(next.connectible(), next.lobe, next.spectralPdf, end.finite)
-                            : directLightMultiplicity(e.kind == Kind::Surface);
+  const Strategies& st = c.walk.strategies;
+  const MisSums m1 = k >= 2 ? firstVertexMultiplicity(next.connectible(), next.lobe, next.spectralPdf, end.finite, st)
+                            : directLightMultiplicity(e.kind == Kind::Surface, st);
   const MisSums own = hitMultiplicity();
-  const MisSums total = own + cameraSum(C, t, end.pdf0, m1, end.pdf1);
+  const MisSums total = own + cameraSum(c, C, t, end.pdf0, m1, end.pdf1);
   float weight[kMaxLanes];
   laneWeights(c, e.firstLane(), e.endLane(c.lanes), weight, [&](int j) { return Le[j] > 0.0f; }, [&](int j) {
     const MisFactors f = factors(c, e.light, e.lambdaOf(c.lanes, j), e.elasticBefore ? j : -1, c.lanes.sensorPdf[j],
@@ -345,10 +107,10 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
   const LightEnd end = lightEnd(c, lightIndex, x0, x1);
   const double pCam0 = cameraSide(c.scene, x1, x2, x0, x1.lobe, lambda0, x1.lambda);
   const double pLight2 = x2.kind != Kind::Camera ? lightSide(c.scene, x1, x0, x2, x1.lobe, lambda0, x1.lambda) : 0.0;
-  const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite);
+  const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite, c.walk.strategies);
   MisSums own;
   own.nee = x1.spectralPdf * double(x1.spectralPdf);
-  const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1), pLight2);
+  const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, c.walk.strategies), pLight2);
   float weight[kMaxLanes];
   laneWeights(c, x1.firstLane(), x1.endLane(c.lanes), weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     const MisFactors f = factors(c, lightIndex, lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
@@ -400,8 +162,9 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   const double specCam1 = specCamera(b, F, a.lambda, b.lambda);
   MisSums own;
   own.own = 1.0;
-  const MisSums total = firstVertexMultiplicity(true, F, specCam1, true) + lightEndSum(pCam0, a.pdfFwd) +
-                        cameraSum(C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda), pLight2);
+  const Strategies& st = c.walk.strategies;
+  const MisSums total = firstVertexMultiplicity(true, F, specCam1, true, st) + lightEndSum(pCam0, a.pdfFwd) +
+                        cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, st), pLight2);
   const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false, false,
                                 c.walk.lightFirst ? a.choicePdf : 0.0f);
   const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, mf, [&](const MisFactors& g) {
@@ -492,9 +255,10 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, lambdaB) : 0.0;
     const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, lambdaB);
     const double pCamAPrev = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
-    const MisSums sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA), pCamAPrev) +
-                          cameraSum(C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB), pLightBNext);
-    const MisSums here = joinMultiplicity(true, p.la, p.lb);
+    const Strategies& st = c.walk.strategies;
+    const MisSums sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st), pCamAPrev) +
+                          cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st), pLightBNext);
+    const MisSums here = joinMultiplicity(true, p.la, p.lb, st);
     MisSums own;
     (p.variant == Variant::kStandard ? own.shared : p.variant == Variant::kOwn ? own.own : own.mollified) = 1.0;
     const bool oneGroup = a.elasticBefore && b.elasticBefore && p.la == SpectralLobe::Elastic && p.lb == SpectralLobe::Elastic;
@@ -577,7 +341,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       value[k] = Le * std::abs(glm::dot(a.n, conn->wi)) / (a.pdfFwd * a.choicePdf);
       any = any || Le > 0.0f;
     }
-    here = directLightMultiplicity(true);
+    here = directLightMultiplicity(true, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = 1.0;
     sides = lightEndSum(pCamA, a.pdfFwd);
   } else {
@@ -594,9 +358,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       any = any || fa > 0.0f;
     }
     pCamAPrev = cameraSide(c.scene, a, cam, aPrev, a.lobe, a.lambda, lambda);
-    here = lightTracingMultiplicity(true, a.spectralPdf);
+    here = lightTracingMultiplicity(true, a.spectralPdf, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
-    sides = lightSum(L, s, pCamA, lightMultiplicity(L, s - 1), pCamAPrev);
+    sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, c.walk.strategies), pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
   if (!any) return;

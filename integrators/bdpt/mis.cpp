@@ -12,9 +12,17 @@ bool allElastic(const FullPath& p) {
 bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
   const int k = int(p.v.size()) - 1;
   if (s < 0 || s > k) return false;
+  if (isMerge(variant)) {  // both sides sample x_s
+    if (!(p.mergeEta > 0.0) || s < 1 || s > k - 1 || !p.v[size_t(s)].connectible) return false;
+    if (variant == Variant::kMerge) return p.families.shared && elastic;
+    const bool fluorescent = p.v[size_t(s)].lobe == SpectralLobe::Fluorescent;
+    if (variant == Variant::kMergeOwn) return p.families.independent && fluorescent;
+    return p.families.independent && !fluorescent && p.mollifyWidth > 0.0;
+  }
   const bool own = variant != Variant::kStandard;  // every other variant is the independent family's
   if (own && !p.families.independent) return false;
   if (s == 0) return variant == Variant::kStandard && p.v[0].pdfCam > 0.0;  // the camera subpath hits the emitter
+  if (!p.connections) return false;
   if (k == 1) {  // s = t = 1: the light seen directly, at the sensor's or the light's wavelength
     if (!p.lightSeenByPinhole) return false;
     return variant == Variant::kOwn || (variant == Variant::kStandard && p.families.shared);
@@ -37,6 +45,10 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
     case Variant::kOwn:
       if (s == 1) return false;
       break;
+    case Variant::kMerge:
+    case Variant::kMergeOwn:
+    case Variant::kMergeMollified:
+      return false;  // decided above
   }
   if (s == k)  // t = 1: light tracing, x_{k−1}'s event sampled by the light side
     return p.v[size_t(k - 1)].connectible && p.specLightLast > 0.0;
@@ -54,6 +66,17 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
 // whether or not the strategy is valid.
 double strategyDensity(const FullPath& p, int s, Variant variant) {
   const int k = int(p.v.size()) - 1;
+  if (isMerge(variant)) {
+    // Both sides sample x_s; the kernel accepts a disc of area π r² around it, one of N light
+    // subpaths (η = N·π r²), and through an elastic x_s an own light vertex's wavelength within a
+    // window ε_h of the camera's (as a mollified join, eq. 6).
+    double d = p.mergeEta;
+    for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
+    for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
+    if (variant == Variant::kMerge) return d * p.sensorPdf * p.cameraChoice * p.laneGain;
+    d *= p.sensorPdf * p.ownChoice;
+    return variant == Variant::kMergeMollified ? d * p.mollifyWidth : d;
+  }
   const bool nee = s == 1 && k >= 2 && variant == Variant::kStandard;
   double d = 1.0;
   if (nee) {
@@ -98,6 +121,11 @@ float misWeight(const FullPath& p, int s, Variant variant) {
   }
   if (k >= 2) add(1, Variant::kLightVertex);
   for (int i = 2; i < k; ++i) add(i, Variant::kMollified);
+  for (int i = 1; i < k; ++i) {
+    add(i, Variant::kMerge);
+    add(i, Variant::kMergeOwn);
+    add(i, Variant::kMergeMollified);
+  }
   return float(1.0 / sum);
 }
 

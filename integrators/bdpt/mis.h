@@ -49,6 +49,10 @@ struct FullPath {
   // ε_h = 1/K_h(0) in nm, which turns a mollified connection's density into one over the path
   // measure; 0: no mollified strategies.
   double mollifyWidth = 0.0;
+  // The strategies besides the camera reaching the light (Strategies, mis_sums.h): BDPT's
+  // connections, and vertex merging at every connectible interior vertex with η = N·π r² (0: none).
+  bool connections = true;
+  double mergeEta = 0.0;
 };
 
 // Strategies are named by s, the number of light-subpath vertices, and a variant:
@@ -59,8 +63,15 @@ struct FullPath {
 // - kLightVertex: s = 1 through the independent light subpath's own first vertex, x_1's
 //   fluorescent lobe evaluated;
 // - kMollified: 2 ≤ s ≤ k − 1, two elastic ends whose wavelengths the two sides chose apart,
-//   joined through a wavelength kernel (docs/bdpt-mis.md §6).
-enum class Variant : uint8_t { kStandard, kLightVertex, kMollified, kOwn };
+//   joined through a wavelength kernel (docs/bdpt-mis.md §6);
+// - kMerge, kMergeOwn, kMergeMollified: vertex merging at x_s (1 ≤ s ≤ k − 1, both sides sample
+//   x_s), with a light subpath of the shared family (a path of one group), of the own family through
+//   a fluorescent x_s, or of the own family through an elastic x_s and the wavelength kernel
+//   (docs/bdpt-mis.md §12).
+enum class Variant : uint8_t { kStandard, kLightVertex, kMollified, kOwn, kMerge, kMergeOwn, kMergeMollified };
+
+// Whether a variant is one of vertex merging's.
+inline bool isMerge(Variant v) { return v == Variant::kMerge || v == Variant::kMergeOwn || v == Variant::kMergeMollified; }
 
 // Weight of strategy (s, variant). Returns 0 if the strategy itself cannot produce the path.
 float misWeight(const FullPath& path, int s, Variant variant);

@@ -15,8 +15,8 @@ double combine(const MisSums& m, const MisFactors& f) {
   return sum + f.sensorPdf * f.sensorPdf * sensed;
 }
 
-MisSums joinMultiplicity(bool connectible, SpectralLobe la, SpectralLobe lb) {
-  if (!connectible) return {};
+MisSums joinMultiplicity(bool connectible, SpectralLobe la, SpectralLobe lb, const Strategies& st) {
+  if (!connectible || !st.connections) return {};
   const bool fa = la == SpectralLobe::Fluorescent, fb = lb == SpectralLobe::Fluorescent;
   MisSums m;
   m.shared = 1.0;
@@ -25,27 +25,40 @@ MisSums joinMultiplicity(bool connectible, SpectralLobe la, SpectralLobe lb) {
   return m;
 }
 
-MisSums firstVertexMultiplicity(bool connectible, SpectralLobe lobe, double specCam1, bool finiteLight) {
-  if (!connectible) return {};
+MisSums firstVertexMultiplicity(bool connectible, SpectralLobe lobe, double specCam1, bool finiteLight,
+                                const Strategies& st) {
+  if (!connectible || !st.connections) return {};
   MisSums m;
   m.nee = specCam1 * specCam1;  // next-event estimation: specCam1·p_NEE, and p_NEE = pL_0
   if (finiteLight && lobe == SpectralLobe::Fluorescent) m.own = 1.0;
   return m;
 }
 
-MisSums lightTracingMultiplicity(bool connectible, double specLight) {
-  if (!connectible || !(specLight > 0.0)) return {};
+MisSums lightTracingMultiplicity(bool connectible, double specLight, const Strategies& st) {
+  if (!connectible || !(specLight > 0.0) || !st.connections) return {};
   MisSums m;
   m.shared = specLight * specLight;
   m.ownSplat = specLight * specLight;
   return m;
 }
 
-MisSums directLightMultiplicity(bool seenByPinhole) {
-  if (!seenByPinhole) return {};
+MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st) {
+  if (!seenByPinhole || !st.connections) return {};
   MisSums m;
   m.shared = 1.0;
   m.ownSplat = 1.0;
+  return m;
+}
+
+MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, const Strategies& st) {
+  if (!mergeable || !(st.mergeEta > 0.0)) return {};
+  const double v = st.mergeEta * density;
+  MisSums m;
+  m.shared = v * v;
+  if (lobe == SpectralLobe::Fluorescent)
+    m.own = v * v;
+  else
+    m.mollified = v * v;
   return m;
 }
 

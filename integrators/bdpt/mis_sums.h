@@ -53,23 +53,41 @@ inline MisSums extend(const MisSums& before, double ratio, const MisSums& multip
   return (multiplicity + before) * (ratio * ratio);
 }
 
+// Which strategies an estimator has besides the camera subpath reaching the light
+// (docs/bdpt-mis.md §12): BDPT's connections (joins, next-event estimation, the light vertex,
+// t = 1), and vertex merging at every connectible interior vertex x_m, whose density is
+// Π_{i≤m} pL_i · Π_{i≥m} pC_i · η with η = N·π r² (N light subpaths merged against, r the pass's
+// radius; Georgiev et al. 2012 eq. 10's η_VCM with one light subpath per camera sample for the
+// connections).
+struct Strategies {
+  bool connections = true;
+  double mergeEta = 0.0;  // 0: no merges
+};
+
 // M of the camera subpath reaching the light (s' = 0).
 inline MisSums hitMultiplicity() { return {1.0, 0.0, 0.0, 0.0, 0.0, 0.0}; }
 
 // M of a join between two surface vertices with lobes la, lb (2 ≤ s' ≤ k − 1; docs/bdpt-mis.md §4):
 // the shared family's (any lobes: the path's single group is checked by `oneGroup`), the own
 // family's with exactly one fluorescent end, its mollified one with two elastic ends.
-MisSums joinMultiplicity(bool connectible, SpectralLobe la, SpectralLobe lb);
+MisSums joinMultiplicity(bool connectible, SpectralLobe la, SpectralLobe lb, const Strategies& st);
 
 // M of next-event estimation and the light-vertex strategy (s' = 1, k ≥ 2): x_1 with lobe `lobe`
 // and camera-side spectral density specCam1, the light at a finite position or not.
-MisSums firstVertexMultiplicity(bool connectible, SpectralLobe lobe, double specCam1, bool finiteLight);
+MisSums firstVertexMultiplicity(bool connectible, SpectralLobe lobe, double specCam1, bool finiteLight,
+                                const Strategies& st);
 
 // M of the two light-tracing strategies t = 1 (s' = k ≥ 2): x_{k−1} with the light side's spectral
 // density specLight.
-MisSums lightTracingMultiplicity(bool connectible, double specLight);
+MisSums lightTracingMultiplicity(bool connectible, double specLight, const Strategies& st);
 
 // M of the light seen by the camera (k = 1, s' = 1), at the sensor's or the own family's wavelength.
-MisSums directLightMultiplicity(bool seenByPinhole);
+MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st);
+
+// The merges at vertex x_m with lobe `lobe`, relative to the strategy that has x_m as its last vertex
+// on the side that sampled it with density `density` (docs/bdpt-mis.md §12): (η·density)², in the
+// shared family's part (any lobe: the single group is checked by `oneGroup`) and the own family's:
+// exact for a fluorescent lobe, through the wavelength kernel (the mollified part) for an elastic one.
+MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, const Strategies& st);
 
 }  // namespace kasha::bdpt

@@ -46,6 +46,10 @@ struct PathVertex {
   // only this one (at `lambda`), its throughput times n: a vertex whose sampling depends on the
   // wavelength keeps one lane at random (docs/bdpt-mis.md §10).
   int8_t lane = -1;
+  // Where this vertex ended the lanes (on arrival), the throughput of every lane that arrived: a
+  // merge here needs only the light arriving, which every lane knows (docs/bdpt-mis.md §12).
+  bool lanesEndHere = false;
+  float betaArriving[kMaxLanes] = {};
   // The uniform number drawn where several lanes arrive: it picks the lane that goes on if the
   // vertex ends them, or the lane an own-family join at this vertex serves (docs/bdpt-mis.md §10).
   float laneU = 0.0f;

@@ -10,6 +10,8 @@
 namespace kasha::bdpt {
 
 std::string strategyName(int s, int t, uint8_t variant) {
+  // Every merge at camera vertex t − 1 in one image, whichever light vertex it used.
+  if (isMerge(Variant(variant))) return "merge_t" + std::to_string(t);
   std::string name = "s" + std::to_string(s) + "_t" + std::to_string(t);
   if (variant == uint8_t(Variant::kLightVertex)) name += "_light_vertex";
   if (variant == uint8_t(Variant::kMollified)) name += "_mollified";
@@ -53,9 +55,9 @@ std::vector<std::string> StrategyImages::write(const std::string& dir, bool unwe
 uint64_t StrategyImages::bytesFor(int width, int height, int maxDepth) {
   // Paths of k = 1 … K segments (K = maxDepth + 1): k + 1 standard strategies each, at most k
   // of the own-wavelength family, one light-vertex variant and k − 2 mollified ones
-  // (s = 2 … k − 1); and "deeper".
+  // (s = 2 … k − 1); the merges at each camera vertex t − 1 = 1 … K − 1; and "deeper".
   const uint64_t K = uint64_t(std::max(0, maxDepth)) + 1;
-  const uint64_t strategies = K * (K + 3) / 2 + K * (K + 1) / 2 + K + (K - 1) * (K - 2) / 2 + 1;
+  const uint64_t strategies = K * (K + 3) / 2 + K * (K + 1) / 2 + K + (K - 1) * (K - 2) / 2 + (K - 1) + 1;
   return saturatingMul(saturatingMul(strategies, 2), Film::bytesFor(width, height));
 }
 

@@ -14,7 +14,8 @@
 namespace kasha::bdpt {
 
 // File stem of a strategy's image: "s2_t3" (camera-only and shared family), "s2_t3_own" (own
-// wavelength family), "s1_t2_light_vertex", "s2_t2_mollified".
+// wavelength family), "s1_t2_light_vertex", "s2_t2_mollified", "merge_t3" (every merge at camera
+// vertex t − 1, vcm and bpm).
 std::string strategyName(int s, int t, uint8_t variant);
 
 class StrategyImages {

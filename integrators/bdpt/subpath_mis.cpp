@@ -2,40 +2,44 @@
 
 namespace kasha::bdpt {
 
-MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut) {
+MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
+                          const Strategies& st) {
   if (j < 0) return {};
   if (j == 0) return hitMultiplicity();  // the camera subpath hits the light (0 where pC_0 is)
   const PathVertex& v = L[size_t(j)];
+  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, st);
   if (j == 1) {  // x_1: next-event estimation, and the light vertex through a fluorescent x_1
     const double specCam1 = v.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, v.lambda, lobe);
-    return firstVertexMultiplicity(v.connectible(), lobe, specCam1, L[0].kind == PathVertex::Kind::Light);
+    return merges + firstVertexMultiplicity(v.connectible(), lobe, specCam1, L[0].kind == PathVertex::Kind::Light, st);
   }
   const PathVertex& u = L[size_t(j - 1)];
-  return joinMultiplicity(u.connectible() && v.connectible(), u.lobe, lobe);
+  return merges + joinMultiplicity(u.connectible() && v.connectible(), u.lobe, lobe, st);
 }
 
-MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j) {
-  if (j < 1) return lightMultiplicity(L, j, SpectralLobe::Elastic, 0.0f);
-  return lightMultiplicity(L, j, L[size_t(j)].lobe, L[size_t(j)].lambdaNext);
+MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st) {
+  if (j < 1) return lightMultiplicity(L, j, SpectralLobe::Elastic, 0.0f, st);
+  return lightMultiplicity(L, j, L[size_t(j)].lobe, L[size_t(j)].lambdaNext, st);
 }
 
-MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn) {
+MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn,
+                           const Strategies& st) {
   if (j < 1) return {};
   const PathVertex& v = C[size_t(j)];
+  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, st);
   if (j == 1) {  // t = 1: the light side samples x_{k−1}'s event
     const double specLight = v.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, v.lambda, lobe);
-    return lightTracingMultiplicity(v.connectible(), specLight);
+    return merges + lightTracingMultiplicity(v.connectible(), specLight, st);
   }
   const PathVertex& u = C[size_t(j - 1)];
-  return joinMultiplicity(u.connectible() && v.connectible(), lobe, u.lobe);
+  return merges + joinMultiplicity(u.connectible() && v.connectible(), lobe, u.lobe, st);
 }
 
-MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j) {
+MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st) {
   if (j < 1) return {};
-  return cameraMultiplicity(C, j, C[size_t(j)].lobe, C[size_t(j)].lambdaNext);
+  return cameraMultiplicity(C, j, C[size_t(j)].lobe, C[size_t(j)].lambdaNext, st);
 }
 
-void updateSums(std::vector<PathVertex>& path, TransportMode mode) {
+void updateSums(std::vector<PathVertex>& path, TransportMode mode, const Strategies& st) {
   const size_t j = path.size() - 1;
   PathVertex& v = path[j];
   if (j < 2) {
@@ -46,7 +50,8 @@ void updateSums(std::vector<PathVertex>& path, TransportMode mode) {
   const PathVertex& back2 = path[j - 2];
   const PathVertex& back1 = path[j - 1];
   const double r = densityRatio(back2.pdfRev, back2.pdfFwd);
-  const MisSums m = mode == TransportMode::Radiance ? cameraMultiplicity(path, int(j - 2)) : lightMultiplicity(path, int(j - 2));
+  const MisSums m = mode == TransportMode::Radiance ? cameraMultiplicity(path, int(j - 2), st)
+                                                    : lightMultiplicity(path, int(j - 2), st);
   v.sums = extend(back1.sums, r, m);
   v.elasticBefore = back1.elasticBefore && back1.lobe == SpectralLobe::Elastic;
 }

@@ -54,7 +54,8 @@ Track startTrack(const Lanes& lanes, std::vector<PathVertex>& path, const float*
 }
 
 // Appends the surface vertex at `hit`, reached along `ray`, to the track's subpath.
-void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int light, TransportMode mode, Sampler& rng) {
+void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int light, TransportMode mode,
+            const Strategies& st, Sampler& rng) {
   const Lanes& lanes = *tr.lanes;
   std::vector<PathVertex>& path = *tr.path;
   const PathVertex& prev = path.back();
@@ -72,6 +73,8 @@ void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int lig
     const float uLane = rng.uniform();
     v.laneU = uLane;
     if (lambdaDependent(bsdf)) {
+      v.lanesEndHere = true;
+      std::copy(tr.beta, tr.beta + lanes.n, v.betaArriving);
       tr.lane = std::min(int(uLane * float(lanes.n)), lanes.n - 1);
       tr.lambda = lanes.lambda[tr.lane];
       for (int k = 0; k < lanes.n; ++k) tr.beta[k] = k == tr.lane ? tr.beta[k] * float(lanes.n) : 0.0f;
@@ -90,7 +93,7 @@ void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int lig
   v.pdfFwd = prev.kind == PathVertex::Kind::Infinite ? tr.pdfSA * std::abs(glm::dot(v.n, ray.d))  // disk → surface
                                                       : toAreaDensity(tr.pdfSA, prev, v);
   path.push_back(v);
-  updateSums(path, mode);
+  updateSums(path, mode, st);
 }
 
 // The track's spectral event at its last vertex, sampled with u; false if it cannot go on.
@@ -166,7 +169,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
           v.lambda = tr.lambda;
           v.pdfFwd = tr.pdfSA;
           tr.path->push_back(v);
-          updateSums(*tr.path, mode);
+          updateSums(*tr.path, mode, ws.strategies);
         }
         return;
       }
@@ -174,7 +177,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
       const int light = scene.shapeLight[hit->shape];
       int alive = 0;
       for (int i = 0; i < nTracks; ++i)
-        if (tracks[i].alive) arrive(tracks[i], *hit, ray, bsdf, light, mode, rng), ++alive;
+        if (tracks[i].alive) arrive(tracks[i], *hit, ray, bsdf, light, mode, ws.strategies, rng), ++alive;
       ++surfaces;
       if (alive > 1 && lambdaDependent(bsdf))
         for (int i = 0; i < nTracks; ++i)
@@ -225,7 +228,14 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
 
 }  // namespace
 
-Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table,
+Families familiesFor(const Scene& scene, WavelengthMode mode) {
+  using M = WavelengthMode;
+  bool fluoresces = false;
+  for (const auto& m : scene.materials) fluoresces = fluoresces || has(m->flags(), BsdfFlags::Fluorescent);
+  return {mode != M::Independent, mode == M::Independent || (mode == M::Unified && fluoresces)};
+}
+
+Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneTables& tables,
                   const WavelengthDensity* own, const LightFirstStart* merged) {
   Lanes lanes;
   lanes.n = n;
@@ -237,11 +247,11 @@ Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, 
     lanes.lightPdf[k] = own && n > 1 ? own->pdf(ws.lambda) : 0.0f;
   }
   if (n > 1) {
-    table.reset(scene, {lanes.lambda, size_t(n)});
-    lanes.lights = &table;
+    tables.lights.reset(scene, {lanes.lambda, size_t(n)});
+    lanes.lights = &tables.lights;
   }
   if (n > 1 && merged) {
-    thread_local std::vector<float> ownStart;
+    std::vector<float>& ownStart = tables.ownStart;
     const size_t lights = scene.lights.size();
     ownStart.resize(size_t(n) * lights);
     for (int k = 0; k < n; ++k)
@@ -268,7 +278,7 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
   c.pdfFwd = 1.0f;
   c.deltaPosition = true;
   out.push_back(c);
-  updateSums(out, TransportMode::Radiance);
+  updateSums(out, TransportMode::Radiance, ws.strategies);
   const Ray ray = scene.camera.generateRay(filmPos);
   // The sensor's density of the last wavelength group is a factor of the weights (mis_sums.h).
   const float pdfDir = scene.camera.directionPdf(ray.d);
@@ -339,7 +349,7 @@ void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shar
   float beta[kMaxLanes];
   if (!startLightVertex(L, light, *es, lanes.lambda[0], lanes, choice, v, beta)) return;
   out.push_back(v);
-  updateSums(out, TransportMode::Importance);
+  updateSums(out, TransportMode::Importance, ws.strategies);
   Track tr = startTrack(lanes, out, beta, emissionDirectionPdf(L, *es));
   tr.stopAtFluorescence = family == LightFamily::Shared;
   randomWalk(scene, emissionRay(*es), &tr, 1, TransportMode::Importance, ws, rng, counter);
@@ -365,13 +375,13 @@ int traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkS
   const float pdfDir = emissionDirectionPdf(L, *es);
   if (startLightVertex(L, d.light, *es, d.lambda, own, d.lightPdf * d.wavelengthPdf, v, beta)) {
     LO.push_back(v);
-    updateSums(LO, TransportMode::Importance);
+    updateSums(LO, TransportMode::Importance, ws.strategies);
     tracks[n++] = startTrack(own, LO, beta, pdfDir);
   }
   v = PathVertex{};
   if (startLightVertex(L, d.light, *es, d.lambda, shared, d.lightPdf, v, beta)) {
     LS.push_back(v);
-    updateSums(LS, TransportMode::Importance);
+    updateSums(LS, TransportMode::Importance, ws.strategies);
     tracks[n] = startTrack(shared, LS, beta, pdfDir);
     tracks[n].stopAtFluorescence = true;
     tracks[n++].forkWhereLambdaDependent = true;

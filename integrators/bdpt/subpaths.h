@@ -6,6 +6,7 @@
 #include "scene/scene.h"
 #include "core/wavelength_density.h"
 #include "integrators/bdpt/light_first.h"
+#include "integrators/bdpt/mis.h"
 #include "integrators/bdpt/path_vertex.h"
 #include "integrators/integrator.h"
 
@@ -25,6 +26,11 @@ enum class LightFamily : uint8_t {
   Own,     // drawn with the light from the light-start strategy
 };
 
+// The light subpaths of each camera sample (docs/bdpt-mis.md §5): the unified estimator traces an
+// own-wavelength one only where some path can fluoresce, since on elastic paths the shared family
+// has every strategy the own one has.
+Families familiesFor(const Scene& scene, WavelengthMode mode);
+
 struct WalkSettings {
   int maxDepth = 64;  // maximum number of scattering vertices on a full path
   int rrDepth = 3;
@@ -32,14 +38,22 @@ struct WalkSettings {
   // Set where the unified estimator merges both families into one light subpath (docs/bdpt-mis.md
   // §11): how that subpath starts.
   const LightFirstStart* lightFirst = nullptr;
+  // The strategies the weights count (mis_sums.h): BDPT's connections, and vertex merging in vcm.
+  Strategies strategies;
+};
+
+// What a camera sample's lanes point into (Lanes::lights, Lanes::ownStart).
+struct LaneTables {
+  LaneLightTable lights;
+  std::vector<float> ownStart;
 };
 
 // The camera sample's n lanes from one uniform u: lane k at the stratum (u + k/n) of the sensor
 // density's inverse CDF (pt's lanes, Wilkie et al. 2014), each with its density and response;
-// with more than one, `table` is filled with the lights' powers at them, and given the own family's
+// with more than one, `tables` is filled with the lights' powers at them, and given the own family's
 // light-start density `own`, each lane's density under it, or given the merged subpath's start
-// `merged`, its density Q(l)·p_l at each lane for each light.
-Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneLightTable& table,
+// `merged`, its density Q(l)·p_l at each lane for each light. The lanes point into `tables`.
+Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneTables& tables,
                   const WavelengthDensity* own = nullptr, const LightFirstStart* merged = nullptr);
 
 // The light chosen with u for the lanes (a lane's wavelength at random, then ∝ Φ_l there: the

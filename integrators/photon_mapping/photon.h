@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "integrators/point_map.h"
+
 namespace kasha {
 
 inline constexpr int kPhotonLanes = 4;
@@ -29,13 +31,10 @@ static_assert(sizeof(Photon) == 64);
 // Photons stored for a vertex that `lanes` lanes reach.
 constexpr size_t photonsPerVertex(int lanes) { return size_t((lanes + kPhotonLanes - 1) / kPhotonLanes); }
 
-// Leaf size of FLANN's single k-d tree (KDTreeSingleIndexParams).
-inline constexpr int kPhotonLeafSize = 24;
-
 // Memory of FLANN's index per photon (docs/photon-mapping.md §5): a reordered copy of the positions
 // (12 bytes), a row pointer (8) and an int permutation entry (4) per point, and at most about
 // 4/leafSize tree nodes of 40 bytes per point.
-inline constexpr size_t kIndexBytesPerPhoton = 12 + 8 + 4 + 4 * 40 / kPhotonLeafSize;
+inline constexpr size_t kIndexBytesPerPhoton = 12 + 8 + 4 + 4 * 40 / kPointLeafSize;
 // Peak memory per stored photon: the larger of the record with FLANN's index (64 + 30) and the
 // moment the pass's per-chunk buffers are copied into one array (two records).
 inline constexpr size_t kBytesPerPhoton = std::max(2 * sizeof(Photon), sizeof(Photon) + kIndexBytesPerPhoton);

@@ -1,19 +1,12 @@
 #include "integrators/photon_mapping/photon_tracer.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
-#include <algorithm>
-#include <atomic>
 #include <cmath>
 
-#include "core/memory_budget.h"
+#include "integrators/chunked_paths.h"
 #include "integrators/light_subpath_lanes.h"
 
 namespace kasha {
 namespace {
-
-constexpr size_t kPathsPerChunk = 1024;
 
 // Stores the lanes of positive power at `hit`, each lane's beta times `shading`, kPhotonLanes to a photon.
 void store(const Hit& hit, const Vec3& wi, const LightLanes& lanes, float shading, int depth, std::vector<Photon>& out) {
@@ -70,39 +63,16 @@ void tracePath(const Scene& scene, const PhotonTracing& s, Sampler& rng, std::ve
 }  // namespace
 
 std::vector<Photon> tracePhotons(const Scene& scene, const PhotonTracing& s, uint64_t seed, RayCounter& counter) {
-  const size_t chunks = (s.paths + kPathsPerChunk - 1) / kPathsPerChunk;
-  std::vector<std::vector<Photon>> parts(chunks);
-  std::vector<RayCounter> counters(chunks);
-  const size_t maxStored = size_t(s.memoryLimit / kBytesPerPhoton);
-  std::atomic<size_t> stored{0};
-  std::atomic<bool> overflow{false};
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t c = range.begin(); c < range.end() && !overflow.load(std::memory_order_relaxed); ++c) {
-      const size_t end = std::min(s.paths, (c + 1) * kPathsPerChunk);
-      for (size_t j = c * kPathsPerChunk; j < end; ++j) {
-        Sampler rng(s.sampler, seed, 0, uint32_t(j));
-        tracePath(scene, s, rng, parts[c], counters[c]);
-      }
-      if (stored.fetch_add(parts[c].size()) + parts[c].size() > maxStored) overflow = true;
-    }
-  });
-  for (const RayCounter& c : counters) counter.closest += c.closest;
-  const size_t total = stored.load();
-  if (overflow)
-    requireMemory(saturatingMul(total, kBytesPerPhoton),
-                  "the photon map of one pass (at least " + std::to_string(total) + " photons × " +
-                      std::to_string(kBytesPerPhoton) + " bytes from " + std::to_string(s.paths) +
-                      " light subpaths; lower render/ppm/photons_per_pass)",
-                  s.memoryLimit);
-  // Photons in path order: each chunk's at its offset, copied in parallel, each chunk freed once copied.
-  std::vector<size_t> offset(chunks + 1, 0);
-  for (size_t c = 0; c < chunks; ++c) offset[c + 1] = offset[c] + parts[c].size();
-  std::vector<Photon> photons(total);
-  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
-    std::copy(parts[c].begin(), parts[c].end(), photons.begin() + long(offset[c]));
-    std::vector<Photon>().swap(parts[c]);
-  });
-  return photons;
+  auto what = [&](size_t total) {
+    return "the photon map of one pass (at least " + std::to_string(total) + " photons × " +
+           std::to_string(kBytesPerPhoton) + " bytes from " + std::to_string(s.paths) +
+           " light subpaths; lower render/ppm/photons_per_pass)";
+  };
+  return traceInChunks<Photon>(s.paths, s.memoryLimit, kBytesPerPhoton, what, counter,
+                               [&](size_t j, std::vector<Photon>& out, RayCounter& rays) {
+                                 Sampler rng(s.sampler, seed, 0, uint32_t(j));
+                                 tracePath(scene, s, rng, out, rays);
+                               });
 }
 
 }  // namespace kasha

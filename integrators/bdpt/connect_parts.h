@@ -1,0 +1,130 @@
+#pragma once
+// The parts BDPT's strategies share (connect.cpp, merge.cpp): densities next to a connection, the
+// light end, the wavelength factors of the weights, the full recomputation for the test oracle,
+// the per-lane weights and their records, and visibility.
+#include <utility>
+#include <vector>
+
+#include "integrators/bdpt/connect.h"
+#include "integrators/bdpt/subpath_mis.h"
+
+namespace kasha::bdpt {
+
+using Kind = PathVertex::Kind;
+
+// The unit direction from `from` towards `to` (at infinity: against the direction light travels).
+Vec3 towards(const PathVertex& from, const PathVertex& to);
+
+// Area density at `target` (per sr at infinity) of a solid-angle density at `at`; vertices no
+// other strategy can sample (the pinhole, delta lights) get 0.
+double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathVertex& target);
+
+// Camera-side (Radiance) density of `target` sampled at `at`, whose camera-side neighbour is
+// `camNext`: the spectral event (lobe, λ_in given λ_out) and the direction.
+double cameraSide(const Scene& scene, const PathVertex& at, const PathVertex& camNext, const PathVertex& target,
+                  SpectralLobe lobe, float lambdaIn, float lambdaOut);
+
+// Light-side (Importance) density of `target` sampled at `at`, whose light-side neighbour is
+// `lightPrev`.
+double lightSide(const Scene& scene, const PathVertex& at, const PathVertex& lightPrev, const PathVertex& target,
+                 SpectralLobe lobe, float lambdaIn, float lambdaOut);
+
+// The light end x_0 seen from its neighbour x_1: its positional densities.
+struct LightEnd {
+  double pdf0 = 0.0;    // pL_0: x_0's position (per sr at infinity), also next-event estimation's
+  double pdf1 = 0.0;    // pL_1: the light side's density of x_1 (0 if x_1 is the camera)
+  bool finite = false;  // x_0 is at a finite position
+};
+
+LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathVertex& x1);
+
+// The light end of a light subpath whose first s vertices a strategy uses, from what the subpath
+// stored (x_1 is the camera when s = 1).
+LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s);
+
+// The wavelength factors of the weights (mis_sums.h, docs/bdpt-mis.md §10) for a path whose light
+// end is `light` at wavelength lambda0 and whose last wavelength the sensor draws with sensorPdf.
+// lane: the camera sample's lane whose wavelength lambda0 is (the path has one group), or −1.
+// The camera family's light choice is the true one, the lanes' mixture, where it is the same for
+// every strategy that can make the path (one group, the shared family alone); with the own family
+// as well, every strategy's choice is taken as p(light | λ_0), a function of the path alone, so
+// that the weights stay a partition of unity for each lane (the estimates divide by the true one).
+// lanesKept: every interior vertex of the path keeps the lanes (MisFactors::laneGain). ownStart: the
+// own family's ℓ where the caller knows it (an own subpath's L[0].choicePdf), else 0.
+MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup,
+                   bool lanesKept, float ownStart = 0.0f);
+
+// The full recomputation (test oracle, docs/bdpt-mis.md §5): the stored densities of L[0..s−1],
+// C[0..t−1] laid out as x_0 … x_k, with the light end's.
+FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t,
+                const LightEnd& end, const MisFactors& f);
+
+// Camera-side spectral density of x_1's event (needed by next-event estimation's density).
+double specCamera(const PathVertex& x1, SpectralLobe lobe, float lambda0, float lambda1);
+
+// Light-side spectral density of x_{k−1}'s event, which the t = 1 strategy samples: x_{k−1} is
+// the camera subpath's first hit C[1], with its own sampled event unless it is a connection
+// vertex (then `lobe`/`lambdaIn` give the connection's).
+double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn);
+
+// A strategy's weight from the recursive sums: its own c² over the path's whole sum
+// (docs/bdpt-mis.md eq. 11). With c.oracle set, the full recomputation `full(f)` is recorded beside it.
+template <class Full>
+float weigh(const Context& c, int s, int t, Variant v, const MisSums& own, const MisSums& total, const MisFactors& f,
+            Full&& full) {
+  const double sum = combine(total, f);
+  const float w = sum > 0.0 ? float(combine(own, f) / sum) : 0.0f;
+  if (c.oracle) c.oracle->push_back({s, t, uint8_t(v), w, full(f)});
+  return w;
+}
+
+// The lane an own-family join at camera vertex b serves, and its factor: with several lanes at b,
+// one chosen uniformly with b's own number, its estimate times n (an unbiased one-sample estimate
+// of the sum over the lanes).
+std::pair<int, float> ownJoinLane(const Context& c, const PathVertex& b);
+
+// Each lane's weight in [k0, k1) where active(k), from weighLane(k): per lane where the own family
+// runs (its factors differ between lanes), once for all otherwise (docs/bdpt-mis.md §10).
+template <class Active, class WeighLane>
+void laneWeights(const Context& c, int k0, int k1, float* w, Active&& active, WeighLane&& weighLane) {
+  int first = -1;
+  for (int k = k0; k < k1; ++k) {
+    w[k] = 0.0f;
+    if (!active(k)) continue;
+    if (first >= 0 && !c.families.independent) {
+      w[k] = w[first];
+      continue;
+    }
+    w[k] = weighLane(k);
+    first = k;
+  }
+}
+
+// XYZ per unit radiance of lane k at the camera: W(λ_k)/(n·p(λ_k)).
+Vec3 laneScale(const Context& c, int k);
+
+// Records lane k's share of a strategy at the camera sample's pixel (strategies with t ≥ 2).
+void record(const Context& c, int s, int t, Variant v, int k, float value, float weight);
+
+// The radiance an emitter vertex e sends towards `next` at wavelength lambda.
+float emitted(const Context& c, const PathVertex& e, const PathVertex& next, float lambda);
+
+bool visible(const Context& c, const PathVertex& a, const PathVertex& b);
+
+// The camera side's sum at a connection through C[t−1] (docs/bdpt-mis.md eq. 10): C[t−1] with the
+// light side's density pLast and `mLast` the M of the strategy with t − 1 camera vertices; C[t−2]
+// with the light side's density pBefore.
+MisSums cameraSum(const Context& c, const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast,
+                  double pBefore);
+
+// The light side's sum at a connection through L[s−1] (s ≥ 2; eq. 10): L[s−1] with the camera
+// side's density pLast and `mLast` the M of the strategy with s − 1 light vertices; L[s−2] with
+// the camera side's density pBefore.
+MisSums lightSum(const Context& c, const std::vector<PathVertex>& L, int s, double pLast, const MisSums& mLast,
+                 double pBefore);
+
+// The light side's sum of a strategy whose light subpath ends at x_0 (s = 1): the camera side's
+// density pCam0 of it over the light side's, pLight0.
+MisSums lightEndSum(double pCam0, double pLight0);
+
+}  // namespace kasha::bdpt

@@ -1,0 +1,20 @@
+#pragma once
+// Vertex merging (docs/bdpt-mis.md §12): a light vertex of the pass near camera vertex C[t−1] stands
+// for a path that both subpaths reach, x_0 … x_m (the light subpath) … x_k (the camera subpath),
+// weighted against every connection and every other merge of that path.
+#include <vector>
+
+#include "integrators/bdpt/connect.h"
+#include "integrators/bdpt/light_vertex.h"
+
+namespace kasha::bdpt {
+
+// Merges light vertex v with camera vertex C[t−1] (t ≥ 2; the caller found v within the pass's
+// radius r, with η = N·π r² in c.walk.strategies): a shared-family vertex through C[t−1]'s elastic
+// lobe at each lane both reach, an own-family one through its fluorescent lobe from v's wavelength
+// to the camera's. Adds each lane's weighted radiance to out[k]. With c.oracle set, `lightPath` must
+// be v's light subpath (tests: the weight is also recomputed over the whole path).
+void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, float* out,
+           const std::vector<PathVertex>* lightPath = nullptr);
+
+}  // namespace kasha::bdpt

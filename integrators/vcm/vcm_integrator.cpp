@@ -1,0 +1,171 @@
+#include "integrators/vcm/vcm_integrator.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/memory_budget.h"
+#include "integrators/bdpt/connect.h"
+#include "integrators/bdpt/merge.h"
+#include "integrators/bdpt/subpath_mis.h"
+#include "integrators/direct_emission.h"
+#include "integrators/progressive_schedule.h"
+#include "integrators/vcm/light_vertex_pass.h"
+
+namespace kasha {
+namespace {
+
+// The default r_1 puts this many light vertices in a disc if a pass's vertices spread evenly over
+// all surfaces. Photon mapping's default holds 16 photons (docs/photon-mapping.md); merged with
+// the connections, a radius that large gives the merges most of the weight of diffuse light (η is
+// large) and their noise with it, so vcm's holds one, as small as SmallVCM's (0.3% of the scene's
+// radius): merges then carry mostly the paths that connections cannot make, such as caustics.
+constexpr float kVerticesPerDisc = 1.0f;
+// Light subpaths of the pilot that counts the vertices a pass keeps per subpath.
+constexpr size_t kPilotPaths = 1024;
+
+// What every camera sample of a pass shares: its wavelength lanes, the walk with this pass's η, and
+// the light vertices to merge with.
+struct VcmPass final : PassData {
+  bdpt::LaneTables tables;
+  bdpt::Lanes lanes;
+  bdpt::WalkSettings walk;
+  float radius = 0.0f;
+  float bandwidth = 0.0f;  // the wavelength kernel's half-width (own merges through an elastic lobe); 0: none
+  std::unique_ptr<LightVertexMap> vertices;  // null without merges
+};
+
+}  // namespace
+
+Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
+    : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
+      light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
+      parts_(parts),
+      ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}},
+      families_(bdpt::familiesFor(scene, bdpt::WavelengthMode::Unified)),
+      lanes_(s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths),
+      alpha_(s.ppm.alpha),
+      memoryLimit_(s.memoryLimit),
+      sampler_(s.sampler),
+      directXyz_(directEmissionXyz(scene)) {
+  requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by " + name() + " (its MIS weights need the sensor's density)");
+  requireDensity(s.wavelengths.light, WavelengthSite::LightStart,
+                 "by " + name() + " (its MIS weights need the light-start density)");
+  if (lanes_ < 1 || lanes_ > bdpt::kLightVertexLanes)
+    throw std::invalid_argument(name() + ": hero wavelengths " + std::to_string(lanes_) + " is outside [1, " +
+                                std::to_string(bdpt::kLightVertexLanes) + "] (the lanes a light vertex keeps)");
+  if (families_.independent) {
+    lightFirst_ = std::make_unique<bdpt::LightFirstStart>(scene, s.wavelengths.light);
+    ws_.lightFirst = lightFirst_.get();
+  }
+  const PhotonMappingSettings& p = s.ppm;
+  if (p.photonsPerPass < 0 || !(p.radius >= 0.0f))
+    throw std::invalid_argument(name() + ": render/ppm/photons_per_pass and radius must not be negative");
+  if (!(p.bandwidth >= 0.0f)) throw std::invalid_argument(name() + ": render/ppm/bandwidth must not be negative");
+  // Consistency of the merges through the wavelength kernel (two dimensions in space, one in
+  // wavelength) needs α > 1/3.
+  if (!(p.alpha > 1.0f / 3.0f && p.alpha < 1.0f))
+    throw std::invalid_argument(name() + ": render/ppm/alpha must be in (1/3, 1)");
+  // SmallVCM's choice: as many light subpaths per pass as pixels.
+  paths_ = p.photonsPerPass > 0 ? size_t(p.photonsPerPass) : size_t(scene.camera.width()) * size_t(scene.camera.height());
+  double area = 0.0;
+  for (const Shape& shape : scene.shapes) area += shape.area;
+  // A subpath keeps several vertices in a closed, bright scene: count them on a pilot of subpaths
+  // (at the lanes of the first pass), so that the default radius holds kVerticesPerDisc of them.
+  double kept = double(paths_);
+  if (p.radius <= 0.0f && parts_ != Parts::Connections) {
+    bdpt::LaneTables tables;
+    const bdpt::Lanes lanes = bdpt::sensorLanes(scene, sensor_.density(), 0.5f, lanes_, tables, nullptr, lightFirst_.get());
+    LightVertexTracing pilot;
+    pilot.paths = std::min(kPilotPaths, paths_);
+    pilot.sampler = sampler_;
+    pilot.memoryLimit = UINT64_MAX;  // at most kPilotPaths·max_depth·2 vertices
+    RayCounter rays;
+    const size_t n = traceLightVertices(scene, lanes, ws_, pilot, 0x9e3779b97f4a7c15ULL, rays).size();
+    kept = std::max(1.0, double(n) * double(paths_) / double(pilot.paths));
+  }
+  radius1_ = p.radius > 0.0f ? p.radius : float(std::sqrt(kVerticesPerDisc * area / (kPi * kept)));
+  // Own light vertices merge through an elastic lobe with a wavelength kernel, as photon mapping's
+  // (render/ppm/bandwidth, by default 1% of the range), shrinking with the radius.
+  if (parts_ != Parts::Connections && families_.independent)
+    bandwidth1_ = p.bandwidth > 0.0f ? p.bandwidth : 0.01f * (scene.range.max - scene.range.min);
+  ws_.strategies.connections = parts_ != Parts::Merges;
+}
+
+std::string Vcm::name() const {
+  return parts_ == Parts::Merges ? "bpm" : parts_ == Parts::Connections ? "vc" : "vcm";
+}
+
+float Vcm::radius(int sample) const { return std::sqrt(progressiveRadiusSquared(radius1_, alpha_, sample + 1)); }
+
+std::unique_ptr<const PassData> Vcm::beginPass(const Scene& scene, int firstSample, int, uint64_t seed,
+                                               RayCounter& counter) const {
+  auto pass = std::make_unique<VcmPass>();
+  // The pass's lanes: sample `firstSample` of a sequence of its own, so that passes stratify them.
+  Sampler laneRng(sampler_, mixBits(seed ^ 0x2545f4914f6cdd1dULL), 0, uint32_t(firstSample));
+  pass->lanes = bdpt::sensorLanes(scene, sensor_.density(), laneRng.uniform(), lanes_, pass->tables, nullptr,
+                                  lightFirst_.get());
+  pass->walk = ws_;
+  pass->radius = radius(firstSample);
+  pass->bandwidth = bandwidth1_ * pass->radius / radius1_;
+  if (parts_ == Parts::Connections) return pass;
+  pass->walk.strategies.mergeEta = double(paths_) * kPi * double(pass->radius) * pass->radius;
+  LightVertexTracing t;
+  t.paths = paths_;
+  t.sampler = sampler_;
+  t.memoryLimit = memoryLimit_;
+  // A stream family per pass, apart from the camera samples' (render_loop.cpp) and the lanes'.
+  const uint64_t passSeed = mixBits(mixBits(seed ^ 0x5851f42d4c957f2dULL) + uint64_t(firstSample));
+  pass->vertices = std::make_unique<LightVertexMap>(
+      traceLightVertices(scene, pass->lanes, pass->walk, t, passSeed, counter));
+  return pass;
+}
+
+Vec3 Vcm::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
+  using namespace bdpt;
+  const VcmPass& pass = static_cast<const VcmPass&>(*ctx.pass);
+  const Lanes& lanes = pass.lanes;
+  for (int k = 0; k < lanes_; ++k)
+    if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
+  thread_local std::vector<PathVertex> C, LS, LO;  // the camera subpath, the light subpath's two views
+  const Vec2 film = pixel + rng.uniform2();
+  traceCameraSubpath(scene, film, lanes, pass.walk, rng, ctx.counter, C);
+  Context c{scene, pass.walk, families_, lanes, sensor_.density(), ctx.counter};
+  c.spectralSplats = ctx.recordSpectral;
+  c.bandwidth = pass.bandwidth;
+  if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
+  if (ctx.recordStrategies) {
+    c.log = &ctx.strategies;
+    c.pixel = pixel;
+  }
+  float radiance[kMaxLanes];
+  Vec3 xyz(0.0f);
+  if (parts_ != Parts::Merges) {
+    // The connections: one light subpath per camera sample, as the unified bdpt's.
+    LS.clear(), LO.clear();
+    if (lightFirst_)
+      c.sharedLightVertices = traceMergedLightSubpath(scene, lanes, pass.walk, rng, ctx.counter, LS, LO);
+    else
+      traceLightSubpath(scene, LightFamily::Shared, lanes, pass.walk, rng, ctx.counter, LS);
+    connectSubpaths(c, C, LS, LO, rng, ctx.splats, radiance, xyz);
+  } else {
+    std::fill(radiance, radiance + lanes_, 0.0f);
+    for (int t = 2; t <= int(C.size()); ++t) emitterHit(c, C, t, radiance, xyz);
+  }
+  if (pass.vertices) {
+    const int maxDepth = pass.walk.maxDepth;
+    for (int t = 2; t <= int(C.size()) && t - 1 <= maxDepth; ++t) {
+      const PathVertex& b = C[size_t(t - 1)];
+      if (!mergeable(b)) continue;
+      for (size_t i : pass.vertices->within(b.p, pass.radius)) {
+        const LightVertex& v = (*pass.vertices)[i];
+        if (v.depth + t - 2 <= maxDepth) merge(c, C, t, v, radiance);
+      }
+    }
+  }
+  // Each lane's radiance weighted by W(λ_k)/(n·p(λ_k)), as bdpt's.
+  for (int k = 0; k < lanes_; ++k)
+    xyz += sensorResponse(ctx, lanes.lambda[k], radiance[k] / (float(lanes_) * lanes.sensorPdf[k]));
+  return xyz;
+}
+
+}  // namespace kasha

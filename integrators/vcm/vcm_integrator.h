@@ -1,0 +1,58 @@
+#pragma once
+// Vertex connection and merging for bispectral scenes (Georgiev et al. 2012; Hachisuka et al. 2012;
+// docs/bdpt-mis.md §12): the unified BDPT's connections (both wavelength families, §5–§11) and
+// vertex merging at every connectible camera vertex against the light vertices of the pass, in one
+// set of recursive power-heuristic weights. Each pass traces N light subpaths (render/ppm/
+// photons_per_pass, by default one per pixel) at one set of wavelength lanes shared by every camera
+// sample of the pass, so that a merge through an elastic vertex meets light at exactly the camera's
+// wavelengths; an own-family light vertex merges through a fluorescent camera vertex, whose lobe
+// takes it from its own wavelength to the camera's, or an elastic one through a wavelength kernel
+// (with the own family's mollified joins, docs/bdpt-mis.md §6). The radius and the kernel shrink pass
+// by pass as in `ppm` (render/ppm/radius, bandwidth, alpha). `vc` has the connections alone (no
+// kernel), `bpm` the merges alone (with the camera subpath reaching the light), as SmallVCM's
+// algorithm list.
+#include <memory>
+
+#include "integrators/bdpt/light_first.h"
+#include "integrators/bdpt/mis.h"
+#include "integrators/bdpt/subpaths.h"
+#include "integrators/integrator.h"
+#include "scene/wavelength_strategy.h"
+
+namespace kasha {
+
+class Vcm final : public Integrator {
+ public:
+  enum class Parts : uint8_t { ConnectionsAndMerges, Connections, Merges };
+
+  // Throws std::invalid_argument for settings out of range (more than bdpt::kLightVertexLanes lanes,
+  // radius, alpha), WavelengthStrategyError for a strategy that is not a density, MemoryLimitError
+  // where a pass cannot fit the memory limit.
+  Vcm(const Scene& scene, const RenderSettings& settings, Parts parts);
+  std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
+                                            RayCounter& counter) const override;
+  int maxSamplesPerPass() const override { return 1; }
+  Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
+  std::string name() const override;
+  int lanes() const override { return lanes_; }
+
+  // The merge radius of the pass that takes sample `sample` (iteration sample + 1).
+  float radius(int sample) const;
+  size_t lightPathsPerPass() const { return paths_; }
+
+ private:
+  WavelengthStrategy sensor_, light_;
+  Parts parts_;
+  bdpt::WalkSettings ws_;
+  bdpt::Families families_;
+  std::unique_ptr<bdpt::LightFirstStart> lightFirst_;  // both families: the merged light subpath's start
+  int lanes_;
+  size_t paths_;
+  float radius1_, alpha_;
+  float bandwidth1_ = 0.0f;  // the first pass's wavelength kernel half-width (0: no kernel)
+  uint64_t memoryLimit_;
+  SamplerKind sampler_;
+  std::vector<Vec3> directXyz_;  // per light: its emission's XYZ seen directly (direct_emission.h)
+};
+
+}  // namespace kasha

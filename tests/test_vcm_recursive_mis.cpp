@@ -1,0 +1,114 @@
+// Vertex merging's recursive MIS weights (docs/bdpt-mis.md §12) against the full recomputation over
+// the whole path (integrators/bdpt/mis.h): on subpaths traced as vcm traces them (both wavelength
+// families on one light subpath where the scene fluoresces, lanes, elastic, fluorescent, glossy and
+// specular vertices), every connection's and every merge's weight computed both ways must agree
+// (relative 1e-5), with connections and merges (vcm) and merges alone (bpm), with and without the
+// wavelength kernel that lets own light vertices merge through elastic lobes.
+#include <gtest/gtest.h>
+
+#include "integrators/bdpt/connect.h"
+#include "integrators/bdpt/merge.h"
+#include "integrators/bdpt/subpath_mis.h"
+#include "integrators/bdpt/subpaths.h"
+#include "scene/scene_loader.h"
+#include "scene/wavelength_strategy.h"
+#include "tests/support.h"
+#include "tests/weight_checks.h"
+
+namespace kasha::bdpt {
+namespace {
+
+struct Case {
+  const char* scene;
+  bool connections;
+  int lanes;
+  float bandwidth = 0.0f;  // the wavelength kernel's half-width (nm): own merges through elastic lobes
+};
+
+std::string describe(const Case& c) {
+  return std::string(c.scene) + (c.connections ? " vcm" : " bpm") + " lanes " + std::to_string(c.lanes) +
+         (c.bandwidth > 0.0f ? " kernel" : "");
+}
+
+class MergeWeights : public ::testing::TestWithParam<Case> {};
+
+TEST_P(MergeWeights, EqualTheFullRecomputation) {
+  const Case& param = GetParam();
+  const auto scene = loadScene(test::sourcePath(param.scene));
+  const WavelengthSources sources(*scene);
+  const WavelengthStrategy sensor(scene->render.wavelengths.sensor, sources, WavelengthSite::Sensor);
+  const WavelengthStrategy light(scene->render.wavelengths.light, sources, WavelengthSite::LightStart);
+  const Families families = familiesFor(*scene, WavelengthMode::Unified);
+  const LightFirstStart lightFirst(*scene, scene->render.wavelengths.light);
+  // η comparable with the other strategies' densities, so that merge weights fall inside (0, 1).
+  const Strategies strategies{param.connections, 3.0};
+  const WalkSettings ws{6, 3, &light.density(), families.independent ? &lightFirst : nullptr, strategies};
+  std::vector<PathVertex> C, LS, LO;
+  std::vector<WeightCheck> checks;
+  LaneTables tables;
+  std::vector<Splat> splats;
+  std::vector<LightVertex> kept;
+  RayCounter counter;
+  test::WeightTally tally;
+  int merges = 0;
+  for (uint32_t sample = 0; sample < 40000; ++sample) {
+    Sampler rng(SamplerKind::Independent, 17, sample, 0);
+    const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, tables, nullptr,
+                                    ws.lightFirst);
+    if (lanes.sensorPdf[0] <= 0.0f) continue;
+    const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));
+    traceCameraSubpath(*scene, film, lanes, ws, rng, counter, C);
+    LS.clear(), LO.clear();
+    int sharedLightVertices = 0;
+    if (ws.lightFirst)
+      sharedLightVertices = traceMergedLightSubpath(*scene, lanes, ws, rng, counter, LS, LO);
+    else
+      traceLightSubpath(*scene, LightFamily::Shared, lanes, ws, rng, counter, LS);
+    Context c{*scene, ws, families, lanes, sensor.density(), counter};
+    c.sharedLightVertices = sharedLightVertices;
+    c.bandwidth = param.bandwidth;
+    c.oracle = &checks;
+    checks.clear();
+    splats.clear();
+    float radiance[kMaxLanes] = {};
+    Vec3 xyz;
+    if (param.connections) connectSubpaths(c, C, LS, LO, rng, splats, radiance, xyz);
+    // Every light vertex merged with every camera vertex: the weights' algebra does not need them
+    // to be near each other.
+    for (const std::vector<PathVertex>* L : {&LS, &LO}) {
+      kept.clear();
+      keepLightVertices(*L, L == &LO, *scene, strategies, kept);
+      for (const LightVertex& v : kept)
+        for (int t = 2; t <= int(C.size()) && v.depth + t - 2 <= ws.maxDepth; ++t)
+          if (mergeable(C[size_t(t - 1)])) merge(c, C, t, v, radiance, L);
+    }
+    for (const WeightCheck& k : checks) merges += isMerge(Variant(k.variant));
+    ASSERT_TRUE(tally.add(checks, sample)) << describe(param);
+  }
+  EXPECT_GT(merges, 2000) << describe(param);
+  tally.expectPower(param.connections ? 2 * merges : merges - 1, describe(param));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, MergeWeights,
+    ::testing::Values(Case{"scenes/cornell_uv.json", true, 4},     // both families, UV spot, fluorescence
+                      Case{"scenes/cornell_uv.json", false, 4},
+                      Case{"scenes/cornell_uv.json", true, 4, 20.0f},  // and the wavelength kernel
+                      Case{"scenes/cornell_uv.json", false, 1, 20.0f},
+                      Case{"scenes/cornell_uv.json", true, 1},
+                      Case{"scenes/cornell_glossy.json", true, 4},  // glossy, elastic: the shared family alone
+                      Case{"scenes/cornell_glossy.json", false, 1},
+                      Case{"scenes/uv_caustic.json", true, 4},      // glass: specular vertices
+                      Case{"scenes/validation/furnace_fluorescent.json", true, 4},  // a fluorescent emitter
+                      Case{"scenes/validation/furnace_fluorescent.json", false, 4},
+                      Case{"scenes/validation/smooth_sphere_distant.json", true, 4},  // a distant light
+                      Case{"scenes/validation/single_sphere_environment.json", true, 4}),  // environment
+    [](const ::testing::TestParamInfo<Case>& info) {
+      std::string name = describe(info.param);
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name;
+    });
+
+}  // namespace
+}  // namespace kasha::bdpt
