@@ -34,7 +34,7 @@ std::vector<test::BatchStats> regions(const Scene& scene, const char* integrator
   return test::regionBatches(scene, *it, kRes, kRes, kRegions * kRegions, regionOf, spp, batches, 7919);
 }
 
-TEST(UvCausticMirror, ConnectionsAndMergingAgreeOnTheCaustic) {
+TEST(UvCausticMirrorSlow, ConnectionsAndMergingAgreeOnTheCaustic) {  // Slow: the sanitizer stage skips it
   const auto scene = causticView();
   const auto bdpt = regions(*scene, "bdpt", 32, 32);
   const auto ppm = regions(*scene, "ppm", 6, 32);
