@@ -62,12 +62,7 @@ Spectrum Spectrum::blackbody(float kelvin) {
   return Spectrum(std::move(x), std::move(y));
 }
 
-float Spectrum::operator()(float lambda) const {
-  if (uniformStep_ > 0.0f && lambda > x_[i0_] && lambda < x_[i1_]) {
-    const size_t i = std::min(i0_ + size_t((lambda - x_[i0_]) / uniformStep_), i1_ - 1);
-    const float t = (lambda - x_[i]) / (x_[i + 1] - x_[i]);
-    return y_[i] + t * (y_[i + 1] - y_[i]);
-  }
+float Spectrum::evaluateByKnotSearch(float lambda) const {
   if (lambda <= x_.front()) return lambda < x_.front() ? y_.front() : y_[std::upper_bound(x_.begin(), x_.end(), lambda) - x_.begin() - 1];
   if (lambda >= x_.back()) return y_.back();
   // segment [x_i, x_{i+1}) holding lambda

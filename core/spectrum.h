@@ -3,6 +3,7 @@
 // tabulated data as given, analytic shapes (Gaussian, blackbody) tabulated finely, bands as steps.
 // Evaluation, exact integrals and exact importance sampling all use this one representation, so
 // what is rendered and what the closed-form tests integrate are the same function.
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,7 +37,15 @@ class Spectrum {
   // Σ w_k·s_k, exact: piecewise linear on the union of all knots, steps kept.
   static Spectrum weightedSum(const std::vector<std::pair<float, const Spectrum*>>& terms);
 
-  float operator()(float lambda) const;
+  float operator()(float lambda) const {
+    // Inline: the lookup of equally spaced knots, the common case in the hot loops.
+    if (uniformStep_ > 0.0f && lambda > x_[i0_] && lambda < x_[i1_]) {
+      const size_t i = std::min(i0_ + size_t((lambda - x_[i0_]) / uniformStep_), i1_ - 1);
+      const float t = (lambda - x_[i]) / (x_[i + 1] - x_[i]);
+      return y_[i] + t * (y_[i + 1] - y_[i]);
+    }
+    return evaluateByKnotSearch(lambda);
+  }
   // Limit from the left (differs from operator() only at a step).
   float leftLimit(float lambda) const;
   // ∫ over [lo, hi] of this spectrum, exact for the piecewise-linear representation.
@@ -53,6 +62,8 @@ class Spectrum {
 
  private:
   Spectrum(std::vector<float> x, std::vector<float> y);
+  // operator() where the fast path does not apply: a binary search of the knots.
+  float evaluateByKnotSearch(float lambda) const;
   std::vector<float> x_, y_;
   // O(1) lookup where the knots are equally spaced: between knots i0_ and i1_ (the table without
   // the duplicated end knots that zeroOutside() adds) with spacing uniformStep_ > 0.

@@ -29,10 +29,12 @@ WavelengthSample WavelengthDensity::sample(float u) const {
   const float v = std::clamp((target - acc) / w_[k], 0.0f, 0x1.fffffep-1f);
   const WavelengthSample s = d_[k]->sample(v);
   if (s.pdf <= 0.0f) return {};
+  if (d_.size() == 1) return s;  // pdf() of one component is its own (below)
   return {s.lambda, pdf(s.lambda)};
 }
 
 float WavelengthDensity::pdf(float lambda) const {
+  if (d_.size() == 1) return d_[0]->pdf(lambda);  // w·p/w, without its rounding
   float p = 0.0f;
   for (size_t k = 0; k < d_.size(); ++k) p += w_[k] * d_[k]->pdf(lambda);
   return p / total_;

@@ -70,6 +70,11 @@ inline Vec3 sensorResponse(SampleContext& ctx, float lambda, float value) {
   if (ctx.recordSpectral) ctx.spectral.push_back({lambda, value});
   return Observer::cie1931().weight(lambda) * value;
 }
+// The same with the observer's weight at lambda already known (`response`).
+inline Vec3 sensorResponse(SampleContext& ctx, float lambda, Vec3 response, float value) {
+  if (ctx.recordSpectral) ctx.spectral.push_back({lambda, value});
+  return response * value;
+}
 
 class Integrator {
  public:

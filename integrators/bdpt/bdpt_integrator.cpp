@@ -96,7 +96,7 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
   // Each lane's radiance weighted by W(λ_k)/(n·p(λ_k)): the balance heuristic over the n stratified
   // hero techniques (every lane distributed as p).
   for (int k = 0; k < lanes_; ++k)
-    xyz += sensorResponse(ctx, lanes.lambda[k], radiance[k] / (float(lanes_) * lanes.sensorPdf[k]));
+    xyz += sensorResponse(ctx, lanes.lambda[k], lanes.response[k], radiance[k] / (float(lanes_) * lanes.sensorPdf[k]));
   return xyz;
 }
 

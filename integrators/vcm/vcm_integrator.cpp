@@ -164,7 +164,7 @@ Vec3 Vcm::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContex
   }
   // Each lane's radiance weighted by W(λ_k)/(n·p(λ_k)), as bdpt's.
   for (int k = 0; k < lanes_; ++k)
-    xyz += sensorResponse(ctx, lanes.lambda[k], radiance[k] / (float(lanes_) * lanes.sensorPdf[k]));
+    xyz += sensorResponse(ctx, lanes.lambda[k], lanes.response[k], radiance[k] / (float(lanes_) * lanes.sensorPdf[k]));
   return xyz;
 }
 
