@@ -193,6 +193,7 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
   float laneScale = 1.0f;
   if (family == LightFamily::Shared) {
     k0 = std::max(a.firstLane(), b.firstLane()), k1 = std::min(a.endLane(c.lanes), b.endLane(c.lanes));
+    laneScale = keptLaneScale(c, a.lane, b.lane);
   } else {
     const auto [lane, scale] = ownJoinLane(c, b);
     k0 = lane, k1 = lane + 1, laneScale = scale;

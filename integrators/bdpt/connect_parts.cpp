@@ -127,6 +127,10 @@ std::pair<int, float> ownJoinLane(const Context& c, const PathVertex& b) {
   return {std::min(int(b.laneU * float(c.lanes.n)), c.lanes.n - 1), float(c.lanes.n)};
 }
 
+float keptLaneScale(const Context& c, int laneA, int laneB) {
+  return laneA >= 0 && laneB >= 0 && c.lanes.n > 1 ? 1.0f / float(c.lanes.n) : 1.0f;
+}
+
 Vec3 laneScale(const Context& c, int k) {
   return Observer::cie1931().weight(c.lanes.lambda[k]) / (float(c.lanes.n) * c.lanes.sensorPdf[k]);
 }

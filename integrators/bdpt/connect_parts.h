@@ -102,6 +102,10 @@ void laneWeights(const Context& c, int k0, int k1, float* w, Active&& active, We
 
 // XYZ per unit radiance of lane k at the camera: W(λ_k)/(n·p(λ_k)).
 Vec3 laneScale(const Context& c, int k);
+// The factor of a connection or merge between two shared-family ends that carry one lane each
+// (laneA, laneB; -1 where every lane reaches): both ended their lanes in the same hero lane, one
+// choice of probability 1/n whose factor n each end's throughput already holds, so 1/n; else 1.
+float keptLaneScale(const Context& c, int laneA, int laneB);
 
 // Records lane k's share of a strategy at the camera sample's pixel (strategies with t ≥ 2).
 void record(const Context& c, int s, int t, Variant v, int k, float value, float weight);

@@ -23,6 +23,7 @@ void merge(const Context& c, const std::vector<PathVertex>& C, int t, const Ligh
   } else {
     k0 = std::max(v.lane < 0 ? 0 : int(v.lane), b.firstLane());
     k1 = std::min(v.lane < 0 ? c.lanes.n : v.lane + 1, b.endLane(c.lanes));
+    laneFactor = keptLaneScale(c, v.lane, b.lane);
   }
   if (k0 >= k1) return;
   // The exact merges (docs/bdpt-mis.md §12): a shared vertex through the elastic lobe at the

@@ -50,8 +50,8 @@ struct PathVertex {
   // merge here needs only the light arriving, which every lane knows (docs/bdpt-mis.md §12).
   bool lanesEndHere = false;
   float betaArriving[kMaxLanes] = {};
-  // The uniform number drawn where several lanes arrive: it picks the lane that goes on if the
-  // vertex ends them, or the lane an own-family join at this vertex serves (docs/bdpt-mis.md §10).
+  // The uniform number drawn where several lanes arrive: it picks the lane an own-family join at
+  // this vertex serves (docs/bdpt-mis.md §10).
   float laneU = 0.0f;
   // The subpath's wavelength at this vertex: arriving from the previous light-subpath vertex, or
   // leaving towards the previous camera-subpath vertex. While several lanes reach a vertex, the

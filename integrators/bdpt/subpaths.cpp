@@ -66,18 +66,20 @@ void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int lig
   v.bsdf = bsdf;
   v.light = light;
   v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf);
-  // Where sampling depends on the wavelength, the lanes end in one chosen at random, its weight
-  // times n (docs/bdpt-mis.md §10): every density on the subpath is then that lane's.
+  // Where sampling depends on the wavelength, the lanes end in the hero lane 0, its weight times n
+  // (docs/bdpt-mis.md §10): every density on the subpath is then that lane's. Lane 0 is the member
+  // of the lane set that the sensor's own number picks, so it is uniform among them, and the
+  // sampler stratifies it over the pixel's samples; the camera and light subpaths keep the same one.
   // Elsewhere the densities are those of any lane that scatters here (docs/bdpt-mis.md §10).
   if (lanes.n > 1 && tr.lane < 0) {
-    const float uLane = rng.uniform();
-    v.laneU = uLane;
+    v.laneU = rng.uniform();
     if (lambdaDependent(bsdf)) {
       v.lanesEndHere = true;
       std::copy(tr.beta, tr.beta + lanes.n, v.betaArriving);
-      tr.lane = std::min(int(uLane * float(lanes.n)), lanes.n - 1);
-      tr.lambda = lanes.lambda[tr.lane];
-      for (int k = 0; k < lanes.n; ++k) tr.beta[k] = k == tr.lane ? tr.beta[k] * float(lanes.n) : 0.0f;
+      tr.lane = 0;
+      tr.lambda = lanes.lambda[0];
+      for (int k = 1; k < lanes.n; ++k) tr.beta[k] = 0.0f;
+      tr.beta[0] *= float(lanes.n);
     } else {
       tr.lambda = lanes.lambda[0];
       for (int k = 0; k < lanes.n; ++k)
