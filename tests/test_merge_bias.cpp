@@ -42,19 +42,20 @@ Measured measure(const Scene& scene, const RenderSettings& settings, int passes,
   return {{batchStats(c[0]), batchStats(c[1]), batchStats(c[2])}};
 }
 
-// r_1 = h = 1, α = 2/3, 1024 light subpaths per pass (8 × 8 pixels): after 4 passes bpm is 31% below
-// the exact image (13σ) and within 4σ of the blur the schedule predicts; after 64 passes the
-// radius has shrunk to 0.5 and the error to 17%, still 36σ, as predicted, while a radius that kept
-// r_1 would be 38σ off (bench/merge_bias/ has the whole curve). 3.3 s.
+// r_1 = h = 1, α = 2/3, 256 light subpaths per pass (8 × 8 pixels; the noise is mostly the pass's
+// shared wavelength lanes, bench/merge_bias/README.md), 16 batches: after 4 passes bpm is 33% below
+// the exact image (13σ in Y) and within 4σ of the blur the schedule predicts; after 64 passes the
+// radius has shrunk to 0.53 and the error to 17% (44σ), as predicted, while a radius that kept r_1
+// would be 44σ off. Rendering with α = 0.99 or r_1 = 0.9 fails it. 2.8 s.
 TEST(MergeBias, BpmMeetsTheBlurOfItsShrinkingDiscs) {
   auto scene = load("single_plane_point.json");
   const PointLitPlane p = pointLitPlane(*scene);
   RenderSettings settings = scene->render;
   settings.ppm.radius = 1.0f;
-  settings.ppm.photonsPerPass = 1024;
+  settings.ppm.photonsPerPass = 256;
   const Vec3 exact = exactMeanXyz(p);
   for (int passes : {4, 64}) {
-    const Measured got = measure(*scene, settings, passes, passes == 4 ? 16 : 8);
+    const Measured got = measure(*scene, settings, passes, 16);
     const Vec3 blurred = mergedMeanXyz(p, settings.ppm.radius, settings.ppm.alpha, passes);
     const Vec3 fixedRadius = mergedMeanXyz(p, settings.ppm.radius, 1.0f, passes);  // α = 1: r_i = r_1
     for (int c = 0; c < 3; ++c) {
