@@ -152,13 +152,9 @@ void checkPlane(const std::string& name) {
   std::vector<double> L(g.sample([](double) { return 0.0; }));
   for (const auto& l : scene->lights) {
     const auto& light = dynamic_cast<const DistantLight&>(*l);
-    const float cosTheta = std::abs(light.direction().y);
-    const double absorbed = g.integrate(g.sample([&](double x) { return m.c() * m.a(float(x)) * light.irradiance(float(x)); }));
-    const std::vector<double> Ll = g.sample([&](double x) {
-      const float xf = float(x);
-      return cosTheta * ((1.0 - m.c() * m.a(xf)) * m.r(xf) * light.irradiance(xf) + m.q() * m.e(xf) * absorbed) / kPi;
-    });
-    for (size_t i = 0; i < L.size(); ++i) L[i] += Ll[i];
+    const double cosTheta = std::abs(light.direction().y);
+    const std::vector<double> Ll = singleScattering(g, m, [&](double x) { return light.irradiance(float(x)); });
+    for (size_t i = 0; i < L.size(); ++i) L[i] += cosTheta * Ll[i];
   }
   expectAgreement(*scene, 1000, toXyz(g, L));
 }
