@@ -53,15 +53,22 @@ TEST(MergeBias, BpmMeetsTheBlurOfItsShrinkingDiscs) {
   RenderSettings settings = scene->render;
   settings.ppm.radius = 1.0f;
   settings.ppm.photonsPerPass = 256;
+  // The prediction blurs in space only: a negligible wavelength kernel keeps the own-wavelength
+  // merges through the elastic lobe from blurring in wavelength too.
+  settings.ppm.bandwidth = 0.01f;
   const Vec3 exact = exactMeanXyz(p);
   for (int passes : {4, 64}) {
-    const Measured got = measure(*scene, settings, passes, 16);
+    // Every camera sample and light subpath of a pass shares its lanes and keeps the same one where
+    // they end (docs/bdpt-mis.md §10), so a few passes see few wavelengths: more batches there.
+    const Measured got = measure(*scene, settings, passes, passes == 4 ? 64 : 16);
     const Vec3 blurred = mergedMeanXyz(p, settings.ppm.radius, settings.ppm.alpha, passes);
     const Vec3 fixedRadius = mergedMeanXyz(p, settings.ppm.radius, 1.0f, passes);  // α = 1: r_i = r_1
     for (int c = 0; c < 3; ++c) {
       const BatchStats& s = got.s[c];
       SCOPED_TRACE(std::to_string(passes) + " passes, channel " + std::string(1, "XYZ"[c]));
-      EXPECT_NEAR(s.mean, blurred[c], 4.0 * s.stderr_) << "mean " << s.mean << " ± " << s.stderr_ << ", exact " << exact[c];
+      // The prediction's own accuracy: at 64 passes and 256 batches, Y sits 0.4% below it before
+      // and after the lanes' end changed (docs/bdpt-mis.md §10), whose σ is 0.2%.
+      EXPECT_NEAR(s.mean, blurred[c], 4.0 * s.stderr_ + 0.005 * blurred[c]) << "mean " << s.mean << " ± " << s.stderr_ << ", exact " << exact[c];
       // The bias is real and resolved: the exact image is many σ away, and so is the blur of a
       // radius that never shrinks.
       EXPECT_GT(std::abs(s.mean - exact[c]), 8.0 * s.stderr_);
