@@ -82,8 +82,11 @@ LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const 
     e.scale[k] = 0.0f;
     if (c.lobe != SpectralLobe::Fluorescent || !(c.pdf > 0.0f)) continue;
     float density = 0.0f;
-    for (int m = 0; m < nValid; ++m)
-      density += float(count[m]) * bsdf.spectralPdf(mode, known[valid[m]], c.lambda, c.lobe) / p[valid[m]];
+    if (bsdf.has(BsdfFlags::FactorisedFluorescence))  // every q_m is the same q (Kasha's rule)
+      density = float(e.n) * bsdf.spectralPdf(mode, known[j], c.lambda, c.lobe) / p[j];
+    else
+      for (int m = 0; m < nValid; ++m)
+        density += float(count[m]) * bsdf.spectralPdf(mode, known[valid[m]], c.lambda, c.lobe) / p[valid[m]];
     e.scale[k] = density > 0.0f ? 1.0f / (pFluor * density) : 0.0f;
   }
   return e;

@@ -64,7 +64,9 @@ class JungModel : public BsdfModel {
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
-  BsdfFlags flags() const override { return flagIf(fluoresces(), BsdfFlags::Fluorescent); }
+  BsdfFlags flags() const override {
+    return flagIf(fluoresces(), BsdfFlags::Fluorescent | BsdfFlags::FactorisedFluorescence);
+  }
   bool fluoresces() const { return c_ > 0.0f && q_ > 0.0f; }
   // P_c (Radiance) or P_l (Importance).
   float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override;

@@ -65,7 +65,7 @@ class ZhdanovModel : public BsdfModel {
                      float lambdaOut) const override;
   // The elastic lobe picks the gloss peak with a probability weighted by p(λ).
   BsdfFlags flags() const override {
-    return flagIf(fluoresces(), BsdfFlags::Fluorescent) |
+    return flagIf(fluoresces(), BsdfFlags::Fluorescent | BsdfFlags::FactorisedFluorescence) |
            flagIf(h_.gloss > 0.0f, BsdfFlags::WavelengthDependentDirection);
   }
   bool fluoresces() const { return excitationIntegral() > 0.0f; }

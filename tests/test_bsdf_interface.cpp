@@ -181,6 +181,38 @@ TEST(BsdfInterface, FluorescentDirectionDensityIgnoresTheWavelengths) {
   }
 }
 
+// FactorisedFluorescence (Kasha's rule) is what lanes through fluorescence rely on to draw every
+// fresh lane from one density: the fluorescent lobe's spectral density divided by its probability
+// must not depend on the known wavelength. Jung's and Zhdanov's models carry it; a measured
+// reradiation matrix, whose excitation spectrum may change with the emission, does not.
+TEST(BsdfInterface, FactorisedFluorescenceHasOneExcitationDensity) {
+  int flagged = 0;
+  for (const Subject& s : subjects()) {
+    if (!s.bsdf.has(BsdfFlags::FactorisedFluorescence)) continue;
+    EXPECT_TRUE(s.bsdf.has(BsdfFlags::Fluorescent)) << s.name;
+    ++flagged;
+    for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
+      int compared = 0;
+      for (float other = s.range.min; other <= s.range.max; other += 7.0f) {
+        float first = -1.0f;
+        for (float known = s.range.min + 3.0f; known <= s.range.max; known += 29.0f) {
+          const float pFl = s.bsdf.fluorescenceProbability(mode, known);
+          if (!(pFl > 0.0f)) continue;
+          const float q = s.bsdf.spectralPdf(mode, known, other, SpectralLobe::Fluorescent) / pFl;
+          if (first < 0.0f) first = q;
+          EXPECT_NEAR(q, first, 1e-5f * std::max(q, first)) << s.name << " " << toString(mode) << " at " << other;
+          compared += q > 0.0f;
+        }
+      }
+      EXPECT_GT(compared, 10) << s.name << " " << toString(mode) << ": the test saw no positive density";
+    }
+  }
+  EXPECT_GT(flagged, 3) << "jung, zhdanov and their textured forms carry the flag";
+  for (const Subject& s : subjects())
+    if (s.material->describe().rfind("measured_reradiation", 0) == 0)
+      EXPECT_FALSE(s.bsdf.has(BsdfFlags::FactorisedFluorescence)) << s.name << ": a measured matrix need not factorise";
+}
+
 // Wherever the fluorescent lobe is non-zero, the fluorophore absorbs at λ_i and re-emits at λ_o.
 TEST(BsdfInterface, FluorophoreSpectraCoverTheFluorescentLobe) {
   const Vec3 wi = glm::normalize(Vec3(0.3f, 0.1f, 0.9f)), wo = glm::normalize(Vec3(-0.2f, 0.4f, 0.8f));
