@@ -66,14 +66,13 @@ struct SampleContext {
 // The XYZ of radiance-over-density `value` arriving at the sensor at λ, W(λ)·value (core/color.h),
 // recorded for the spectral bins when the render keeps them. Every camera-sample contribution of
 // an integrator goes through here.
-inline Vec3 sensorResponse(SampleContext& ctx, float lambda, float value) {
-  if (ctx.recordSpectral) ctx.spectral.push_back({lambda, value});
-  return Observer::cie1931().weight(lambda) * value;
-}
-// The same with the observer's weight at lambda already known (`response`).
+// With the observer's weight at lambda already known (`response`).
 inline Vec3 sensorResponse(SampleContext& ctx, float lambda, Vec3 response, float value) {
   if (ctx.recordSpectral) ctx.spectral.push_back({lambda, value});
   return response * value;
+}
+inline Vec3 sensorResponse(SampleContext& ctx, float lambda, float value) {
+  return sensorResponse(ctx, lambda, Observer::cie1931().weight(lambda), value);
 }
 
 class Integrator {

@@ -47,8 +47,8 @@ enum class BsdfFlags : uint8_t {
   WavelengthDependentDirection = 1 << 2,
   // Kasha's rule: the fluorescent lobe's spectral density is P_fl(λ_known)·q(λ_other), q the same
   // for every known wavelength (the absorption's density for a camera path, the emission's for a
-  // light path; Jung18 eq. 3, Zhdanov's E·A), so lanes through a fluorescent event can draw every
-  // fresh lane from one q (integrators/wavelength_lanes.cpp).
+  // light path; Jung18 eq. 3, Zhdanov's E·A), so the mixture of the lanes' excitation densities at
+  // a fluorescent event is q itself, evaluated once (integrators/wavelength_lanes.cpp).
   FactorisedFluorescence = 1 << 3,
 };
 constexpr BsdfFlags operator|(BsdfFlags a, BsdfFlags b) { return BsdfFlags(uint8_t(a) | uint8_t(b)); }

@@ -1,6 +1,5 @@
 #include "integrators/bdpt/connect_parts.h"
 
-#include "core/color.h"
 #include "integrators/progressive_schedule.h"
 
 namespace kasha::bdpt {
@@ -132,7 +131,7 @@ float keptLaneScale(const Context& c, int laneA, int laneB) {
 }
 
 Vec3 laneScale(const Context& c, int k) {
-  return Observer::cie1931().weight(c.lanes.lambda[k]) / (float(c.lanes.n) * c.lanes.sensorPdf[k]);
+  return c.lanes.response[k] / (float(c.lanes.n) * c.lanes.sensorPdf[k]);
 }
 
 void record(const Context& c, int s, int t, Variant v, int k, float value, float weight) {
