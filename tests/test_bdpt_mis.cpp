@@ -17,6 +17,7 @@ FullPath randomPath(const std::vector<SpectralLobe>& interior, Families families
   p.families = families;
   p.ownChoice = 0.01 + rng.uniform();
   p.cameraChoice = 0.01 + rng.uniform();
+  p.sharedChoice = 0.01 + rng.uniform();
   p.sensorPdf = 0.01 + rng.uniform();
   p.v.resize(interior.size() + 2);
   for (size_t i = 0; i < p.v.size(); ++i) {
@@ -92,11 +93,14 @@ TEST(BdptMis, MergesAreExactWhereEachFamilySamplesTheGroupsOnce) {
   EXPECT_FALSE(strategyValid(p, 1, Variant::kStandard));
   EXPECT_FALSE(strategyValid(p, 3, Variant::kStandard));
   // A merge's density is both sides' at its vertex times η: against the connection that ends there.
+  // The merged light vertex's subpath chose its light with the shared family's choice, next-event
+  // estimation with its own.
   p = randomPath({E, E}, kShared, rng);
   p.mergeEta = 3.0;
   const double ratio = misWeight(p, 1, Variant::kMerge) / misWeight(p, 1, Variant::kStandard);
-  const double nee = p.specCam1 * p.pdfNee * p.v[1].pdfCam * p.v[2].pdfCam;
-  const double merge = p.mergeEta * p.v[0].pdfLight * p.v[1].pdfLight * p.v[1].pdfCam * p.v[2].pdfCam;
+  const double nee = p.cameraChoice * p.specCam1 * p.pdfNee * p.v[1].pdfCam * p.v[2].pdfCam;
+  const double merge =
+      p.sharedChoice * p.mergeEta * p.v[0].pdfLight * p.v[1].pdfLight * p.v[1].pdfCam * p.v[2].pdfCam;
   EXPECT_NEAR(ratio, (merge / nee) * (merge / nee), 1e-6 * ratio);  // the weights are floats
 }
 
@@ -174,14 +178,15 @@ TEST(BdptMis, UnifiedHasBothFamiliesWhereEachIsExact) {
 }
 
 // The two t = 1 strategies of an elastic path differ only in who drew its one wavelength and chose
-// its light: the sensor and the camera family's choice (shared family), or the light-start strategy
-// with its light (own family).
+// its light: the sensor and the shared light subpath's choice (shared family), or the light-start
+// strategy with its light (own family). Next-event estimation chooses the light with a choice of
+// its own.
 TEST(BdptMis, TheTwoLightTracingStrategiesDifferByTheirWavelengthDensities) {
   Rng rng(7);
   for (int k = 1; k <= 4; ++k) {
     FullPath p = randomPath(std::vector<SpectralLobe>(size_t(k - 1), E), kBoth, rng);
     const double ratio = misWeight(p, k, Variant::kOwn) / misWeight(p, k, Variant::kStandard);
-    const double shared = p.sensorPdf * p.cameraChoice;
+    const double shared = p.sensorPdf * p.sharedChoice;
     EXPECT_NEAR(ratio, (p.ownChoice / shared) * (p.ownChoice / shared), 1e-5 * ratio) << k;
     // The shared t = 1 against the camera hitting the light: every factor written out.
     double light = shared, camera = p.sensorPdf;
@@ -190,6 +195,12 @@ TEST(BdptMis, TheTwoLightTracingStrategiesDifferByTheirWavelengthDensities) {
     for (int i = 0; i <= k; ++i) camera *= p.v[size_t(i)].pdfCam;
     const double r0 = misWeight(p, 0, Variant::kStandard) / misWeight(p, k, Variant::kStandard);
     EXPECT_NEAR(r0, (camera / light) * (camera / light), 1e-5 * r0) << k;
+    if (k < 2) continue;
+    // Next-event estimation against the camera hitting the light: x_1's spectral event, the light
+    // point and its choice in place of the camera's density of x_0.
+    const double nee = camera / p.v[0].pdfCam * p.specCam1 * p.pdfNee * p.cameraChoice;
+    const double r1 = misWeight(p, 1, Variant::kStandard) / misWeight(p, 0, Variant::kStandard);
+    EXPECT_NEAR(r1, (nee / camera) * (nee / camera), 1e-5 * r1) << k;
   }
 }
 

@@ -59,11 +59,14 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
   if (lanesKept && f.ownFamily && c.walk.lightFirst) f.laneGain = c.lanes.n;
   const bool table = lane >= 0 && c.lanes.lights;
   if (table && oneGroup && !f.ownFamily) {
-    f.cameraChoice = c.lanes.lights->probability(size_t(light));
+    f.cameraChoice = f.sharedChoice = c.lanes.lights->probability(size_t(light));
     return f;
   }
   f.cameraChoice = table ? c.lanes.lights->laneProbability(size_t(light), lane)
                          : c.scene.lightSelector->probability(size_t(light), lambda0);
+  // The shared light subpath's choice: where it rides the merged subpath, that start's Q(l), exact
+  // and a function of the light alone (light_first.h); else the camera family's.
+  f.sharedChoice = f.ownFamily && c.walk.lightFirst ? c.walk.lightFirst->lightProbability(size_t(light)) : f.cameraChoice;
   if (f.ownFamily && c.walk.lightFirst) {
     // The merged subpath's start (light_first.h): Q(l)·p_l(λ_0), tabulated at the lanes.
     const LightFirstStart& start = *c.walk.lightFirst;
@@ -88,6 +91,7 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   fp.sensorPdf = f.sensorPdf;
   fp.laneGain = f.laneGain;
   fp.cameraChoice = f.cameraChoice;
+  fp.sharedChoice = f.sharedChoice;
   fp.ownChoice = f.ownChoice;
   fp.mollifyWidth = f.mollifyWidth;
   fp.connections = c.walk.strategies.connections;

@@ -47,8 +47,9 @@ LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s);
 // lane: the camera sample's lane whose wavelength lambda0 is (the path has one group), or −1.
 // The camera family's light choice is the true one, the lanes' mixture, where it is the same for
 // every strategy that can make the path (one group, the shared family alone); with the own family
-// as well, every strategy's choice is taken as p(light | λ_0), a function of the path alone, so
-// that the weights stay a partition of unity for each lane (the estimates divide by the true one).
+// as well, next-event estimation's choice is taken as p(light | λ_0), a function of the path alone,
+// so that the weights stay a partition of unity for each lane (the estimates divide by the true
+// one), and the shared light subpath's is its true one, the merged start's Q(l).
 // lanesKept: every interior vertex of the path keeps the lanes (MisFactors::laneGain). ownStart: the
 // own family's ℓ where the caller knows it (an own subpath's L[0].choicePdf), else 0.
 MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup,

@@ -73,7 +73,7 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
     double d = p.mergeEta;
     for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
     for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
-    if (variant == Variant::kMerge) return d * p.sensorPdf * p.cameraChoice * p.laneGain;
+    if (variant == Variant::kMerge) return d * p.sensorPdf * p.sharedChoice * p.laneGain;
     d *= p.sensorPdf * p.ownChoice;
     return variant == Variant::kMergeMollified ? d * p.mollifyWidth : d;
   }
@@ -90,7 +90,7 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
   // with cameraChoice, the independent family the light with the first group's wavelength; every
   // strategy but the independent family's t = 1 has the sensor draw the last group's wavelength.
   if (s == 0) return d * p.sensorPdf * p.laneGain;
-  if (variant == Variant::kStandard) return d * p.sensorPdf * p.cameraChoice * p.laneGain;
+  if (variant == Variant::kStandard) return d * p.sensorPdf * (nee ? p.cameraChoice : p.sharedChoice) * p.laneGain;
   if (s == k) return d * p.ownChoice;
   d *= p.sensorPdf * p.ownChoice;
   // Both sides sampled the connecting group's wavelength; the kernel accepts a window ε_h of the

@@ -32,10 +32,12 @@ struct FullPath {
   Families families;
   // The factors of the strategies' densities (docs/bdpt-mis.md §5, §10): every strategy but the
   // independent family's t = 1 has the sensor draw the last group's wavelength (sensorPdf); next-event
-  // estimation and the shared family choose the light with cameraChoice, the independent family the
-  // light and the first group's wavelength together with ownChoice = p_light(λ_0)·p(light | λ_0).
+  // estimation chooses the light with cameraChoice, the shared family's light subpath with
+  // sharedChoice, the independent family the light and the first group's wavelength together with
+  // ownChoice = p_light(λ_0)·p(light | λ_0).
   double sensorPdf = 0.0;
   double cameraChoice = 0.0;
+  double sharedChoice = 0.0;
   double ownChoice = 0.0;
   double specCam1 = 0.0;    // camera-side spectral density of x_1's event (next-event estimation)
   double pdfNee = 0.0;      // next-event density of x_0's position given its light (per sr at infinity)

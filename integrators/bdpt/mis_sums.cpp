@@ -3,9 +3,9 @@
 namespace kasha::bdpt {
 
 double combine(const MisSums& m, const MisFactors& f) {
-  double camera = m.nee;
-  if (f.sharedFamily && f.oneGroup) camera += m.shared;
-  double sensed = f.laneGain * f.laneGain * (m.hit + f.cameraChoice * f.cameraChoice * camera);
+  double chosen = f.cameraChoice * f.cameraChoice * m.nee;
+  if (f.sharedFamily && f.oneGroup) chosen += f.sharedChoice * f.sharedChoice * m.shared;
+  double sensed = f.laneGain * f.laneGain * (m.hit + chosen);
   double sum = 0.0;
   if (f.ownFamily) {
     const double l2 = f.ownChoice * f.ownChoice;

@@ -7,10 +7,10 @@
 // densities). The factors that depend on the path's wavelengths are applied once the whole path is
 // known (docs/bdpt-mis.md §5 and §10):
 //
-//     M = σ²·(g²·(hit + κ²·(nee + [one group]·shared)) + ℓ²·(own + ε_h²·mollified)) + ℓ²·ownSplat
+//     M = σ²·(g²·(hit + κ²·nee + S²·[one group]·shared) + ℓ²·(own + ε_h²·mollified)) + ℓ²·ownSplat
 //
-// σ: the sensor's density of the wavelength reaching the camera; κ: the camera family's light
-// choice; ℓ: the own family's joint density of light and wavelength; ε_h the mollification kernel's
+// σ: the sensor's density of the wavelength reaching the camera; κ: next-event estimation's light
+// choice; S: the shared light subpath's; ℓ: the own family's joint density of light and wavelength; ε_h the mollification kernel's
 // width; g the lanes' gain (MisFactors::laneGain). hit: the camera subpath reaching the light (s' = 0); nee: next-event estimation; shared:
 // the shared family's joins and t = 1; own: the own family's joins and light vertex; mollified:
 // its mollified joins; ownSplat: its t = 1, the only strategy whose last wavelength the sensor does
@@ -32,7 +32,8 @@ struct MisSums {
 struct MisFactors {
   bool sharedFamily = false, ownFamily = false;  // which light subpaths were traced
   double sensorPdf = 0.0;                        // σ = p_sensor(λ_{k−1})
-  double cameraChoice = 0.0;                     // κ = the camera family's probability of the path's light
+  double cameraChoice = 0.0;                     // κ = next-event estimation's probability of the path's light
+  double sharedChoice = 0.0;                     // S = the shared light subpath's probability of it
   double ownChoice = 0.0;                        // ℓ = p_light(λ_0)·p(light | λ_0)
   double mollifyWidth = 0.0;                     // ε_h (0: no mollified joins)
   bool oneGroup = false;                         // every interior vertex is elastic
