@@ -187,6 +187,10 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
   const PathVertex& a = L[size_t(s - 1)];
   const PathVertex& b = C[size_t(t - 1)];
   if (a.kind != Kind::Surface || b.kind != Kind::Surface || !a.connectible() || !b.connectible()) return;
+  // An own join needs a fluorescent end, or two elastic ones and the mollifying kernel (below).
+  if (family == LightFamily::Own && !(c.bandwidth > 0.0f) && !a.bsdf->has(BsdfFlags::Fluorescent) &&
+      !b.bsdf->has(BsdfFlags::Fluorescent))
+    return;
   // The lanes served: those that reach both ends on a shared subpath (it carries the camera
   // sample's); one on an own subpath, whose single wavelength meets one camera lane.
   int k0, k1;
@@ -311,21 +315,27 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
                      std::vector<Splat>& splats, VisibilityMemo* memo) {
   const PathVertex& a = L[size_t(s - 1)];
   if (a.kind == Kind::Infinite || !a.connectible()) return;
-  const std::optional<Camera::Connection> conn = c.scene.camera.connect(a.p);
-  if (!conn) return;
   PathVertex cam;
   cam.kind = Kind::Camera;
   cam.p = c.scene.camera.position();
   cam.deltaPosition = true;
+  // The camera's density of a: its direction over the whole film (the sensor's density of the
+  // wavelength arriving is a factor, mis_sums.h).
+  const auto makeLink = [&] {
+    CameraLink l{c.scene.camera.connect(a.p)};
+    if (l.connection) l.pdfCam = toAreaDensity(c.scene.camera.directionPdf(-l.connection->wi), cam, a);
+    return l;
+  };
+  const CameraLink link = memo ? memo->link(s, makeLink) : makeLink();
+  const std::optional<Camera::Connection>& conn = link.connection;
+  if (!conn) return;
   // The wavelength arriving at the pinhole: the light itself for s = 1, else the one a's sampled
   // spectral event sends towards the camera; with several lanes at a, each lane's own.
   const float lambda = s == 1 ? a.lambda : a.lambdaNext;
   const bool lanes = a.allLanes(c.lanes);
   const bool shared = family == LightFamily::Shared;
   const Variant variant = shared ? Variant::kStandard : Variant::kOwn;
-  // The camera's density of a: its direction over the whole film (the sensor's density of the
-  // wavelength arriving is a factor, mis_sums.h).
-  const double pCamA = toAreaDensity(c.scene.camera.directionPdf(-conn->wi), cam, a);
+  const double pCamA = link.pdfCam;
   const LightEnd end = storedLightEnd(L, s);
   float value[kMaxLanes];
   bool any = false;

@@ -1,5 +1,6 @@
 #pragma once
 // The contributions of BDPT's strategies, each with its MIS weight (docs/bdpt-mis.md §3).
+#include <optional>
 #include <vector>
 
 #include "scene/scene.h"
@@ -20,6 +21,13 @@ struct WeightCheck {
 // Visibility between light-subpath vertex s−1 and camera-subpath vertex t−1 (t = 1: the pinhole),
 // kept for the merged light subpath's second view, whose vertex s−1 is the same point while the two
 // views share their vertices (docs/bdpt-mis.md §11): one shadow ray serves both families there.
+// The pinhole's view of a light-subpath vertex (t = 1): where it projects and the camera's density
+// of it; the same for both views at a common vertex.
+struct CameraLink {
+  std::optional<Camera::Connection> connection;
+  double pdfCam = 0.0;  // the camera's area density of the vertex (whole film)
+};
+
 class VisibilityMemo {
  public:
   // Forgets everything; keeps s up to sharedVertices, t up to cameraVertices.
@@ -27,6 +35,8 @@ class VisibilityMemo {
     shared_ = sharedVertices;
     stride_ = cameraVertices + 1;
     known_.assign(size_t((sharedVertices + 1) * stride_), int8_t(-1));
+    linked_.assign(size_t(sharedVertices + 1), false);
+    links_.resize(size_t(sharedVertices + 1));
   }
   // The remembered answer for (s, t), or test()'s (remembered where s ≤ sharedVertices).
   template <class Test>
@@ -36,9 +46,18 @@ class VisibilityMemo {
     if (k < 0) k = test() ? 1 : 0;
     return k == 1;
   }
+  // The remembered camera link of vertex s − 1, or make()'s (remembered where s ≤ sharedVertices).
+  template <class Make>
+  CameraLink link(int s, Make&& make) {
+    if (s > shared_) return make();
+    if (!linked_[size_t(s)]) links_[size_t(s)] = make(), linked_[size_t(s)] = true;
+    return links_[size_t(s)];
+  }
 
  private:
   std::vector<int8_t> known_;
+  std::vector<bool> linked_;
+  std::vector<CameraLink> links_;
   int shared_ = 0, stride_ = 0;
 };
 
