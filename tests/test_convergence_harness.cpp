@@ -58,7 +58,7 @@ class Harness : public ::testing::Test {
       "reference": {"integrator": "pt", "time": 0.2},
       "configurations": [{"label": "pt uniform", "integrator": "pt", "args": ["--sensor-sampling", "uniform"]},
                          {"label": "lt", "integrator": "lt"}],
-      "scenes": [{"scene": "tiny.json", "crop": [0, 0, 0.5, 0.5],
+      "scenes": [{"scene": "tiny.json", "crop": [0, 0, 0.5, 0.5], "reference": {"time": 0.3},
                   "comparisons": [{"combination": "pt uniform", "parts": ["lt"]}]}]})";
   }
   void TearDown() override {
@@ -84,6 +84,11 @@ TEST_F(Harness, TinyReportSlow) {
   const auto runs = readCsv(dir + "/out/runs.csv");
   ASSERT_EQ(runs.size(), 2u * 2u * 2u) << "configurations × budgets × seeds";
   const XyzImage reference = readExrXyz(dir + "/work/references/tiny.exr");
+  // The scene's reference time replaces the report's (0.2 s), and the record says so.
+  std::ifstream record(dir + "/work/references/tiny.reference.json");
+  std::stringstream recorded;
+  recorded << record.rdbuf();
+  EXPECT_NE(recorded.str().find("\"time\": 0.3"), std::string::npos) << recorded.str();
   std::map<std::string, std::vector<double>> relmse;  // config|budget → per seed
   for (const auto& r : runs) {
     SCOPED_TRACE(r.at("config") + " budget " + r.at("budget") + " seed " + r.at("seed"));

@@ -76,14 +76,16 @@ def _comparisons(path, pointer, value, labels):
 
 
 def _scene_reference(path, pointer, r, default):
-    """A scene's reference: the report's, with the scene's own integrator and arguments if given."""
-    _only(path, pointer, r, ("integrator", "args"))
+    """A scene's reference: the report's, with the scene's own integrator, arguments and time if given."""
+    _only(path, pointer, r, ("integrator", "args", "time"))
     out = dict(default)
     if "integrator" in r:
         out["integrator"] = _string(path, pointer + "/integrator", r["integrator"])
         out["args"] = []
     if "args" in r:
         out["args"] = _args(path, pointer + "/args", r["args"])
+    if "time" in r:
+        out["time"] = _number(path, pointer + "/time", r["time"])
     return out
 
 
