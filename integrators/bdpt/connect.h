@@ -18,9 +18,6 @@ struct WeightCheck {
   float recursive, full;
 };
 
-// Visibility between light-subpath vertex s−1 and camera-subpath vertex t−1 (t = 1: the pinhole),
-// kept for the merged light subpath's second view, whose vertex s−1 is the same point while the two
-// views share their vertices (docs/bdpt-mis.md §11): one shadow ray serves both families there.
 // The pinhole's view of a light-subpath vertex (t = 1): where it projects and the camera's density
 // of it; the same for both views at a common vertex.
 struct CameraLink {
@@ -28,6 +25,10 @@ struct CameraLink {
   double pdfCam = 0.0;  // the camera's area density of the vertex (whole film)
 };
 
+// Visibility between light-subpath vertex s−1 and camera-subpath vertex t−1 (t = 1: the pinhole),
+// and vertex s−1's camera link, kept for the merged light subpath's second view, whose vertex s−1
+// is the same point while the two views share their vertices (docs/bdpt-mis.md §11): one shadow
+// ray and one projection onto the film serve both families there.
 class VisibilityMemo {
  public:
   // Forgets everything; keeps s up to sharedVertices, t up to cameraVertices.
@@ -35,8 +36,7 @@ class VisibilityMemo {
     shared_ = sharedVertices;
     stride_ = cameraVertices + 1;
     known_.assign(size_t((sharedVertices + 1) * stride_), int8_t(-1));
-    linked_.assign(size_t(sharedVertices + 1), false);
-    links_.resize(size_t(sharedVertices + 1));
+    links_.assign(size_t(sharedVertices + 1), std::nullopt);
   }
   // The remembered answer for (s, t), or test()'s (remembered where s ≤ sharedVertices).
   template <class Test>
@@ -50,14 +50,14 @@ class VisibilityMemo {
   template <class Make>
   CameraLink link(int s, Make&& make) {
     if (s > shared_) return make();
-    if (!linked_[size_t(s)]) links_[size_t(s)] = make(), linked_[size_t(s)] = true;
-    return links_[size_t(s)];
+    std::optional<CameraLink>& l = links_[size_t(s)];
+    if (!l) l = make();
+    return *l;
   }
 
  private:
   std::vector<int8_t> known_;
-  std::vector<bool> linked_;
-  std::vector<CameraLink> links_;
+  std::vector<std::optional<CameraLink>> links_;
   int shared_ = 0, stride_ = 0;
 };
 

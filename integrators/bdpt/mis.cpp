@@ -86,8 +86,9 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
   }
   for (int i = nee ? 1 : s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
   if (s == k && k >= 2) d *= p.specLightLast;  // t = 1 samples x_{k−1}'s event on the light side
-  // The light choice and the wavelength densities: the camera side's strategies choose the light
-  // with cameraChoice, the independent family the light with the first group's wavelength; every
+  // The light choice and the wavelength densities: next-event estimation chooses the light with
+  // cameraChoice, the shared light subpath with sharedChoice, the independent family the light
+  // with the first group's wavelength; every
   // strategy but the independent family's t = 1 has the sensor draw the last group's wavelength.
   if (s == 0) return d * p.sensorPdf * p.laneGain;
   if (variant == Variant::kStandard) return d * p.sensorPdf * (nee ? p.cameraChoice : p.sharedChoice) * p.laneGain;

@@ -10,9 +10,10 @@
 //     M = σ²·(g²·(hit + κ²·nee + S²·[one group]·shared) + ℓ²·(own + ε_h²·mollified)) + ℓ²·ownSplat
 //
 // σ: the sensor's density of the wavelength reaching the camera; κ: next-event estimation's light
-// choice; S: the shared light subpath's; ℓ: the own family's joint density of light and wavelength; ε_h the mollification kernel's
-// width; g the lanes' gain (MisFactors::laneGain). hit: the camera subpath reaching the light (s' = 0); nee: next-event estimation; shared:
-// the shared family's joins and t = 1; own: the own family's joins and light vertex; mollified:
+// choice; S: the shared light subpath's; ℓ: the own family's joint density of light and
+// wavelength; ε_h the mollification kernel's width; g the lanes' gain (MisFactors::laneGain).
+// hit: the camera subpath reaching the light (s' = 0); nee: next-event estimation; shared: the
+// shared family's joins, t = 1 and merges; own: the own family's joins and light vertex; mollified:
 // its mollified joins; ownSplat: its t = 1, the only strategy whose last wavelength the sensor does
 // not draw.
 #include "materials/bsdf_model.h"
