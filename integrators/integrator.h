@@ -93,6 +93,9 @@ class Integrator {
                                                     RayCounter& counter) const {
     return nullptr;
   }
+  // What the integrator decided for the render so far (a pilot's choice), for its statistics;
+  // empty if nothing.
+  virtual std::string choices() const { return {}; }
   // The most samples per pixel one pass may take.
   virtual int maxSamplesPerPass() const { return std::numeric_limits<int>::max(); }
 };

@@ -56,6 +56,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
     st.samplesPerSecond = st.seconds > 0.0 ? double(st.samples) / st.seconds : 0.0;
     st.raysPerSecond = st.seconds > 0.0 ? double(st.rays) / st.seconds : 0.0;
     st.nonFiniteSamples = film.nonFiniteCount();
+    st.choices = integrator.choices();
     return st;
   };
   int pass = std::max(0, opt.startSpp);
@@ -121,7 +122,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
 namespace kasha {
 
 nlohmann::json toJson(const RenderStats& s) {
-  return {{"integrator", s.integrator},
+  nlohmann::json j = {{"integrator", s.integrator},
           {"seconds", s.seconds},
           {"spp", s.spp},
           {"samples", s.samples},
@@ -135,6 +136,8 @@ nlohmann::json toJson(const RenderStats& s) {
           {"samples_per_pass", s.samplesPerPass},
           {"interrupted", s.interrupted},
           {"ranks", s.ranks}};
+  if (!s.choices.empty()) j["choices"] = s.choices;
+  return j;
 }
 
 std::string summaryLine(const RenderStats& s) {
@@ -144,6 +147,7 @@ std::string summaryLine(const RenderStats& s) {
                 s.ranks > 1 ? (" x " + std::to_string(s.ranks) + " processes").c_str() : "",
                 s.nonFiniteSamples ? (", " + std::to_string(s.nonFiniteSamples) + " non-finite samples dropped").c_str() : "",
                 s.interrupted ? ", interrupted" : "");
+  if (!s.choices.empty()) return std::string(buf) + "; " + s.choices;
   return buf;
 }
 

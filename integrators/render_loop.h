@@ -35,6 +35,7 @@ struct RenderStats {
   bool interrupted = false;  // stopped by RenderOptions::stop before reaching spp or the time budget
   int stopSignal = 0;        // the stop value that ended it (the highest over the processes)
   int ranks = 1;             // processes that rendered (RenderOptions::group); counts and rays are their sums
+  std::string choices;       // what the integrator decided (Integrator::choices), empty if nothing
 };
 
 // At least ~64k samples per pass, so that small images keep every core busy.

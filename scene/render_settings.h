@@ -74,6 +74,22 @@ inline std::optional<FluorescentLanes> parseFluorescentLanes(const std::string& 
   return std::nullopt;
 }
 
+// Which light subpaths the unified `bdpt` traces in a scene that fluoresces (docs/bdpt-mis.md §13):
+// both families, the shared family alone, or (auto, the default) whichever a pilot estimates the
+// more efficient.
+enum class BdptFamilies { Auto, Both, Shared };
+
+inline const char* toString(BdptFamilies f) {
+  return f == BdptFamilies::Both ? "both" : f == BdptFamilies::Shared ? "shared" : "auto";
+}
+// "auto", "both" or "shared"; nullopt otherwise.
+inline std::optional<BdptFamilies> parseBdptFamilies(const std::string& text) {
+  if (text == "auto") return BdptFamilies::Auto;
+  if (text == "both") return BdptFamilies::Both;
+  if (text == "shared") return BdptFamilies::Shared;
+  return std::nullopt;
+}
+
 // Thrown when an integrator cannot do what fluorescent_lanes asks (its message says why).
 struct FluorescentLanesError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
@@ -95,6 +111,7 @@ struct RenderSettings {
   // wavelength strategies carry lanes, else 1).
   int heroWavelengths = kAutoLanes;
   FluorescentLanes fluorescentLanes = FluorescentLanes::Through;
+  BdptFamilies bdptFamilies = BdptFamilies::Auto;  // the unified bdpt's light subpaths
   // Largest buffer an integrator may allocate (photon maps, ...): check with requireMemory()
   // before allocating. Set by `kasha render --memory-limit`; not a scene-file setting.
   uint64_t memoryLimit = kDefaultMemoryLimit;

@@ -146,6 +146,9 @@ struct Loader {
     const std::string lanes = f.string("fluorescent_lanes", toString(r.fluorescentLanes));
     if (const auto at = parseFluorescentLanes(lanes)) r.fluorescentLanes = *at;
     else f.fail("fluorescent_lanes", "'" + lanes + "' is not what lanes do at fluorescent events (through, end)");
+    const std::string families = f.string("bdpt_families", toString(r.bdptFamilies));
+    if (const auto fam = parseBdptFamilies(families)) r.bdptFamilies = *fam;
+    else f.fail("bdpt_families", "'" + families + "' is not a choice of bdpt's light subpaths (auto, both, shared)");
     photonMapping(f);
     mollification(f);
     f.finish();

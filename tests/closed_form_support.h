@@ -9,6 +9,7 @@
 
 #include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
+#include "integrator_names.h"
 #include "integrators/render_loop.h"
 #include "tests/spectral_quadrature.h"
 #include "tests/support.h"
@@ -41,7 +42,7 @@ inline std::vector<DVec3> batchMeans(const Scene& scene, const Integrator& integ
 // `settings`; checks each channel within 4 standard errors of `exact`, and that the test has power.
 inline void expectXyzAgreement(Scene& scene, const std::string& integrator, const RenderSettings& settings,
                                const Vec3& exact, int batches, int spp) {
-  const std::unique_ptr<Integrator> in = makeIntegrator(integrator, scene, settings);
+  const std::unique_ptr<Integrator> in = makeTestIntegrator(integrator, scene, settings);
   std::vector<double> bx, by, bz;
   for (const DVec3& m : batchMeans(scene, *in, batches, spp, 1000, settings.sampler))
     bx.push_back(m.x), by.push_back(m.y), bz.push_back(m.z);

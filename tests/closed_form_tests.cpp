@@ -99,7 +99,7 @@ TEST(ClosedForm, UniformSensorSamplingAgrees) {
   if (gIntegrator == "lt") {  // the light tracer draws no camera wavelength, and says so
     RenderSettings settings = scene->render;
     settings.wavelengths.sensor = parseWavelengthSpec("uniform");
-    EXPECT_THROW(makeIntegrator(gIntegrator, *scene, settings), WavelengthStrategyError);
+    EXPECT_THROW(makeTestIntegrator(gIntegrator, *scene, settings), WavelengthStrategyError);
     return;
   }
   const Grid g(scene->range);

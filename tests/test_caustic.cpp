@@ -5,6 +5,7 @@
 
 #include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
+#include "integrator_names.h"
 #include "integrators/render_loop.h"
 #include "tests/region_batches.h"
 #include "tests/support.h"
@@ -23,7 +24,7 @@ std::unique_ptr<Scene> lowRes() {
 }
 
 std::vector<test::BatchStats> regions(const Scene& scene, const std::string& name, int spp, int batches) {
-  const std::unique_ptr<Integrator> integrator = makeIntegrator(name, scene, scene.render);
+  const std::unique_ptr<Integrator> integrator = test::makeTestIntegrator(name, scene, scene.render);
   std::vector<std::vector<double>> per(kRegions * kRegions);
   for (int b = 0; b < batches; ++b) {
     Film film(kRes, kRes);
@@ -61,7 +62,7 @@ TEST_P(FluorescentCausticAgreement, WithLightTracing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, FluorescentCausticAgreement,
-                         ::testing::Values(std::make_pair("bdpt", 128), std::make_pair("bdpt-independent", 128),
+                         ::testing::Values(std::make_pair("bdpt", 128), std::make_pair("bdpt.both", 128), std::make_pair("bdpt-independent", 128),
                                            std::make_pair("ppm", 64)));
 // Vertex connection and merging (issue 14): long under the sanitizers, which skip "Slow".
 INSTANTIATE_TEST_SUITE_P(VertexMergingSlow, FluorescentCausticAgreement,

@@ -150,6 +150,8 @@ TEST_F(CliFiles, CommandLineMistakesExitWith2) {
   expectRefused({"render", scene, "-q", "--integrator", "ppm", "--fluorescent-lanes", "end"}, 2,
                 "--fluorescent-lanes: end: fluorescent_lanes 'end' is an experiment of pt and lt, not of ppm");
   expectRefused({"render", scene, "-q", "--ppm-direct", "photons"}, 2, "--ppm-direct: only for --integrator ppm");
+  expectRefused({"render", scene, "-q", "--integrator", "bdpt-shared", "--bdpt-families", "both"}, 2,
+                "--bdpt-families: only for --integrator bdpt");
   expectRefused({"render", scene, "-q", "--integrator", "ppm", "--ppm-nee-wavelengths", "camera,cmf"}, 2,
                 "--ppm-nee-wavelengths");
   expectRefused({"render", scene, "-q", "--integrator", "ppm", "--ppm-direct", "both"}, 2, "--ppm-direct");

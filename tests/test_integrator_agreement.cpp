@@ -10,6 +10,7 @@
 
 #include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
+#include "integrator_names.h"
 #include "integrators/render_loop.h"
 #include "tests/region_batches.h"
 #include "tests/support.h"
@@ -33,7 +34,7 @@ std::unique_ptr<Scene> lowRes(const std::string& name) {
 Estimate estimate(const Scene& scene, const std::string& integratorName, int spp, int batches) {
   RenderSettings settings = scene.render;
   settings.maxDepth = 8;
-  const std::unique_ptr<Integrator> integrator = makeIntegrator(integratorName, scene, settings);
+  const std::unique_ptr<Integrator> integrator = test::makeTestIntegrator(integratorName, scene, settings);
   const std::vector<test::BatchStats> v = test::regionBatches(
       scene, *integrator, kRes, kRes, kRegions * kRegions,
       [](int x, int y) { return (y * kRegions / kRes) * kRegions + x * kRegions / kRes; }, spp, batches, 7919);
@@ -78,7 +79,7 @@ TEST_P(Convergence, StandardErrorFallsAsOneOverRootN) {
 INSTANTIATE_TEST_SUITE_P(Cornell, Agreement,
                          ::testing::Combine(::testing::Values("cornell_fluorescent.json", "cornell_uv.json",
                                                               "cornell_glossy.json"),
-                                            ::testing::Values("lt", "bdpt", "bdpt-shared", "bdpt-independent")));
+                                            ::testing::Values("lt", "bdpt", "bdpt.both", "bdpt-shared", "bdpt-independent")));
 INSTANTIATE_TEST_SUITE_P(Cornell, Convergence, ::testing::Values("pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent"));
 
 }  // namespace

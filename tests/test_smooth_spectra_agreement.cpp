@@ -16,6 +16,7 @@
 
 #include "integrators/bdpt/strategy_images.h"
 #include "integrators/integrator_factory.h"
+#include "integrator_names.h"
 #include "integrators/render_loop.h"
 #include "scene/scene_loader.h"
 #include "tests/region_batches.h"
@@ -33,7 +34,7 @@ std::vector<test::BatchStats> estimate(const Scene& scene, const std::string& na
   settings.ppm.radius = 0.02f;
   if (name != "lt") settings.wavelengths.sensor = parseWavelengthSpec("mix:cmf,uniform");
   if (name != "pt" && name != "bdpt-shared") settings.wavelengths.light = parseWavelengthSpec("mix:light,uniform");
-  const std::unique_ptr<Integrator> integrator = makeIntegrator(name, scene, settings);
+  const std::unique_ptr<Integrator> integrator = test::makeTestIntegrator(name, scene, settings);
   return test::regionBatches(
       scene, *integrator, kRes, kRes, kRegions * kRegions,
       [](int x, int y) { return (y * kRegions / kRes) * kRegions + x * kRegions / kRes; }, spp, batches, 104729);
@@ -44,7 +45,7 @@ class SmoothSpectra : public ::testing::TestWithParam<std::pair<const char*, int
 std::string testName(const ::testing::TestParamInfo<std::pair<const char*, int>>& info) {
   std::string n = info.param.first;
   for (char& ch : n)
-    if (ch == '-') ch = '_';
+    if (ch == '-' || ch == '.') ch = '_';
   return n;
 }
 
@@ -76,6 +77,7 @@ TEST(SmoothSpectraStrategies, UnweightedStrategiesOfTheSamePathsAgree) {
   RenderSettings settings = scene->render;
   settings.wavelengths.sensor = parseWavelengthSpec("mix:cmf,uniform");
   settings.wavelengths.light = parseWavelengthSpec("mix:light,uniform");
+  settings.bdptFamilies = BdptFamilies::Both;  // every strategy of both families, whatever a pilot would choose
   const std::unique_ptr<Integrator> bdpt = makeIntegrator("bdpt", *scene, settings);
   const std::vector<std::vector<std::string>> groups = {{"s0_t3", "s1_t2", "s2_t1_own"}, {"s0_t4", "s1_t3", "s3_t1_own"}};
   std::map<std::string, std::vector<std::vector<double>>> sums;  // strategy → region·3 + channel → batches
@@ -115,7 +117,7 @@ TEST(SmoothSpectraStrategies, UnweightedStrategiesOfTheSamePathsAgree) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, SmoothSpectra,
-                         ::testing::Values(std::make_pair("bdpt", 64), std::make_pair("bdpt-shared", 64),
+                         ::testing::Values(std::make_pair("bdpt", 64), std::make_pair("bdpt.both", 64), std::make_pair("bdpt-shared", 64),
                                            std::make_pair("bdpt-independent", 64), std::make_pair("lt", 256)),
                          testName);
 // Vertex connection and merging (issue 14): long under the sanitizers, which skip "Slow".

@@ -104,7 +104,7 @@ class StrategyImagesCli : public ::testing::Test {
 TEST_F(StrategyImagesCli, WritesOneImagePerStrategy) {
   const std::string out = dir + "/strategies";
   const auto r = test::runKasha({"render", test::sourcePath("scenes/validation/furnace_fluorescent.json"), "-q", "--spp",
-                                 "2", "--max-depth", "2", "--integrator", "bdpt", "--strategy-images", out,
+                                 "2", "--max-depth", "2", "--integrator", "bdpt", "--bdpt-families", "both", "--strategy-images", out,
                                  "--strategy-unweighted", "-o", dir + "/full.exr"},
                                 dir + "/run");
   ASSERT_EQ(r.code, 0) << r.err;

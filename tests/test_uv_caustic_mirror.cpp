@@ -9,6 +9,7 @@
 
 #include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
+#include "integrator_names.h"
 #include "tests/region_batches.h"
 #include "tests/support.h"
 
@@ -30,7 +31,7 @@ std::unique_ptr<Scene> causticView() {
 int regionOf(int x, int y) { return (y * kRegions / kRes) * kRegions + x * kRegions / kRes; }
 
 std::vector<test::BatchStats> regions(const Scene& scene, const char* integrator, int spp, int batches) {
-  const std::unique_ptr<Integrator> it = makeIntegrator(integrator, scene, scene.render);
+  const std::unique_ptr<Integrator> it = test::makeTestIntegrator(integrator, scene, scene.render);
   return test::regionBatches(scene, *it, kRes, kRes, kRegions * kRegions, regionOf, spp, batches, 7919);
 }
 

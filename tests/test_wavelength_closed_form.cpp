@@ -68,7 +68,7 @@ TEST_P(Strategy, MatchesFurnaceClosedForms) {
     settings.heroWavelengths = sc.hero;
     settings.wavelengths.nee = parseWavelengthSpec(sc.nee);
     if (std::string(sc.rejectedOn) == name) {
-      EXPECT_THROW(makeIntegrator(sc.integrator, *scene, settings), WavelengthStrategyError);
+      EXPECT_THROW(makeTestIntegrator(sc.integrator, *scene, settings), WavelengthStrategyError);
       continue;
     }
     expectXyzAgreement(*scene, sc.integrator, settings, furnaceXyz(*scene), 16, 128 * sc.sppScale);
@@ -123,7 +123,7 @@ TEST_P(IntegratorSamplerLanesSlow, MatchFurnaceClosedForms) {
     RenderSettings settings = allOrders(*scene);
     settings.sampler = sampler;
     settings.heroWavelengths = lanes;
-    ASSERT_EQ(makeIntegrator(integrator, *scene, settings)->lanes(), lanes);
+    ASSERT_EQ(makeTestIntegrator(integrator, *scene, settings)->lanes(), lanes);
     // Vertex merging's passes share their wavelengths over the image (docs/bdpt-mis.md §12): with
     // one lane drawn by PCG32 its colour noise needs twice the passes for the test's power.
     const std::string n = integrator;
@@ -132,14 +132,14 @@ TEST_P(IntegratorSamplerLanesSlow, MatchFurnaceClosedForms) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Everything, IntegratorSamplerLanesSlow,
-                         ::testing::Combine(::testing::Values("pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent",
+                         ::testing::Combine(::testing::Values("pt", "lt", "bdpt", "bdpt.both", "bdpt-shared", "bdpt-independent",
                                                               "bdpt-mollified", "ppm", "vcm", "vc", "bpm"),
                                             ::testing::Values(SamplerKind::Sobol, SamplerKind::Independent),
                                             ::testing::Values(1, 4)),
                          [](const ::testing::TestParamInfo<MatrixCase>& info) {
                            std::string n = std::get<0>(info.param);
                            for (char& c : n)
-                             if (c == '-') c = '_';
+                             if (c == '-' || c == '.') c = '_';
                            return n + (std::get<1>(info.param) == SamplerKind::Sobol ? "_sobol_" : "_pcg32_") +
                                   std::to_string(std::get<2>(info.param)) + "_lanes";
                          });

@@ -1,10 +1,13 @@
 #include "integrators/bdpt/bdpt_integrator.h"
 
+#include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "core/color.h"
 #include "integrators/bdpt/connect.h"
+#include "integrators/bdpt/family_pilot.h"
 #include "integrators/direct_emission.h"
 #include "integrators/progressive_schedule.h"
 
@@ -15,6 +18,18 @@ struct MollifyPass final : PassData {
   explicit MollifyPass(float h) : bandwidth(h) {}
   float bandwidth;
 };
+
+// The unified estimator's pass: whether its samples run the own family (the pilot's decision).
+struct FamiliesPass final : PassData {
+  explicit FamiliesPass(bool own) : keepOwn(own) {}
+  bool keepOwn;
+};
+
+// The own family's cost per camera sample, relative to the shared family alone: bdpt's time per
+// sample over bdpt-shared's in the convergence report (docs/bdpt-mis.md §13). The pilot keeps the
+// own family where the shared family alone has a relative variance per sample above this factor
+// times both families'.
+constexpr double kOwnFamilyCost = 1.15;
 
 }  // namespace
 
@@ -30,6 +45,9 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bdpt::WavelengthMode mod
   if (mode_ == bdpt::WavelengthMode::Unified && families_.independent) {
     lightFirst_ = std::make_unique<bdpt::LightFirstStart>(scene, s.wavelengths.light);
     ws_.lightFirst = lightFirst_.get();
+    wsShared_ = ws_;
+    wsShared_.lightFirst = nullptr;
+    familyChoice_ = s.bdptFamilies;
   }
   lanes_ = s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths;
   if (lanes_ < 1 || lanes_ > kMaxLanes)
@@ -54,34 +72,113 @@ float Bdpt::bandwidth(int sample) const {
   return bandwidth1_ * std::sqrt(progressiveRadiusSquared(1.0f, alpha_, sample + 1));
 }
 
-std::unique_ptr<const PassData> Bdpt::beginPass(const Scene&, int firstSample, int, uint64_t, RayCounter&) const {
-  if (!mollifies()) return nullptr;
-  return std::make_unique<MollifyPass>(bandwidth(firstSample));
+std::unique_ptr<const PassData> Bdpt::beginPass(const Scene& scene, int firstSample, int, uint64_t seed,
+                                                RayCounter& counter) const {
+  if (mollifies()) return std::make_unique<MollifyPass>(bandwidth(firstSample));
+  if (lightFirst_ && familyChoice_ == BdptFamilies::Auto) {
+    // Every process runs the pilot once; its rays count in the pass that takes sample 0, so that the
+    // statistics do not depend on the number of processes (render_group.h).
+    RayCounter pilotRays;
+    const bool own = keepsOwnFamily(scene, seed, pilotRays);
+    if (firstSample == 0) counter.closest += pilotRays.closest, counter.shadow += pilotRays.shadow;
+    return std::make_unique<FamiliesPass>(own);
+  }
+  return nullptr;
+}
+
+bool Bdpt::sharedAlone(const PassData* pass) const {
+  if (!lightFirst_) return false;
+  if (familyChoice_ == BdptFamilies::Shared) return true;
+  return familyChoice_ == BdptFamilies::Auto && pass && !static_cast<const FamiliesPass&>(*pass).keepOwn;
+}
+
+bool Bdpt::keepsOwnFamily(const Scene& scene, uint64_t seed, RayCounter& counter) const {
+  std::lock_guard<std::mutex> lock(pilotMutex_);
+  if (pilot_ && pilot_->seed == seed) return pilot_->keepOwn;
+  using namespace bdpt;
+  std::atomic<uint64_t> unshared{0};
+  // Both estimators from the same camera sample: its lanes (with the merged start's tables, which
+  // the shared family alone does not read) and its camera subpath.
+  const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& a, SampleContext& b,
+                              std::vector<Splat>& excess) -> std::pair<Vec3, Vec3> {
+    thread_local std::vector<PathVertex> C;
+    thread_local LaneTables laneTables;
+    thread_local PilotMoments moments;
+    const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, laneTables, nullptr, lightFirst_.get());
+    for (int k = 0; k < lanes_; ++k)
+      if (lanes.sensorPdf[k] <= 0.0f) return {Vec3(0.0f), Vec3(0.0f)};
+    traceCameraSubpath(scene, pixel + rng.uniform2(), lanes, ws_, rng, a.counter, C);
+    moments.unshared = 0;
+    moments.excess.clear();
+    const Vec3 va = joinCameraSubpath(scene, lanes, C, pixel, false, rng, a, &moments);
+    if (moments.unshared > 0) unshared.fetch_add(uint64_t(moments.unshared), std::memory_order_relaxed);
+    excess.insert(excess.end(), moments.excess.begin(), moments.excess.end());
+    return {va, joinCameraSubpath(scene, lanes, C, pixel, true, rng, b)};
+  };
+  const PilotVariances v = pilotVariances(scene.camera.width(), scene.camera.height(), seed, SamplerKind::Independent, both);
+  counter = v.rays;
+  // Where the shared family alone cannot sample a path that carries light, it would miss that light
+  // (bdpt-shared's bias: a delta light seen through a specular vertex exciting fluorescence); where
+  // it disagrees with both, it missed light only the own family finds often. Its variance is then
+  // underestimated, and the own family stays. Otherwise the larger of its two variance estimates
+  // decides: measured, and from both families' paths (light that is rare under it shows there).
+  const bool missed = unshared.load() > 0;
+  const double fromPaths = v.a + v.excess;
+  const bool keep = missed || !v.agree || std::max(v.b, fromPaths) > kOwnFamilyCost * v.a;
+  pilot_ = PilotOutcome{seed, keep, v.agree, missed, v.a, v.b, fromPaths};
+  return pilot_->keepOwn;
+}
+
+std::string Bdpt::choices() const {
+  if (!lightFirst_ || familyChoice_ == BdptFamilies::Both) return {};
+  if (familyChoice_ == BdptFamilies::Shared) return "families: shared";
+  std::lock_guard<std::mutex> lock(pilotMutex_);
+  if (!pilot_) return {};
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "families: %s (pilot: relative variance per sample %.3g with both, %.3g shared alone, %.3g from both's "
+                "paths%s%s)",
+                pilot_->keepOwn ? "both" : "shared", pilot_->relVarBoth, pilot_->relVarShared,
+                pilot_->relVarSharedFromPaths, pilot_->agree ? "" : "; the two disagree",
+                pilot_->unshared ? "; shared alone cannot sample some paths that carry light" : "");
+  return buf;
 }
 
 int Bdpt::maxSamplesPerPass() const { return mollifies() ? 1 : Integrator::maxSamplesPerPass(); }
 
 Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
   using namespace bdpt;
-  thread_local std::vector<PathVertex> C, LS, LO;  // the camera subpath, the shared and own light subpaths
-  if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
+  thread_local std::vector<PathVertex> C;  // the camera subpath
+  if (C.capacity() < 16) C.reserve(16);
   thread_local LaneTables laneTables;
+  const bool alone = sharedAlone(ctx.pass);
   const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, laneTables,
-                                  families_.independent && !lightFirst_ ? &light_.density() : nullptr, lightFirst_.get());
+                                  families_.independent && !lightFirst_ ? &light_.density() : nullptr,
+                                  alone ? nullptr : lightFirst_.get());
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
-  const Vec2 film = pixel + rng.uniform2();
-  traceCameraSubpath(scene, film, lanes, ws_, rng, ctx.counter, C);
+  traceCameraSubpath(scene, pixel + rng.uniform2(), lanes, ws_, rng, ctx.counter, C);
+  return joinCameraSubpath(scene, lanes, C, pixel, alone, rng, ctx);
+}
+
+Vec3 Bdpt::joinCameraSubpath(const Scene& scene, const bdpt::Lanes& lanes, const std::vector<bdpt::PathVertex>& C,
+                             Vec2 pixel, bool alone, Sampler& rng, SampleContext& ctx, bdpt::PilotMoments* pilot) const {
+  using namespace bdpt;
+  thread_local std::vector<PathVertex> LS, LO;  // the shared and own light subpaths
+  if (LS.capacity() < 16) LS.reserve(16), LO.reserve(16);
   LS.clear(), LO.clear();
+  const WalkSettings& ws = alone ? wsShared_ : ws_;
+  const Families families = alone ? Families{true, false} : families_;
   int sharedLightVertices = 0;
-  if (lightFirst_) {
-    sharedLightVertices = traceMergedLightSubpath(scene, lanes, ws_, rng, ctx.counter, LS, LO);
+  if (ws.lightFirst) {
+    sharedLightVertices = traceMergedLightSubpath(scene, lanes, ws, rng, ctx.counter, LS, LO);
   } else {
-    if (families_.shared) traceLightSubpath(scene, LightFamily::Shared, lanes, ws_, rng, ctx.counter, LS);
-    if (families_.independent) traceLightSubpath(scene, LightFamily::Own, lanes, ws_, rng, ctx.counter, LO);
+    if (families.shared) traceLightSubpath(scene, LightFamily::Shared, lanes, ws, rng, ctx.counter, LS);
+    if (families.independent) traceLightSubpath(scene, LightFamily::Own, lanes, ws, rng, ctx.counter, LO);
   }
-  Context c{scene, ws_, families_, lanes, sensor_.density(), ctx.counter};
+  Context c{scene, ws, families, lanes, sensor_.density(), ctx.counter};
   c.sharedLightVertices = sharedLightVertices;
+  c.pilot = pilot;
   c.spectralSplats = ctx.recordSpectral;
   if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
   if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;

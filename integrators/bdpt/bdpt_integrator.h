@@ -13,7 +13,10 @@
 // §6); each pass then takes one sample per pixel.
 #include "scene/wavelength_strategy.h"
 #include <memory>
+#include <mutex>
+#include <optional>
 
+#include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/light_first.h"
 #include "integrators/bdpt/mis.h"
 #include "integrators/bdpt/subpaths.h"
@@ -34,15 +37,33 @@ class Bdpt final : public Integrator {
   std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                             RayCounter& counter) const override;
   int maxSamplesPerPass() const override;
+  std::string choices() const override;
 
   bool mollifies() const { return bandwidth1_ > 0.0f; }
   // The kernel half-width h_i of the pass that takes sample `sample` (iteration sample + 1):
   // h_i = h_1·r_i/r_1 with the radius schedule of progressive photon mapping.
   float bandwidth(int sample) const;
 
+  // The pilot's decision for a render with `seed` (docs/bdpt-mis.md §13): whether the own family
+  // runs. Computed once per seed (the render's first pass asks); `counter` is set to the rays it
+  // traced when it runs (left alone when the decision was known).
+  bool keepsOwnFamily(const Scene& scene, uint64_t seed, RayCounter& counter) const;
+
  private:
+  // Whether a sample of the pass `pass` runs the shared family alone (the unified estimator's
+  // families choice or its pilot's decision).
+  bool sharedAlone(const PassData* pass) const;
+  // The light subpaths of one camera sample of pixel `pixel` (its lanes, its camera subpath C),
+  // joined to C: the camera sample's estimate; splats go to ctx.
+  // With `pilot`, what the pilot learns from the sample (bdpt::PilotMoments).
+  Vec3 joinCameraSubpath(const Scene& scene, const bdpt::Lanes& lanes, const std::vector<bdpt::PathVertex>& C,
+                         Vec2 pixel, bool sharedAlone, Sampler& rng, SampleContext& ctx,
+                         bdpt::PilotMoments* pilot = nullptr) const;
+
   WavelengthStrategy sensor_, light_;
   bdpt::WalkSettings ws_;
+  bdpt::WalkSettings wsShared_;  // the unified estimator's when it runs the shared family alone
+  BdptFamilies familyChoice_ = BdptFamilies::Both;
   bdpt::WavelengthMode mode_;
   bdpt::Families families_;
   float bandwidth1_ = 0.0f, alpha_ = 0.0f;
@@ -50,6 +71,18 @@ class Bdpt final : public Integrator {
   std::vector<Vec3> directXyz_;  // per light: its emission's XYZ seen directly (direct_emission.h)
   // The unified estimator's merged light subpath starts here (both families run; docs/bdpt-mis.md §11).
   std::unique_ptr<bdpt::LightFirstStart> lightFirst_;
+  // The pilot's outcome, per render seed (BdptFamilies::Auto).
+  struct PilotOutcome {
+    uint64_t seed = 0;
+    bool keepOwn = true;
+    bool agree = true;  // the two estimators' pilot images agree (PilotVariances::agree)
+    bool unshared = false;  // some path carrying light is one the shared family alone cannot sample
+    // Relative variances per sample: both families' and the shared family alone's, measured and
+    // from both families' paths (their excess second moment; docs/bdpt-mis.md §13).
+    double relVarBoth = 0.0, relVarShared = 0.0, relVarSharedFromPaths = 0.0;
+  };
+  mutable std::mutex pilotMutex_;
+  mutable std::optional<PilotOutcome> pilot_;
 };
 
 }  // namespace kasha

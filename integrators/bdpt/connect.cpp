@@ -176,6 +176,7 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
     fp.specLightLast = t == 2 ? specLightLast(b, F, a.lambda) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
     return misWeight(fp, 1, Variant::kLightVertex);
   });
+  if (c.pilot) c.pilot->ratio[lane] = c.pilot->pending;
   if (!(weight > 0.0f) || !visible(c, b, a)) return;
   const float value = Le * G * f * b.beta[lane] / (a.pdfFwd * a.choicePdf);
   record(c, 1, t, Variant::kLightVertex, lane, value, weight);
@@ -415,6 +416,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     // A shared lane's wavelength is the sensor's lane k (whose response is known).
     const Vec3 xyz = shared ? c.lanes.response[k] * v : Observer::cie1931().weight(lambdaK) * v;
     if (c.spectralSplats) splats.push_back({conn->pixel, xyz * weight[k], lambdaK, v * weight[k]});
+    if (c.pilot) c.pilot->add(k, conn->pixel, xyz * weight[k]);
     sum += xyz * weight[k];
     unweighted += xyz;
   }

@@ -1,5 +1,6 @@
 #pragma once
 // The contributions of BDPT's strategies, each with its MIS weight (docs/bdpt-mis.md §3).
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -61,6 +62,24 @@ class VisibilityMemo {
   int shared_ = 0, stride_ = 0;
 };
 
+// What the unified estimator's pilot learns from one camera sample of both families
+// (docs/bdpt-mis.md §13) about the shared family alone, from the weights' sums: for each
+// contribution C (film XYZ) on a path through a fluorescent vertex, ρ = p_both/p_alone, the two
+// estimators' densities of the path (√ of the ratio of their power-heuristic sums), and the second
+// moment dropping the own family would add, C²·(ρ − 1) (Grittmann et al. 2022), or that p_alone = 0.
+struct PilotMoments {
+  double ratio[kMaxLanes] = {};  // ρ of the strategy weighed last, per lane (laneWeights)
+  double pending = 1.0;          // ρ of the strategy weigh() saw last
+  int unshared = 0;              // contributions on paths the shared family alone cannot sample
+  std::vector<Splat> excess;     // per contribution: its pixel and C²·(ρ − 1) per channel
+  // Adds lane k's contribution xyz at `pixel`.
+  void add(int k, Vec2 pixel, const Vec3& xyz) {
+    if (!(xyz.x > 0.0f || xyz.y > 0.0f || xyz.z > 0.0f)) return;
+    if (!std::isfinite(ratio[k])) ++unshared;
+    else if (ratio[k] > 1.0) excess.push_back({pixel, xyz * xyz * float(ratio[k] - 1.0)});
+  }
+};
+
 struct Context {
   const Scene& scene;
   const WalkSettings& walk;
@@ -89,6 +108,9 @@ struct Context {
 
   // Tests only: every weight also recomputed over the whole path (mis.h), both recorded here.
   std::vector<WeightCheck>* oracle = nullptr;
+
+  // The unified estimator's pilot (docs/bdpt-mis.md §13); null outside it.
+  PilotMoments* pilot = nullptr;
 };
 
 // Strategies with t ≥ 2 add each lane's radiance at its camera wavelength, weighted, to out[k].

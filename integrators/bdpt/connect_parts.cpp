@@ -1,5 +1,8 @@
 #include "integrators/bdpt/connect_parts.h"
 
+#include <cmath>
+#include <limits>
+
 #include "integrators/progressive_schedule.h"
 
 namespace kasha::bdpt {
@@ -84,6 +87,14 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
   return f;
 }
 
+double densityOverSharedAlone(const MisSums& total, const MisFactors& f, double sum) {
+  MisFactors alone = f;
+  alone.ownFamily = false;
+  alone.sharedChoice = f.cameraChoice;
+  const double a = combine(total, alone);
+  return a > 0.0 ? std::sqrt(sum / a) : std::numeric_limits<double>::infinity();
+}
+
 FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t,
                 const LightEnd& end, const MisFactors& f) {
   FullPath fp;
@@ -139,6 +150,7 @@ Vec3 laneScale(const Context& c, int k) {
 }
 
 void record(const Context& c, int s, int t, Variant v, int k, float value, float weight) {
+  if (c.pilot) c.pilot->add(k, c.pixel, laneScale(c, k) * (value * weight));
   if (c.log && value != 0.0f)
     c.log->push_back({c.pixel, laneScale(c, k) * (value * weight), laneScale(c, k) * value, s, t, uint8_t(v)});
 }
