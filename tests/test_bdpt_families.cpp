@@ -1,10 +1,10 @@
-// The unified bdpt's choice of light-subpath families (docs/bdpt-mis.md §13): the pilot's variance
-// estimates against known variances, its check that the two estimators agree, its decision on two
-// scenes whose light needs the own family or not, and that the shared family alone is exactly
-// bdpt-shared's estimator.
+// The unified bdpt's choice of light-subpath families (docs/bdpt-mis.md §13): the pilot's estimates
+// against known variances, what a contribution tells it, its decision on scenes whose light needs
+// the own family or not, and that the shared family alone is exactly bdpt-shared's estimator.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/bdpt/family_pilot.h"
@@ -26,38 +26,48 @@ double noisyStandardError(int pixels) { return std::sqrt(3.0 * (16.0 / 15.0 - 4.
 
 TEST(FamilyPilot, MeasuresKnownVariancesOfSamplesAndSplats) {
   constexpr int w = 64, h = 48;
-  // a: nothing at its own pixel, its noise splatted onto it; b: a constant.
-  const bdpt::PilotVariances v = bdpt::pilotVariances(
-      w, h, 5, SamplerKind::Independent,
-      [](Vec2 pixel, Sampler& rng, SampleContext& a, SampleContext&, std::vector<Splat>& excess) {
-        a.splats.push_back({pixel + Vec2(0.5f), noisy(rng)});
-        excess.push_back({pixel, Vec3(0.5f)});  // b's second moment over a's: 0.5 per channel and sample
-        return std::pair<Vec3, Vec3>(Vec3(0.0f), Vec3(1.0f));
+  // Half of the noise at the sample's own pixel, half splatted onto it; a known excess.
+  const bdpt::PilotEstimates e = bdpt::pilotEstimates(
+      w, h, 5, SamplerKind::Independent, [](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<Splat>& excess) {
+        ctx.splats.push_back({pixel + Vec2(0.5f), 0.5f * noisy(rng)});
+        excess.push_back({pixel, Vec3(0.5f)});  // the alternative's second moment over this one's: 0.5 per channel
+        return 0.5f * noisy(rng);
       });
-  // The box mean of the four images is 1 up to a's noise (about 1/√300 per channel).
-  EXPECT_NEAR(v.a, kNoisyRelVar, 4.0 * noisyStandardError(w * h) + 0.01);
-  EXPECT_EQ(v.b, 0.0);
-  EXPECT_NEAR(v.excess, 3.0 * 0.5 / 1.01, 0.02);  // the box mean: 1 up to a's noise
-  EXPECT_TRUE(v.agree);
+  // Two independent halves: Var = 2·(1/4)·(1/3) per channel around a mean of 1.
+  EXPECT_NEAR(e.relVar, kNoisyRelVar / 2.0, 4.0 * noisyStandardError(w * h) / 2.0 + 0.01);
+  EXPECT_NEAR(e.relExcess, 3.0 * 0.5 / 1.01, 0.02);  // the box mean: 1 up to the noise
 }
 
-TEST(FamilyPilot, FindsTheEstimatorThatMissesLight) {
-  constexpr int w = 32, h = 32;
-  // b is unbiased for 1 + U but finds it once in 10⁵ samples: the pilot's 2048 rarely see it.
-  auto run = [](double rarity) {
-    return bdpt::pilotVariances(w, h, 3, SamplerKind::Independent,
-                                [=](Vec2, Sampler& rng, SampleContext&, SampleContext&, std::vector<Splat>&) {
-      const Vec3 a = noisy(rng);
-      const Vec3 b = rng.uniform() < 1.0 / rarity ? noisy(rng) * float(rarity) : Vec3(0.0f);
-      return std::pair<Vec3, Vec3>(a, b);
-    });
-  };
-  const bdpt::PilotVariances rare = run(1e5), always = run(1.0);
-  EXPECT_FALSE(rare.agree);
-  EXPECT_LT(rare.b, 0.01);  // what the pilot sees of b's variance: almost nothing
-  EXPECT_TRUE(always.agree);
-  EXPECT_NEAR(always.a, kNoisyRelVar, 4.0 * noisyStandardError(w * h) + 0.02);
-  EXPECT_NEAR(always.b, kNoisyRelVar, 4.0 * noisyStandardError(w * h) + 0.02);
+TEST(FamilyPilot, SmallImagesTakeSeveralSamplesPerPixel) {
+  constexpr int w = 16, h = 8;  // 128 pixels: 128 samples per pixel and image
+  std::vector<int> samples(size_t(w * h), 0);
+  const bdpt::PilotEstimates e = bdpt::pilotEstimates(
+      w, h, 5, SamplerKind::Independent, [&](Vec2 pixel, Sampler& rng, SampleContext&, std::vector<Splat>&) {
+        ++samples[size_t(pixel.y) * w + size_t(pixel.x)];  // each row is one task
+        return noisy(rng);
+      });
+  for (int n : samples) EXPECT_EQ(n, 2 * 128);
+  // Per sample, not per image mean: n·(x̄₁ − x̄₂)²/2 with x̄ near normal, so each pixel's estimate has a
+  // standard deviation of √(3·2/9) over the three channels; the trimmed largest pixel lowers the mean.
+  EXPECT_NEAR(e.relVar, kNoisyRelVar, 4.0 * std::sqrt(3.0 * 2.0 / 9.0 / (w * h)) + 0.05);
+}
+
+// What a contribution tells the pilot about the shared family alone (connect.h).
+TEST(FamilyPilot, MomentsOfAContribution) {
+  bdpt::PilotMoments m;
+  m.ratio[0] = 3.0;                                    // p_both = 3 p_alone
+  m.ratio[1] = 1.0;                                    // the same density
+  m.ratio[2] = std::numeric_limits<double>::infinity();  // p_alone = 0
+  m.add(0, Vec2(2.0f, 1.0f), Vec3(1.0f, 2.0f, 0.0f));
+  m.add(1, Vec2(2.0f, 1.0f), Vec3(1.0f));
+  m.add(2, Vec2(0.0f), Vec3(0.0f));  // no light: nothing
+  ASSERT_EQ(m.excess.size(), 1u);
+  EXPECT_EQ(m.excess[0].xyz.x, 2.0f);  // C²·(ρ − 1)
+  EXPECT_EQ(m.excess[0].xyz.y, 8.0f);
+  EXPECT_EQ(m.excess[0].xyz.z, 0.0f);
+  EXPECT_EQ(m.unshared, 0);
+  m.add(2, Vec2(0.0f), Vec3(0.0f, 1e-3f, 0.0f));
+  EXPECT_EQ(m.unshared, 1);
 }
 
 std::unique_ptr<Scene> smallScene(const char* file, int res) {
@@ -82,8 +92,8 @@ bool keepsOwnFamily(const Scene& scene) {
 // uv_caustic.json: a UV point lamp's light reaches a fluorescent floor only through glass (a
 // caustic), so no camera path can find it and the shared family alone misses it.
 // uv_caustic_mirror.json: the same through a lens from a small UV LED, which camera paths through
-// the lens hit so rarely that the pilot's own samples of the shared family alone hardly show it;
-// both families' paths do. In the Cornell box lit by a visible lamp, the fluorescent wall's
+// the lens hit so rarely that samples of the shared family alone hardly show it; both families'
+// paths do. In the Cornell box lit by a visible lamp, the fluorescent wall's
 // re-emission is a small part that camera paths find well.
 TEST(BdptFamilies, ThePilotKeepsTheOwnFamilyWhereTheLightNeedsIt) {
   EXPECT_TRUE(keepsOwnFamily(*smallScene("scenes/uv_caustic.json", 48)));
@@ -120,7 +130,7 @@ TEST(BdptFamilies, TheChoiceIsReported) {
   const RenderStats st = render(*scene, *in, film, opt);
   EXPECT_EQ(st.choices.rfind("families: both (pilot: ", 0), 0u) << st.choices;
   // The lamp's light reaches the floor only through glass: the shared family alone cannot sample it.
-  EXPECT_NE(st.choices.find("shared alone cannot sample some paths that carry light"), std::string::npos) << st.choices;
+  EXPECT_NE(st.choices.find("which cannot sample some paths that carry light"), std::string::npos) << st.choices;
   // Fixed families decide nothing; the shared family alone says so.
   RenderSettings settings = scene->render;
   settings.bdptFamilies = BdptFamilies::Both;

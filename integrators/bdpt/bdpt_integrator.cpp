@@ -97,36 +97,36 @@ bool Bdpt::keepsOwnFamily(const Scene& scene, uint64_t seed, RayCounter& counter
   if (pilot_ && pilot_->seed == seed) return pilot_->keepOwn;
   using namespace bdpt;
   std::atomic<uint64_t> unshared{0};
-  // Both estimators from the same camera sample: its lanes (with the merged start's tables, which
-  // the shared family alone does not read) and its camera subpath.
-  const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& a, SampleContext& b,
-                              std::vector<Splat>& excess) -> std::pair<Vec3, Vec3> {
+  // Both families, and from their paths what the shared family alone would add (PilotMoments).
+  const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<Splat>& excess) -> Vec3 {
     thread_local std::vector<PathVertex> C;
     thread_local LaneTables laneTables;
     thread_local PilotMoments moments;
     const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, laneTables, nullptr, lightFirst_.get());
     for (int k = 0; k < lanes_; ++k)
-      if (lanes.sensorPdf[k] <= 0.0f) return {Vec3(0.0f), Vec3(0.0f)};
-    traceCameraSubpath(scene, pixel + rng.uniform2(), lanes, ws_, rng, a.counter, C);
+      if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
+    traceCameraSubpath(scene, pixel + rng.uniform2(), lanes, ws_, rng, ctx.counter, C);
     moments.unshared = 0;
     moments.excess.clear();
-    const Vec3 va = joinCameraSubpath(scene, lanes, C, pixel, false, rng, a, &moments);
+    const Vec3 v = joinCameraSubpath(scene, lanes, C, pixel, false, rng, ctx, &moments);
     if (moments.unshared > 0) unshared.fetch_add(uint64_t(moments.unshared), std::memory_order_relaxed);
     excess.insert(excess.end(), moments.excess.begin(), moments.excess.end());
-    return {va, joinCameraSubpath(scene, lanes, C, pixel, true, rng, b)};
+    return v;
   };
-  const PilotVariances v = pilotVariances(scene.camera.width(), scene.camera.height(), seed, SamplerKind::Independent, both);
-  counter = v.rays;
+  const PilotEstimates e = pilotEstimates(scene.camera.width(), scene.camera.height(), seed, SamplerKind::Independent, both);
+  counter = e.rays;
   // Where the shared family alone cannot sample a path that carries light, it would miss that light
-  // (bdpt-shared's bias: a delta light seen through a specular vertex exciting fluorescence); where
-  // it disagrees with both, it missed light only the own family finds often. Its variance is then
-  // underestimated, and the own family stays. Otherwise the larger of its two variance estimates
-  // decides: measured, and from both families' paths (light that is rare under it shows there).
-  const bool missed = unshared.load() > 0;
-  const double fromPaths = v.a + v.excess;
-  const bool keep = missed || !v.agree || std::max(v.b, fromPaths) > kOwnFamilyCost * v.a;
-  pilot_ = PilotOutcome{seed, keep, v.agree, missed, v.a, v.b, fromPaths};
-  return pilot_->keepOwn;
+  // (bdpt-shared's bias: a delta light seen through a specular vertex exciting fluorescence).
+  // Otherwise it runs alone where its relative variance per sample, estimated from both families'
+  // paths, is at most kOwnFamilyCost times theirs.
+  PilotOutcome o;
+  o.seed = seed;
+  o.unshared = unshared.load() > 0;
+  o.relVarBoth = e.relVar;
+  o.relVarSharedAlone = e.relVar + e.relExcess;
+  o.keepOwn = o.unshared || o.relVarSharedAlone > kOwnFamilyCost * o.relVarBoth;
+  pilot_ = o;
+  return o.keepOwn;
 }
 
 std::string Bdpt::choices() const {
@@ -134,13 +134,10 @@ std::string Bdpt::choices() const {
   if (familyChoice_ == BdptFamilies::Shared) return "families: shared";
   std::lock_guard<std::mutex> lock(pilotMutex_);
   if (!pilot_) return {};
-  char buf[400];
-  std::snprintf(buf, sizeof buf,
-                "families: %s (pilot: relative variance per sample %.3g with both, %.3g shared alone, %.3g from both's "
-                "paths%s%s)",
-                pilot_->keepOwn ? "both" : "shared", pilot_->relVarBoth, pilot_->relVarShared,
-                pilot_->relVarSharedFromPaths, pilot_->agree ? "" : "; the two disagree",
-                pilot_->unshared ? "; shared alone cannot sample some paths that carry light" : "");
+  char buf[300];
+  std::snprintf(buf, sizeof buf, "families: %s (pilot: relative variance per sample %.3g with both, %.3g shared alone%s)",
+                pilot_->keepOwn ? "both" : "shared", pilot_->relVarBoth, pilot_->relVarSharedAlone,
+                pilot_->unshared ? ", which cannot sample some paths that carry light" : "");
   return buf;
 }
 

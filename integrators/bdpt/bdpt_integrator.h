@@ -75,11 +75,10 @@ class Bdpt final : public Integrator {
   struct PilotOutcome {
     uint64_t seed = 0;
     bool keepOwn = true;
-    bool agree = true;  // the two estimators' pilot images agree (PilotVariances::agree)
     bool unshared = false;  // some path carrying light is one the shared family alone cannot sample
-    // Relative variances per sample: both families' and the shared family alone's, measured and
-    // from both families' paths (their excess second moment; docs/bdpt-mis.md §13).
-    double relVarBoth = 0.0, relVarShared = 0.0, relVarSharedFromPaths = 0.0;
+    // Relative variances per sample of both families and, from their paths, of the shared family
+    // alone (docs/bdpt-mis.md §13).
+    double relVarBoth = 0.0, relVarSharedAlone = 0.0;
   };
   mutable std::mutex pilotMutex_;
   mutable std::optional<PilotOutcome> pilot_;
