@@ -92,3 +92,17 @@ def test_bdpt_strategy_images_sum_to_the_render():
     np.testing.assert_allclose(total, result["xyz"], rtol=1e-4, atol=1e-5)
     with pytest.raises(ValueError, match="only the BDPT"):
         kasha.render(scene, integrator="pt", strategy_images=True)
+
+
+def test_bdpt_families_from_python():
+    # The fluorescent furnace: `bdpt` runs a pilot and reports its choice; the shared family alone
+    # is bdpt-shared's estimator, image for image; a bad choice names the field.
+    scene = kasha.Scene.from_dict(furnace_dict(resolution=8, spp=4))
+    auto = kasha.render(scene, integrator="bdpt")
+    assert auto["stats"]["choices"].startswith("families: ")
+    alone = kasha.render(scene, integrator="bdpt", bdpt_families="shared")
+    shared = kasha.render(scene, integrator="bdpt-shared")
+    np.testing.assert_array_equal(alone["xyz"], shared["xyz"])
+    assert "choices" not in kasha.render(scene, integrator="bdpt", bdpt_families="both")["stats"]
+    with pytest.raises(kasha.InputError, match="bdpt_families"):
+        kasha.render(scene, integrator="bdpt", bdpt_families="own")
