@@ -498,8 +498,8 @@ int main(int argc, char** argv) {
   render->add_option("--bdpt-families", ra.bdptFamilies,
                      "The light subpaths of --integrator bdpt where the scene fluoresces: auto (the default: a "
                      "pilot of 2 samples per pixel keeps the own-wavelength family unless the shared family "
-                     "alone samples every path, agrees with both and has at most 1.15x their relative "
-                     "variance per sample) | both | shared")
+                     "alone samples every path that carries light and has at most 1.15x their relative "
+                     "variance per sample, estimated from both families' paths) | both | shared")
       ->check(CLI::IsMember({"auto", "both", "shared"}));
   render->add_option("--sampler", ra.sampler,
                      "Random numbers of every sample: sobol (Owen-scrambled Sobol, the default) | independent (PCG32)")

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "integrators/bdpt/bdpt_integrator.h"
+#include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/family_pilot.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"

@@ -99,16 +99,10 @@ bool Bdpt::keepsOwnFamily(const Scene& scene, uint64_t seed, RayCounter& counter
   std::atomic<uint64_t> unshared{0};
   // Both families, and from their paths what the shared family alone would add (PilotMoments).
   const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<Splat>& excess) -> Vec3 {
-    thread_local std::vector<PathVertex> C;
-    thread_local LaneTables laneTables;
     thread_local PilotMoments moments;
-    const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, laneTables, nullptr, lightFirst_.get());
-    for (int k = 0; k < lanes_; ++k)
-      if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
-    traceCameraSubpath(scene, pixel + rng.uniform2(), lanes, ws_, rng, ctx.counter, C);
     moments.unshared = 0;
     moments.excess.clear();
-    const Vec3 v = joinCameraSubpath(scene, lanes, C, pixel, false, rng, ctx, &moments);
+    const Vec3 v = estimate(scene, pixel, rng, ctx, false, &moments);
     if (moments.unshared > 0) unshared.fetch_add(uint64_t(moments.unshared), std::memory_order_relaxed);
     excess.insert(excess.end(), moments.excess.begin(), moments.excess.end());
     return v;
@@ -144,28 +138,24 @@ std::string Bdpt::choices() const {
 int Bdpt::maxSamplesPerPass() const { return mollifies() ? 1 : Integrator::maxSamplesPerPass(); }
 
 Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
-  using namespace bdpt;
-  thread_local std::vector<PathVertex> C;  // the camera subpath
-  if (C.capacity() < 16) C.reserve(16);
-  thread_local LaneTables laneTables;
-  const bool alone = sharedAlone(ctx.pass);
-  const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, laneTables,
-                                  families_.independent && !lightFirst_ ? &light_.density() : nullptr,
-                                  alone ? nullptr : lightFirst_.get());
-  for (int k = 0; k < lanes_; ++k)
-    if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
-  traceCameraSubpath(scene, pixel + rng.uniform2(), lanes, ws_, rng, ctx.counter, C);
-  return joinCameraSubpath(scene, lanes, C, pixel, alone, rng, ctx);
+  return estimate(scene, pixel, rng, ctx, sharedAlone(ctx.pass), nullptr);
 }
 
-Vec3 Bdpt::joinCameraSubpath(const Scene& scene, const bdpt::Lanes& lanes, const std::vector<bdpt::PathVertex>& C,
-                             Vec2 pixel, bool alone, Sampler& rng, SampleContext& ctx, bdpt::PilotMoments* pilot) const {
+Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, bool alone,
+                    bdpt::PilotMoments* pilot) const {
   using namespace bdpt;
-  thread_local std::vector<PathVertex> LS, LO;  // the shared and own light subpaths
-  if (LS.capacity() < 16) LS.reserve(16), LO.reserve(16);
-  LS.clear(), LO.clear();
+  // The camera subpath, the shared and own light subpaths.
+  thread_local std::vector<PathVertex> C, LS, LO;
+  if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
+  thread_local LaneTables laneTables;
   const WalkSettings& ws = alone ? wsShared_ : ws_;
   const Families families = alone ? Families{true, false} : families_;
+  const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, laneTables,
+                                  families.independent && !ws.lightFirst ? &light_.density() : nullptr, ws.lightFirst);
+  for (int k = 0; k < lanes_; ++k)
+    if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
+  traceCameraSubpath(scene, pixel + rng.uniform2(), lanes, ws, rng, ctx.counter, C);
+  LS.clear(), LO.clear();
   int sharedLightVertices = 0;
   if (ws.lightFirst) {
     sharedLightVertices = traceMergedLightSubpath(scene, lanes, ws, rng, ctx.counter, LS, LO);
@@ -176,13 +166,11 @@ Vec3 Bdpt::joinCameraSubpath(const Scene& scene, const bdpt::Lanes& lanes, const
   Context c{scene, ws, families, lanes, sensor_.density(), ctx.counter};
   c.sharedLightVertices = sharedLightVertices;
   c.pilot = pilot;
+  c.pixel = pixel;
   c.spectralSplats = ctx.recordSpectral;
   if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
   if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;
-  if (ctx.recordStrategies) {
-    c.log = &ctx.strategies;
-    c.pixel = pixel;
-  }
+  if (ctx.recordStrategies) c.log = &ctx.strategies;
 
   float radiance[kMaxLanes];
   Vec3 xyz;

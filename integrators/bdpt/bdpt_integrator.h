@@ -16,13 +16,15 @@
 #include <mutex>
 #include <optional>
 
-#include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/light_first.h"
 #include "integrators/bdpt/mis.h"
 #include "integrators/bdpt/subpaths.h"
 #include "integrators/integrator.h"
 
 namespace kasha {
+namespace bdpt {
+struct PilotMoments;  // connect.h
+}
 
 class Bdpt final : public Integrator {
  public:
@@ -53,12 +55,11 @@ class Bdpt final : public Integrator {
   // Whether a sample of the pass `pass` runs the shared family alone (the unified estimator's
   // families choice or its pilot's decision).
   bool sharedAlone(const PassData* pass) const;
-  // The light subpaths of one camera sample of pixel `pixel` (its lanes, its camera subpath C),
-  // joined to C: the camera sample's estimate; splats go to ctx.
-  // With `pilot`, what the pilot learns from the sample (bdpt::PilotMoments).
-  Vec3 joinCameraSubpath(const Scene& scene, const bdpt::Lanes& lanes, const std::vector<bdpt::PathVertex>& C,
-                         Vec2 pixel, bool sharedAlone, Sampler& rng, SampleContext& ctx,
-                         bdpt::PilotMoments* pilot = nullptr) const;
+  // One camera sample of pixel `pixel` (its integer corner) with the mode's families, or with the
+  // shared family alone: the sample's estimate; splats go to ctx. With `pilot`, what the pilot
+  // learns from the sample (bdpt::PilotMoments).
+  Vec3 estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, bool sharedAlone,
+                bdpt::PilotMoments* pilot) const;
 
   WavelengthStrategy sensor_, light_;
   bdpt::WalkSettings ws_;

@@ -91,8 +91,8 @@ struct Context {
   // Spectral mollification (Independent only): the wavelength kernel's half-width h of this
   // pass in nm; 0 for none (docs/bdpt-mis.md §6).
   float bandwidth = 0.0f;
-  // Per-strategy records (null unless asked): strategies with t ≥ 2 record at `pixel`, lane k's
-  // radiance turned into XYZ by W(λ_k)/(n·p(λ_k)).
+  // Per-strategy records (null unless asked): strategies with t ≥ 2 record at `pixel` (the camera
+  // sample's, which the pilot reads as well), lane k's radiance turned into XYZ by W(λ_k)/(n·p(λ_k)).
   std::vector<StrategySample>* log = nullptr;
   Vec2 pixel{0.0f};
   // Whether t = 1 splats keep each lane's wavelength (for spectral bins), or sum the lanes' XYZ.
