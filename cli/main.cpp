@@ -497,10 +497,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"through", "end"}));
   render->add_option("--bdpt-families", ra.bdptFamilies,
                      "The light subpaths of --integrator bdpt where the scene fluoresces: auto (the default: a "
-                     "pilot of 2 samples per pixel keeps the own-wavelength family unless the shared family "
-                     "alone samples every path that carries light and has at most 1.15x their relative "
-                     "variance per sample, estimated from both families' paths) | both | shared")
-      ->check(CLI::IsMember({"auto", "both", "shared"}));
+                     "pilot estimates, from both families' paths, the relative variance per sample of both and of "
+                     "each family alone, and their cost in rays, and runs the most efficient; a family alone only "
+                     "if it samples every path that carries light) | both | shared (= bdpt-shared) | own (= "
+                     "bdpt-independent)")
+      ->check(CLI::IsMember({"auto", "both", "shared", "own"}));
   render->add_option("--sampler", ra.sampler,
                      "Random numbers of every sample: sobol (Owen-scrambled Sobol, the default) | independent (PCG32)")
       ->check(CLI::IsMember({"sobol", "independent"}));

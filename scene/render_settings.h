@@ -75,18 +75,24 @@ inline std::optional<FluorescentLanes> parseFluorescentLanes(const std::string& 
 }
 
 // Which light subpaths the unified `bdpt` traces in a scene that fluoresces (docs/bdpt-mis.md §13):
-// both families, the shared family alone, or (auto, the default) whichever a pilot estimates the
-// more efficient.
-enum class BdptFamilies { Auto, Both, Shared };
+// both families, the shared family alone (bdpt-shared), the own family alone (bdpt-independent), or
+// (auto, the default) whichever a pilot estimates the most efficient.
+enum class BdptFamilies { Auto, Both, Shared, Own };
 
 inline const char* toString(BdptFamilies f) {
-  return f == BdptFamilies::Both ? "both" : f == BdptFamilies::Shared ? "shared" : "auto";
+  switch (f) {
+    case BdptFamilies::Both: return "both";
+    case BdptFamilies::Shared: return "shared";
+    case BdptFamilies::Own: return "own";
+    default: return "auto";
+  }
 }
-// "auto", "both" or "shared"; nullopt otherwise.
+// "auto", "both", "shared" or "own"; nullopt otherwise.
 inline std::optional<BdptFamilies> parseBdptFamilies(const std::string& text) {
   if (text == "auto") return BdptFamilies::Auto;
   if (text == "both") return BdptFamilies::Both;
   if (text == "shared") return BdptFamilies::Shared;
+  if (text == "own") return BdptFamilies::Own;
   return std::nullopt;
 }
 

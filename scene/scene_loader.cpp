@@ -148,7 +148,7 @@ struct Loader {
     else f.fail("fluorescent_lanes", "'" + lanes + "' is not what lanes do at fluorescent events (through, end)");
     const std::string families = f.string("bdpt_families", toString(r.bdptFamilies));
     if (const auto fam = parseBdptFamilies(families)) r.bdptFamilies = *fam;
-    else f.fail("bdpt_families", "'" + families + "' is not a choice of bdpt's light subpaths (auto, both, shared)");
+    else f.fail("bdpt_families", "'" + families + "' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
     photonMapping(f);
     mollification(f);
     f.finish();

@@ -1,6 +1,7 @@
 // The unified bdpt's choice of light-subpath families (docs/bdpt-mis.md §13): the pilot's estimates
 // against known variances, what a contribution tells it, its decision on scenes whose light needs
-// the own family or not, and that the shared family alone is exactly bdpt-shared's estimator.
+// the own family or not, and that each family alone is exactly bdpt-shared's or bdpt-independent's
+// estimator.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,50 +26,84 @@ constexpr double kNoisyRelVar = 1.0 / 1.01;
 // Var[(x₁ − x₂)²/2] = (E[d⁴] − E[d²]²)/4 = (16/15 − 4/9)/4 per channel.
 double noisyStandardError(int pixels) { return std::sqrt(3.0 * (16.0 / 15.0 - 4.0 / 9.0) / 4.0 / pixels); }
 
-TEST(FamilyPilot, MeasuresKnownVariancesOfSamplesAndSplats) {
-  constexpr int w = 64, h = 48;
-  // Half of the noise at the sample's own pixel, half splatted onto it; a known excess.
+// Half of the noise at the sample's own pixel, half splatted onto it; known excesses of two
+// alternatives. 64 × 48 pixels are sampled one by one; 256 × 256 in cells of 4 × 2 pixels, whose
+// splats add up in the cell: the estimates are the same.
+void measuresKnownVariances(int w, int h) {
   const bdpt::PilotEstimates e = bdpt::pilotEstimates(
-      w, h, 5, SamplerKind::Independent, [](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<Splat>& excess) {
+      w, h, 5, SamplerKind::Independent, 2,
+      [](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>& excess) {
         ctx.splats.push_back({pixel + Vec2(0.5f), 0.5f * noisy(rng)});
-        excess.push_back({pixel, Vec3(0.5f)});  // the alternative's second moment over this one's: 0.5 per channel
+        // The alternatives' second moments over this one's: 0.5 and −0.25 per channel.
+        excess[0].push_back({pixel, Vec3(0.5f)});
+        excess[1].push_back({pixel + Vec2(0.5f), Vec3(-0.25f)});
         return 0.5f * noisy(rng);
       });
+  const int cells = std::min(w * h, 8192), n = (8192 + cells - 1) / cells;  // n samples per cell and image
+  EXPECT_EQ(e.samples, size_t(2 * n * cells));
   // Two independent halves: Var = 2·(1/4)·(1/3) per channel around a mean of 1.
-  EXPECT_NEAR(e.relVar, kNoisyRelVar / 2.0, 4.0 * noisyStandardError(w * h) / 2.0 + 0.01);
-  EXPECT_NEAR(e.relExcess, 3.0 * 0.5 / 1.01, 0.02);  // the box mean: 1 up to the noise
+  EXPECT_NEAR(e.relVar, kNoisyRelVar / 2.0, 4.0 * noisyStandardError(cells) / 2.0 + 0.01);
+  ASSERT_EQ(e.relExcess.size(), 2u);
+  // Divided by the box mean m² (+ 10⁻²): m is 1 up to its noise, the mean of 2·25 cell values of
+  // variance (1/6)/n, so E[1/m²] ≈ 1 + 3·Var m.
+  const double inverseSquare = 1.0 + 3.0 * (1.0 / 6.0) / (50.0 * n);
+  EXPECT_NEAR(e.relExcess[0], 3.0 * 0.5 / 1.01 * inverseSquare, 0.01);
+  EXPECT_NEAR(e.relExcess[1], -3.0 * 0.25 / 1.01 * inverseSquare, 0.005);
 }
 
+TEST(FamilyPilot, MeasuresKnownVariancesOfSamplesAndSplats) { measuresKnownVariances(64, 48); }
+TEST(FamilyPilot, LargeImagesAreSampledInCells) { measuresKnownVariances(256, 256); }
+
 TEST(FamilyPilot, SmallImagesTakeSeveralSamplesPerPixel) {
-  constexpr int w = 16, h = 8;  // 128 pixels: 128 samples per pixel and image
+  constexpr int w = 16, h = 8;  // 128 pixels: 64 samples per pixel and image
   std::vector<int> samples(size_t(w * h), 0);
   const bdpt::PilotEstimates e = bdpt::pilotEstimates(
-      w, h, 5, SamplerKind::Independent, [&](Vec2 pixel, Sampler& rng, SampleContext&, std::vector<Splat>&) {
+      w, h, 5, SamplerKind::Independent, 0,
+      [&](Vec2 pixel, Sampler& rng, SampleContext&, std::vector<std::vector<Splat>>&) {
         ++samples[size_t(pixel.y) * w + size_t(pixel.x)];  // each row is one task
         return noisy(rng);
       });
-  for (int n : samples) EXPECT_EQ(n, 2 * 128);
+  for (int n : samples) EXPECT_EQ(n, 2 * 64);
   // Per sample, not per image mean: n·(x̄₁ − x̄₂)²/2 with x̄ near normal, so each pixel's estimate has a
   // standard deviation of √(3·2/9) over the three channels; the trimmed largest pixel lowers the mean.
   EXPECT_NEAR(e.relVar, kNoisyRelVar, 4.0 * std::sqrt(3.0 * 2.0 / 9.0 / (w * h)) + 0.05);
 }
 
-// What a contribution tells the pilot about the shared family alone (connect.h).
+TEST(FamilyPilot, RaysOfSamplesAreCountedOnce) {
+  std::vector<int> pixels(size_t(40 * 30), 0);
+  const RayCounter r = bdpt::raysOfSamples(
+      40, 30, 5, SamplerKind::Independent, 600,
+      [&](Vec2 pixel, Sampler&, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
+        ++pixels[size_t(pixel.y) * 40 + size_t(pixel.x)];  // a task each
+        ctx.counter.closest += 3, ctx.counter.shadow += 1;
+        return Vec3(0.0f);
+      });
+  EXPECT_EQ(r.closest, 3u * 600u);
+  EXPECT_EQ(r.shadow, 600u);
+  for (size_t i = 0; i < pixels.size(); ++i) EXPECT_EQ(pixels[i], i % 2 == 0 ? 1 : 0);  // every other pixel
+}
+
+// What a contribution tells the pilot about each family alone (connect.h).
 TEST(FamilyPilot, MomentsOfAContribution) {
   bdpt::PilotMoments m;
-  m.ratio[0] = 3.0;                                    // p_both = 3 p_alone
-  m.ratio[1] = 1.0;                                    // the same density
-  m.ratio[2] = std::numeric_limits<double>::infinity();  // p_alone = 0
+  auto& shared = m.alone[int(bdpt::Alone::Shared)];
+  auto& own = m.alone[int(bdpt::Alone::Own)];
+  shared.ratio[0] = 3.0, own.ratio[0] = 0.5;  // p_both = 3 p_shared-alone, p_both = p_own-alone / 2
+  shared.ratio[1] = own.ratio[1] = 1.0;       // the same density
+  shared.ratio[2] = std::numeric_limits<double>::infinity(), own.ratio[2] = 1.0;  // p_shared-alone = 0
   m.add(0, Vec2(2.0f, 1.0f), Vec3(1.0f, 2.0f, 0.0f));
   m.add(1, Vec2(2.0f, 1.0f), Vec3(1.0f));
   m.add(2, Vec2(0.0f), Vec3(0.0f));  // no light: nothing
-  ASSERT_EQ(m.excess.size(), 1u);
-  EXPECT_EQ(m.excess[0].xyz.x, 2.0f);  // C²·(ρ − 1)
-  EXPECT_EQ(m.excess[0].xyz.y, 8.0f);
-  EXPECT_EQ(m.excess[0].xyz.z, 0.0f);
-  EXPECT_EQ(m.unshared, 0);
+  ASSERT_EQ(shared.excess.size(), 1u);
+  EXPECT_EQ(shared.excess[0].xyz, Vec3(2.0f, 8.0f, 0.0f));  // C²·(ρ − 1)
+  ASSERT_EQ(own.excess.size(), 1u);
+  EXPECT_EQ(own.excess[0].xyz, Vec3(-0.5f, -2.0f, 0.0f));  // lower: the own family alone does better
+  EXPECT_EQ(shared.unsampled, 0);
   m.add(2, Vec2(0.0f), Vec3(0.0f, 1e-3f, 0.0f));
-  EXPECT_EQ(m.unshared, 1);
+  EXPECT_EQ(shared.unsampled, 1);
+  EXPECT_EQ(own.unsampled, 0);
+  m.clear();
+  EXPECT_TRUE(shared.excess.empty() && own.excess.empty() && shared.unsampled == 0);
 }
 
 std::unique_ptr<Scene> smallScene(const char* file, int res) {
@@ -84,42 +119,49 @@ std::unique_ptr<Integrator> automatic(const Scene& scene) {
   return makeIntegrator("bdpt", scene, settings);
 }
 
-bool keepsOwnFamily(const Scene& scene) {
+BdptFamilies pilotChoice(const Scene& scene) {
   const std::unique_ptr<Integrator> in = automatic(scene);
   RayCounter rays;
-  return dynamic_cast<const Bdpt&>(*in).keepsOwnFamily(scene, 1, rays);
+  return dynamic_cast<const Bdpt&>(*in).pilotChoice(scene, 1, rays);
 }
 
 // uv_caustic.json: a UV point lamp's light reaches a fluorescent floor only through glass (a
-// caustic), so no camera path can find it and the shared family alone misses it.
+// caustic), so no camera path can find it and the shared family alone misses it; the own family's
+// light subpaths carry nearly all of it, so the shared family adds nothing and costs next to nothing.
 // uv_caustic_mirror.json: the same through a lens from a small UV LED, which camera paths through
-// the lens hit so rarely that samples of the shared family alone hardly show it; both families'
-// paths do. In the Cornell box lit by a visible lamp, the fluorescent wall's
-// re-emission is a small part that camera paths find well.
-TEST(BdptFamilies, ThePilotKeepsTheOwnFamilyWhereTheLightNeedsIt) {
-  EXPECT_TRUE(keepsOwnFamily(*smallScene("scenes/uv_caustic.json", 48)));
-  EXPECT_TRUE(keepsOwnFamily(*smallScene("scenes/uv_caustic_mirror.json", 48)));
-  EXPECT_FALSE(keepsOwnFamily(*smallScene("scenes/cornell_fluorescent.json", 48)));
+// the lens hit so rarely that samples of the shared family alone hardly show it; the own family's
+// light subpaths find it, and the shared family's joins gain less than their rays cost.
+// In the Cornell box lit by a visible lamp, the fluorescent wall's re-emission is a small part that
+// camera paths find well, and the shared family's joins carry the diffuse light best.
+TEST(BdptFamilies, ThePilotChoosesFamiliesThatSampleTheLight) {
+  const BdptFamilies caustic = pilotChoice(*smallScene("scenes/uv_caustic.json", 48));
+  EXPECT_TRUE(caustic == BdptFamilies::Both || caustic == BdptFamilies::Own) << toString(caustic);
+  EXPECT_EQ(pilotChoice(*smallScene("scenes/uv_caustic_mirror.json", 48)), BdptFamilies::Own);
+  EXPECT_EQ(pilotChoice(*smallScene("scenes/cornell_fluorescent.json", 48)), BdptFamilies::Shared);
 }
 
-TEST(BdptFamilies, TheSharedFamilyAloneIsBdptShared) {
+// Each family alone is exactly its named estimator's: the same image from the same seed.
+void aloneIs(BdptFamilies families, const char* named) {
   const auto scene = smallScene("scenes/cornell_uv.json", 16);
   RenderSettings settings = scene->render;
-  settings.bdptFamilies = BdptFamilies::Shared;
-  Film alone(16, 16), shared(16, 16);
+  settings.bdptFamilies = families;
+  Film alone(16, 16), other(16, 16);
   RenderOptions opt;
   opt.spp = 4;
   opt.seed = 9;
   render(*scene, *makeIntegrator("bdpt", *scene, settings), alone, opt);
-  render(*scene, *makeIntegrator("bdpt-shared", *scene, settings), shared, opt);
+  render(*scene, *makeIntegrator(named, *scene, settings), other, opt);
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) {
-      const Vec3 a = alone.xyz(x, y), b = shared.xyz(x, y);
+      const Vec3 a = alone.xyz(x, y), b = other.xyz(x, y);
       EXPECT_EQ(a.x, b.x);
       EXPECT_EQ(a.y, b.y);
       EXPECT_EQ(a.z, b.z);
     }
 }
+
+TEST(BdptFamilies, TheSharedFamilyAloneIsBdptShared) { aloneIs(BdptFamilies::Shared, "bdpt-shared"); }
+TEST(BdptFamilies, TheOwnFamilyAloneIsBdptIndependent) { aloneIs(BdptFamilies::Own, "bdpt-independent"); }
 
 TEST(BdptFamilies, TheChoiceIsReported) {
   const auto scene = smallScene("scenes/uv_caustic.json", 48);
@@ -129,15 +171,19 @@ TEST(BdptFamilies, TheChoiceIsReported) {
   opt.spp = 1;
   EXPECT_EQ(in->choices(), "");  // nothing decided before the render
   const RenderStats st = render(*scene, *in, film, opt);
-  EXPECT_EQ(st.choices.rfind("families: both (pilot: ", 0), 0u) << st.choices;
+  EXPECT_EQ(st.choices.rfind("families: ", 0), 0u) << st.choices;
+  EXPECT_NE(st.choices.find(" (pilot: relative variance per sample and rays per sample: both "), std::string::npos)
+      << st.choices;
   // The lamp's light reaches the floor only through glass: the shared family alone cannot sample it.
-  EXPECT_NE(st.choices.find("which cannot sample some paths that carry light"), std::string::npos) << st.choices;
+  EXPECT_NE(st.choices.find("shared alone cannot sample some paths that carry light"), std::string::npos) << st.choices;
   // Fixed families decide nothing; the shared family alone says so.
   RenderSettings settings = scene->render;
   settings.bdptFamilies = BdptFamilies::Both;
   EXPECT_EQ(makeIntegrator("bdpt", *scene, settings)->choices(), "");
   settings.bdptFamilies = BdptFamilies::Shared;
   EXPECT_EQ(makeIntegrator("bdpt", *scene, settings)->choices(), "families: shared");
+  settings.bdptFamilies = BdptFamilies::Own;
+  EXPECT_EQ(makeIntegrator("bdpt", *scene, settings)->choices(), "families: own");
 }
 
 }  // namespace

@@ -392,8 +392,8 @@ TEST_F(SceneLoader, UnknownTypes) {
               "must be in [1, 16]");
   expectError([](json& j) { j["render"] = {{"fluorescent_lanes", "sideways"}}; }, "/render/fluorescent_lanes",
               "'sideways' is not what lanes do at fluorescent events (through, end)");
-  expectError([](json& j) { j["render"] = {{"bdpt_families", "own"}}; }, "/render/bdpt_families",
-              "'own' is not a choice of bdpt's light subpaths (auto, both, shared)");
+  expectError([](json& j) { j["render"] = {{"bdpt_families", "neither"}}; }, "/render/bdpt_families",
+              "'neither' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
 }
 
 TEST_F(SceneLoader, MissingMaterial) {

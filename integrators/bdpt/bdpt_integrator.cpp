@@ -19,17 +19,19 @@ struct MollifyPass final : PassData {
   float bandwidth;
 };
 
-// The unified estimator's pass: whether its samples run the own family (the pilot's decision).
+// The unified estimator's pass: the families its samples run (the pilot's decision).
 struct FamiliesPass final : PassData {
-  explicit FamiliesPass(bool own) : keepOwn(own) {}
-  bool keepOwn;
+  explicit FamiliesPass(BdptFamilies r) : run(r) {}
+  BdptFamilies run;
 };
 
-// The own family's cost per camera sample, relative to the shared family alone: bdpt's time per
-// sample over bdpt-shared's in the convergence report (docs/bdpt-mis.md §13). The pilot keeps the
-// own family where the shared family alone has a relative variance per sample above this factor
-// times both families'.
-constexpr double kOwnFamilyCost = 1.15;
+// The pilot's cost model (docs/bdpt-mis.md §13): time per sample ∝ rays per sample, times this factor
+// where the own family runs (its per-lane weights): the time per ray of bdpt with both families,
+// and of bdpt-independent, over bdpt-shared's, 1.13–1.26 (mean 1.19) and 1.04–1.24 (mean 1.16) on
+// the convergence report's six scenes (1 thread, 32 spp).
+constexpr double kOwnFamilyCostPerRay = 1.19;
+// Camera samples of each family alone whose rays the pilot counts.
+constexpr size_t kRaySamples = 1024;
 
 }  // namespace
 
@@ -45,8 +47,8 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bdpt::WavelengthMode mod
   if (mode_ == bdpt::WavelengthMode::Unified && families_.independent) {
     lightFirst_ = std::make_unique<bdpt::LightFirstStart>(scene, s.wavelengths.light);
     ws_.lightFirst = lightFirst_.get();
-    wsShared_ = ws_;
-    wsShared_.lightFirst = nullptr;
+    wsAlone_ = ws_;
+    wsAlone_.lightFirst = nullptr;
     familyChoice_ = s.bdptFamilies;
   }
   lanes_ = s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths;
@@ -79,77 +81,109 @@ std::unique_ptr<const PassData> Bdpt::beginPass(const Scene& scene, int firstSam
     // Every process runs the pilot once; its rays count in the pass that takes sample 0, so that the
     // statistics do not depend on the number of processes (render_group.h).
     RayCounter pilotRays;
-    const bool own = keepsOwnFamily(scene, seed, pilotRays);
+    const BdptFamilies run = pilotChoice(scene, seed, pilotRays);
     if (firstSample == 0) counter.closest += pilotRays.closest, counter.shadow += pilotRays.shadow;
-    return std::make_unique<FamiliesPass>(own);
+    return std::make_unique<FamiliesPass>(run);
   }
   return nullptr;
 }
 
-bool Bdpt::sharedAlone(const PassData* pass) const {
-  if (!lightFirst_) return false;
-  if (familyChoice_ == BdptFamilies::Shared) return true;
-  return familyChoice_ == BdptFamilies::Auto && pass && !static_cast<const FamiliesPass&>(*pass).keepOwn;
+BdptFamilies Bdpt::familiesOf(const PassData* pass) const {
+  if (!lightFirst_) return BdptFamilies::Both;  // the mode's families
+  if (familyChoice_ == BdptFamilies::Auto) return pass ? static_cast<const FamiliesPass&>(*pass).run : BdptFamilies::Both;
+  return familyChoice_;
 }
 
-bool Bdpt::keepsOwnFamily(const Scene& scene, uint64_t seed, RayCounter& counter) const {
+BdptFamilies Bdpt::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter) const {
   std::lock_guard<std::mutex> lock(pilotMutex_);
-  if (pilot_ && pilot_->seed == seed) return pilot_->keepOwn;
+  if (pilot_ && pilot_->seed == seed) return pilot_->run;
   using namespace bdpt;
-  std::atomic<uint64_t> unshared{0};
-  // Both families, and from their paths what the shared family alone would add (PilotMoments).
-  const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<Splat>& excess) -> Vec3 {
+  std::atomic<uint64_t> unsampled[kAlternatives] = {};
+  // Both families, and from their paths what each family alone would add (PilotMoments).
+  const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx,
+                               std::vector<std::vector<Splat>>& excess) -> Vec3 {
     thread_local PilotMoments moments;
-    moments.unshared = 0;
-    moments.excess.clear();
-    const Vec3 v = estimate(scene, pixel, rng, ctx, false, &moments);
-    if (moments.unshared > 0) unshared.fetch_add(uint64_t(moments.unshared), std::memory_order_relaxed);
-    excess.insert(excess.end(), moments.excess.begin(), moments.excess.end());
+    moments.clear();
+    const Vec3 v = estimate(scene, pixel, rng, ctx, BdptFamilies::Both, &moments);
+    for (int a = 0; a < kAlternatives; ++a) {
+      const PilotMoments::Alternative& alt = moments.alone[a];
+      if (alt.unsampled > 0) unsampled[a].fetch_add(uint64_t(alt.unsampled), std::memory_order_relaxed);
+      excess[size_t(a)].insert(excess[size_t(a)].end(), alt.excess.begin(), alt.excess.end());
+    }
     return v;
   };
-  const PilotEstimates e = pilotEstimates(scene.camera.width(), scene.camera.height(), seed, SamplerKind::Independent, both);
+  const int w = scene.camera.width(), h = scene.camera.height();
+  const PilotEstimates e = pilotEstimates(w, h, seed, SamplerKind::Independent, kAlternatives, both);
   counter = e.rays;
-  // Where the shared family alone cannot sample a path that carries light, it would miss that light
-  // (bdpt-shared's bias: a delta light seen through a specular vertex exciting fluorescence).
-  // Otherwise it runs alone where its relative variance per sample, estimated from both families'
-  // paths, is at most kOwnFamilyCost times theirs.
+  // Each family alone's rays per sample, from samples of its own (their rays count with the pilot's).
+  const auto raysAlone = [&](BdptFamilies run) {
+    const PilotSample alone = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
+      return estimate(scene, pixel, rng, ctx, run, nullptr);
+    };
+    const RayCounter r = raysOfSamples(w, h, seed, SamplerKind::Independent, kRaySamples, alone);
+    counter.closest += r.closest, counter.shadow += r.shadow;
+    return double(r.closest + r.shadow) / double(kRaySamples);
+  };
   PilotOutcome o;
   o.seed = seed;
-  o.unshared = unshared.load() > 0;
-  o.relVarBoth = e.relVar;
-  o.relVarSharedAlone = e.relVar + e.relExcess;
-  o.keepOwn = o.unshared || o.relVarSharedAlone > kOwnFamilyCost * o.relVarBoth;
+  o.both.relVar = e.relVar;
+  o.both.rays = double(e.rays.closest + e.rays.shadow) / double(e.samples);
+  o.both.cost = o.both.rays * kOwnFamilyCostPerRay;
+  // A family alone that cannot sample a path carrying light would miss that light (bdpt-shared's
+  // bias: a delta light seen through a specular vertex exciting fluorescence).
+  o.shared.samplesAll = unsampled[int(Alone::Shared)].load() == 0;
+  o.shared.relVar = e.relVar + e.relExcess[size_t(Alone::Shared)];
+  o.shared.rays = raysAlone(BdptFamilies::Shared);
+  o.shared.cost = o.shared.rays;
+  o.own.samplesAll = unsampled[int(Alone::Own)].load() == 0;
+  o.own.relVar = e.relVar + e.relExcess[size_t(Alone::Own)];
+  o.own.rays = raysAlone(BdptFamilies::Own);
+  o.own.cost = o.own.rays * kOwnFamilyCostPerRay;
+  // The most efficient (relative variance × cost per sample) of those that sample everything.
+  double best = o.both.relVar * o.both.cost;
+  if (o.shared.samplesAll && o.shared.relVar * o.shared.cost < best)
+    o.run = BdptFamilies::Shared, best = o.shared.relVar * o.shared.cost;
+  if (o.own.samplesAll && o.own.relVar * o.own.cost < best) o.run = BdptFamilies::Own;
   pilot_ = o;
-  return o.keepOwn;
+  return o.run;
 }
 
 std::string Bdpt::choices() const {
   if (!lightFirst_ || familyChoice_ == BdptFamilies::Both) return {};
-  if (familyChoice_ == BdptFamilies::Shared) return "families: shared";
+  if (familyChoice_ != BdptFamilies::Auto) return std::string("families: ") + toString(familyChoice_);
   std::lock_guard<std::mutex> lock(pilotMutex_);
   if (!pilot_) return {};
-  char buf[300];
-  std::snprintf(buf, sizeof buf, "families: %s (pilot: relative variance per sample %.3g with both, %.3g shared alone%s)",
-                pilot_->keepOwn ? "both" : "shared", pilot_->relVarBoth, pilot_->relVarSharedAlone,
-                pilot_->unshared ? ", which cannot sample some paths that carry light" : "");
+  const auto alone = [](const PilotOutcome::Candidate& c) {
+    char buf[120];
+    if (!c.samplesAll) return std::string("cannot sample some paths that carry light");
+    std::snprintf(buf, sizeof buf, "%.3g, %.3g rays", c.relVar, c.rays);
+    return std::string(buf);
+  };
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "families: %s (pilot: relative variance per sample and rays per sample: both %.3g, %.3g rays; "
+                "shared alone %s; own alone %s)",
+                toString(pilot_->run), pilot_->both.relVar, pilot_->both.rays, alone(pilot_->shared).c_str(),
+                alone(pilot_->own).c_str());
   return buf;
 }
 
 int Bdpt::maxSamplesPerPass() const { return mollifies() ? 1 : Integrator::maxSamplesPerPass(); }
 
 Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
-  return estimate(scene, pixel, rng, ctx, sharedAlone(ctx.pass), nullptr);
+  return estimate(scene, pixel, rng, ctx, familiesOf(ctx.pass), nullptr);
 }
 
-Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, bool alone,
+Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, BdptFamilies run,
                     bdpt::PilotMoments* pilot) const {
   using namespace bdpt;
   // The camera subpath, the shared and own light subpaths.
   thread_local std::vector<PathVertex> C, LS, LO;
   if (C.capacity() < 16) C.reserve(16), LS.reserve(16), LO.reserve(16);
   thread_local LaneTables laneTables;
-  const WalkSettings& ws = alone ? wsShared_ : ws_;
-  const Families families = alone ? Families{true, false} : families_;
+  const bool alone = lightFirst_ && run != BdptFamilies::Both;
+  const WalkSettings& ws = alone ? wsAlone_ : ws_;
+  const Families families = !alone ? families_ : Families{run == BdptFamilies::Shared, run == BdptFamilies::Own};
   const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, laneTables,
                                   families.independent && !ws.lightFirst ? &light_.density() : nullptr, ws.lightFirst);
   for (int k = 0; k < lanes_; ++k)

@@ -46,24 +46,24 @@ class Bdpt final : public Integrator {
   // h_i = h_1·r_i/r_1 with the radius schedule of progressive photon mapping.
   float bandwidth(int sample) const;
 
-  // The pilot's decision for a render with `seed` (docs/bdpt-mis.md §13): whether the own family
-  // runs. Computed once per seed (the render's first pass asks); `counter` is set to the rays it
-  // traced when it runs (left alone when the decision was known).
-  bool keepsOwnFamily(const Scene& scene, uint64_t seed, RayCounter& counter) const;
+  // The pilot's decision for a render with `seed` (docs/bdpt-mis.md §13): both families, or one of
+  // them alone (Both, Shared or Own). Computed once per seed (the render's first pass asks);
+  // `counter` is set to the rays it traced when it runs (left alone when the decision was known).
+  BdptFamilies pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter) const;
 
  private:
-  // Whether a sample of the pass `pass` runs the shared family alone (the unified estimator's
-  // families choice or its pilot's decision).
-  bool sharedAlone(const PassData* pass) const;
-  // One camera sample of pixel `pixel` (its integer corner) with the mode's families, or with the
-  // shared family alone: the sample's estimate; splats go to ctx. With `pilot`, what the pilot
+  // The families a sample of the pass `pass` runs (the unified estimator's families choice or its
+  // pilot's decision): Both, Shared or Own.
+  BdptFamilies familiesOf(const PassData* pass) const;
+  // One camera sample of pixel `pixel` (its integer corner) with the mode's families, or (unified
+  // estimator) with `run`'s: the sample's estimate; splats go to ctx. With `pilot`, what the pilot
   // learns from the sample (bdpt::PilotMoments).
-  Vec3 estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, bool sharedAlone,
+  Vec3 estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, BdptFamilies run,
                 bdpt::PilotMoments* pilot) const;
 
   WavelengthStrategy sensor_, light_;
   bdpt::WalkSettings ws_;
-  bdpt::WalkSettings wsShared_;  // the unified estimator's when it runs the shared family alone
+  bdpt::WalkSettings wsAlone_;  // the unified estimator's when it runs one family alone
   BdptFamilies familyChoice_ = BdptFamilies::Both;
   bdpt::WavelengthMode mode_;
   bdpt::Families families_;
@@ -75,11 +75,15 @@ class Bdpt final : public Integrator {
   // The pilot's outcome, per render seed (BdptFamilies::Auto).
   struct PilotOutcome {
     uint64_t seed = 0;
-    bool keepOwn = true;
-    bool unshared = false;  // some path carrying light is one the shared family alone cannot sample
-    // Relative variances per sample of both families and, from their paths, of the shared family
-    // alone (docs/bdpt-mis.md §13).
-    double relVarBoth = 0.0, relVarSharedAlone = 0.0;
+    BdptFamilies run = BdptFamilies::Both;
+    // Per estimator (both, shared alone, own alone; docs/bdpt-mis.md §13): whether it samples every
+    // path that carries light, its relative variance per sample (the alone ones from both families'
+    // paths), rays per sample and the cost per sample these give.
+    struct Candidate {
+      bool samplesAll = true;
+      double relVar = 0.0, rays = 0.0, cost = 0.0;
+    };
+    Candidate both, shared, own;
   };
   mutable std::mutex pilotMutex_;
   mutable std::optional<PilotOutcome> pilot_;

@@ -176,7 +176,7 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
     fp.specLightLast = t == 2 ? specLightLast(b, F, a.lambda) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
     return misWeight(fp, 1, Variant::kLightVertex);
   });
-  if (c.pilot) c.pilot->ratio[lane] = c.pilot->pending;
+  if (c.pilot) c.pilot->keep(lane);
   if (!(weight > 0.0f) || !visible(c, b, a)) return;
   const float value = Le * G * f * b.beta[lane] / (a.pdfFwd * a.choicePdf);
   record(c, 1, t, Variant::kLightVertex, lane, value, weight);

@@ -62,21 +62,43 @@ class VisibilityMemo {
   int shared_ = 0, stride_ = 0;
 };
 
-// What the unified estimator's pilot learns from one camera sample of both families
-// (docs/bdpt-mis.md §13) about the shared family alone, from the weights' sums: for each
-// contribution C (film XYZ) on a path through a fluorescent vertex, ρ = p_both/p_alone, the two
-// estimators' densities of the path (√ of the ratio of their power-heuristic sums), and the second
-// moment dropping the own family would add, C²·(ρ − 1) (Grittmann et al. 2022), or that p_alone = 0.
+// The estimators the unified estimator's pilot weighs against both families (docs/bdpt-mis.md §13):
+// each family alone, as bdpt-shared and bdpt-independent run it.
+enum class Alone { Shared = 0, Own = 1 };
+constexpr int kAlternatives = 2;
+
+// What the pilot learns from one camera sample of both families about each family alone, from the
+// weights' sums: for each contribution C (film XYZ), ρ = p_both/p_alone, the two estimators'
+// densities of the path (√ of the ratio of their power-heuristic sums), and the second moment
+// running the family alone would add, C²·(ρ − 1) (Grittmann et al. 2022; negative where the family
+// alone samples the path better), or that p_alone = 0.
 struct PilotMoments {
-  double ratio[kMaxLanes] = {};  // ρ of the strategy weighed last, per lane (laneWeights)
-  double pending = 1.0;          // ρ of the strategy weigh() saw last
-  int unshared = 0;              // contributions on paths the shared family alone cannot sample
-  std::vector<Splat> excess;     // per contribution: its pixel and C²·(ρ − 1) per channel
+  struct Alternative {
+    double ratio[kMaxLanes] = {};  // ρ of the strategy weighed last, per lane (laneWeights)
+    double pending = 1.0;          // ρ of the strategy weigh() saw last
+    int unsampled = 0;             // contributions on paths the family alone cannot sample
+    std::vector<Splat> excess;     // per contribution: its pixel and C²·(ρ − 1) per channel
+  };
+  Alternative alone[kAlternatives];
+
+  void clear() {
+    for (Alternative& a : alone) a.unsampled = 0, a.excess.clear();
+  }
+  // Lane k takes the ratios weigh() saw last.
+  void keep(int k) {
+    for (Alternative& a : alone) a.ratio[k] = a.pending;
+  }
+  // Lane k takes lane `from`'s ratios.
+  void copy(int k, int from) {
+    for (Alternative& a : alone) a.ratio[k] = a.ratio[from];
+  }
   // Adds lane k's contribution xyz at `pixel`.
   void add(int k, Vec2 pixel, const Vec3& xyz) {
     if (!(xyz.x > 0.0f || xyz.y > 0.0f || xyz.z > 0.0f)) return;
-    if (!std::isfinite(ratio[k])) ++unshared;
-    else if (ratio[k] > 1.0) excess.push_back({pixel, xyz * xyz * float(ratio[k] - 1.0)});
+    for (Alternative& a : alone) {
+      if (!std::isfinite(a.ratio[k])) ++a.unsampled;
+      else if (a.ratio[k] != 1.0) a.excess.push_back({pixel, xyz * xyz * float(a.ratio[k] - 1.0)});
+    }
   }
 };
 

@@ -79,6 +79,7 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
       f.ownChoice = c.lanes.ownStart[size_t(lane) * c.scene.lights.size() + size_t(light)];
     else
       f.ownChoice = double(start.lightProbability(size_t(light))) * start.wavelengthPdf(size_t(light), lambda0);
+    if (c.pilot) f.ownAloneChoice = double(c.walk.lightWavelengths->pdf(lambda0)) * f.cameraChoice;
   } else if (f.ownFamily) {
     const double pLight = table ? c.lanes.lightPdf[lane] : c.walk.lightWavelengths->pdf(lambda0);
     f.ownChoice = pLight * f.cameraChoice;
@@ -87,10 +88,15 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
   return f;
 }
 
-double densityOverSharedAlone(const MisSums& total, const MisFactors& f, double sum) {
+double densityOverAlone(Alone which, const MisSums& total, const MisFactors& f, double sum) {
   MisFactors alone = f;
-  alone.ownFamily = false;
-  alone.sharedChoice = f.cameraChoice;
+  if (which == Alone::Shared) {
+    alone.ownFamily = false;
+    alone.sharedChoice = f.cameraChoice;
+  } else {
+    alone.sharedFamily = false;
+    alone.ownChoice = f.ownAloneChoice;
+  }
   const double a = combine(total, alone);
   return a > 0.0 ? std::sqrt(sum / a) : std::numeric_limits<double>::infinity();
 }

@@ -69,26 +69,31 @@ double specCamera(const PathVertex& x1, SpectralLobe lobe, float lambda0, float 
 double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn);
 
 // ρ = p_both/p_alone for a path whose sums with the unified estimator's factors f are `total`
-// (their combination `sum`): p_alone the shared family alone's density (bdpt-shared's: the own
-// family's terms gone, its light subpath choosing the light as next-event estimation does); the
-// square root of the ratio of the power-heuristic sums; infinite where p_alone = 0.
-double densityOverSharedAlone(const MisSums& total, const MisFactors& f, double sum);
+// (their combination `sum`): p_alone the density of one family alone as bdpt-shared or
+// bdpt-independent runs it (the other family's terms gone; the shared light subpath choosing the
+// light as next-event estimation does, the own one its light and wavelength as bdpt-independent's,
+// f.ownAloneChoice); the square root of the ratio of the power-heuristic sums; infinite where
+// p_alone = 0.
+double densityOverAlone(Alone alone, const MisSums& total, const MisFactors& f, double sum);
 
 // A strategy's weight from the recursive sums: its own c² over the path's whole sum
 // (docs/bdpt-mis.md eq. 11). With c.oracle set, the full recomputation `full(f)` is recorded beside
-// it. With c.pilot set, the path's ρ = p_both/p_alone goes to c.pilot->pending (PilotMoments): 1 on
-// paths of one group, where the shared family has every strategy (§5), and where the path carries
-// no light for a reason the weights know, a wavelength the sensor does not see (σ = 0) or one its
-// light does not emit (κ = 0); infinite where the shared family alone cannot sample it.
+// it. With c.pilot set, the path's ρ = p_both/p_alone of each family alone goes to its `pending`
+// (PilotMoments): for the shared family, 1 on paths of one group, where it has every strategy (§5),
+// and where the path carries no light for a reason the weights know, a wavelength the sensor does
+// not see (σ = 0) or one its light does not emit (κ = 0); infinite where a family alone cannot
+// sample the path.
 template <class Full>
 float weigh(const Context& c, int s, int t, Variant v, const MisSums& own, const MisSums& total, const MisFactors& f,
             Full&& full) {
   const double sum = combine(total, f);
   const float w = sum > 0.0 ? float(combine(own, f) / sum) : 0.0f;
   if (c.oracle) c.oracle->push_back({s, t, uint8_t(v), w, full(f)});
-  if (c.pilot) c.pilot->pending = w > 0.0f && !f.oneGroup && f.sensorPdf > 0.0 && f.cameraChoice > 0.0
-                                      ? densityOverSharedAlone(total, f, sum)
-                                      : 1.0;
+  if (c.pilot) {
+    const bool shared = w > 0.0f && !f.oneGroup && f.sensorPdf > 0.0 && f.cameraChoice > 0.0;
+    c.pilot->alone[int(Alone::Shared)].pending = shared ? densityOverAlone(Alone::Shared, total, f, sum) : 1.0;
+    c.pilot->alone[int(Alone::Own)].pending = w > 0.0f ? densityOverAlone(Alone::Own, total, f, sum) : 1.0;
+  }
   return w;
 }
 
@@ -107,11 +112,11 @@ void laneWeights(const Context& c, int k0, int k1, float* w, Active&& active, We
     if (!active(k)) continue;
     if (first >= 0 && !c.families.independent) {
       w[k] = w[first];
-      if (c.pilot) c.pilot->ratio[k] = c.pilot->ratio[first];
+      if (c.pilot) c.pilot->copy(k, first);
       continue;
     }
     w[k] = weighLane(k);
-    if (c.pilot) c.pilot->ratio[k] = c.pilot->pending;
+    if (c.pilot) c.pilot->keep(k);
     first = k;
   }
 }

@@ -10,7 +10,7 @@ namespace kasha::bdpt {
 namespace {
 
 // Camera samples per image at least: small images take several per pixel.
-constexpr size_t kMinSamplesPerImage = 16384;
+constexpr size_t kMinSamplesPerImage = 8192;
 
 using Image = std::vector<std::array<double, 3>>;
 
@@ -19,11 +19,12 @@ void add(Image& img, size_t i, const Vec3& v, double scale) {
   img[i][0] += scale * v.x, img[i][1] += scale * v.y, img[i][2] += scale * v.z;
 }
 
-// Adds splat-like values (film positions) to `img`; those at a non-finite position are dropped.
-void addAt(Image& img, int w, int h, const std::vector<Splat>& values, double scale) {
+// Adds splat-like values (film positions) to the cells of qx × qy pixels of `img` (w × h cells);
+// those at a non-finite position are dropped.
+void addAt(Image& img, int w, int h, int qx, int qy, const std::vector<Splat>& values, double scale) {
   for (const Splat& s : values) {
     if (!std::isfinite(s.pixel.x) || !std::isfinite(s.pixel.y)) continue;
-    const int x = int(std::clamp(s.pixel.x, 0.0f, float(w - 1))), y = int(std::clamp(s.pixel.y, 0.0f, float(h - 1)));
+    const int x = std::clamp(int(s.pixel.x) / qx, 0, w - 1), y = std::clamp(int(s.pixel.y) / qy, 0, h - 1);
     add(img, size_t(y) * w + x, s.xyz, scale);
   }
 }
@@ -55,49 +56,87 @@ double trimmedMean(std::vector<double> v) {
   return s / double(keep);
 }
 
+// The cells of qx × qy pixels a pilot samples, w × h of them, each at its centre pixel: with
+// r = pixels / 8192, qy = ⌊√r⌋ and qx = ⌊r / qy⌋ (at least 1), so that there are at least 8192.
+struct Cells {
+  int qx, qy, w, h;
+  Cells(int width, int height) {
+    const double r = double(width) * double(height) / double(kMinSamplesPerImage);
+    qy = std::max(1, int(std::sqrt(r)));
+    qx = std::max(1, int(r / qy));
+    w = (width + qx - 1) / qx, h = (height + qy - 1) / qy;
+  }
+};
+
 }  // namespace
 
-PilotEstimates pilotEstimates(int w, int h, uint64_t seed, SamplerKind kind, const PilotSample& sample) {
-  const size_t pixels = size_t(w) * size_t(h);
-  const int n = int((kMinSamplesPerImage + pixels - 1) / pixels);  // samples per pixel of each image
+PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind kind, int alternatives,
+                              const PilotSample& sample) {
+  const Cells cells(width, height);
+  const int w = cells.w, h = cells.h, qx = cells.qx, qy = cells.qy;
+  const size_t count = size_t(w) * size_t(h);
+  const int n = int((kMinSamplesPerImage + count - 1) / count);  // samples per cell of each image
   const double scale = 1.0 / n;
   std::array<Image, 2> images;
-  for (Image& img : images) img.assign(pixels, {0.0, 0.0, 0.0});
+  for (Image& img : images) img.assign(count, {0.0, 0.0, 0.0});
   // Per row and image, its splats and excess: added in row order, so the result does not depend
   // on scheduling.
   std::vector<std::array<SampleContext, 2>> rows{size_t(h)};
-  std::vector<std::vector<Splat>> rowExcess{size_t(h)};
+  using Excess = std::vector<std::vector<Splat>>;  // per alternative
+  std::vector<Excess> rowExcess(static_cast<size_t>(h), Excess(static_cast<size_t>(alternatives)));
   const uint64_t pilotSeed = seed * 0x9E3779B97F4A7C15ull + 0x2545F4914F6CDD1Dull;
   tbb::parallel_for(0, h, [&](int y) {
-    for (int x = 0; x < w; ++x)
+    const int py = std::min(y * qy + qy / 2, height - 1);
+    for (int x = 0; x < w; ++x) {
+      const int px = std::min(x * qx + qx / 2, width - 1);
       for (int image = 0; image < 2; ++image)
         for (int j = 0; j < n; ++j) {
           const size_t i = size_t(y) * w + x;
-          Sampler rng(kind, pilotSeed, uint64_t(i), uint32_t(image * n + j));
-          add(images[image], i, sample(Vec2(float(x), float(y)), rng, rows[size_t(y)][image], rowExcess[size_t(y)]), scale);
+          Sampler rng(kind, pilotSeed, uint64_t(py) * uint64_t(width) + uint64_t(px), uint32_t(image * n + j));
+          add(images[image], i, sample(Vec2(float(px), float(py)), rng, rows[size_t(y)][image], rowExcess[size_t(y)]),
+              scale);
         }
+    }
   });
   PilotEstimates out;
-  Image excess(pixels, {0.0, 0.0, 0.0});
+  std::vector<Image> excess(size_t(alternatives), Image(count, {0.0, 0.0, 0.0}));
   for (int y = 0; y < h; ++y) {
     for (int image = 0; image < 2; ++image) {
       const SampleContext& ctx = rows[size_t(y)][image];
       out.rays.closest += ctx.counter.closest;
       out.rays.shadow += ctx.counter.shadow;
-      addAt(images[image], w, h, ctx.splats, scale);
+      addAt(images[image], w, h, qx, qy, ctx.splats, scale);
     }
-    addAt(excess, w, h, rowExcess[size_t(y)], 0.5 * scale);  // per sample: over the 2n of each pixel
+    for (int a = 0; a < alternatives; ++a)  // per sample: over the 2n of each cell
+      addAt(excess[size_t(a)], w, h, qx, qy, rowExcess[size_t(y)][size_t(a)], 0.5 * scale);
   }
   const Image mean = boxMean(images, w, h);
-  std::vector<double> rel(pixels, 0.0);
-  for (size_t i = 0; i < pixels; ++i)
+  std::vector<double> rel(count, 0.0);
+  out.relExcess.assign(size_t(alternatives), 0.0);
+  for (size_t i = 0; i < count; ++i)
     for (int c = 0; c < 3; ++c) {
       const double d = images[0][i][c] - images[1][i][c], m2 = mean[i][c] * mean[i][c] + 1e-2;
       rel[i] += n * 0.5 * d * d / m2;  // per sample: n × the mean's
-      out.relExcess += excess[i][c] / m2 / double(pixels);
+      for (int a = 0; a < alternatives; ++a) out.relExcess[size_t(a)] += excess[size_t(a)][i][c] / m2 / double(count);
     }
   out.relVar = trimmedMean(std::move(rel));
+  out.samples = 2 * size_t(n) * count;
   return out;
+}
+
+RayCounter raysOfSamples(int width, int height, uint64_t seed, SamplerKind kind, size_t count, const PilotSample& sample) {
+  const size_t pixels = size_t(width) * size_t(height);
+  std::vector<SampleContext> ctx(count);
+  const uint64_t raySeed = seed * 0xD1B54A32D192ED03ull + 0x8CB92BA72F3D8DD7ull;
+  tbb::parallel_for(size_t(0), count, [&](size_t j) {
+    std::vector<std::vector<Splat>> excess;
+    const size_t i = (j * pixels) / count;
+    Sampler rng(kind, raySeed, uint64_t(i), uint32_t(j));
+    sample(Vec2(float(i % size_t(width)), float(i / size_t(width))), rng, ctx[j], excess);
+  });
+  RayCounter rays;
+  for (const SampleContext& c : ctx) rays.closest += c.counter.closest, rays.shadow += c.counter.shadow;
+  return rays;
 }
 
 }  // namespace kasha::bdpt

@@ -1,7 +1,8 @@
 #pragma once
 // The pilot that chooses the unified bdpt's light subpaths per scene (docs/bdpt-mis.md §13): two
-// independent images of an estimator, its relative variance per sample over the image, and what
-// an alternative estimator would add to it, from the estimator's own paths.
+// independent images of an estimator, its relative variance per sample over the image, what each
+// alternative estimator would add to it, from the estimator's own paths, and the rays per sample of
+// an estimator.
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -12,23 +13,33 @@
 namespace kasha::bdpt {
 
 // One camera sample through `pixel` (its integer corner): returns its value, writes its splats to
-// ctx and appends to `excess`, per pixel, what the alternative's second moment has over the
+// ctx and appends to excess[a], per pixel, what alternative a's second moment has over the
 // estimator's from this sample's paths (Splat::xyz per channel).
-using PilotSample = std::function<Vec3(Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<Splat>& excess)>;
+using PilotSample =
+    std::function<Vec3(Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>& excess)>;
 
 struct PilotEstimates {
-  double relVar = 0.0;     // the estimator's relative variance per sample
-  double relExcess = 0.0;  // what the alternative's has over it
-  RayCounter rays;         // traced by the pilot
+  double relVar = 0.0;             // the estimator's relative variance per sample
+  std::vector<double> relExcess;   // per alternative, what its relative variance has over relVar
+  RayCounter rays;                 // traced by the pilot
+  size_t samples = 0;              // camera samples it took
 };
 
-// Each image takes n = ⌈16384 / pixels⌉ samples per pixel (1 from 128 × 128 on). relVar is the mean
-// over the pixels of Σ_XYZ v / (m² + 10⁻²): v = n·(x₁ − x₂)²/2, the per-sample variance from the
-// two images, and m the 5×5 box mean of both (the relative error of integrators/comparison.h with
-// a smooth stand-in for the reference); the 0.01% largest pixels are left out, so that one outlier
-// does not decide. relExcess is the mean over the pixels of Σ_XYZ e / (m² + 10⁻²), e the pixel's
-// excess per sample. Values that are not finite count as 0. Random numbers: `kind` with a seed of
-// their own derived from `seed`.
-PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind kind, const PilotSample& sample);
+// The image is cut into cells of qx × qy pixels, with r = pixels / 8192, qy = ⌊√r⌋ and
+// qx = ⌊r / qy⌋ (at least 1 each), each sampled at its centre pixel (splats land in the cell that
+// holds them: a cell's sum then has the mean and variance of one pixel's splats at full
+// resolution); each image takes n = ⌈8192 / cells⌉ samples per cell.
+// relVar is the mean over the cells of Σ_XYZ v / (m² + 10⁻²): v = n·(x₁ − x₂)²/2, the per-sample
+// variance from the two images, and m the 5×5 box mean of both (the relative error of
+// integrators/comparison.h with a smooth stand-in for the reference); the 0.01% largest cells are
+// left out, so that one outlier does not decide. relExcess[a] is the mean over the cells of
+// Σ_XYZ e / (m² + 10⁻²), e the cell's excess per sample for alternative a. Values that are not finite
+// count as 0. Random numbers: `kind` with a seed of their own derived from `seed`.
+PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind kind, int alternatives,
+                              const PilotSample& sample);
+
+// The rays `count` camera samples of `sample` trace, at pixels spread evenly over the image, with
+// random numbers of their own derived from `seed`.
+RayCounter raysOfSamples(int width, int height, uint64_t seed, SamplerKind kind, size_t count, const PilotSample& sample);
 
 }  // namespace kasha::bdpt

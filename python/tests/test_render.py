@@ -95,14 +95,17 @@ def test_bdpt_strategy_images_sum_to_the_render():
 
 
 def test_bdpt_families_from_python():
-    # The fluorescent furnace: `bdpt` runs a pilot and reports its choice; the shared family alone
-    # is bdpt-shared's estimator, image for image; a bad choice names the field.
+    # The fluorescent furnace: `bdpt` runs a pilot and reports its choice; each family alone is
+    # bdpt-shared's or bdpt-independent's estimator, image for image; a bad choice names the field.
     scene = kasha.Scene.from_dict(furnace_dict(resolution=8, spp=4))
     auto = kasha.render(scene, integrator="bdpt")
     assert auto["stats"]["choices"].startswith("families: ")
     alone = kasha.render(scene, integrator="bdpt", bdpt_families="shared")
     shared = kasha.render(scene, integrator="bdpt-shared")
     np.testing.assert_array_equal(alone["xyz"], shared["xyz"])
+    own = kasha.render(scene, integrator="bdpt", bdpt_families="own")
+    independent = kasha.render(scene, integrator="bdpt-independent")
+    np.testing.assert_array_equal(own["xyz"], independent["xyz"])
     assert "choices" not in kasha.render(scene, integrator="bdpt", bdpt_families="both")["stats"]
     with pytest.raises(kasha.InputError, match="bdpt_families"):
-        kasha.render(scene, integrator="bdpt", bdpt_families="own")
+        kasha.render(scene, integrator="bdpt", bdpt_families="neither")
