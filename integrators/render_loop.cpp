@@ -68,6 +68,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   }
   double lastCheckpoint = 0.0;
   bool unsaved = false;
+  PassRecord local;  // this rank's passes, its buffers reused from pass to pass
   while (pass < opt.spp) {
     const int stop = agree(opt.stop ? opt.stop->load() : 0, false)[0];
     if (stop != 0) {
@@ -79,11 +80,11 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
     auto firstOf = [&](int k) { return int64_t(pass) + int64_t(k) * perPass; };
     if (firstOf(rank) < opt.spp) {
       const int first = int(firstOf(rank));
-      const PassRecord rec = tracer.trace(first, std::min(perPass, opt.spp - first));
+      tracer.trace(first, std::min(perPass, opt.spp - first), local);
       if (root)
-        commit(rec);
+        commit(local);
       else
-        opt.group->send(rec);
+        opt.group->send(local);
     }
     if (root)
       for (int k = 1; k < st.ranks && firstOf(k) < opt.spp; ++k) {

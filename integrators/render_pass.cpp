@@ -32,12 +32,15 @@ void PassTracer::forEachPixelOfTile(int tile, PixelFn&& fn) const {
     for (int x = x0; x < std::min(x0 + kTile, w_); ++x) fn(x, y, size_t(y) * size_t(w_) + size_t(x));
 }
 
-PassRecord PassTracer::trace(int first, int count) {
-  PassRecord rec;
+void PassTracer::trace(int first, int count, PassRecord& rec) {
   rec.first = first;
   rec.count = count;
+  rec.rays = RayCounter{};
   rec.samples.resize(size_t(w_) * size_t(h_) * size_t(count));
-  if (recordSpectral_) rec.spectralCounts.resize(rec.samples.size());
+  rec.splats.clear();
+  rec.strategies.clear();
+  rec.spectral.clear();
+  rec.spectralCounts.resize(recordSpectral_ ? rec.samples.size() : 0);
   const std::unique_ptr<const PassData> passData = integrator_.beginPass(scene_, first, count, seed_, rec.rays);
   tbb::parallel_for(tbb::blocked_range<int>(0, tileCount_, 1), [&](const tbb::blocked_range<int>& range) {
     for (int tile = range.begin(); tile < range.end(); ++tile) {
@@ -72,7 +75,6 @@ PassRecord PassTracer::trace(int first, int count) {
     rec.splats.insert(rec.splats.end(), ctx.splats.begin(), ctx.splats.end());
     rec.strategies.insert(rec.strategies.end(), ctx.strategies.begin(), ctx.strategies.end());
   }
-  return rec;
 }
 
 void PassTracer::commit(const PassRecord& rec, Film& film, SpectralFilm* spectral,

@@ -34,8 +34,10 @@ class PassTracer {
  public:
   PassTracer(const Scene& scene, const Integrator& integrator, int width, int height, uint64_t seed,
              SamplerKind sampler, bool recordStrategies, bool recordSpectral);
-  // Traces samples [first, first + count) of every pixel.
-  PassRecord trace(int first, int count);
+  // Traces samples [first, first + count) of every pixel into `rec`, replacing what it held. Its
+  // buffers keep their capacity from pass to pass: a new record per pass freed and faulted in
+  // megabytes of splats each time (README "Benchmarks", "Reused pass buffers").
+  void trace(int first, int count, PassRecord& rec);
   // Adds a record to the film: each pixel's samples in sample order (pixels in tile order, so the
   // first non-finite pixel is the same as with one thread), then the splats; the spectral shares
   // of the samples and splats the film keeps go to `spectral` if set; strategy records go to

@@ -79,37 +79,43 @@ PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind 
   const double scale = 1.0 / n;
   std::array<Image, 2> images;
   for (Image& img : images) img.assign(count, {0.0, 0.0, 0.0});
-  // Per row and image, its splats and excess: added in row order, so the result does not depend
-  // on scheduling.
-  std::vector<std::array<SampleContext, 2>> rows{size_t(h)};
-  using Excess = std::vector<std::vector<Splat>>;  // per alternative
-  std::vector<Excess> rowExcess(static_cast<size_t>(h), Excess(static_cast<size_t>(alternatives)));
-  const uint64_t pilotSeed = seed * 0x9E3779B97F4A7C15ull + 0x2545F4914F6CDD1Dull;
-  tbb::parallel_for(0, h, [&](int y) {
-    const int py = std::min(y * qy + qy / 2, height - 1);
-    for (int x = 0; x < w; ++x) {
-      const int px = std::min(x * qx + qx / 2, width - 1);
-      for (int image = 0; image < 2; ++image)
-        for (int j = 0; j < n; ++j) {
-          const size_t i = size_t(y) * w + x;
-          Sampler rng(kind, pilotSeed, uint64_t(py) * uint64_t(width) + uint64_t(px), uint32_t(image * n + j));
-          add(images[image], i, sample(Vec2(float(px), float(py)), rng, rows[size_t(y)][image], rowExcess[size_t(y)]),
-              scale);
-        }
-    }
-  });
   PilotEstimates out;
   std::vector<Image> excess(size_t(alternatives), Image(count, {0.0, 0.0, 0.0}));
-  for (int y = 0; y < h; ++y) {
-    for (int image = 0; image < 2; ++image) {
-      const SampleContext& ctx = rows[size_t(y)][image];
-      out.rays.closest += ctx.counter.closest;
-      out.rays.shadow += ctx.counter.shadow;
-      addAt(images[image], w, h, qx, qy, ctx.splats, scale);
+  // Rows are traced in batches; each batch's splats and excess (per row and image) are then added
+  // in row order, so the result does not depend on scheduling, and the batch's buffers are reused
+  // by the next one (holding every row's at once cost more time in page faults than the samples).
+  constexpr int kBatchRows = 16;
+  std::array<std::array<SampleContext, 2>, kBatchRows> rows;
+  using Excess = std::vector<std::vector<Splat>>;  // per alternative
+  std::array<Excess, kBatchRows> rowExcess;
+  for (Excess& e : rowExcess) e.resize(size_t(alternatives));
+  const uint64_t pilotSeed = seed * 0x9E3779B97F4A7C15ull + 0x2545F4914F6CDD1Dull;
+  for (int y0 = 0; y0 < h; y0 += kBatchRows) {
+    const int y1 = std::min(h, y0 + kBatchRows);
+    tbb::parallel_for(y0, y1, [&](int y) {
+      const int py = std::min(y * qy + qy / 2, height - 1);
+      const size_t r = size_t(y - y0);
+      for (int image = 0; image < 2; ++image) rows[r][image].splats.clear();
+      for (std::vector<Splat>& e : rowExcess[r]) e.clear();
+      for (int x = 0; x < w; ++x) {
+        const int px = std::min(x * qx + qx / 2, width - 1);
+        for (int image = 0; image < 2; ++image)
+          for (int j = 0; j < n; ++j) {
+            const size_t i = size_t(y) * w + x;
+            Sampler rng(kind, pilotSeed, uint64_t(py) * uint64_t(width) + uint64_t(px), uint32_t(image * n + j));
+            add(images[image], i, sample(Vec2(float(px), float(py)), rng, rows[r][image], rowExcess[r]), scale);
+          }
+      }
+    });
+    for (int y = y0; y < y1; ++y) {
+      const size_t r = size_t(y - y0);
+      for (int image = 0; image < 2; ++image) addAt(images[image], w, h, qx, qy, rows[r][image].splats, scale);
+      for (int a = 0; a < alternatives; ++a)  // per sample: over the 2n of each cell
+        addAt(excess[size_t(a)], w, h, qx, qy, rowExcess[r][size_t(a)], 0.5 * scale);
     }
-    for (int a = 0; a < alternatives; ++a)  // per sample: over the 2n of each cell
-      addAt(excess[size_t(a)], w, h, qx, qy, rowExcess[size_t(y)][size_t(a)], 0.5 * scale);
   }
+  for (const auto& row : rows)
+    for (const SampleContext& ctx : row) out.rays.closest += ctx.counter.closest, out.rays.shadow += ctx.counter.shadow;
   const Image mean = boxMean(images, w, h);
   std::vector<double> rel(count, 0.0);
   out.relExcess.assign(size_t(alternatives), 0.0);
