@@ -114,6 +114,7 @@ PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind 
         addAt(excess[size_t(a)], w, h, qx, qy, rowExcess[r][size_t(a)], 0.5 * scale);
     }
   }
+  // Each slot's ray counter has added up over every batch it served.
   for (const auto& row : rows)
     for (const SampleContext& ctx : row) out.rays.closest += ctx.counter.closest, out.rays.shadow += ctx.counter.shadow;
   const Image mean = boxMean(images, w, h);
