@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """kasha's side of the pbrt-v4 comparison in ../shared/peers (issue 12's table): renders the plain
 Cornell box (256x256, max depth 9, 2 threads) with each kasha configuration for 64 spp and three
-seeds, times each render (whole process, median of the three), measures the reference-free
+seeds, times each render (whole process, median of the three; with --repeat N the least of N
+rounds of each), measures the reference-free
 variance between the seeds with ../shared/peers/compare.py (linear sRGB, mean over pixels and
 channels, with and without the pixels that see the light), and prints the efficiency against
 pbrt-v4's figures in ../shared/peers/RESULTS.md: (var_pbrt x t_pbrt) / (var_kasha x t_kasha),
@@ -9,6 +10,7 @@ pbrt-v4's figures in ../shared/peers/RESULTS.md: (var_pbrt x t_pbrt) / (var_kash
 wall times only on an idle machine (or pair the runs with ../shared/peers/bench.sh time).
 
   /usr/bin/python3 bench/peers_efficiency.py [--kasha build/kasha] [--out DIR] [--configs pt,bdpt-independent,...]
+                                             [--repeat N]
 
 Each configuration is an integrator name with optional extra options after a colon, e.g.
 "pt:--hero 1". compare.py reads EXR through tools/exr2npy.cpp of the same folder, compiled here
@@ -57,28 +59,42 @@ def main():
     ap.add_argument('--kasha', default=os.path.join(HERE, '..', 'build', 'kasha'))
     ap.add_argument('--out', default='/tmp/kasha-peers')
     ap.add_argument('--configs', default='pt,pt:--hero 1,bdpt-independent,bdpt-shared')
+    ap.add_argument('--repeat', type=int, default=1,
+                    help='rounds of every render, the configurations taken in turn in each round; a '
+                         "render's time is its least over the rounds (the wall times of a shared "
+                         'machine scatter by 15%% and more between runs)')
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     env = dict(os.environ, EXR2NPY=exr2npy(a.out))
+    configs = a.configs.split(',')
+    seeds = (1, 2, 3)
+
+    def path_of(config, seed):
+        return os.path.join(a.out, config.replace(':', '_').replace(' ', '').replace('-', '') + f'_s{seed}.exr')
+
+    least = {}
+    for _ in range(max(1, a.repeat)):
+        for config in configs:
+            integrator, _, extra = config.partition(':')
+            for seed in seeds:
+                t = render(a.kasha, integrator, extra.split(), seed, path_of(config, seed))
+                least[config, seed] = min(t, least.get((config, seed), t))
     rows = []
-    for config in a.configs.split(','):
-        integrator, _, extra = config.partition(':')
-        name = config.replace(':', '_').replace(' ', '').replace('-', '')
-        files, times = [], []
-        for seed in (1, 2, 3):
-            path = os.path.join(a.out, f'{name}_s{seed}.exr')
-            times.append(render(a.kasha, integrator, extra.split(), seed, path))
-            files.append(path)
+    for config in configs:
+        integrator = config.partition(':')[0]
+        files = [path_of(config, seed) for seed in seeds]
+        times = [least[config, seed] for seed in seeds]
         var = json.loads(subprocess.run([sys.executable, os.path.join(PEERS, 'compare.py'), 'var',
                                          'x=' + ','.join(files)], check=True, capture_output=True, text=True,
                                         env=env).stdout)['x']
         rows.append((config, statistics.median(times), var['var_rgb'], var['var_rgb_no_emitter'],
                      PBRT[PEER_OF[integrator]] if integrator in PEER_OF else None))
-    print('| kasha | wall s | var all | var no em. | pbrt | efficiency all / no em. |')
-    print('|---|---|---|---|---|---|')
+    print(f'| kasha | wall s | time / {configs[0]} | var all | var no em. | pbrt | efficiency all / no em. |')
+    print('|---|---|---|---|---|---|---|')
     for config, t, v, vn, peer in rows:
         eff = f'{peer[0] * peer[2] / (v * t):.2f} / {peer[1] * peer[2] / (vn * t):.2f}' if peer else '-'
-        print(f'| {config} | {t:.2f} | {v:.3g} | {vn:.3g} | {PEER_OF.get(config.partition(":")[0], "-")} | {eff} |')
+        print(f'| {config} | {t:.2f} | {t / rows[0][1]:.2f} | {v:.3g} | {vn:.3g} | '
+              f'{PEER_OF.get(config.partition(":")[0], "-")} | {eff} |')
 
 
 if __name__ == '__main__':

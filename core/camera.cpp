@@ -40,7 +40,7 @@ std::optional<Camera::Connection> Camera::connect(const Vec3& p) const {
   const float pixelArea = planeArea / (float(width_) * float(height_));
   const float cos2 = cosTheta * cosTheta;
   // W_j·cosθ / d² with W_j = 1/(A_j·cos⁴θ)
-  return Connection{pixel, d, dist, 1.0f / (pixelArea * cos2 * cosTheta * dist2)};
+  return Connection{pixel, d, dist, 1.0f / (pixelArea * cos2 * cosTheta * dist2), 1.0f / (planeArea * cos2 * cosTheta)};
 }
 
 float Camera::directionPdf(const Vec3& d) const {

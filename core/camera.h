@@ -22,6 +22,7 @@ class Camera {
     Vec3 wi;                 // unit direction from the point towards the camera
     float dist = 0.0f;
     float importance = 0.0f; // W_j·cosθ_cam / d²: the factor multiplying f·|cosθ_x| at the point
+    float pdfDir = 0.0f;     // directionPdf(-wi): generateRay's density of the direction to the point
   };
   // Connects a point to the pinhole; nothing if it is behind the camera or off the film.
   std::optional<Connection> connect(const Vec3& p) const;

@@ -10,15 +10,17 @@ namespace kasha {
 
 Spectrum::Spectrum(std::vector<float> x, std::vector<float> y) : x_(std::move(x)), y_(std::move(y)) {
   assert(!x_.empty() && x_.size() == y_.size());
+  minimum_ = *std::min_element(y_.begin(), y_.end());
   size_t i0 = 0, i1 = x_.size() - 1;
   if (i1 >= 1 && x_[0] == x_[1]) i0 = 1;
   if (i1 >= 1 && x_[i1] == x_[i1 - 1]) --i1;
-  if (i1 >= i0 + 2) {
-    const float step = (x_[i1] - x_[i0]) / float(i1 - i0);
-    bool uniform = step > 0.0f;
-    for (size_t i = i0 + 1; i <= i1 && uniform; ++i)
-      uniform = std::abs((x_[i] - x_[i0]) - step * float(i - i0)) <= 1e-4f * step;
-    if (uniform) uniformStep_ = step, i0_ = i0, i1_ = i1;
+  // The longest run of equally spaced knots from i0 (a table's odd last knot, as in 400, 500, 600,
+  // 700, 700.01, leaves the rest of it on the O(1) path).
+  if (i1 >= i0 + 1 && x_[i0 + 1] > x_[i0]) {
+    const float step = x_[i0 + 1] - x_[i0];
+    size_t end = i0 + 1;
+    while (end < i1 && std::abs((x_[end + 1] - x_[i0]) - step * float(end + 1 - i0)) <= 1e-4f * step) ++end;
+    uniformStep_ = step, i0_ = i0, i1_ = end;
   }
 }
 

@@ -53,6 +53,9 @@ class Spectrum {
   float integral(const WavelengthRange& r) const { return integral(r.min, r.max); }
   float maxValue(float lo, float hi) const;
   float minValue(float lo, float hi) const;
+  // The infimum of the values over all wavelengths: the least knot value (the function is
+  // piecewise linear between knots and constant beyond them; at a step it may be a left limit).
+  float minimum() const { return minimum_; }
   Spectrum scaled(float s) const;
   // Zero outside [first knot, last knot] instead of constant extrapolation.
   Spectrum zeroOutside() const;
@@ -65,10 +68,12 @@ class Spectrum {
   // operator() where the fast path does not apply: a binary search of the knots.
   float evaluateByKnotSearch(float lambda) const;
   std::vector<float> x_, y_;
-  // O(1) lookup where the knots are equally spaced: between knots i0_ and i1_ (the table without
-  // the duplicated end knots that zeroOutside() adds) with spacing uniformStep_ > 0.
+  // O(1) lookup where the knots are equally spaced: between knots i0_ and i1_ (the longest such
+  // run from the first knot, or from the second where zeroOutside() duplicated the first) with
+  // spacing uniformStep_ > 0.
   float uniformStep_ = 0.0f;
   size_t i0_ = 0, i1_ = 0;
+  float minimum_ = 0.0f;
 };
 
 }  // namespace kasha

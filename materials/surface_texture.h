@@ -24,6 +24,11 @@ struct HitReflectance {
     const float v = scale * (*spectrum)(lambda);
     return colour ? v * sigmoid(lambda) : v;
   }
+  // r(λ) > 0, without a lookup where the scaled spectrum's least value is already > 0 (rounding
+  // is monotone; a colour's sigmoid may round to 0, so a colour looks up).
+  bool reflects(float lambda) const {
+    return (!colour && scale * spectrum->minimum() > 0.0f) || (*this)(lambda) > 0.0f;
+  }
 };
 
 // A scalar parameter's texture: value × texel (no texture: the value).

@@ -182,5 +182,24 @@ TEST(LambertianSampling, NothingReflectedGivesNoSample) {
       EXPECT_FALSE(m.sample(mode, Vec3(0, 0, 1), 800.0f, Vec3(rng.uniform(), rng.uniform(), rng.uniform())));
 }
 
+
+TEST(LambertianSampling, SpectralDensityIsOneExactlyWhereSomethingIsReflected) {
+  // A spectrum positive everywhere (answered without a lookup) and one with zeros, scaled by a
+  // texel of 0 and of 1/2: the density of the elastic event is 1 where r(λ) > 0, else 0.
+  const Spectrum positive = Spectrum::piecewiseLinear({400.0f, 600.0f}, {0.1f, 0.9f});
+  const Spectrum stepped = steppedReflectance();
+  for (const Spectrum* s : {&positive, &stepped})
+    for (const float scale : {0.0f, 0.5f}) {
+      HitReflectance r{s};
+      r.scale = scale;
+      const LambertianModel m(r);
+      for (float l = 360.0f; l <= 830.0f; l += 1.3f) {
+        const float expected = scale * (*s)(l) > 0.0f ? 1.0f : 0.0f;
+        EXPECT_EQ(m.spectralPdf(TransportMode::Radiance, l, l, SpectralLobe::Elastic), expected) << l;
+        EXPECT_EQ(m.sampleSpectral(TransportMode::Importance, l, 0.5f).pdf, expected) << l;
+      }
+    }
+}
+
 }  // namespace
 }  // namespace kasha

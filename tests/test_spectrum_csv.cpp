@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/spectrum.h"
@@ -364,6 +366,41 @@ TEST(Spectrum, IntegralOverPartialRange) {
   EXPECT_NEAR(step.integral(450.0f, 500.0f), 50.0f, 1e-3f);
   EXPECT_NEAR(step.integral(500.0f, 550.0f), 150.0f, 1e-3f);
   EXPECT_NEAR(step.integral(450.0f, 550.0f), 200.0f, 1e-3f);
+}
+
+
+// Linear interpolation by a scan of the knots, the test's own (constant beyond the ends).
+float interpolateByScan(const std::vector<float>& x, const std::vector<float>& y, float l) {
+  if (l <= x.front()) return y.front();
+  for (size_t i = 0; i + 1 < x.size(); ++i)
+    if (l < x[i + 1]) return y[i] + (l - x[i]) / (x[i + 1] - x[i]) * (y[i + 1] - y[i]);
+  return y.back();
+}
+
+TEST(Spectrum, EquallySpacedKnotsThenAnOddOneInterpolate) {
+  // 400 ... 700 every 100 nm, then a last knot 0.01 nm on (as a table closed by a near-step): the
+  // equally spaced run and the rest are both the piecewise-linear function of the knots.
+  const std::vector<float> x{400.0f, 500.0f, 600.0f, 700.0f, 700.01f}, y{0.5f, 2.0f, 1.0f, 3.0f, 0.25f};
+  const Spectrum s = Spectrum::piecewiseLinear(x, y);
+  for (float l = 350.0f; l <= 750.0f; l += 0.37f) EXPECT_NEAR(s(l), interpolateByScan(x, y, l), 1e-5f) << l;
+  EXPECT_NEAR(s(700.005f), interpolateByScan(x, y, 700.005f), 1e-3f);
+  // A run broken in the middle: 400, 410, 420, then 500, 510.
+  const std::vector<float> x2{400.0f, 410.0f, 420.0f, 500.0f, 510.0f}, y2{1.0f, 0.0f, 2.0f, 4.0f, 1.0f};
+  const Spectrum s2 = Spectrum::piecewiseLinear(x2, y2);
+  for (float l = 390.0f; l <= 520.0f; l += 0.23f) EXPECT_NEAR(s2(l), interpolateByScan(x2, y2, l), 1e-5f) << l;
+}
+
+TEST(Spectrum, MinimumIsTheInfimumOverAllWavelengths) {
+  const Spectrum s = Spectrum::piecewiseLinear({400.0f, 500.0f, 500.0f, 600.0f}, {0.7f, 0.3f, 0.9f, 0.5f});
+  // Its infimum: 0.3, the left limit at the step (never taken, approached from the left).
+  float least = s(300.0f);
+  for (float l = 300.0f; l <= 700.0f; l += 0.1f) {
+    EXPECT_LE(s.minimum(), s(l)) << l;
+    least = std::min(least, s(l));
+  }
+  EXPECT_NEAR(s.minimum(), least, 1e-3f);
+  EXPECT_EQ(Spectrum::box(450.0f, 550.0f, 2.0f).minimum(), 0.0f);
+  EXPECT_EQ(Spectrum::constant(0.25f).minimum(), 0.25f);
 }
 
 }  // namespace

@@ -105,8 +105,8 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
   if (!any || !visible(c, x1, x0)) return;
   const int lightIndex = int(li);  // a structured binding cannot be captured (clang 14)
   const LightEnd end = lightEnd(c, lightIndex, x0, x1);
-  const double pCam0 = cameraSide(c.scene, x1, x2, x0, x1.lobe, lambda0, x1.lambda);
-  const double pLight2 = x2.kind != Kind::Camera ? lightSide(c.scene, x1, x0, x2, x1.lobe, lambda0, x1.lambda) : 0.0;
+  const double pCam0 = cameraSide(c.scene, x1, wo, wi, x0, x1.lobe, lambda0, x1.lambda);
+  const double pLight2 = x2.kind != Kind::Camera ? lightSide(c.scene, x1, wi, wo, x2, x1.lobe, lambda0, x1.lambda) : 0.0;
   const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite, c.walk.strategies);
   MisSums own;
   own.nee = x1.spectralPdf * double(x1.spectralPdf);
@@ -157,8 +157,8 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   const float cosA = glm::dot(a.n, a.n) > 0.0f ? std::abs(glm::dot(a.n, w)) : 1.0f;
   const float G = cosA * std::abs(bWi.z) / dist2;
   const LightEnd end = lightEnd(c, a.light, a, b);
-  const double pCam0 = cameraSide(c.scene, b, bNext, a, F, a.lambda, b.lambda);
-  const double pLight2 = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, F, a.lambda, b.lambda) : 0.0;
+  const double pCam0 = cameraSide(c.scene, b, bWo, bWi, a, F, a.lambda, b.lambda);
+  const double pLight2 = bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, F, a.lambda, b.lambda) : 0.0;
   const double specCam1 = specCamera(b, F, a.lambda, b.lambda);
   MisSums own;
   own.own = 1.0;
@@ -257,10 +257,10 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     }
     if (!any) continue;
     // The four densities next to the connection, for its lobes and wavelengths.
-    const double pLightB = lightSide(c.scene, a, aPrev, b, p.la, a.lambda, p.lambdaA);
-    const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, a, bNext, p.lb, p.lambdaB, lambdaB) : 0.0;
-    const double pCamA = cameraSide(c.scene, b, bNext, a, p.lb, p.lambdaB, lambdaB);
-    const double pCamAPrev = cameraSide(c.scene, a, b, aPrev, p.la, a.lambda, p.lambdaA);
+    const double pLightB = lightSide(c.scene, a, aWi, aWo, b, p.la, a.lambda, p.lambdaA);
+    const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, p.lb, p.lambdaB, lambdaB) : 0.0;
+    const double pCamA = cameraSide(c.scene, b, bWo, bWi, a, p.lb, p.lambdaB, lambdaB);
+    const double pCamAPrev = cameraSide(c.scene, a, aWo, aWi, aPrev, p.la, a.lambda, p.lambdaA);
     const Strategies& st = c.walk.strategies;
     const MisSums sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st), pCamAPrev) +
                           cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st), pLightBNext);
@@ -324,7 +324,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   // wavelength arriving is a factor, mis_sums.h).
   const auto makeLink = [&] {
     CameraLink l{c.scene.camera.connect(a.p)};
-    if (l.connection) l.pdfCam = toAreaDensity(c.scene.camera.directionPdf(-l.connection->wi), cam, a);
+    if (l.connection) l.pdfCam = toAreaDensity(l.connection->pdfDir, cam, a);
     return l;
   };
   const CameraLink link = memo ? memo->link(s, makeLink) : makeLink();
@@ -369,7 +369,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       value[k] = a.beta[k] * fa * std::abs(wo.z) / a.spectralPdf;
       any = any || fa > 0.0f;
     }
-    pCamAPrev = cameraSide(c.scene, a, cam, aPrev, a.lobe, a.lambda, lambda);
+    pCamAPrev = cameraSide(c.scene, a, wo, wi, aPrev, a.lobe, a.lambda, lambda);
     here = lightTracingMultiplicity(true, a.spectralPdf, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
     sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, c.walk.strategies), pCamAPrev);

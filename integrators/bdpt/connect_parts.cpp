@@ -17,21 +17,17 @@ double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathV
   return toAreaDensity(pdfSA, at, target);
 }
 
-double cameraSide(const Scene& scene, const PathVertex& at, const PathVertex& camNext, const PathVertex& target,
-                  SpectralLobe lobe, float lambdaIn, float lambdaOut) {
-  const Bsdf& f = *at.bsdf;
-  const Vec3 wo = f.toLocal(towards(at, camNext)), wi = f.toLocal(towards(at, target));
+double cameraSide(const Scene& scene, const PathVertex& at, const Vec3& wCam, const Vec3& wTarget,
+                  const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut) {
   const float pdf = at.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe) *
-                    at.bsdf->directionPdf(TransportMode::Radiance, wo, wi, lobe, lambdaIn, lambdaOut);
+                    at.bsdf->directionPdf(TransportMode::Radiance, wCam, wTarget, lobe, lambdaIn, lambdaOut);
   return toArea(scene, pdf, at, target);
 }
 
-double lightSide(const Scene& scene, const PathVertex& at, const PathVertex& lightPrev, const PathVertex& target,
-                 SpectralLobe lobe, float lambdaIn, float lambdaOut) {
-  const Bsdf& f = *at.bsdf;
-  const Vec3 wi = f.toLocal(towards(at, lightPrev)), wo = f.toLocal(towards(at, target));
+double lightSide(const Scene& scene, const PathVertex& at, const Vec3& wLight, const Vec3& wTarget,
+                 const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut) {
   const float pdf = at.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe) *
-                    at.bsdf->directionPdf(TransportMode::Importance, wi, wo, lobe, lambdaIn, lambdaOut);
+                    at.bsdf->directionPdf(TransportMode::Importance, wLight, wTarget, lobe, lambdaIn, lambdaOut);
   return toArea(scene, pdf, at, target);
 }
 

@@ -19,15 +19,16 @@ Vec3 towards(const PathVertex& from, const PathVertex& to);
 // other strategy can sample (the pinhole, delta lights) get 0.
 double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathVertex& target);
 
-// Camera-side (Radiance) density of `target` sampled at `at`, whose camera-side neighbour is
-// `camNext`: the spectral event (lobe, λ_in given λ_out) and the direction.
-double cameraSide(const Scene& scene, const PathVertex& at, const PathVertex& camNext, const PathVertex& target,
-                  SpectralLobe lobe, float lambdaIn, float lambdaOut);
+// Camera-side (Radiance) density of `target` sampled at `at`: the spectral event (lobe, λ_in given
+// λ_out) and the direction from wCam (towards at's camera-side neighbour) to wTarget (towards
+// target), both in at's shading frame (the caller's, which it has for its own f).
+double cameraSide(const Scene& scene, const PathVertex& at, const Vec3& wCam, const Vec3& wTarget,
+                  const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut);
 
-// Light-side (Importance) density of `target` sampled at `at`, whose light-side neighbour is
-// `lightPrev`.
-double lightSide(const Scene& scene, const PathVertex& at, const PathVertex& lightPrev, const PathVertex& target,
-                 SpectralLobe lobe, float lambdaIn, float lambdaOut);
+// Light-side (Importance) density of `target` sampled at `at`, wLight towards at's light-side
+// neighbour (shading frame).
+double lightSide(const Scene& scene, const PathVertex& at, const Vec3& wLight, const Vec3& wTarget,
+                 const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut);
 
 // The light end x_0 seen from its neighbour x_1: its positional densities.
 struct LightEnd {
