@@ -63,7 +63,6 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
 
 void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampler& rng, float* out) {
   const PathVertex& x1 = C[size_t(t - 1)];
-  rng.setDimension(nextEventDimension(t));
   const float uSel = rng.uniform();
   const Vec2 uPos = rng.uniform2();
   if (!x1.eventSampled || !x1.connectible()) return;

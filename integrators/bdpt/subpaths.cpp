@@ -151,9 +151,8 @@ bool scatter(Track& tr, const Scene& scene, TransportMode mode, const Vec3& wKno
 // light subpath, docs/bdpt-mis.md §11), they go on together through the vertices whose sampling
 // does not depend on λ: both scatter elastically there with a wavelength-independent direction
 // density, which the first live track samples. At any other, a forking track leaves the walk.
-// Surface vertex i draws from the sampler's block at firstBlock + i·kVertexDimensions (subpaths.h).
 void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, TransportMode mode, const WalkSettings& ws,
-                Sampler& rng, RayCounter& counter, uint32_t firstBlock, int surfaces = 0, bool atVertex = false) {
+                Sampler& rng, RayCounter& counter, int surfaces = 0, bool atVertex = false) {
   const bool camera = mode == TransportMode::Radiance;
   auto live = [&] { return std::find_if(tracks, tracks + nTracks, [](const Track& t) { return t.alive; }); };
   for (bool arrived = atVertex;; arrived = false) {
@@ -180,10 +179,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
       const int light = scene.shapeLight[hit->shape];
       int alive = 0;
       for (int i = 0; i < nTracks; ++i)
-        if (tracks[i].alive) {
-          rng.setDimension(firstBlock + uint32_t(surfaces) * Sampler::kVertexDimensions);  // the lane kept
-          arrive(tracks[i], *hit, ray, bsdf, light, mode, ws.strategies, rng), ++alive;
-        }
+        if (tracks[i].alive) arrive(tracks[i], *hit, ray, bsdf, light, mode, ws.strategies, rng), ++alive;
       ++surfaces;
       if (alive > 1 && lambdaDependent(bsdf))
         for (int i = 0; i < nTracks; ++i)
@@ -201,8 +197,6 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
     const PathVertex& at = live()->path->back();
     const Bsdf& bsdf = *at.bsdf;
     const Vec3 wKnown = bsdf.toLocal(-ray.d);
-    // The spectral event, then the direction and Russian roulette, from this vertex's block.
-    rng.setDimension(firstBlock + uint32_t(surfaces - 1) * Sampler::kVertexDimensions + 1);
     const float uSpectral = rng.uniform();
     for (int i = 0; i < nTracks; ++i)
       if (tracks[i].alive && !sampleEvent(tracks[i], mode, uSpectral)) tracks[i].alive = false;
@@ -291,7 +285,7 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
   // The sensor's density of the last wavelength group is a factor of the weights (mis_sums.h).
   const float pdfDir = scene.camera.directionPdf(ray.d);
   Track tr = startTrack(lanes, out, c.beta, pdfDir);
-  randomWalk(scene, ray, &tr, 1, TransportMode::Radiance, ws, rng, counter, kCameraDimensions);
+  randomWalk(scene, ray, &tr, 1, TransportMode::Radiance, ws, rng, counter);
 }
 
 namespace {
@@ -340,8 +334,6 @@ void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shar
   size_t light = 0;
   Lanes lanes = shared;
   float choice = 0.0f;
-  const uint32_t region = family == LightFamily::Own ? kOwnLightDimensions : kSharedLightDimensions;
-  rng.setDimension(region);
   const float u1 = rng.uniform(), u2 = rng.uniform();
   if (family == LightFamily::Own) {
     const LightSelector::LightWavelength lw = scene.lightSelector->sampleLightAndWavelength(*ws.lightWavelengths, u1, u2);
@@ -362,14 +354,12 @@ void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shar
   updateSums(out, TransportMode::Importance, ws.strategies);
   Track tr = startTrack(lanes, out, beta, emissionDirectionPdf(L, *es));
   tr.stopAtFluorescence = family == LightFamily::Shared;
-  randomWalk(scene, emissionRay(*es), &tr, 1, TransportMode::Importance, ws, rng, counter,
-             region + Sampler::kVertexDimensions);
+  randomWalk(scene, emissionRay(*es), &tr, 1, TransportMode::Importance, ws, rng, counter);
 }
 
 int traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkSettings& ws, Sampler& rng,
                             RayCounter& counter, std::vector<PathVertex>& LS, std::vector<PathVertex>& LO) {
   LS.clear(), LO.clear();
-  rng.setDimension(kSharedLightDimensions);
   const float uLight = rng.uniform(), uLambda = rng.uniform();
   const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
   const LightFirstStart::Draw d = ws.lightFirst->sample(uLight, uLambda);
@@ -399,14 +389,12 @@ int traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkS
     tracks[n++].forkWhereLambdaDependent = true;
   }
   if (n == 0) return 0;
-  randomWalk(scene, emissionRay(*es), tracks, n, TransportMode::Importance, ws, rng, counter,
-             kSharedLightDimensions + Sampler::kVertexDimensions);
+  randomWalk(scene, emissionRay(*es), tracks, n, TransportMode::Importance, ws, rng, counter);
   Track& lanes = tracks[n - 1];
   if (!lanes.forked) return std::numeric_limits<int>::max();
   // The shared lanes go on alone from the vertex where they forked, as a shared subpath would.
   lanes.alive = true;
-  randomWalk(scene, lanes.forkRay, &lanes, 1, TransportMode::Importance, ws, rng, counter, kForkedLightDimensions,
-             lanes.forkSurfaces, true);
+  randomWalk(scene, lanes.forkRay, &lanes, 1, TransportMode::Importance, ws, rng, counter, lanes.forkSurfaces, true);
   return lanes.forkSurfaces + 1;
 }
 

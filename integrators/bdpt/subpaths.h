@@ -42,24 +42,6 @@ struct WalkSettings {
   Strategies strategies;
 };
 
-// The sampler's dimensions of BDPT's subpaths (docs/sampler.md): every vertex draws from a block of
-// Sampler::kVertexDimensions of its own, so that its numbers stay in the same dimensions whatever
-// the vertices before it drew, and the sampler stratifies each event over a pixel's samples. Surface
-// vertex i of a camera subpath (i = 0 its first hit) draws from the block at kCameraDimensions + 8i:
-// the lane kept where lanes end (+0), the spectral event (+1), the direction (+2, +3), Russian
-// roulette (+4), next-event estimation's light (+5) and point on it (+6, +7). A light subpath draws
-// its start (light, wavelength, point, direction) from the first 6 dimensions of its region and its
-// surface vertex i from the block at region + 8(i + 1); the shared family's subpath, the merged one
-// and the shared lanes that leave the merged one go on from regions apart, as does the own family's.
-inline constexpr uint32_t kCameraDimensions = 3;  // after the lanes (0) and the position in the pixel (1, 2)
-inline constexpr uint32_t kSharedLightDimensions = 1u << 20;
-inline constexpr uint32_t kOwnLightDimensions = 2u << 20;
-inline constexpr uint32_t kForkedLightDimensions = 3u << 20;
-// The first dimension of next-event estimation's numbers at camera vertex C[t − 1] (t ≥ 2).
-inline uint32_t nextEventDimension(int t) {
-  return kCameraDimensions + uint32_t(t - 2) * Sampler::kVertexDimensions + 5;
-}
-
 // What a camera sample's lanes point into (Lanes::lights, Lanes::ownStart).
 struct LaneTables {
   LaneLightTable lights;
