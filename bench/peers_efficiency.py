@@ -73,7 +73,7 @@ def main():
         return os.path.join(a.out, config.replace(':', '_').replace(' ', '').replace('-', '') + f'_s{seed}.exr')
 
     least = {}
-    for _ in range(max(1, a.repeat)):
+    for _round in range(max(1, a.repeat)):
         for config in configs:
             integrator, _, extra = config.partition(':')
             for seed in seeds:

@@ -1,6 +1,13 @@
 #include "core/camera.h"
 
 namespace kasha {
+namespace {
+
+// generateRay's density per steradian of a direction at angle θ to the view axis (uniform over
+// the image plane of area A at distance 1): 1 / (A·cos³θ).
+float directionDensity(float planeArea, float cosTheta) { return 1.0f / (planeArea * cosTheta * cosTheta * cosTheta); }
+
+}  // namespace
 
 Camera::Camera(Vec3 position, Vec3 lookAt, Vec3 up, float fovYDegrees, int width, int height)
     : pos_(position), fovY_(fovYDegrees), width_(width), height_(height) {
@@ -40,7 +47,7 @@ std::optional<Camera::Connection> Camera::connect(const Vec3& p) const {
   const float pixelArea = planeArea / (float(width_) * float(height_));
   const float cos2 = cosTheta * cosTheta;
   // W_j·cosθ / d² with W_j = 1/(A_j·cos⁴θ)
-  return Connection{pixel, d, dist, 1.0f / (pixelArea * cos2 * cosTheta * dist2), 1.0f / (planeArea * cos2 * cosTheta)};
+  return Connection{pixel, d, dist, 1.0f / (pixelArea * cos2 * cosTheta * dist2), directionDensity(planeArea, cosTheta)};
 }
 
 float Camera::directionPdf(const Vec3& d) const {
@@ -50,8 +57,7 @@ float Camera::directionPdf(const Vec3& d) const {
   const float sx = glm::dot(onPlane, right_) / (tanHalfY_ * aspect_);
   const float sy = glm::dot(onPlane, up_) / tanHalfY_;
   if (sx < -1.0f || sx > 1.0f || sy < -1.0f || sy > 1.0f) return 0.0f;
-  const float planeArea = 4.0f * tanHalfY_ * tanHalfY_ * aspect_;
-  return 1.0f / (planeArea * cosTheta * cosTheta * cosTheta);
+  return directionDensity(4.0f * tanHalfY_ * tanHalfY_ * aspect_, cosTheta);
 }
 
 }  // namespace kasha
