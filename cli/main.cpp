@@ -93,6 +93,7 @@ struct RenderArgs {
   int hero = 0;
   std::string fluorescentLanes;  // empty: the scene's
   std::string bdptFamilies;      // empty: the scene's
+  std::string vcmPaths;          // empty: the scene's
   std::string sampler;
   float exposure = 0.0f;
   std::string checkpoint, resume;
@@ -151,6 +152,12 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     if (a.integrator != "bdpt") throw UsageError("--bdpt-families", "", "only for --integrator bdpt");
     r.bdptFamilies = *parseBdptFamilies(a.bdptFamilies);  // validated by the option's check
   }
+  if (!a.vcmPaths.empty()) {
+    if (a.integrator != "vcm") throw UsageError("--vcm-paths", "", "only for --integrator vcm");
+    r.vcmPaths = *parseVcmPaths(a.vcmPaths);  // validated by the option's check
+  }
+  // Per-strategy images are of vcm's strategies: camera paths alone (pt) have none to show.
+  if (!a.strategyImages.empty() && r.vcmPaths == VcmPaths::Auto) r.vcmPaths = VcmPaths::Bidirectional;
   if (!a.sampler.empty()) r.sampler = *parseSamplerKind(a.sampler);  // validated by the option's check
   r.memoryLimit = memoryLimit;
   if ((a.mollifyBandwidth >= 0.0f || a.mollifyAlpha >= 0.0f) && a.integrator != "bdpt-mollified")
@@ -240,6 +247,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
                                    {"hero_wavelengths", integrator->lanes()},
                                    {"fluorescent_lanes", toString(r.fluorescentLanes)},
                                    {"bdpt_families", toString(r.bdptFamilies)},
+                                   {"vcm_paths", toString(r.vcmPaths)},
                                    {"resolution", {width, height}},
                                    {"spectral_bins", bins.enabled() ? nlohmann::json{bins.min, bins.step, bins.count}
                                                                     : nlohmann::json(nullptr)}};
@@ -512,6 +520,13 @@ int main(int argc, char** argv) {
                      "if it samples every path that carries light) | both | shared (= bdpt-shared) | own (= "
                      "bdpt-independent)")
       ->check(CLI::IsMember({"auto", "both", "shared", "own"}));
+  render->add_option("--vcm-paths", ra.vcmPaths,
+                     "The subpaths of --integrator vcm: auto (the default: a pilot estimates, from vcm's own paths, "
+                     "the relative variance per sample of vcm and of camera paths alone, and their cost in rays, "
+                     "and runs the more efficient; camera paths alone only if they sample every path that carries "
+                     "light) | bidirectional (camera and light subpaths, every strategy) | camera (camera paths "
+                     "alone: path tracing with next-event estimation, pt's estimator)")
+      ->check(CLI::IsMember({"auto", "bidirectional", "camera"}));
   render->add_option("--sampler", ra.sampler,
                      "Random numbers of every sample: sobol (Owen-scrambled Sobol, the default) | independent (PCG32)")
       ->check(CLI::IsMember({"sobol", "independent"}));

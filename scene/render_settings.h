@@ -96,6 +96,27 @@ inline std::optional<BdptFamilies> parseBdptFamilies(const std::string& text) {
   return std::nullopt;
 }
 
+// Which subpaths `vcm` traces (docs/bdpt-mis.md §14): camera and light subpaths with every strategy
+// (bidirectional), camera subpaths alone (camera: vertex connection and merging without light
+// subpaths is path tracing with next-event estimation, and runs pt's estimator), or (auto, the
+// default) whichever a pilot estimates the more efficient.
+enum class VcmPaths { Auto, Bidirectional, Camera };
+
+inline const char* toString(VcmPaths p) {
+  switch (p) {
+    case VcmPaths::Bidirectional: return "bidirectional";
+    case VcmPaths::Camera: return "camera";
+    default: return "auto";
+  }
+}
+// "auto", "bidirectional" or "camera"; nullopt otherwise.
+inline std::optional<VcmPaths> parseVcmPaths(const std::string& text) {
+  if (text == "auto") return VcmPaths::Auto;
+  if (text == "bidirectional") return VcmPaths::Bidirectional;
+  if (text == "camera") return VcmPaths::Camera;
+  return std::nullopt;
+}
+
 // Thrown when an integrator cannot do what fluorescent_lanes asks (its message says why).
 struct FluorescentLanesError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
@@ -118,6 +139,7 @@ struct RenderSettings {
   int heroWavelengths = kAutoLanes;
   FluorescentLanes fluorescentLanes = FluorescentLanes::Through;
   BdptFamilies bdptFamilies = BdptFamilies::Auto;  // the unified bdpt's light subpaths
+  VcmPaths vcmPaths = VcmPaths::Auto;              // vcm's subpaths
   // Largest buffer an integrator may allocate (photon maps, ...): check with requireMemory()
   // before allocating. Set by `kasha render --memory-limit`; not a scene-file setting.
   uint64_t memoryLimit = kDefaultMemoryLimit;

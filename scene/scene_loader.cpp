@@ -149,6 +149,9 @@ struct Loader {
     const std::string families = f.string("bdpt_families", toString(r.bdptFamilies));
     if (const auto fam = parseBdptFamilies(families)) r.bdptFamilies = *fam;
     else f.fail("bdpt_families", "'" + families + "' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
+    const std::string vcmPaths = f.string("vcm_paths", toString(r.vcmPaths));
+    if (const auto paths = parseVcmPaths(vcmPaths)) r.vcmPaths = *paths;
+    else f.fail("vcm_paths", "'" + vcmPaths + "' is not a choice of vcm's subpaths (auto, bidirectional, camera)");
     photonMapping(f);
     mollification(f);
     f.finish();

@@ -1,8 +1,9 @@
 #pragma once
-// Integrators by the names the tests run: the CLI's, and "bdpt.both", the unified bdpt with both
-// light-subpath families fixed (RenderSettings::bdptFamilies). "bdpt" chooses its families with a
-// pilot (docs/bdpt-mis.md §13); "bdpt.both" keeps the estimator that pilot may set aside under the
-// same tests.
+// Integrators by the names the tests run: the CLI's, "bdpt.both", the unified bdpt with both
+// light-subpath families fixed (RenderSettings::bdptFamilies), and "vcm.bidirectional", vcm with
+// its light subpaths fixed (RenderSettings::vcmPaths). "bdpt" chooses its families and "vcm" its
+// subpaths with a pilot (docs/bdpt-mis.md §13, §14); these keep the estimators the pilots may set
+// aside under the same tests.
 #include <memory>
 #include <string>
 
@@ -12,9 +13,15 @@ namespace kasha::test {
 
 inline std::unique_ptr<Integrator> makeTestIntegrator(const std::string& name, const Scene& scene,
                                                       RenderSettings settings) {
-  if (name != "bdpt.both") return makeIntegrator(name, scene, settings);
-  settings.bdptFamilies = BdptFamilies::Both;
-  return makeIntegrator("bdpt", scene, settings);
+  if (name == "bdpt.both") {
+    settings.bdptFamilies = BdptFamilies::Both;
+    return makeIntegrator("bdpt", scene, settings);
+  }
+  if (name == "vcm.bidirectional") {
+    settings.vcmPaths = VcmPaths::Bidirectional;
+    return makeIntegrator("vcm", scene, settings);
+  }
+  return makeIntegrator(name, scene, settings);
 }
 
 }  // namespace kasha::test

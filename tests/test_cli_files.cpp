@@ -152,6 +152,9 @@ TEST_F(CliFiles, CommandLineMistakesExitWith2) {
   expectRefused({"render", scene, "-q", "--ppm-direct", "photons"}, 2, "--ppm-direct: only for --integrator ppm");
   expectRefused({"render", scene, "-q", "--integrator", "bdpt-shared", "--bdpt-families", "both"}, 2,
                 "--bdpt-families: only for --integrator bdpt");
+  expectRefused({"render", scene, "-q", "--integrator", "bpm", "--vcm-paths", "camera"}, 2,
+                "--vcm-paths: only for --integrator vcm");
+  expectRefused({"render", scene, "-q", "--integrator", "vcm", "--vcm-paths", "light"}, 2, "--vcm-paths");
   expectRefused({"render", scene, "-q", "--integrator", "ppm", "--ppm-nee-wavelengths", "camera,cmf"}, 2,
                 "--ppm-nee-wavelengths");
   expectRefused({"render", scene, "-q", "--integrator", "ppm", "--ppm-direct", "both"}, 2, "--ppm-direct");

@@ -394,6 +394,8 @@ TEST_F(SceneLoader, UnknownTypes) {
               "'sideways' is not what lanes do at fluorescent events (through, end)");
   expectError([](json& j) { j["render"] = {{"bdpt_families", "neither"}}; }, "/render/bdpt_families",
               "'neither' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
+  expectError([](json& j) { j["render"] = {{"vcm_paths", "light"}}; }, "/render/vcm_paths",
+              "'light' is not a choice of vcm's subpaths (auto, bidirectional, camera)");
 }
 
 TEST_F(SceneLoader, MissingMaterial) {

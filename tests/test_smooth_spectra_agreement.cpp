@@ -122,7 +122,7 @@ INSTANTIATE_TEST_SUITE_P(Integrators, SmoothSpectra,
                          testName);
 // Vertex connection and merging (issue 14): long under the sanitizers, which skip "Slow".
 INSTANTIATE_TEST_SUITE_P(VertexMergingSlow, SmoothSpectra,
-                         ::testing::Values(std::make_pair("vcm", 64), std::make_pair("vc", 64), std::make_pair("bpm", 64)),
+                         ::testing::Values(std::make_pair("vcm.bidirectional", 64), std::make_pair("vc", 64), std::make_pair("bpm", 64)),
                          testName);
 
 }  // namespace

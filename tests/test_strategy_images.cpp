@@ -15,6 +15,7 @@
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "tests/process.h"
+#include "tests/integrator_names.h"
 #include "tests/support.h"
 
 namespace kasha {
@@ -29,7 +30,7 @@ bdpt::StrategyImages renderWithStrategies(const Scene& scene, const std::string&
                                           int spp, uint64_t seed, Film& film) {
   RenderSettings s = scene.render;
   s.maxDepth = maxDepth;
-  const auto bdpt = makeIntegrator(integrator, scene, s);
+  const auto bdpt = test::makeTestIntegrator(integrator, scene, s);
   bdpt::StrategyImages images(film.width(), film.height(), depth);
   RenderOptions opt;
   opt.spp = spp;
@@ -44,7 +45,7 @@ TEST(StrategyImages, WeightedImagesSumToTheRender) {
   // The furnace with images up to 2 scattering events (longer paths go to "deeper"); the mirror
   // room (glass, floor, wall, mirror) up to 4, where only mollified connections (and merges) render it.
   for (const auto& [name, depth] : {std::pair{"furnace_fluorescent.json", 2}, std::pair{"mollify_mirror.json", 4}})
-    for (const char* integrator : {"bdpt-shared", "bdpt-independent", "bdpt-mollified", "vcm", "bpm"}) {
+    for (const char* integrator : {"bdpt-shared", "bdpt-independent", "bdpt-mollified", "vcm.bidirectional", "bpm"}) {
       SCOPED_TRACE(std::string(name) + " " + integrator);
       auto scene = load(name);
       Film film(scene->camera.width(), scene->camera.height());
@@ -52,7 +53,7 @@ TEST(StrategyImages, WeightedImagesSumToTheRender) {
       if (depth == 2) EXPECT_TRUE(images.images().count("deeper"));
       if (depth == 2) EXPECT_GE(images.images().size(), 5u);
       if (depth == 4 && std::string(integrator) == "bdpt-mollified") EXPECT_TRUE(images.images().count("s3_t3_mollified"));
-      if (depth == 2 && (std::string(integrator) == "vcm" || std::string(integrator) == "bpm"))  // all merges per camera vertex
+      if (depth == 2 && (std::string(integrator) == "vcm.bidirectional" || std::string(integrator) == "bpm"))  // all merges per camera vertex
         EXPECT_TRUE(images.images().count("merge_t2") && images.images().count("merge_t3"));
       for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {

@@ -12,6 +12,7 @@
 #include "integrators/vcm/light_vertex_pass.h"
 #include "integrators/vcm/vcm_integrator.h"
 #include "scene/scene_loader.h"
+#include "tests/integrator_names.h"
 #include "tests/support.h"
 
 namespace kasha {
@@ -67,8 +68,8 @@ TEST(Vcm, ImageDoesNotDependOnTheThreadCount) {
   auto scene = load("furnace_overlap.json");
   RenderSettings s = scene->render;
   s.ppm.photonsPerPass = 5000;  // several chunks of light subpaths
-  for (const char* name : {"vcm", "bpm"}) {
-    const std::unique_ptr<Integrator> integrator = makeIntegrator(name, *scene, s);
+  for (const char* name : {"vcm", "vcm.bidirectional", "bpm"}) {  // vcm: its pilot's choice as well
+    const std::unique_ptr<Integrator> integrator = test::makeTestIntegrator(name, *scene, s);
     std::vector<Vec3> images[2];
     for (int t = 0; t < 2; ++t) {
       Film film(scene->camera.width(), scene->camera.height());

@@ -127,13 +127,13 @@ TEST_P(IntegratorSamplerLanesSlow, MatchFurnaceClosedForms) {
     // Vertex merging's passes share their wavelengths over the image (docs/bdpt-mis.md §12): with
     // one lane drawn by PCG32 its colour noise needs twice the passes for the test's power.
     const std::string n = integrator;
-    expectXyzAgreement(*scene, integrator, settings, furnaceXyz(*scene), 16, n == "lt" ? 1024 : n == "vcm" || n == "bpm" ? 256 : 128);
+    expectXyzAgreement(*scene, integrator, settings, furnaceXyz(*scene), 16, n == "lt" ? 1024 : n == "vcm" || n == "vcm.bidirectional" || n == "bpm" ? 256 : 128);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Everything, IntegratorSamplerLanesSlow,
                          ::testing::Combine(::testing::Values("pt", "lt", "bdpt", "bdpt.both", "bdpt-shared", "bdpt-independent",
-                                                              "bdpt-mollified", "ppm", "vcm", "vc", "bpm"),
+                                                              "bdpt-mollified", "ppm", "vcm", "vcm.bidirectional", "vc", "bpm"),
                                             ::testing::Values(SamplerKind::Sobol, SamplerKind::Independent),
                                             ::testing::Values(1, 4)),
                          [](const ::testing::TestParamInfo<MatrixCase>& info) {

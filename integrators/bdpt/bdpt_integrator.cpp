@@ -98,14 +98,15 @@ BdptFamilies Bdpt::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& co
   std::lock_guard<std::mutex> lock(pilotMutex_);
   if (pilot_ && pilot_->seed == seed) return pilot_->run;
   using namespace bdpt;
-  std::atomic<uint64_t> unsampled[kAlternatives] = {};
+  constexpr int kFamilies = 2;  // the alternatives weighed here: Alone::Shared and Alone::Own
+  std::atomic<uint64_t> unsampled[kFamilies] = {};
   // Both families, and from their paths what each family alone would add (PilotMoments).
   const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx,
                                std::vector<std::vector<Splat>>& excess) -> Vec3 {
     thread_local PilotMoments moments;
     moments.clear();
     const Vec3 v = estimate(scene, pixel, rng, ctx, BdptFamilies::Both, &moments);
-    for (int a = 0; a < kAlternatives; ++a) {
+    for (int a = 0; a < kFamilies; ++a) {
       const PilotMoments::Alternative& alt = moments.alone[a];
       if (alt.unsampled > 0) unsampled[a].fetch_add(uint64_t(alt.unsampled), std::memory_order_relaxed);
       excess[size_t(a)].insert(excess[size_t(a)].end(), alt.excess.begin(), alt.excess.end());
@@ -113,7 +114,7 @@ BdptFamilies Bdpt::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& co
     return v;
   };
   const int w = scene.camera.width(), h = scene.camera.height();
-  const PilotEstimates e = pilotEstimates(w, h, seed, SamplerKind::Independent, kAlternatives, both);
+  const PilotEstimates e = pilotEstimates(w, h, seed, SamplerKind::Independent, kFamilies, both);
   counter = e.rays;
   // Each family alone's rays per sample, from samples of its own (their rays count with the pilot's).
   const auto raysAlone = [&](BdptFamilies run) {

@@ -62,12 +62,13 @@ class VisibilityMemo {
   int shared_ = 0, stride_ = 0;
 };
 
-// The estimators the unified estimator's pilot weighs against both families (docs/bdpt-mis.md §13):
-// each family alone, as bdpt-shared and bdpt-independent run it.
-enum class Alone { Shared = 0, Own = 1 };
-constexpr int kAlternatives = 2;
+// The estimators a pilot weighs against the one it runs (docs/bdpt-mis.md §13, §14): each family
+// alone, as bdpt-shared and bdpt-independent run it (the unified bdpt's pilot), and camera paths
+// alone, path tracing with next-event estimation (vcm's).
+enum class Alone { Shared = 0, Own = 1, Camera = 2 };
+constexpr int kAlternatives = 3;
 
-// What the pilot learns from one camera sample of both families about each family alone, from the
+// What the pilot learns from one camera sample of both families about each alternative, from the
 // weights' sums: for each contribution C (film XYZ), ρ = p_both/p_alone, the two estimators'
 // densities of the path (√ of the ratio of their power-heuristic sums), and the second moment
 // running the family alone would add, C²·(ρ − 1) (Grittmann et al. 2022; negative where the family

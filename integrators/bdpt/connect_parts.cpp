@@ -86,7 +86,9 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
 
 double densityOverAlone(Alone which, const MisSums& total, const MisFactors& f, double sum) {
   MisFactors alone = f;
-  if (which == Alone::Shared) {
+  if (which == Alone::Camera) {
+    alone.ownFamily = alone.sharedFamily = false;
+  } else if (which == Alone::Shared) {
     alone.ownFamily = false;
     alone.sharedChoice = f.cameraChoice;
   } else {

@@ -73,17 +73,18 @@ double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn);
 // (their combination `sum`): p_alone the density of one family alone as bdpt-shared or
 // bdpt-independent runs it (the other family's terms gone; the shared light subpath choosing the
 // light as next-event estimation does, the own one its light and wavelength as bdpt-independent's,
-// f.ownAloneChoice); the square root of the ratio of the power-heuristic sums; infinite where
-// p_alone = 0.
+// f.ownAloneChoice), or of camera paths alone (the camera subpath reaching the light and next-event
+// estimation: both families' terms gone); the square root of the ratio of the power-heuristic sums;
+// infinite where p_alone = 0.
 double densityOverAlone(Alone alone, const MisSums& total, const MisFactors& f, double sum);
 
 // A strategy's weight from the recursive sums: its own c² over the path's whole sum
 // (docs/bdpt-mis.md eq. 11). With c.oracle set, the full recomputation `full(f)` is recorded beside
 // it. With c.pilot set, the path's ρ = p_both/p_alone of each family alone goes to its `pending`
 // (PilotMoments): for the shared family, 1 on paths of one group, where it has every strategy (§5),
-// and where the path carries no light for a reason the weights know, a wavelength the sensor does
-// not see (σ = 0) or one its light does not emit (κ = 0); infinite where a family alone cannot
-// sample the path.
+// and, for it and camera paths alone, where the path carries no light for a reason the weights know,
+// a wavelength the sensor does not see (σ = 0) or one its light does not emit (κ = 0); infinite
+// where an alternative cannot sample the path.
 template <class Full>
 float weigh(const Context& c, int s, int t, Variant v, const MisSums& own, const MisSums& total, const MisFactors& f,
             Full&& full) {
@@ -94,6 +95,8 @@ float weigh(const Context& c, int s, int t, Variant v, const MisSums& own, const
     const bool shared = w > 0.0f && !f.oneGroup && f.sensorPdf > 0.0 && f.cameraChoice > 0.0;
     c.pilot->alone[int(Alone::Shared)].pending = shared ? densityOverAlone(Alone::Shared, total, f, sum) : 1.0;
     c.pilot->alone[int(Alone::Own)].pending = w > 0.0f ? densityOverAlone(Alone::Own, total, f, sum) : 1.0;
+    const bool sensed = w > 0.0f && f.sensorPdf > 0.0 && f.cameraChoice > 0.0;
+    c.pilot->alone[int(Alone::Camera)].pending = sensed ? densityOverAlone(Alone::Camera, total, f, sum) : 1.0;
   }
   return w;
 }

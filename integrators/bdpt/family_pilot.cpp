@@ -131,6 +131,35 @@ PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind 
   return out;
 }
 
+double relativeVarianceAtPixels(int width, int height, uint64_t seed, SamplerKind kind, int spp, size_t pixels,
+                                const PilotSample& sample, RayCounter& rays) {
+  const size_t all = size_t(width) * size_t(height);
+  pixels = std::min(pixels, all);
+  std::vector<double> rel(pixels, 0.0);
+  std::vector<SampleContext> ctx(pixels);
+  const uint64_t seeds[2] = {seed * 0xC2B2AE3D27D4EB4Full + 0x165667B19E3779F9ull,
+                             seed * 0x94D049BB133111EBull + 0x27D4EB2F165667C5ull};
+  tbb::parallel_for(size_t(0), pixels, [&](size_t j) {
+    const size_t i = (j * all) / pixels;
+    const Vec2 pixel(float(i % size_t(width)), float(i / size_t(width)));
+    std::vector<std::vector<Splat>> excess;
+    std::array<double, 3> x[2] = {};
+    for (int image = 0; image < 2; ++image)
+      for (int k = 0; k < spp; ++k) {
+        Sampler rng(kind, seeds[image], uint64_t(i), uint32_t(k));
+        const Vec3 v = sample(pixel, rng, ctx[j], excess);
+        if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z))) continue;
+        x[image][0] += v.x / spp, x[image][1] += v.y / spp, x[image][2] += v.z / spp;
+      }
+    for (int c = 0; c < 3; ++c) {
+      const double d = x[0][c] - x[1][c], m = 0.5 * (x[0][c] + x[1][c]);
+      rel[j] += spp * 0.5 * d * d / (m * m + 1e-2);
+    }
+  });
+  for (const SampleContext& c : ctx) rays.closest += c.counter.closest, rays.shadow += c.counter.shadow;
+  return trimmedMean(std::move(rel));
+}
+
 RayCounter raysOfSamples(int width, int height, uint64_t seed, SamplerKind kind, size_t count, const PilotSample& sample) {
   const size_t pixels = size_t(width) * size_t(height);
   std::vector<SampleContext> ctx(count);

@@ -38,6 +38,15 @@ struct PilotEstimates {
 PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind kind, int alternatives,
                               const PilotSample& sample);
 
+// The relative variance per sample of an estimator whose samples do not splat, at `spp` samples per
+// pixel: two independent images (random numbers of `kind`, each image with a seed of its own derived
+// from `seed`) at `pixels` pixels spread evenly over the image, the mean over the pixels of
+// Σ_XYZ spp·(x₁ − x₂)²/2 / (m² + 10⁻²), m the mean of the two. With a sampler that stratifies the
+// samples of a pixel (Sobol) it shows what the stratification gains at that count. The rays traced
+// are added to `rays`.
+double relativeVarianceAtPixels(int width, int height, uint64_t seed, SamplerKind kind, int spp, size_t pixels,
+                                const PilotSample& sample, RayCounter& rays);
+
 // The rays `count` camera samples of `sample` trace, at pixels spread evenly over the image, with
 // random numbers of their own derived from `seed`.
 RayCounter raysOfSamples(int width, int height, uint64_t seed, SamplerKind kind, size_t count, const PilotSample& sample);

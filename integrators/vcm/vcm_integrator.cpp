@@ -1,13 +1,17 @@
 #include "integrators/vcm/vcm_integrator.h"
 
+#include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "core/memory_budget.h"
 #include "integrators/bdpt/connect.h"
+#include "integrators/bdpt/family_pilot.h"
 #include "integrators/bdpt/merge.h"
 #include "integrators/bdpt/subpath_mis.h"
 #include "integrators/direct_emission.h"
+#include "integrators/integrator_factory.h"
 #include "integrators/progressive_schedule.h"
 #include "integrators/vcm/light_vertex_pass.h"
 
@@ -22,9 +26,15 @@ namespace {
 constexpr float kVerticesPerDisc = 1.0f;
 // Light subpaths of the pilot that counts the vertices a pass keeps per subpath.
 constexpr size_t kPilotPaths = 1024;
+// The pixels, and samples per pixel, at which the subpath pilot measures what camera paths alone
+// gain from stratified random numbers (docs/bdpt-mis.md §14).
+constexpr size_t kGainPixels = 512;
+constexpr int kGainSpp = 16;
+
+}  // namespace
 
 // What every camera sample of a pass shares: its wavelength lanes, the walk with this pass's η, and
-// the light vertices to merge with.
+// the light vertices to merge with; or, where camera paths alone run, pt's pass.
 struct VcmPass final : PassData {
   bdpt::LaneTables tables;
   bdpt::Lanes lanes;
@@ -32,9 +42,9 @@ struct VcmPass final : PassData {
   float radius = 0.0f;
   float bandwidth = 0.0f;  // the wavelength kernel's half-width (own merges through an elastic lobe); 0: none
   std::unique_ptr<LightVertexMap> vertices;  // null without merges
+  bool cameraAlone = false;
+  std::unique_ptr<const PassData> camera;    // cameraAlone: what pt's beginPass returned
 };
-
-}  // namespace
 
 Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
     : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
@@ -89,7 +99,17 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
   if (parts_ != Parts::Connections && families_.independent)
     bandwidth1_ = p.bandwidth > 0.0f ? p.bandwidth : 0.01f * (scene.range.max - scene.range.min);
   ws_.strategies.connections = parts_ != Parts::Merges;
+  // Without light subpaths vertex connection and merging is path tracing with next-event
+  // estimation (its strategies s = 0 and s = 1): pt's estimator, at the same wavelength settings.
+  if (parts_ == Parts::ConnectionsAndMerges && s.vcmPaths != VcmPaths::Bidirectional) {
+    RenderSettings camera = s;
+    camera.wavelengths.light = WavelengthSettings().light;  // pt traces no light subpaths
+    cameraAlone_ = makeIntegrator("pt", scene, camera);
+    pathsChoice_ = s.vcmPaths;
+  }
 }
+
+Vcm::~Vcm() = default;
 
 std::string Vcm::name() const {
   return parts_ == Parts::Merges ? "bpm" : parts_ == Parts::Connections ? "vc" : "vcm";
@@ -97,8 +117,99 @@ std::string Vcm::name() const {
 
 float Vcm::radius(int sample) const { return std::sqrt(progressiveRadiusSquared(radius1_, alpha_, sample + 1)); }
 
-std::unique_ptr<const PassData> Vcm::beginPass(const Scene& scene, int firstSample, int, uint64_t seed,
+std::unique_ptr<const PassData> Vcm::beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                                RayCounter& counter) const {
+  VcmPaths run = pathsChoice_;
+  if (run == VcmPaths::Auto) {
+    // Every process runs the pilot once; its rays count in the pass that takes sample 0, so that the
+    // statistics do not depend on the number of processes (render_group.h).
+    RayCounter pilotRays;
+    run = pilotChoice(scene, seed, pilotRays);
+    if (firstSample == 0) counter.closest += pilotRays.closest, counter.shadow += pilotRays.shadow;
+  }
+  if (run == VcmPaths::Bidirectional) return bidirectionalPass(scene, firstSample, seed, counter);
+  auto pass = std::make_unique<VcmPass>();
+  pass->cameraAlone = true;
+  pass->camera = cameraAlone_->beginPass(scene, firstSample, count, seed, counter);
+  return pass;
+}
+
+VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter) const {
+  std::lock_guard<std::mutex> lock(pilotMutex_);
+  if (pilot_ && pilot_->seed == seed) return pilot_->run;
+  using namespace bdpt;
+  // A pass of its own (lanes, light vertices), then two images of vcm against it, and from their
+  // paths what camera paths alone would add (PilotMoments, Alone::Camera).
+  RayCounter passRays;
+  const std::unique_ptr<VcmPass> pass = bidirectionalPass(scene, 0, mixBits(seed ^ 0xa0761d6478bd642fULL), passRays);
+  std::atomic<uint64_t> unsampled{0};
+  const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx,
+                               std::vector<std::vector<Splat>>& excess) -> Vec3 {
+    thread_local PilotMoments moments;
+    moments.clear();
+    const Vec3 v = estimate(scene, pixel, rng, ctx, *pass, &moments);
+    const PilotMoments::Alternative& alt = moments.alone[int(Alone::Camera)];
+    if (alt.unsampled > 0) unsampled.fetch_add(uint64_t(alt.unsampled), std::memory_order_relaxed);
+    excess[0].insert(excess[0].end(), alt.excess.begin(), alt.excess.end());
+    return v;
+  };
+  const int w = scene.camera.width(), h = scene.camera.height();
+  const PilotEstimates e = pilotEstimates(w, h, seed, SamplerKind::Independent, 1, both);
+  const PilotSample camera = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
+    return cameraAlone_->samplePixel(scene, pixel, rng, ctx);
+  };
+  // What camera paths alone gain from the render's stratified random numbers over independent
+  // ones, from their own samples (light they rarely find is missing from both alike).
+  RayCounter cameraRays;
+  const double independent =
+      relativeVarianceAtPixels(w, h, seed, SamplerKind::Independent, kGainSpp, kGainPixels, camera, cameraRays);
+  double gain = 1.0;
+  int kinds = 1;
+  if (sampler_ != SamplerKind::Independent) {
+    const double stratified = relativeVarianceAtPixels(w, h, seed, sampler_, kGainSpp, kGainPixels, camera, cameraRays);
+    gain = independent > 0.0 ? stratified / independent : 1.0;
+    kinds = 2;
+  }
+  const double cameraSamples = double(kinds) * 2.0 * kGainSpp * double(std::min(kGainPixels, size_t(w) * size_t(h)));
+  counter.closest = e.rays.closest + passRays.closest + cameraRays.closest;
+  counter.shadow = e.rays.shadow + passRays.shadow + cameraRays.shadow;
+  PilotOutcome o;
+  o.seed = seed;
+  o.relVar = e.relVar;
+  // Per camera sample: its own rays and its share of the pass's light subpaths (a pass takes one
+  // sample per pixel).
+  o.rays = double(e.rays.closest + e.rays.shadow) / double(e.samples) +
+           double(passRays.closest + passRays.shadow) / (double(w) * double(h));
+  o.cameraSamplesAll = unsampled.load() == 0;
+  o.stratification = gain;
+  o.cameraRelVar = (e.relVar + e.relExcess[0]) * gain;
+  o.cameraRays = double(cameraRays.closest + cameraRays.shadow) / cameraSamples;
+  if (o.cameraSamplesAll && o.cameraRelVar * o.cameraRays < o.relVar * o.rays) o.run = VcmPaths::Camera;
+  pilot_ = o;
+  return o.run;
+}
+
+std::string Vcm::choices() const {
+  if (!cameraAlone_) return {};
+  if (pathsChoice_ != VcmPaths::Auto) return std::string("paths: ") + toString(pathsChoice_);
+  std::lock_guard<std::mutex> lock(pilotMutex_);
+  if (!pilot_) return {};
+  char camera[160];
+  if (pilot_->cameraSamplesAll)
+    std::snprintf(camera, sizeof camera, "%.3g, %.3g rays (stratification x%.2g)", pilot_->cameraRelVar,
+                  pilot_->cameraRays, pilot_->stratification);
+  else
+    std::snprintf(camera, sizeof camera, "cannot sample some paths that carry light");
+  char buf[300];
+  std::snprintf(buf, sizeof buf,
+                "paths: %s (pilot: relative variance per sample and rays per sample: bidirectional %.3g, %.3g rays; "
+                "camera alone %s)",
+                toString(pilot_->run), pilot_->relVar, pilot_->rays, camera);
+  return buf;
+}
+
+std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed,
+                                                RayCounter& counter) const {
   auto pass = std::make_unique<VcmPass>();
   // The pass's lanes: sample `firstSample` of a sequence of its own, so that passes stratify them.
   Sampler laneRng(sampler_, mixBits(seed ^ 0x2545f4914f6cdd1dULL), 0, uint32_t(firstSample));
@@ -121,8 +232,17 @@ std::unique_ptr<const PassData> Vcm::beginPass(const Scene& scene, int firstSamp
 }
 
 Vec3 Vcm::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
-  using namespace bdpt;
   const VcmPass& pass = static_cast<const VcmPass&>(*ctx.pass);
+  if (!pass.cameraAlone) return estimate(scene, pixel, rng, ctx, pass, nullptr);
+  ctx.pass = pass.camera.get();
+  const Vec3 xyz = cameraAlone_->samplePixel(scene, pixel, rng, ctx);
+  ctx.pass = &pass;
+  return xyz;
+}
+
+Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, const VcmPass& pass,
+                   bdpt::PilotMoments* pilot) const {
+  using namespace bdpt;
   const Lanes& lanes = pass.lanes;
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
@@ -132,11 +252,10 @@ Vec3 Vcm::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContex
   Context c{scene, pass.walk, families_, lanes, sensor_.density(), ctx.counter};
   c.spectralSplats = ctx.recordSpectral;
   c.bandwidth = pass.bandwidth;
+  c.pilot = pilot;
+  c.pixel = pixel;
   if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
-  if (ctx.recordStrategies) {
-    c.log = &ctx.strategies;
-    c.pixel = pixel;
-  }
+  if (ctx.recordStrategies) c.log = &ctx.strategies;
   float radiance[kMaxLanes];
   Vec3 xyz(0.0f);
   if (parts_ != Parts::Merges) {

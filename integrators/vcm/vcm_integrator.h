@@ -10,8 +10,11 @@
 // (with the own family's mollified joins, docs/bdpt-mis.md §6). The radius and the kernel shrink pass
 // by pass as in `ppm` (render/ppm/radius, bandwidth, alpha). `vc` has the connections alone (no
 // kernel), `bpm` the merges alone (with the camera subpath reaching the light), as SmallVCM's
-// algorithm list.
+// algorithm list. `vcm` without light subpaths is path tracing with next-event estimation: a pilot
+// chooses per render between the two (docs/bdpt-mis.md §14, render/vcm_paths).
 #include <memory>
+#include <mutex>
+#include <optional>
 
 #include "integrators/bdpt/light_first.h"
 #include "integrators/bdpt/mis.h"
@@ -21,6 +24,11 @@
 
 namespace kasha {
 
+struct VcmPass;
+namespace bdpt {
+struct PilotMoments;
+}
+
 class Vcm final : public Integrator {
  public:
   enum class Parts : uint8_t { ConnectionsAndMerges, Connections, Merges };
@@ -29,18 +37,32 @@ class Vcm final : public Integrator {
   // radius, alpha), WavelengthStrategyError for a strategy that is not a density, MemoryLimitError
   // where a pass cannot fit the memory limit.
   Vcm(const Scene& scene, const RenderSettings& settings, Parts parts);
+  ~Vcm() override;
   std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                             RayCounter& counter) const override;
   int maxSamplesPerPass() const override { return 1; }
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override;
   int lanes() const override { return lanes_; }
+  std::string choices() const override;
+
+  // The pilot's decision for a render with `seed` (docs/bdpt-mis.md §14): Bidirectional or Camera.
+  // Computed once per seed (the render's first pass asks); `counter` is set to the rays it traced
+  // when it runs (left alone when the decision was known).
+  VcmPaths pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter) const;
 
   // The merge radius of the pass that takes sample `sample` (iteration sample + 1).
   float radius(int sample) const;
   size_t lightPathsPerPass() const { return paths_; }
 
  private:
+  // The pass that takes sample `firstSample`: its lanes, radius and light vertices.
+  std::unique_ptr<VcmPass> bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed,
+                                             RayCounter& counter) const;
+  // One camera sample of every strategy against `pass`; with `pilot`, what the pilot learns from it.
+  Vec3 estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, const VcmPass& pass,
+                bdpt::PilotMoments* pilot) const;
+
   WavelengthStrategy sensor_, light_;
   Parts parts_;
   bdpt::WalkSettings ws_;
@@ -53,6 +75,20 @@ class Vcm final : public Integrator {
   uint64_t memoryLimit_;
   SamplerKind sampler_;
   std::vector<Vec3> directXyz_;  // per light: its emission's XYZ seen directly (direct_emission.h)
+  // vcm only: camera paths alone (pt's estimator with these settings), and which subpaths run.
+  std::unique_ptr<Integrator> cameraAlone_;
+  VcmPaths pathsChoice_ = VcmPaths::Bidirectional;
+  // The pilot's outcome, per render seed (VcmPaths::Auto).
+  struct PilotOutcome {
+    uint64_t seed = 0;
+    VcmPaths run = VcmPaths::Bidirectional;
+    bool cameraSamplesAll = true;  // camera paths alone sample every path that carries light
+    // Relative variance per sample (camera paths alone's from vcm's paths, times what their own
+    // samples gain from the render's stratified random numbers) and rays per sample.
+    double relVar = 0.0, rays = 0.0, cameraRelVar = 0.0, cameraRays = 0.0, stratification = 1.0;
+  };
+  mutable std::mutex pilotMutex_;
+  mutable std::optional<PilotOutcome> pilot_;
 };
 
 }  // namespace kasha

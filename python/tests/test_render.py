@@ -109,3 +109,16 @@ def test_bdpt_families_from_python():
     assert "choices" not in kasha.render(scene, integrator="bdpt", bdpt_families="both")["stats"]
     with pytest.raises(kasha.InputError, match="bdpt_families"):
         kasha.render(scene, integrator="bdpt", bdpt_families="neither")
+
+
+def test_vcm_paths_from_python():
+    # vcm runs a pilot and reports its choice; camera paths alone are pt's estimator, image for
+    # image; a bad choice names the field.
+    scene = kasha.Scene.from_dict(furnace_dict(resolution=8, spp=4))
+    auto = kasha.render(scene, integrator="vcm")
+    assert auto["stats"]["choices"].startswith("paths: ")
+    camera = kasha.render(scene, integrator="vcm", vcm_paths="camera")
+    np.testing.assert_array_equal(camera["xyz"], kasha.render(scene, integrator="pt")["xyz"])
+    assert "choices" not in kasha.render(scene, integrator="vcm", vcm_paths="bidirectional")["stats"]
+    with pytest.raises(kasha.InputError, match="vcm_paths"):
+        kasha.render(scene, integrator="vcm", vcm_paths="light")

@@ -1,0 +1,138 @@
+// vcm's choice between every strategy and camera paths alone (docs/bdpt-mis.md §14): the density of
+// camera paths alone from the weights' sums, what stratified random numbers gain, the pilot's
+// decision on scenes whose light camera paths find or miss, and that camera paths alone are exactly
+// pt's estimator.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "integrators/bdpt/connect_parts.h"
+#include "integrators/bdpt/family_pilot.h"
+#include "integrators/integrator_factory.h"
+#include "integrators/render_loop.h"
+#include "integrators/vcm/vcm_integrator.h"
+#include "scene/scene_loader.h"
+#include "tests/support.h"
+
+namespace kasha {
+namespace {
+
+// ρ = p_vcm/p_camera from the power-heuristic sums: camera paths alone keep the camera subpath
+// reaching the light and next-event estimation (σ²·g²·(hit + κ²·nee)), every other term goes.
+TEST(VcmPaths, TheDensityOfCameraPathsAlone) {
+  bdpt::MisSums total;
+  total.hit = 1.0, total.nee = 2.0, total.shared = 3.0, total.own = 4.0, total.mollified = 5.0, total.ownSplat = 6.0;
+  bdpt::MisFactors f;
+  f.sharedFamily = f.ownFamily = true;
+  f.oneGroup = true;
+  f.sensorPdf = 0.5, f.laneGain = 2.0, f.cameraChoice = 0.25, f.sharedChoice = 0.5, f.ownChoice = 3.0;
+  f.mollifyWidth = 0.1;
+  // By hand: σ²·(g²·(1 + κ²·2 + S²·3) + ℓ²·(4 + ε²·5)) + ℓ²·6, and σ²·g²·(1 + κ²·2).
+  const double all = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 3.0) + 9.0 * (4.0 + 0.01 * 5.0)) + 9.0 * 6.0;
+  const double camera = 0.25 * 4.0 * (1.0 + 0.0625 * 2.0);
+  ASSERT_NEAR(bdpt::combine(total, f), all, 1e-12);
+  EXPECT_NEAR(bdpt::densityOverAlone(bdpt::Alone::Camera, total, f, all), std::sqrt(all / camera), 1e-12);
+  // A path neither the camera subpath's hit nor next-event estimation samples.
+  bdpt::MisSums joinsOnly;
+  joinsOnly.shared = 1.0;
+  EXPECT_TRUE(std::isinf(bdpt::densityOverAlone(bdpt::Alone::Camera, joinsOnly, f, 1.0)));
+}
+
+// 1 + U(−1, 1) per channel: Var = 1/3 around a mean of 1; stratified over a pixel's samples (Sobol)
+// the mean's variance falls faster than 1/n.
+Vec3 noisy(Sampler& rng) { return Vec3(1.0f) + 2.0f * rng.uniform3() - Vec3(1.0f); }
+
+TEST(VcmPaths, RelativeVarianceAtPixelsIsKnownAndStratificationLowersIt) {
+  const bdpt::PilotSample sample = [](Vec2, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
+    ++ctx.counter.closest;
+    return noisy(rng);
+  };
+  RayCounter rays;
+  constexpr int spp = 16;
+  constexpr size_t pixels = 2048;
+  const double independent =
+      bdpt::relativeVarianceAtPixels(64, 64, 3, SamplerKind::Independent, spp, pixels, sample, rays);
+  EXPECT_EQ(rays.closest, uint64_t(2 * spp * pixels));
+  // Σ_XYZ (1/3)/(1 + 10⁻²), m ≈ 1 up to its noise; the standard error of the mean over the pixels of
+  // Σ_XYZ spp·(x₁ − x₂)²/2 with x₁ − x₂ normal of variance 2/(3·spp): √(3·2/pixels)·(1/3).
+  const double expected = 3.0 * (1.0 / 3.0) / 1.01;
+  EXPECT_NEAR(independent, expected, 4.0 * std::sqrt(6.0 / pixels) / 3.0 + 0.01);
+  const double stratified = bdpt::relativeVarianceAtPixels(64, 64, 3, SamplerKind::Sobol, spp, pixels, sample, rays);
+  EXPECT_LT(stratified, 0.5 * independent);  // a smooth integrand in 3 dimensions at 16 samples
+}
+
+std::unique_ptr<Scene> smallScene(const char* file, int res) {
+  auto scene = loadScene(test::sourcePath(file));
+  const Camera& c = scene->camera;
+  scene->camera = Camera(c.position(), c.position() + c.forward(), c.up(), c.fovYDegrees(), res, res);
+  return scene;
+}
+
+VcmPaths pilotChoice(const Scene& scene) {
+  RenderSettings settings = scene.render;
+  settings.vcmPaths = VcmPaths::Auto;
+  const std::unique_ptr<Integrator> in = makeIntegrator("vcm", scene, settings);
+  RayCounter rays;
+  return dynamic_cast<const Vcm&>(*in).pilotChoice(scene, 1, rays);
+}
+
+// uv_caustic.json: a UV point lamp's light reaches the fluorescent floor only through glass, which
+// no camera path can sample. uv_caustic_mirror.json: the same through a lens from a small LED, which
+// camera paths through the lens hit too rarely. The Cornell box lit by a visible lamp: diffuse light
+// that camera paths with next-event estimation find well, at a third of vcm's rays.
+TEST(VcmPaths, ThePilotKeepsLightSubpathsWhereCameraPathsMissTheLight) {
+  EXPECT_EQ(pilotChoice(*smallScene("scenes/uv_caustic.json", 48)), VcmPaths::Bidirectional);
+  EXPECT_EQ(pilotChoice(*smallScene("scenes/uv_caustic_mirror.json", 48)), VcmPaths::Bidirectional);
+  EXPECT_EQ(pilotChoice(*smallScene("scenes/cornell_fluorescent.json", 48)), VcmPaths::Camera);
+}
+
+std::vector<Vec3> image(const Scene& scene, const std::string& name, RenderSettings settings, RenderStats* stats) {
+  Film film(scene.camera.width(), scene.camera.height());
+  RenderOptions opt;
+  opt.spp = 4;
+  opt.seed = 9;
+  const RenderStats st = render(scene, *makeIntegrator(name, scene, settings), film, opt);
+  if (stats) *stats = st;
+  std::vector<Vec3> out;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x) out.push_back(film.xyz(x, y));
+  return out;
+}
+
+// Camera paths alone, fixed or chosen by the pilot, are pt's estimator: the same image from the same
+// seed; the decision is reported.
+TEST(VcmPaths, CameraPathsAloneArePt) {
+  const auto scene = smallScene("scenes/cornell_fluorescent.json", 24);
+  RenderSettings settings = scene->render;
+  const std::vector<Vec3> pt = image(*scene, "pt", settings, nullptr);
+  settings.vcmPaths = VcmPaths::Camera;
+  RenderStats fixed, chosen;
+  EXPECT_EQ(image(*scene, "vcm", settings, &fixed), pt);
+  EXPECT_EQ(fixed.choices, "paths: camera");
+  settings.vcmPaths = VcmPaths::Auto;
+  EXPECT_EQ(image(*scene, "vcm", settings, &chosen), pt);
+  EXPECT_EQ(chosen.choices.rfind("paths: camera (pilot: relative variance per sample and rays per sample: "
+                                 "bidirectional ",
+                                 0),
+            0u)
+      << chosen.choices;
+  // The pilot's rays count with the render's.
+  EXPECT_GT(chosen.closestRays, fixed.closestRays);
+}
+
+TEST(VcmPaths, FixedOrHalvesDecideNothing) {
+  const auto scene = smallScene("scenes/uv_caustic.json", 16);
+  RenderSettings settings = scene->render;
+  settings.vcmPaths = VcmPaths::Bidirectional;
+  EXPECT_EQ(makeIntegrator("vcm", *scene, settings)->choices(), "");
+  settings.vcmPaths = VcmPaths::Auto;
+  EXPECT_EQ(makeIntegrator("vc", *scene, settings)->choices(), "");
+  EXPECT_EQ(makeIntegrator("bpm", *scene, settings)->choices(), "");
+  RenderStats st;
+  image(*scene, "vcm", settings, &st);
+  EXPECT_NE(st.choices.find("paths: bidirectional (pilot: "), std::string::npos) << st.choices;
+  EXPECT_NE(st.choices.find("camera alone cannot sample some paths that carry light"), std::string::npos) << st.choices;
+}
+
+}  // namespace
+}  // namespace kasha
