@@ -26,6 +26,8 @@ namespace {
 constexpr float kVerticesPerDisc = 1.0f;
 // Light subpaths of the pilot that counts the vertices a pass keeps per subpath.
 constexpr size_t kPilotPaths = 1024;
+// Light subpaths of the subpath pilot's pass, at most (docs/bdpt-mis.md §14).
+constexpr size_t kPilotLightPaths = 16384;
 // The pixels, and samples per pixel, at which the subpath pilot measures what camera paths alone
 // gain from stratified random numbers (docs/bdpt-mis.md §14).
 constexpr size_t kGainPixels = 512;
@@ -141,7 +143,9 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   // A pass of its own (lanes, light vertices), then two images of vcm against it, and from their
   // paths what camera paths alone would add (PilotMoments, Alone::Camera).
   RayCounter passRays;
-  const std::unique_ptr<VcmPass> pass = bidirectionalPass(scene, 0, mixBits(seed ^ 0xa0761d6478bd642fULL), passRays);
+  const std::unique_ptr<VcmPass> pass =
+      bidirectionalPass(scene, 0, mixBits(seed ^ 0xa0761d6478bd642fULL), passRays, kPilotLightPaths);
+  const double passShare = double(paths_) / double(std::min(kPilotLightPaths, paths_));  // the render's over the pilot's
   std::atomic<uint64_t> unsampled{0};
   const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx,
                                std::vector<std::vector<Splat>>& excess) -> Vec3 {
@@ -179,7 +183,7 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   // Per camera sample: its own rays and its share of the pass's light subpaths (a pass takes one
   // sample per pixel).
   o.rays = double(e.rays.closest + e.rays.shadow) / double(e.samples) +
-           double(passRays.closest + passRays.shadow) / (double(w) * double(h));
+           double(passRays.closest + passRays.shadow) * passShare / (double(w) * double(h));
   o.cameraSamplesAll = unsampled.load() == 0;
   o.stratification = gain;
   o.cameraRelVar = (e.relVar + e.relExcess[0]) * gain;
@@ -209,19 +213,23 @@ std::string Vcm::choices() const {
 }
 
 std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed,
-                                                RayCounter& counter) const {
+                                                RayCounter& counter, size_t paths) const {
   auto pass = std::make_unique<VcmPass>();
   // The pass's lanes: sample `firstSample` of a sequence of its own, so that passes stratify them.
   Sampler laneRng(sampler_, mixBits(seed ^ 0x2545f4914f6cdd1dULL), 0, uint32_t(firstSample));
   pass->lanes = bdpt::sensorLanes(scene, sensor_.density(), laneRng.uniform(), lanes_, pass->tables, nullptr,
                                   lightFirst_.get());
   pass->walk = ws_;
-  pass->radius = radius(firstSample);
-  pass->bandwidth = bandwidth1_ * pass->radius / radius1_;
+  const float r = radius(firstSample);
+  pass->bandwidth = bandwidth1_ * r / radius1_;
   if (parts_ == Parts::Connections) return pass;
-  pass->walk.strategies.mergeEta = double(paths_) * kPi * double(pass->radius) * pass->radius;
+  // Fewer light subpaths than the render's (the pilot) merge within a radius widened so that η, and
+  // with it the merges' weights and the light vertices a disc holds, stay the pass's.
+  paths = paths == 0 ? paths_ : std::min(paths, paths_);
+  pass->radius = r * float(std::sqrt(double(paths_) / double(paths)));
+  pass->walk.strategies.mergeEta = double(paths_) * kPi * double(r) * r;
   LightVertexTracing t;
-  t.paths = paths_;
+  t.paths = paths;
   t.sampler = sampler_;
   t.memoryLimit = memoryLimit_;
   // A stream family per pass, apart from the camera samples' (render_loop.cpp) and the lanes'.

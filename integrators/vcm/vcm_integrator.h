@@ -56,9 +56,10 @@ class Vcm final : public Integrator {
   size_t lightPathsPerPass() const { return paths_; }
 
  private:
-  // The pass that takes sample `firstSample`: its lanes, radius and light vertices.
+  // The pass that takes sample `firstSample`: its lanes, radius and light vertices; with `paths`
+  // > 0, at most that many light subpaths (the radius widened to keep the pass's η).
   std::unique_ptr<VcmPass> bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed,
-                                             RayCounter& counter) const;
+                                             RayCounter& counter, size_t paths = 0) const;
   // One camera sample of every strategy against `pass`; with `pilot`, what the pilot learns from it.
   Vec3 estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, const VcmPass& pass,
                 bdpt::PilotMoments* pilot) const;
