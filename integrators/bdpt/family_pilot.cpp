@@ -143,13 +143,11 @@ double relativeVarianceAtPixels(int width, int height, uint64_t seed, SamplerKin
     const size_t i = (j * all) / pixels;
     const Vec2 pixel(float(i % size_t(width)), float(i / size_t(width)));
     std::vector<std::vector<Splat>> excess;
-    std::array<double, 3> x[2] = {};
+    Image x(2, {0.0, 0.0, 0.0});  // the pixel in each image
     for (int image = 0; image < 2; ++image)
       for (int k = 0; k < spp; ++k) {
         Sampler rng(kind, seeds[image], uint64_t(i), uint32_t(k));
-        const Vec3 v = sample(pixel, rng, ctx[j], excess);
-        if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z))) continue;
-        x[image][0] += v.x / spp, x[image][1] += v.y / spp, x[image][2] += v.z / spp;
+        add(x, size_t(image), sample(pixel, rng, ctx[j], excess), 1.0 / spp);
       }
     for (int c = 0; c < 3; ++c) {
       const double d = x[0][c] - x[1][c], m = 0.5 * (x[0][c] + x[1][c]);
