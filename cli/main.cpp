@@ -522,11 +522,14 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "both", "shared", "own"}));
   render->add_option("--vcm-paths", ra.vcmPaths,
                      "The subpaths of --integrator vcm: auto (the default: a pilot estimates, from vcm's own paths, "
-                     "the relative variance per sample of vcm and of camera paths alone, and their cost in rays, "
-                     "and runs the more efficient; camera paths alone only if they sample every path that carries "
-                     "light) | bidirectional (camera and light subpaths, every strategy) | camera (camera paths "
-                     "alone: path tracing with next-event estimation, pt's estimator)")
-      ->check(CLI::IsMember({"auto", "bidirectional", "camera"}));
+                     "the relative variance per sample of vcm, of vcm with the wide gather and of camera paths "
+                     "alone, and their cost in rays, and runs the most efficient; camera paths alone only if they "
+                     "sample every path that carries light) | bidirectional (camera and light subpaths, every "
+                     "strategy) | gather (the same, with photon mapping's wide final gather: own light vertices "
+                     "merge through a fluorescent lobe at the first non-specular camera vertex within 4x the "
+                     "radius) | camera (camera paths alone: path tracing with next-event estimation, pt's "
+                     "estimator)")
+      ->check(CLI::IsMember({"auto", "bidirectional", "gather", "camera"}));
   render->add_option("--sampler", ra.sampler,
                      "Random numbers of every sample: sobol (Owen-scrambled Sobol, the default) | independent (PCG32)")
       ->check(CLI::IsMember({"sobol", "independent"}));

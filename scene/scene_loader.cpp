@@ -151,7 +151,7 @@ struct Loader {
     else f.fail("bdpt_families", "'" + families + "' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
     const std::string vcmPaths = f.string("vcm_paths", toString(r.vcmPaths));
     if (const auto paths = parseVcmPaths(vcmPaths)) r.vcmPaths = *paths;
-    else f.fail("vcm_paths", "'" + vcmPaths + "' is not a choice of vcm's subpaths (auto, bidirectional, camera)");
+    else f.fail("vcm_paths", "'" + vcmPaths + "' is not a choice of vcm's subpaths (auto, bidirectional, gather, camera)");
     photonMapping(f);
     mollification(f);
     f.finish();

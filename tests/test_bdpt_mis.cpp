@@ -55,7 +55,8 @@ TEST(BdptMis, WeightsArePartitionOfUnity) {
         EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
         p.mollifyWidth = 0.1 + 10.0 * rng.uniform();  // with the mollified strategies (§6)
         EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
-        p.mergeEta = 0.1 + 10.0 * rng.uniform();  // with vertex merging (§12)
+        // With vertex merging (§12), each kind's η its own.
+        p.mergeEta = {0.1 + 10.0 * rng.uniform(), 0.1 + 10.0 * rng.uniform()};
         EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
         p.connections = false;  // merges alone (bpm)
         EXPECT_NEAR(weightSum(p), 1.0, 1e-6);
@@ -67,14 +68,14 @@ TEST(BdptMis, MergesAreExactWhereEachFamilySamplesTheGroupsOnce) {
   // fluorescent merge vertex, whatever the other lobes; bpm has no connections but the camera's hit.
   Rng rng(8);
   FullPath p = randomPath({E, F, E}, kBoth, rng);  // x_0 … x_4
-  p.mergeEta = 2.0;
+  p.mergeEta = {2.0, 2.0};
   EXPECT_FALSE(strategyValid(p, 1, Variant::kMerge));
   EXPECT_FALSE(strategyValid(p, 1, Variant::kMergeOwn));
   EXPECT_TRUE(strategyValid(p, 2, Variant::kMergeOwn));
   EXPECT_FALSE(strategyValid(p, 0, Variant::kMergeOwn));  // x_0 is on the light
   EXPECT_FALSE(strategyValid(p, 4, Variant::kMergeOwn));  // x_4 is the pinhole
   p = randomPath({E, E}, kBoth, rng);
-  p.mergeEta = 2.0;
+  p.mergeEta = {2.0, 2.0};
   EXPECT_TRUE(strategyValid(p, 1, Variant::kMerge));
   EXPECT_TRUE(strategyValid(p, 2, Variant::kMerge));
   EXPECT_FALSE(strategyValid(p, 2, Variant::kMergeOwn));
@@ -82,10 +83,26 @@ TEST(BdptMis, MergesAreExactWhereEachFamilySamplesTheGroupsOnce) {
   p.mollifyWidth = 5.0;
   EXPECT_TRUE(strategyValid(p, 2, Variant::kMergeMollified));  // an own vertex through an elastic x_2
   FullPath q = randomPath({F}, kBoth, rng);
-  q.mergeEta = 2.0;
+  q.mergeEta = {2.0, 2.0};
   q.mollifyWidth = 5.0;
   EXPECT_FALSE(strategyValid(q, 1, Variant::kMergeMollified));  // a fluorescent x_1 merges exactly
   EXPECT_TRUE(strategyValid(q, 1, Variant::kMergeOwn));
+  // x_1, next to the camera, is the first gather vertex: the merge's density has η_g, the gather's
+  // own: three times the radius, nine times the area, 81 times the weight against the camera's hit.
+  const double before = misWeight(q, 1, Variant::kMergeOwn) / misWeight(q, 0, Variant::kStandard);
+  q.mergeEta.gather = 18.0;
+  EXPECT_NEAR(misWeight(q, 1, Variant::kMergeOwn) / misWeight(q, 0, Variant::kStandard), 81.0 * before, 1e-4 * 81.0 * before);
+  q.mergeEta.eta = 7.0;  // the other vertices' η: not x_1's
+  EXPECT_NEAR(misWeight(q, 1, Variant::kMergeOwn) / misWeight(q, 0, Variant::kStandard), 81.0 * before, 1e-4 * 81.0 * before);
+  q.mergeEta.gather = 0.0;
+  EXPECT_FALSE(strategyValid(q, 1, Variant::kMergeOwn));
+  // Behind a specular x_2 (x_3 the camera), x_1 is still the first gather vertex; x_1 of a path
+  // whose x_2 is not specular is not.
+  FullPath behindGlass = randomPath({F, E}, kBoth, rng);
+  behindGlass.mergeEta = {0.0, 5.0};
+  EXPECT_FALSE(strategyValid(behindGlass, 1, Variant::kMergeOwn));
+  behindGlass.v[2].connectible = false;
+  EXPECT_TRUE(strategyValid(behindGlass, 1, Variant::kMergeOwn));
   p.v[2].connectible = false;  // a specular vertex cannot merge
   EXPECT_FALSE(strategyValid(p, 2, Variant::kMerge));
   p.connections = false;
@@ -96,11 +113,11 @@ TEST(BdptMis, MergesAreExactWhereEachFamilySamplesTheGroupsOnce) {
   // The merged light vertex's subpath chose its light with the shared family's choice, next-event
   // estimation with its own.
   p = randomPath({E, E}, kShared, rng);
-  p.mergeEta = 3.0;
+  p.mergeEta = {3.0, 5.0};
   const double ratio = misWeight(p, 1, Variant::kMerge) / misWeight(p, 1, Variant::kStandard);
   const double nee = p.cameraChoice * p.specCam1 * p.pdfNee * p.v[1].pdfCam * p.v[2].pdfCam;
   const double merge =
-      p.sharedChoice * p.mergeEta * p.v[0].pdfLight * p.v[1].pdfLight * p.v[1].pdfCam * p.v[2].pdfCam;
+      p.sharedChoice * p.mergeEta.eta * p.v[0].pdfLight * p.v[1].pdfLight * p.v[1].pdfCam * p.v[2].pdfCam;
   EXPECT_NEAR(ratio, (merge / nee) * (merge / nee), 1e-6 * ratio);  // the weights are floats
 }
 

@@ -395,7 +395,7 @@ TEST_F(SceneLoader, UnknownTypes) {
   expectError([](json& j) { j["render"] = {{"bdpt_families", "neither"}}; }, "/render/bdpt_families",
               "'neither' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
   expectError([](json& j) { j["render"] = {{"vcm_paths", "light"}}; }, "/render/vcm_paths",
-              "'light' is not a choice of vcm's subpaths (auto, bidirectional, camera)");
+              "'light' is not a choice of vcm's subpaths (auto, bidirectional, gather, camera)");
 }
 
 TEST_F(SceneLoader, MissingMaterial) {

@@ -372,7 +372,8 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     pCamAPrev = cameraSide(c.scene, a, wo, wi, aPrev, a.lobe, a.lambda, lambda);
     here = lightTracingMultiplicity(true, a.spectralPdf, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
-    sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, c.walk.strategies), pCamAPrev);
+    // a, next to the camera, is the path's first gather vertex.
+    sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, c.walk.strategies, true), pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
   if (!any) return;

@@ -110,7 +110,7 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   fp.ownChoice = f.ownChoice;
   fp.mollifyWidth = f.mollifyWidth;
   fp.connections = c.walk.strategies.connections;
-  fp.mergeEta = c.walk.strategies.mergeEta;
+  fp.mergeEta = c.walk.strategies.merge;
   const int k = s + t - 1;
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {

@@ -7,50 +7,42 @@
 
 namespace kasha::bdpt {
 
-void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, float* out,
-           const std::vector<PathVertex>* lightPath) {
+namespace {
+
+// Merges v with b = C[t−1] at lanes [k0, k1) (docs/bdpt-mis.md §12; `gather`: b is the path's first
+// gather vertex, merge.h for withinRadius): lambdaB the wavelength of b's
+// densities (and of an own vertex's one lane), betaB b's throughput per lane, times laneFactor.
+void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
+                bool gather, int k0, int k1, float lambdaB, const float* betaB, float laneFactor, float* out,
+                const std::vector<PathVertex>* lightPath) {
   const PathVertex& b = C[size_t(t - 1)];
   const PathVertex& bNext = C[size_t(t - 2)];
-  if (!mergeable(b)) return;
   const bool own = v.has(LightVertex::kOwn);
-  // The lanes served: those both reach on a shared vertex (it carries the camera sample's lanes);
-  // on an own one, one camera lane, as an own join serves (ownJoinLane).
-  int k0, k1;
-  float laneFactor = 1.0f;
-  if (own) {
-    const auto [lane, scale] = ownJoinLane(c, b);
-    k0 = lane, k1 = lane + 1, laneFactor = scale;
-  } else {
-    k0 = std::max(v.lane < 0 ? 0 : int(v.lane), b.firstLane());
-    k1 = std::min(v.lane < 0 ? c.lanes.n : v.lane + 1, b.endLane(c.lanes));
-    laneFactor = keptLaneScale(c, v.lane, b.lane);
-  }
-  if (k0 >= k1) return;
   // The exact merges (docs/bdpt-mis.md §12): a shared vertex through the elastic lobe at the
   // camera's (the pass's) wavelengths; an own vertex through the fluorescent lobe, from its
   // wavelength to the camera's, or through the elastic lobe and the wavelength kernel.
-  const float lambdaB = b.lambdaOf(c.lanes, k0);
   struct Kind {
     SpectralLobe lobe;
     Variant variant;
   };
   Kind kinds[2];
   int n = 0;
-  if (!own) kinds[n++] = {SpectralLobe::Elastic, Variant::kMerge};
-  if (own && b.bsdf->has(BsdfFlags::Fluorescent)) kinds[n++] = {SpectralLobe::Fluorescent, Variant::kMergeOwn};
-  if (own && c.bandwidth > 0.0f && std::abs(v.lambda - lambdaB) < c.bandwidth)
+  if (!own && withinRadius) kinds[n++] = {SpectralLobe::Elastic, Variant::kMerge};
+  if (own && (withinRadius || gather) && b.bsdf->has(BsdfFlags::Fluorescent)) kinds[n++] = {SpectralLobe::Fluorescent, Variant::kMergeOwn};
+  if (own && withinRadius && c.bandwidth > 0.0f && std::abs(v.lambda - lambdaB) < c.bandwidth)
     kinds[n++] = {SpectralLobe::Elastic, Variant::kMergeMollified};
   const Bsdf& fb = *b.bsdf;
   const Vec3 bWi(v.wi[0], v.wi[1], v.wi[2]), bWo = fb.toLocal(towards(b, bNext));
   const Strategies& st = c.walk.strategies;
   const int m = v.depth;
-  const float scale = fb.incidentShadingRatio(bWi) * laneFactor / float(st.mergeEta);
   for (int i = 0; i < n; ++i) {
     const SpectralLobe lobe = kinds[i].lobe;
     const Variant variant = kinds[i].variant;
+    const double etaMerge = etaOf(st.merge, variant, gather);
+    const float scale = fb.incidentShadingRatio(bWi) * laneFactor / float(etaMerge);
     // The wavelengths of the densities at x_m: the light arriving and the camera's leaving, the
     // same through the elastic lobe (the camera's, one that scatters there, §10).
-    const float lambdaOut = own ? lambdaB : b.lambda;
+    const float lambdaOut = lambdaB;
     const float lambdaIn = variant == Variant::kMergeOwn ? v.lambda : lambdaOut;
     // Mollified: δ(λ_v − λ_b) widened to K_h, renormalised inside the range (docs/bdpt-mis.md eq. 5).
     const WavelengthRange& r = c.scene.range;
@@ -61,10 +53,10 @@ void merge(const Context& c, const std::vector<PathVertex>& C, int t, const Ligh
     float value[kMaxLanes];
     bool any = false;
     for (int k = k0; k < k1; ++k) {
-      const float lambda = b.allLanes(c.lanes) ? c.lanes.lambda[k] : b.lambda;
+      const float lambda = b.lanesEndHere || b.allLanes(c.lanes) ? c.lanes.lambda[k] : lambdaB;
       const float f = own ? fb.eval(TransportMode::Radiance, bWi, bWo, lambdaIn, lambdaOut, lobe)
                           : fb.eval(TransportMode::Radiance, bWi, bWo, lambda, lambda, lobe);
-      value[k] = b.beta[k] * f * v.beta[own ? 0 : k] * scale * kernel;
+      value[k] = betaB[k] * f * v.beta[own ? 0 : k] * scale * kernel;
       any = any || value[k] > 0.0f;
     }
     if (!any) continue;
@@ -78,7 +70,7 @@ void merge(const Context& c, const std::vector<PathVertex>& C, int t, const Ligh
     // connection ends at x_m, with the merges at x_m.
     const SpectralLobe prevLobe =
         v.has(LightVertex::kPrevFluorescent) ? SpectralLobe::Fluorescent : SpectralLobe::Elastic;
-    const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, st) +
+    const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, st) +
                           (m == 1 ? firstVertexMultiplicity(true, lobe, specCam, v.has(LightVertex::kFiniteLight), st)
                                   : joinMultiplicity(v.has(LightVertex::kPrevConnectible), prevLobe, lobe, st));
     const double rPrev = densityRatio(pCamPrev, v.pdfPrev);
@@ -94,7 +86,7 @@ void merge(const Context& c, const std::vector<PathVertex>& C, int t, const Ligh
               cameraSum(c, C, t - 1, pLightNext, cameraMultiplicity(C, t - 2, st), C[size_t(t - 3)].pdfRev);
     }
     // This merge: (η·pC_m)² relative to the strategy s' = m + 1.
-    const double eta = st.mergeEta * b.pdfFwd;
+    const double eta = etaMerge * b.pdfFwd;
     MisSums mine;
     (variant == Variant::kMerge ? mine.shared : variant == Variant::kMergeOwn ? mine.own : mine.mollified) = eta * eta;
     // Whether the path has one group: a property of the path, whichever family made it.
@@ -123,6 +115,35 @@ void merge(const Context& c, const std::vector<PathVertex>& C, int t, const Ligh
       record(c, m, t, variant, k, value[k], weight[k]);
       out[k] += value[k] * weight[k];
     }
+  }
+}
+
+}  // namespace
+
+void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
+           float* out, const std::vector<PathVertex>* lightPath) {
+  const PathVertex& b = C[size_t(t - 1)];
+  const bool gather = firstGather(C, t - 1);
+  if (!mergeable(b) || (!withinRadius && !(gather && v.has(LightVertex::kOwn)))) return;
+  // b's lanes as the light arriving there sees them: where b ended the lanes on arrival, every lane
+  // that arrived (the merge evaluates b's event itself, docs/bdpt-mis.md §12).
+  const bool ended = b.lanesEndHere;
+  const float* beta = ended ? b.betaArriving : b.beta;
+  const int bLane = ended ? -1 : b.lane;
+  const bool own = v.has(LightVertex::kOwn);
+  // The lanes served: on a shared vertex (it carries the camera sample's lanes) those both reach; on
+  // an own one every lane that reaches b, each a merge of its own (an own join keeps one of them at
+  // random, ownJoinLane: the merge sums them all, that choice's expectation).
+  const int k0 = std::max(own || v.lane < 0 ? 0 : int(v.lane), bLane < 0 ? 0 : bLane);
+  const int k1 = std::min(own || v.lane < 0 ? c.lanes.n : v.lane + 1, bLane < 0 ? c.lanes.n : bLane + 1);
+  const float laneFactor = own ? 1.0f : keptLaneScale(c, v.lane, bLane);
+  // Where several lanes reach b and its densities depend on λ (own merges; b that ended them), each
+  // lane's densities at its own wavelength.
+  if (k1 - k0 > 1 && (own || ended)) {
+    for (int k = k0; k < k1; ++k)
+      if (beta[k] > 0.0f) mergeLanes(c, C, t, v, withinRadius, gather, k, k + 1, c.lanes.lambda[k], beta, laneFactor, out, lightPath);
+  } else if (k0 < k1) {
+    mergeLanes(c, C, t, v, withinRadius, gather, k0, k1, ended ? c.lanes.lambda[k0] : b.lambda, beta, laneFactor, out, lightPath);
   }
 }
 

@@ -9,11 +9,19 @@ bool allElastic(const FullPath& p) {
   return true;
 }
 
+// Whether x_s is the path's first gather vertex: every vertex between it and the camera specular.
+bool gatherVertex(const FullPath& p, int s) {
+  for (size_t i = size_t(s) + 1; i + 1 < p.v.size(); ++i)
+    if (p.v[i].connectible) return false;
+  return true;
+}
+
 bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
   const int k = int(p.v.size()) - 1;
   if (s < 0 || s > k) return false;
   if (isMerge(variant)) {  // both sides sample x_s
-    if (!(p.mergeEta > 0.0) || s < 1 || s > k - 1 || !p.v[size_t(s)].connectible) return false;
+    if (s < 1 || s > k - 1 || !p.v[size_t(s)].connectible || !(etaOf(p.mergeEta, variant, gatherVertex(p, s)) > 0.0))
+      return false;
     if (variant == Variant::kMerge) return p.families.shared && elastic;
     const bool fluorescent = p.v[size_t(s)].lobe == SpectralLobe::Fluorescent;
     if (variant == Variant::kMergeOwn) return p.families.independent && fluorescent;
@@ -68,9 +76,9 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
   const int k = int(p.v.size()) - 1;
   if (isMerge(variant)) {
     // Both sides sample x_s; the kernel accepts a disc of area π r² around it, one of N light
-    // subpaths (η = N·π r²), and through an elastic x_s an own light vertex's wavelength within a
+    // subpaths (η = N·π r², each kind's), and through an elastic x_s an own light vertex's wavelength within a
     // window ε_h of the camera's (as a mollified join, eq. 6).
-    double d = p.mergeEta;
+    double d = etaOf(p.mergeEta, variant, gatherVertex(p, s));
     for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
     for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
     if (variant == Variant::kMerge) return d * p.sensorPdf * p.sharedChoice * p.laneGain;

@@ -27,6 +27,15 @@ struct Families {
   bool independent = false;  // a light subpath at a wavelength of its own (the light-start strategy)
 };
 
+// η = N·π r² of the merges (docs/bdpt-mis.md §12), N the light subpaths a camera vertex merges
+// against within radius r (0: no merges); `gather`, N·π r_g², that of own merges through a
+// fluorescent lobe at the path's first gather vertex (the first non-specular one from the camera),
+// which reach light vertices within a radius of their own, r_g, as photon mapping's final gather.
+struct MergeEta {
+  double eta = 0.0, gather = 0.0;
+  bool any() const { return eta > 0.0 || gather > 0.0; }
+};
+
 struct FullPath {
   std::vector<FullVertex> v;  // x_0 … x_k; v[k] is the camera (pdfCam 1)
   Families families;
@@ -52,9 +61,10 @@ struct FullPath {
   // measure; 0: no mollified strategies.
   double mollifyWidth = 0.0;
   // The strategies besides the camera reaching the light (Strategies, mis_sums.h): BDPT's
-  // connections, and vertex merging at every connectible interior vertex with η = N·π r² (0: none).
+  // connections, and vertex merging at every connectible interior vertex with η = N·π r² of each
+  // kind (0: none).
   bool connections = true;
-  double mergeEta = 0.0;
+  MergeEta mergeEta;
 };
 
 // Strategies are named by s, the number of light-subpath vertices, and a variant:
@@ -74,6 +84,11 @@ enum class Variant : uint8_t { kStandard, kLightVertex, kMollified, kOwn, kMerge
 
 // Whether a variant is one of vertex merging's.
 inline bool isMerge(Variant v) { return v == Variant::kMerge || v == Variant::kMergeOwn || v == Variant::kMergeMollified; }
+
+// η of a merge variant, at the first gather vertex or not.
+inline double etaOf(const MergeEta& eta, Variant v, bool gather) {
+  return v == Variant::kMergeOwn && gather ? eta.gather : eta.eta;
+}
 
 // Weight of strategy (s, variant). Returns 0 if the strategy itself cannot produce the path.
 float misWeight(const FullPath& path, int s, Variant variant);

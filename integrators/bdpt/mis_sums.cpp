@@ -50,15 +50,15 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st) {
   return m;
 }
 
-MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, const Strategies& st) {
-  if (!mergeable || !(st.mergeEta > 0.0)) return {};
-  const double v = st.mergeEta * density;
+MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, const Strategies& st) {
+  if (!mergeable || !st.merge.any()) return {};
+  auto squared = [density](double eta) { return (eta * density) * (eta * density); };
   MisSums m;
-  m.shared = v * v;
+  m.shared = squared(st.merge.eta);
   if (lobe == SpectralLobe::Fluorescent)
-    m.own = v * v;
+    m.own = squared(gather ? st.merge.gather : st.merge.eta);
   else
-    m.mollified = v * v;
+    m.mollified = squared(st.merge.eta);
   return m;
 }
 

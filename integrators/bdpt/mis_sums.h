@@ -16,6 +16,7 @@
 // shared family's joins, t = 1 and merges; own: the own family's joins and light vertex; mollified:
 // its mollified joins; ownSplat: its t = 1, the only strategy whose last wavelength the sensor does
 // not draw.
+#include "integrators/bdpt/mis.h"
 #include "materials/bsdf_model.h"
 
 namespace kasha::bdpt {
@@ -66,7 +67,7 @@ inline MisSums extend(const MisSums& before, double ratio, const MisSums& multip
 // connections).
 struct Strategies {
   bool connections = true;
-  double mergeEta = 0.0;  // 0: no merges
+  MergeEta merge;
 };
 
 // M of the camera subpath reaching the light (s' = 0).
@@ -92,7 +93,9 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st);
 // The merges at vertex x_m with lobe `lobe`, relative to the strategy that has x_m as its last vertex
 // on the side that sampled it with density `density` (docs/bdpt-mis.md §12): (η·density)², in the
 // shared family's part (any lobe: the single group is checked by `oneGroup`) and the own family's:
-// exact for a fluorescent lobe, through the wavelength kernel (the mollified part) for an elastic one.
-MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, const Strategies& st);
+// exact for a fluorescent lobe (η_g at the first gather vertex), through the wavelength kernel (the
+// mollified part) for an elastic one.
+// `gather`: x_m is the path's first gather vertex (MergeEta).
+MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, const Strategies& st);
 
 }  // namespace kasha::bdpt

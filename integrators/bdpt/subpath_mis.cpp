@@ -2,12 +2,18 @@
 
 namespace kasha::bdpt {
 
+bool firstGather(const std::vector<PathVertex>& C, int j) {
+  for (int i = 1; i < j; ++i)
+    if (C[size_t(i)].connectible()) return false;
+  return true;
+}
+
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
-                          const Strategies& st) {
+                          const Strategies& st, bool gather) {
   if (j < 0) return {};
   if (j == 0) return hitMultiplicity();  // the camera subpath hits the light (0 where pC_0 is)
   const PathVertex& v = L[size_t(j)];
-  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, st);
+  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, gather, st);
   if (j == 1) {  // x_1: next-event estimation, and the light vertex through a fluorescent x_1
     const double specCam1 = v.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, v.lambda, lobe);
     return merges + firstVertexMultiplicity(v.connectible(), lobe, specCam1, L[0].kind == PathVertex::Kind::Light, st);
@@ -16,16 +22,16 @@ MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe 
   return merges + joinMultiplicity(u.connectible() && v.connectible(), u.lobe, lobe, st);
 }
 
-MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st) {
+MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st, bool gather) {
   if (j < 1) return lightMultiplicity(L, j, SpectralLobe::Elastic, 0.0f, st);
-  return lightMultiplicity(L, j, L[size_t(j)].lobe, L[size_t(j)].lambdaNext, st);
+  return lightMultiplicity(L, j, L[size_t(j)].lobe, L[size_t(j)].lambdaNext, st, gather);
 }
 
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn,
                            const Strategies& st) {
   if (j < 1) return {};
   const PathVertex& v = C[size_t(j)];
-  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, st);
+  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, firstGather(C, j), st);
   if (j == 1) {  // t = 1: the light side samples x_{k−1}'s event
     const double specLight = v.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, v.lambda, lobe);
     return merges + lightTracingMultiplicity(v.connectible(), specLight, st);

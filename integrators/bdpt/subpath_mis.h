@@ -15,11 +15,12 @@ inline double densityRatio(double other, double own) { return own > 0.0 ? other 
 // M of the strategy s' = j (j vertices on the light subpath L, the last of them L[j − 1]) with L[j]
 // using `lobe` and sending `lambdaOut` on (the connection's event there, or its own sampled one),
 // together with the merges at L[j] (docs/bdpt-mis.md §12: a side's strategy s' carries the merges at
-// the vertex that side sampled last).
+// the vertex that side sampled last). `gather`: L[j] is the path's first gather vertex (MergeEta),
+// as where L[j] connects to the camera.
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
-                          const Strategies& st);
+                          const Strategies& st, bool gather = false);
 // The same with L[j]'s own sampled event.
-MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st);
+MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st, bool gather = false);
 
 // M of the strategy with j vertices on the camera subpath C (t' = j, s' = k + 1 − j), C[j] using
 // `lobe` with `lambdaIn` arriving from the light side, together with the merges at C[j].
@@ -30,6 +31,10 @@ MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strate
 
 // Whether a merge can happen at v: a surface without a delta lobe.
 inline bool mergeable(const PathVertex& v) { return v.onSurface() && v.connectible(); }
+
+// Whether camera subpath vertex C[j] is the path's first gather vertex (MergeEta): every vertex
+// between it and the camera specular.
+bool firstGather(const std::vector<PathVertex>& C, int j);
 
 // Sets the running sum and the elastic flag of the subpath's newest vertex (Radiance: a camera
 // subpath, Importance: a light subpath). Called once per vertex, in order, once the vertex two

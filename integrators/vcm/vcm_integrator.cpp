@@ -24,6 +24,14 @@ namespace {
 // large) and their noise with it, so vcm's holds one, as small as SmallVCM's (0.3% of the scene's
 // radius): merges then carry mostly the paths that connections cannot make, such as caustics.
 constexpr float kVerticesPerDisc = 1.0f;
+// The wide gather's radius over the pass's (VcmPaths::Gather): its disc holds 16 times the light
+// vertices, as many as photon mapping's (docs/photon-mapping.md).
+constexpr float kGatherScale = 4.0f;
+// What a light vertex found within a merge's reach costs, in rays (the pilot's cost model): 0.07,
+// 0.15 and 0.19 on uv_caustic_mirror, yamamoto_leds and jung18_fig3, from the extra time per
+// sample of the wide gather over the extra vertices it finds (16 spp, --vcm-paths bidirectional and
+// gather; docs/bdpt-mis.md §14).
+constexpr double kRaysPerMerge = 0.15;
 // Light subpaths of the pilot that counts the vertices a pass keeps per subpath.
 constexpr size_t kPilotPaths = 1024;
 // Light subpaths of the subpath pilot's pass, at most (docs/bdpt-mis.md §14).
@@ -38,10 +46,19 @@ constexpr int kGainSpp = 16;
 // What every camera sample of a pass shares: its wavelength lanes, the walk with this pass's η, and
 // the light vertices to merge with; or, where camera paths alone run, pt's pass.
 struct VcmPass final : PassData {
+  // Sets the radius and η of own merges through a fluorescent lobe at the first gather vertex:
+  // the pass's, or kGatherScale times its radius (MergeEta). The light vertices do not depend on it.
+  void setGather(bool wide) {
+    const float scale = wide ? kGatherScale : 1.0f;
+    radiusGather = radius * scale;
+    walk.strategies.merge.gather = walk.strategies.merge.eta * double(scale) * scale;
+  }
+
   bdpt::LaneTables tables;
   bdpt::Lanes lanes;
   bdpt::WalkSettings walk;
   float radius = 0.0f;
+  float radiusGather = 0.0f;  // own merges through a fluorescent lobe at the first gather vertex (MergeEta)
   float bandwidth = 0.0f;  // the wavelength kernel's half-width (own merges through an elastic lobe); 0: none
   std::unique_ptr<LightVertexMap> vertices;  // null without merges
   bool cameraAlone = false;
@@ -103,11 +120,11 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
   ws_.strategies.connections = parts_ != Parts::Merges;
   // Without light subpaths vertex connection and merging is path tracing with next-event
   // estimation (its strategies s = 0 and s = 1): pt's estimator, at the same wavelength settings.
-  if (parts_ == Parts::ConnectionsAndMerges && s.vcmPaths != VcmPaths::Bidirectional) {
+  if (parts_ == Parts::ConnectionsAndMerges) pathsChoice_ = s.vcmPaths;
+  if (pathsChoice_ == VcmPaths::Auto || pathsChoice_ == VcmPaths::Camera) {
     RenderSettings camera = s;
     camera.wavelengths.light = WavelengthSettings().light;  // pt traces no light subpaths
     cameraAlone_ = makeIntegrator("pt", scene, camera);
-    pathsChoice_ = s.vcmPaths;
   }
 }
 
@@ -129,7 +146,7 @@ std::unique_ptr<const PassData> Vcm::beginPass(const Scene& scene, int firstSamp
     run = pilotChoice(scene, seed, pilotRays);
     if (firstSample == 0) counter.closest += pilotRays.closest, counter.shadow += pilotRays.shadow;
   }
-  if (run == VcmPaths::Bidirectional) return bidirectionalPass(scene, firstSample, seed, counter);
+  if (run != VcmPaths::Camera) return bidirectionalPass(scene, firstSample, seed, run == VcmPaths::Gather, counter);
   auto pass = std::make_unique<VcmPass>();
   pass->cameraAlone = true;
   pass->camera = cameraAlone_->beginPass(scene, firstSample, count, seed, counter);
@@ -141,17 +158,21 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   if (pilot_ && pilot_->seed == seed) return pilot_->run;
   using namespace bdpt;
   // A pass of its own (lanes, light vertices), then two images of vcm against it, and from their
-  // paths what camera paths alone would add (PilotMoments, Alone::Camera).
+  // paths what camera paths alone would add (PilotMoments, Alone::Camera); then two with the wide
+  // gather, against the same light vertices.
   RayCounter passRays;
   const std::unique_ptr<VcmPass> pass =
-      bidirectionalPass(scene, 0, mixBits(seed ^ 0xa0761d6478bd642fULL), passRays, kPilotLightPaths);
+      bidirectionalPass(scene, 0, mixBits(seed ^ 0xa0761d6478bd642fULL), false, passRays, kPilotLightPaths);
   const double passShare = double(paths_) / double(std::min(kPilotLightPaths, paths_));  // the render's over the pilot's
   std::atomic<uint64_t> unsampled{0};
+  std::atomic<uint64_t> merges[2] = {0, 0};  // light vertices found: without and with the wide gather
   const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx,
                                std::vector<std::vector<Splat>>& excess) -> Vec3 {
     thread_local PilotMoments moments;
     moments.clear();
-    const Vec3 v = estimate(scene, pixel, rng, ctx, *pass, &moments);
+    uint64_t found = 0;
+    const Vec3 v = estimate(scene, pixel, rng, ctx, *pass, &moments, &found);
+    merges[0].fetch_add(found, std::memory_order_relaxed);
     const PilotMoments::Alternative& alt = moments.alone[int(Alone::Camera)];
     if (alt.unsampled > 0) unsampled.fetch_add(uint64_t(alt.unsampled), std::memory_order_relaxed);
     excess[0].insert(excess[0].end(), alt.excess.begin(), alt.excess.end());
@@ -159,6 +180,14 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   };
   const int w = scene.camera.width(), h = scene.camera.height();
   const PilotEstimates e = pilotEstimates(w, h, seed, SamplerKind::Independent, 1, both);
+  pass->setGather(true);
+  const PilotSample wide = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
+    uint64_t found = 0;
+    const Vec3 v = estimate(scene, pixel, rng, ctx, *pass, nullptr, &found);
+    merges[1].fetch_add(found, std::memory_order_relaxed);
+    return v;
+  };
+  const PilotEstimates g = pilotEstimates(w, h, seed, SamplerKind::Independent, 1, wide);
   const PilotSample camera = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
     return cameraAlone_->samplePixel(scene, pixel, rng, ctx);
   };
@@ -175,8 +204,8 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
     kinds = 2;
   }
   const double cameraSamples = double(kinds) * 2.0 * kGainSpp * double(std::min(kGainPixels, size_t(w) * size_t(h)));
-  counter.closest = e.rays.closest + passRays.closest + cameraRays.closest;
-  counter.shadow = e.rays.shadow + passRays.shadow + cameraRays.shadow;
+  counter.closest = e.rays.closest + g.rays.closest + passRays.closest + cameraRays.closest;
+  counter.shadow = e.rays.shadow + g.rays.shadow + passRays.shadow + cameraRays.shadow;
   PilotOutcome o;
   o.seed = seed;
   o.relVar = e.relVar;
@@ -188,7 +217,13 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   o.stratification = gain;
   o.cameraRelVar = (e.relVar + e.relExcess[0]) * gain;
   o.cameraRays = double(cameraRays.closest + cameraRays.shadow) / cameraSamples;
-  if (o.cameraSamplesAll && o.cameraRelVar * o.cameraRays < o.relVar * o.rays) o.run = VcmPaths::Camera;
+  // The wide gather traces the same rays; the light vertices each finds cost kRaysPerMerge rays.
+  o.gatherRelVar = g.relVar;
+  o.cost = o.rays + kRaysPerMerge * double(merges[0].load()) / double(e.samples);
+  o.gatherCost = o.rays + kRaysPerMerge * double(merges[1].load()) / double(g.samples);
+  double best = o.relVar * o.cost;
+  if (o.gatherRelVar * o.gatherCost < best) o.run = VcmPaths::Gather, best = o.gatherRelVar * o.gatherCost;
+  if (o.cameraSamplesAll && o.cameraRelVar * o.cameraRays < best) o.run = VcmPaths::Camera;
   pilot_ = o;
   return o.run;
 }
@@ -204,15 +239,15 @@ std::string Vcm::choices() const {
                   pilot_->cameraRays, pilot_->stratification);
   else
     std::snprintf(camera, sizeof camera, "cannot sample some paths that carry light");
-  char buf[300];
+  char buf[400];
   std::snprintf(buf, sizeof buf,
-                "paths: %s (pilot: relative variance per sample and rays per sample: bidirectional %.3g, %.3g rays; "
-                "camera alone %s)",
-                toString(pilot_->run), pilot_->relVar, pilot_->rays, camera);
+                "paths: %s (pilot: relative variance per sample and cost per sample in rays: bidirectional %.3g, "
+                "%.3g rays; gather %.3g, %.3g rays; camera alone %s)",
+                toString(pilot_->run), pilot_->relVar, pilot_->cost, pilot_->gatherRelVar, pilot_->gatherCost, camera);
   return buf;
 }
 
-std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed,
+std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed, bool gather,
                                                 RayCounter& counter, size_t paths) const {
   auto pass = std::make_unique<VcmPass>();
   // The pass's lanes: sample `firstSample` of a sequence of its own, so that passes stratify them.
@@ -227,7 +262,9 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   // with it the merges' weights and the light vertices a disc holds, stay the pass's.
   paths = paths == 0 ? paths_ : std::min(paths, paths_);
   pass->radius = r * float(std::sqrt(double(paths_) / double(paths)));
-  pass->walk.strategies.mergeEta = double(paths_) * kPi * double(r) * r;
+  const double eta = double(paths_) * kPi * double(r) * r;
+  pass->walk.strategies.merge = {eta, eta};
+  pass->setGather(gather);
   LightVertexTracing t;
   t.paths = paths;
   t.sampler = sampler_;
@@ -249,7 +286,7 @@ Vec3 Vcm::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContex
 }
 
 Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, const VcmPass& pass,
-                   bdpt::PilotMoments* pilot) const {
+                   bdpt::PilotMoments* pilot, uint64_t* merges) const {
   using namespace bdpt;
   const Lanes& lanes = pass.lanes;
   for (int k = 0; k < lanes_; ++k)
@@ -283,9 +320,14 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
     for (int t = 2; t <= int(C.size()) && t - 1 <= maxDepth; ++t) {
       const PathVertex& b = C[size_t(t - 1)];
       if (!mergeable(b)) continue;
-      for (size_t i : pass.vertices->within(b.p, pass.radius)) {
+      const float r2 = pass.radius * pass.radius;
+      const float reach = firstGather(C, t - 1) ? std::max(pass.radius, pass.radiusGather) : pass.radius;
+      const std::vector<size_t>& near = pass.vertices->within(b.p, reach);
+      if (merges) *merges += near.size();
+      for (size_t i : near) {
         const LightVertex& v = (*pass.vertices)[i];
-        if (v.depth + t - 2 <= maxDepth) merge(c, C, t, v, radiance);
+        const Vec3 d = Vec3(v.p[0], v.p[1], v.p[2]) - b.p;
+        if (v.depth + t - 2 <= maxDepth) merge(c, C, t, v, glm::dot(d, d) <= r2, radiance);
       }
     }
   }

@@ -46,7 +46,8 @@ class Vcm final : public Integrator {
   int lanes() const override { return lanes_; }
   std::string choices() const override;
 
-  // The pilot's decision for a render with `seed` (docs/bdpt-mis.md §14): Bidirectional or Camera.
+  // The pilot's decision for a render with `seed` (docs/bdpt-mis.md §14): Bidirectional, Gather or
+  // Camera.
   // Computed once per seed (the render's first pass asks); `counter` is set to the rays it traced
   // when it runs (left alone when the decision was known).
   VcmPaths pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter) const;
@@ -56,13 +57,15 @@ class Vcm final : public Integrator {
   size_t lightPathsPerPass() const { return paths_; }
 
  private:
-  // The pass that takes sample `firstSample`: its lanes, radius and light vertices; with `paths`
-  // > 0, at most that many light subpaths (the radius widened to keep the pass's η).
-  std::unique_ptr<VcmPass> bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed,
+  // The pass that takes sample `firstSample`: its lanes, radius and light vertices, with the wide
+  // gather or not; with `paths` > 0, at most that many light subpaths (the radius widened to keep the
+  // pass's η).
+  std::unique_ptr<VcmPass> bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed, bool gather,
                                              RayCounter& counter, size_t paths = 0) const;
-  // One camera sample of every strategy against `pass`; with `pilot`, what the pilot learns from it.
+  // One camera sample of every strategy against `pass`; with `pilot`, what the pilot learns from it;
+  // with `merges`, adds the light vertices it found within the merges' reach.
   Vec3 estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, const VcmPass& pass,
-                bdpt::PilotMoments* pilot) const;
+                bdpt::PilotMoments* pilot, uint64_t* merges = nullptr) const;
 
   WavelengthStrategy sensor_, light_;
   Parts parts_;
@@ -87,6 +90,8 @@ class Vcm final : public Integrator {
     // Relative variance per sample (camera paths alone's from vcm's paths, times what their own
     // samples gain from the render's stratified random numbers) and rays per sample.
     double relVar = 0.0, rays = 0.0, cameraRelVar = 0.0, cameraRays = 0.0, stratification = 1.0;
+    // With the merges' cost (kRaysPerMerge); the wide gather's relative variance and cost.
+    double cost = 0.0, gatherRelVar = 0.0, gatherCost = 0.0;
   };
   mutable std::mutex pilotMutex_;
   mutable std::optional<PilotOutcome> pilot_;

@@ -119,6 +119,7 @@ def test_vcm_paths_from_python():
     assert auto["stats"]["choices"].startswith("paths: ")
     camera = kasha.render(scene, integrator="vcm", vcm_paths="camera")
     np.testing.assert_array_equal(camera["xyz"], kasha.render(scene, integrator="pt")["xyz"])
-    assert "choices" not in kasha.render(scene, integrator="vcm", vcm_paths="bidirectional")["stats"]
+    for fixed in ("bidirectional", "gather"):
+        assert "choices" not in kasha.render(scene, integrator="vcm", vcm_paths=fixed)["stats"]
     with pytest.raises(kasha.InputError, match="vcm_paths"):
         kasha.render(scene, integrator="vcm", vcm_paths="light")
