@@ -11,7 +11,8 @@
 // by pass as in `ppm` (render/ppm/radius, bandwidth, alpha). `vc` has the connections alone (no
 // kernel), `bpm` the merges alone (with the camera subpath reaching the light), as SmallVCM's
 // algorithm list. `vcm` without light subpaths is path tracing with next-event estimation: a pilot
-// chooses per render between the two (docs/bdpt-mis.md §14, render/vcm_paths).
+// chooses per render between it, every strategy, and every strategy with the wide final gather
+// (docs/bdpt-mis.md §12, §14, render/vcm_paths).
 #include <memory>
 #include <mutex>
 #include <optional>
