@@ -10,8 +10,8 @@ namespace kasha::bdpt {
 namespace {
 
 // Merges v with b = C[t−1] at lanes [k0, k1) (docs/bdpt-mis.md §12; `gather`: b is the path's first
-// gather vertex, merge.h for withinRadius): lambdaB the wavelength of b's
-// densities (and of an own vertex's one lane), betaB b's throughput per lane, times laneFactor.
+// gather vertex, merge.h for withinRadius): lambdaB the wavelength of b's densities (and of an own
+// vertex's one lane), betaB b's throughput per lane, times laneFactor.
 void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
                 bool gather, int k0, int k1, float lambdaB, const float* betaB, float laneFactor, float* out,
                 const std::vector<PathVertex>* lightPath) {
@@ -28,7 +28,8 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
   Kind kinds[2];
   int n = 0;
   if (!own && withinRadius) kinds[n++] = {SpectralLobe::Elastic, Variant::kMerge};
-  if (own && (withinRadius || gather) && b.bsdf->has(BsdfFlags::Fluorescent)) kinds[n++] = {SpectralLobe::Fluorescent, Variant::kMergeOwn};
+  if (own && (withinRadius || gather) && b.bsdf->has(BsdfFlags::Fluorescent))
+    kinds[n++] = {SpectralLobe::Fluorescent, Variant::kMergeOwn};
   if (own && withinRadius && c.bandwidth > 0.0f && std::abs(v.lambda - lambdaB) < c.bandwidth)
     kinds[n++] = {SpectralLobe::Elastic, Variant::kMergeMollified};
   const Bsdf& fb = *b.bsdf;
@@ -141,9 +142,11 @@ void merge(const Context& c, const std::vector<PathVertex>& C, int t, const Ligh
   // lane's densities at its own wavelength.
   if (k1 - k0 > 1 && (own || ended)) {
     for (int k = k0; k < k1; ++k)
-      if (beta[k] > 0.0f) mergeLanes(c, C, t, v, withinRadius, gather, k, k + 1, c.lanes.lambda[k], beta, laneFactor, out, lightPath);
+      if (beta[k] > 0.0f)
+        mergeLanes(c, C, t, v, withinRadius, gather, k, k + 1, c.lanes.lambda[k], beta, laneFactor, out, lightPath);
   } else if (k0 < k1) {
-    mergeLanes(c, C, t, v, withinRadius, gather, k0, k1, ended ? c.lanes.lambda[k0] : b.lambda, beta, laneFactor, out, lightPath);
+    const float lambdaB = ended ? c.lanes.lambda[k0] : b.lambda;
+    mergeLanes(c, C, t, v, withinRadius, gather, k0, k1, lambdaB, beta, laneFactor, out, lightPath);
   }
 }
 
