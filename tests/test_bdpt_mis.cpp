@@ -91,10 +91,10 @@ TEST(BdptMis, MergesAreExactWhereEachFamilySamplesTheGroupsOnce) {
   // own: three times the radius, nine times the area, 81 times the weight against the camera's hit.
   const double before = misWeight(q, 1, Variant::kMergeOwn) / misWeight(q, 0, Variant::kStandard);
   q.mergeEta.gather = 18.0;
-  auto ratio = [&] { return misWeight(q, 1, Variant::kMergeOwn) / misWeight(q, 0, Variant::kStandard); };
-  EXPECT_NEAR(ratio(), 81.0 * before, 1e-4 * 81.0 * before);
+  auto gatherRatio = [&] { return misWeight(q, 1, Variant::kMergeOwn) / misWeight(q, 0, Variant::kStandard); };
+  EXPECT_NEAR(gatherRatio(), 81.0 * before, 1e-4 * 81.0 * before);
   q.mergeEta.eta = 7.0;  // the other vertices' η: not x_1's
-  EXPECT_NEAR(ratio(), 81.0 * before, 1e-4 * 81.0 * before);
+  EXPECT_NEAR(gatherRatio(), 81.0 * before, 1e-4 * 81.0 * before);
   q.mergeEta.gather = 0.0;
   EXPECT_FALSE(strategyValid(q, 1, Variant::kMergeOwn));
   // Behind a specular x_2 (x_3 the camera), x_1 is still the first gather vertex; x_1 of a path
