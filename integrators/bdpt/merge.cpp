@@ -124,7 +124,7 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
 void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
            float* out, const std::vector<PathVertex>* lightPath) {
   const PathVertex& b = C[size_t(t - 1)];
-  const bool gather = firstGather(C, t - 1);
+  const bool gather = b.gather;
   if (!mergeable(b) || (!withinRadius && !(gather && v.has(LightVertex::kOwn)))) return;
   // b's lanes as the light arriving there sees them: where b ended the lanes on arrival, every lane
   // that arrived (the merge evaluates b's event itself, docs/bdpt-mis.md §12).

@@ -78,6 +78,9 @@ struct PathVertex {
   // Whether no vertex of the subpath up to this one (included) makes sampling depend on λ: the
   // wavelength lanes reach it all (docs/bdpt-mis.md §10).
   bool lanesKept = true;
+  // Whether every vertex between this one and the subpath's start is specular: on a camera subpath,
+  // this is the path's first gather vertex (MergeEta, docs/bdpt-mis.md §12).
+  bool gather = true;
 
   bool onSurface() const { return kind == Kind::Surface; }
   // Whether several lanes reach this vertex (each at its own wavelength).

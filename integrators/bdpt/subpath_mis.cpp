@@ -2,12 +2,6 @@
 
 namespace kasha::bdpt {
 
-bool firstGather(const std::vector<PathVertex>& C, int j) {
-  for (int i = 1; i < j; ++i)
-    if (C[size_t(i)].connectible()) return false;
-  return true;
-}
-
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
                           const Strategies& st, bool gather) {
   if (j < 0) return {};
@@ -31,7 +25,7 @@ MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe
                            const Strategies& st) {
   if (j < 1) return {};
   const PathVertex& v = C[size_t(j)];
-  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, firstGather(C, j), st);
+  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, v.gather, st);
   if (j == 1) {  // t = 1: the light side samples x_{k−1}'s event
     const double specLight = v.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, v.lambda, lobe);
     return merges + lightTracingMultiplicity(v.connectible(), specLight, st);

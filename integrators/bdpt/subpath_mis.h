@@ -32,10 +32,6 @@ MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strate
 // Whether a merge can happen at v: a surface without a delta lobe.
 inline bool mergeable(const PathVertex& v) { return v.onSurface() && v.connectible(); }
 
-// Whether camera subpath vertex C[j] is the path's first gather vertex (MergeEta): every vertex
-// between it and the camera specular.
-bool firstGather(const std::vector<PathVertex>& C, int j);
-
 // Sets the running sum and the elastic flag of the subpath's newest vertex (Radiance: a camera
 // subpath, Importance: a light subpath). Called once per vertex, in order, once the vertex two
 // before has its reverse density.

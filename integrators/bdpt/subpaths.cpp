@@ -66,6 +66,7 @@ void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int lig
   v.bsdf = bsdf;
   v.light = light;
   v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf);
+  v.gather = !prev.onSurface() || (prev.gather && !prev.connectible());
   // Where sampling depends on the wavelength, the lanes end in the hero lane 0, its weight times n
   // (docs/bdpt-mis.md §10): every density on the subpath is then that lane's. Lane 0 is the member
   // of the lane set that the sensor's own number picks, so it is uniform among them, and the

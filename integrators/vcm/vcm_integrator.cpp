@@ -317,11 +317,11 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
   }
   if (pass.vertices) {
     const int maxDepth = pass.walk.maxDepth;
+    const float r2 = pass.radius * pass.radius;
     for (int t = 2; t <= int(C.size()) && t - 1 <= maxDepth; ++t) {
       const PathVertex& b = C[size_t(t - 1)];
       if (!mergeable(b)) continue;
-      const float r2 = pass.radius * pass.radius;
-      const float reach = firstGather(C, t - 1) ? std::max(pass.radius, pass.radiusGather) : pass.radius;
+      const float reach = b.gather ? std::max(pass.radius, pass.radiusGather) : pass.radius;
       const std::vector<size_t>& near = pass.vertices->within(b.p, reach);
       if (merges) *merges += near.size();
       for (size_t i : near) {
