@@ -526,9 +526,9 @@ int main(int argc, char** argv) {
                      "alone, and their cost in rays, and runs the most efficient; camera paths alone only if they "
                      "sample every path that carries light) | bidirectional (camera and light subpaths, every "
                      "strategy) | gather (the same, with photon mapping's wide final gather: own light vertices "
-                     "merge through a fluorescent lobe at the first non-specular camera vertex within 4x the "
-                     "radius) | camera (camera paths alone: path tracing with next-event estimation, pt's "
-                     "estimator)")
+                     "merge through a fluorescent lobe at the first non-specular camera vertex, and at the camera "
+                     "ray's hit through its elastic lobe at their own wavelength, within 4x the radius) | camera "
+                     "(camera paths alone: path tracing with next-event estimation, pt's estimator)")
       ->check(CLI::IsMember({"auto", "bidirectional", "gather", "camera"}));
   render->add_option("--sampler", ra.sampler,
                      "Random numbers of every sample: sobol (Owen-scrambled Sobol, the default) | independent (PCG32)")

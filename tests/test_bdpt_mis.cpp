@@ -41,7 +41,8 @@ double weightSum(const FullPath& p) {
   if (k >= 2) sum += misWeight(p, 1, Variant::kLightVertex);
   for (int s = 2; s < k; ++s) sum += misWeight(p, s, Variant::kMollified);
   for (int m = 1; m < k; ++m)
-    sum += misWeight(p, m, Variant::kMerge) + misWeight(p, m, Variant::kMergeOwn) + misWeight(p, m, Variant::kMergeMollified);
+    sum += misWeight(p, m, Variant::kMerge) + misWeight(p, m, Variant::kMergeOwn) +
+           misWeight(p, m, Variant::kMergeMollified) + misWeight(p, m, Variant::kMergeSplat);
   return sum;
 }
 
@@ -120,6 +121,27 @@ TEST(BdptMis, MergesAreExactWhereEachFamilySamplesTheGroupsOnce) {
   const double merge =
       p.sharedChoice * p.mergeEta.eta * p.v[0].pdfLight * p.v[1].pdfLight * p.v[1].pdfCam * p.v[2].pdfCam;
   EXPECT_NEAR(ratio, (merge / nee) * (merge / nee), 1e-6 * ratio);  // the weights are floats
+}
+
+TEST(BdptMis, AnOwnMergeAtTheCameraRaysHitTakesTheLightVertexsWavelength) {
+  // docs/bdpt-mis.md §12: through an elastic x_{k−1} an own light vertex merges at its own
+  // wavelength, the light side drawing every group's as t = 1 does (no sensor density), with η_g.
+  Rng rng(12);
+  FullPath p = randomPath({F, E}, kBoth, rng);  // x_0 … x_3
+  p.mergeEta = {2.0, 7.0};
+  EXPECT_TRUE(strategyValid(p, 2, Variant::kMergeSplat));
+  EXPECT_FALSE(strategyValid(p, 1, Variant::kMergeSplat));  // not the camera ray's hit
+  const double ratio = misWeight(p, 2, Variant::kMergeSplat) / misWeight(p, 3, Variant::kOwn);
+  const double splat = p.mergeEta.gather * p.v[2].pdfCam / p.specLightLast;  // over t = 1's density
+  EXPECT_NEAR(ratio, splat * splat, 1e-5 * ratio);
+  p.sensorPdf *= 3.0;  // neither draws the last wavelength at the sensor
+  EXPECT_NEAR(misWeight(p, 2, Variant::kMergeSplat) / misWeight(p, 3, Variant::kOwn), ratio, 1e-5 * ratio);
+  FullPath q = randomPath({E, F}, kBoth, rng);
+  q.mergeEta = {2.0, 7.0};
+  EXPECT_FALSE(strategyValid(q, 2, Variant::kMergeSplat));  // a fluorescent x_2 merges at the camera's lanes
+  p = randomPath({F, E}, kShared, rng);
+  p.mergeEta = {2.0, 7.0};
+  EXPECT_FALSE(strategyValid(p, 2, Variant::kMergeSplat));  // the own family's
 }
 
 TEST(BdptMis, MollifiedStrategiesJoinTwoElasticVerticesInTheIndependentFamily) {

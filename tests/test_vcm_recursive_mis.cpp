@@ -72,6 +72,7 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
     checks.clear();
     splats.clear();
     float radiance[kMaxLanes] = {};
+    std::vector<SpectralSample> atLight;
     Vec3 xyz;
     if (param.connections) connectSubpaths(c, C, LS, LO, rng, splats, radiance, xyz);
     // Every light vertex merged with every camera vertex: the weights' algebra does not need them
@@ -81,7 +82,7 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
       keepLightVertices(*L, L == &LO, *scene, strategies, kept);
       for (const LightVertex& v : kept)
         for (int t = 2; t <= int(C.size()) && v.depth + t - 2 <= ws.maxDepth; ++t)
-          if (mergeable(C[size_t(t - 1)])) merge(c, C, t, v, true, radiance, L);
+          if (mergeable(C[size_t(t - 1)])) merge(c, C, t, v, true, radiance, atLight, L);
     }
     for (const WeightCheck& k : checks) merges += isMerge(Variant(k.variant));
     ASSERT_TRUE(tally.add(checks, sample)) << describe(param);

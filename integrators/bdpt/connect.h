@@ -134,6 +134,8 @@ struct Context {
 
   // The unified estimator's pilot (docs/bdpt-mis.md §13); null outside it.
   PilotMoments* pilot = nullptr;
+  // Where set, counts the merges' weights computed (vcm's pilot: their cost, docs/bdpt-mis.md §14).
+  uint64_t* mergeWeights = nullptr;
 };
 
 // Strategies with t ≥ 2 add each lane's radiance at its camera wavelength, weighted, to out[k].

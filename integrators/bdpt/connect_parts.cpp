@@ -154,9 +154,13 @@ Vec3 laneScale(const Context& c, int k) {
 }
 
 void record(const Context& c, int s, int t, Variant v, int k, float value, float weight) {
-  if (c.pilot) c.pilot->add(k, c.pixel, laneScale(c, k) * (value * weight));
-  if (c.log && value != 0.0f)
-    c.log->push_back({c.pixel, laneScale(c, k) * (value * weight), laneScale(c, k) * value, s, t, uint8_t(v)});
+  recordXyz(c, s, t, v, k, laneScale(c, k) * value, weight);
+}
+
+void recordXyz(const Context& c, int s, int t, Variant v, int k, const Vec3& xyz, float weight) {
+  if (c.pilot) c.pilot->add(k, c.pixel, xyz * weight);
+  if (c.log && (xyz.x != 0.0f || xyz.y != 0.0f || xyz.z != 0.0f))
+    c.log->push_back({c.pixel, xyz * weight, xyz, s, t, uint8_t(v)});
 }
 
 float emitted(const Context& c, const PathVertex& e, const PathVertex& next, float lambda) {

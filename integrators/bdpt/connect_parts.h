@@ -90,6 +90,7 @@ float weigh(const Context& c, int s, int t, Variant v, const MisSums& own, const
             Full&& full) {
   const double sum = combine(total, f);
   const float w = sum > 0.0 ? float(combine(own, f) / sum) : 0.0f;
+  if (c.mergeWeights && isMerge(v)) ++*c.mergeWeights;
   if (c.oracle) c.oracle->push_back({s, t, uint8_t(v), w, full(f)});
   if (c.pilot) {
     const bool shared = w > 0.0f && !f.oneGroup && f.sensorPdf > 0.0 && f.cameraChoice > 0.0;
@@ -135,6 +136,8 @@ float keptLaneScale(const Context& c, int laneA, int laneB);
 // Records lane k's share of a strategy at the camera sample's pixel (strategies with t ≥ 2), for
 // the per-strategy images and the pilot.
 void record(const Context& c, int s, int t, Variant v, int k, float value, float weight);
+// The same for a contribution whose XYZ (unweighted) the caller has, in the pilot's slot of lane k.
+void recordXyz(const Context& c, int s, int t, Variant v, int k, const Vec3& xyz, float weight);
 
 // The radiance an emitter vertex e sends towards `next` at wavelength lambda.
 float emitted(const Context& c, const PathVertex& e, const PathVertex& next, float lambda);

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace kasha::bdpt {
 namespace {
@@ -70,12 +72,21 @@ struct Cells {
 
 }  // namespace
 
+int pilotSamplesPerImage(int width, int height) {
+  const Cells cells(width, height);
+  const size_t count = size_t(cells.w) * size_t(cells.h);
+  return int((kMinSamplesPerImage + count - 1) / count);
+}
+
 PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind kind, int alternatives,
-                              const PilotSample& sample) {
+                              const PilotSample& sample, const std::vector<const PassData*>& passes) {
   const Cells cells(width, height);
   const int w = cells.w, h = cells.h, qx = cells.qx, qy = cells.qy;
   const size_t count = size_t(w) * size_t(h);
-  const int n = int((kMinSamplesPerImage + count - 1) / count);  // samples per cell of each image
+  const int n = pilotSamplesPerImage(width, height);  // samples per cell of each image
+  if (!passes.empty() && passes.size() != size_t(2 * n))
+    throw std::logic_error("pilotEstimates: " + std::to_string(passes.size()) + " passes for " +
+                           std::to_string(2 * n) + " samples per cell");
   const double scale = 1.0 / n;
   std::array<Image, 2> images;
   for (Image& img : images) img.assign(count, {0.0, 0.0, 0.0});
@@ -103,6 +114,7 @@ PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind 
           for (int j = 0; j < n; ++j) {
             const size_t i = size_t(y) * w + x;
             Sampler rng(kind, pilotSeed, uint64_t(py) * uint64_t(width) + uint64_t(px), uint32_t(image * n + j));
+            if (!passes.empty()) rows[r][image].pass = passes[size_t(image * n + j)];
             add(images[image], i, sample(Vec2(float(px), float(py)), rng, rows[r][image], rowExcess[r]), scale);
           }
       }

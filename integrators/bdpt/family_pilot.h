@@ -35,8 +35,16 @@ struct PilotEstimates {
 // left out, so that one outlier does not decide. relExcess[a] is the mean over the cells of
 // Σ_XYZ e / (m² + 10⁻²), e the cell's excess per sample for alternative a. Values that are not finite
 // count as 0. Random numbers: `kind` with a seed of their own derived from `seed`.
+// `passes`: empty, or one per sample of a cell, pilotSamplesPerImage(width, height) for each image
+// (image 0's first): sample j of image i reads passes[i·n + j] as ctx.pass, so that an estimator
+// whose samples share what a pass prepared (vertex merging's light vertices) has that sharing's
+// variance in the difference of the two images, as its passes have in a render (one per sample
+// per pixel).
 PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind kind, int alternatives,
-                              const PilotSample& sample);
+                              const PilotSample& sample, const std::vector<const PassData*>& passes = {});
+
+// n, the samples per cell of each of pilotEstimates' images.
+int pilotSamplesPerImage(int width, int height);
 
 // The relative variance per sample of an estimator whose samples do not splat, at `spp` samples per
 // pixel: two independent images (random numbers of `kind`, each image with a seed of its own derived

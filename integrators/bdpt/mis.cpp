@@ -24,6 +24,7 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
       return false;
     if (variant == Variant::kMerge) return p.families.shared && elastic;
     const bool fluorescent = p.v[size_t(s)].lobe == SpectralLobe::Fluorescent;
+    if (variant == Variant::kMergeSplat) return p.families.independent && !fluorescent && s == k - 1;
     if (variant == Variant::kMergeOwn) return p.families.independent && fluorescent;
     return p.families.independent && !fluorescent && p.mollifyWidth > 0.0;
   }
@@ -56,6 +57,7 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
     case Variant::kMerge:
     case Variant::kMergeOwn:
     case Variant::kMergeMollified:
+    case Variant::kMergeSplat:
       return false;  // decided above
   }
   if (s == k)  // t = 1: light tracing, x_{k−1}'s event sampled by the light side
@@ -82,6 +84,7 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
     for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
     for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
     if (variant == Variant::kMerge) return d * p.sensorPdf * p.sharedChoice * p.laneGain;
+    if (variant == Variant::kMergeSplat) return d * p.ownChoice;  // the light draws every group's wavelength
     d *= p.sensorPdf * p.ownChoice;
     return variant == Variant::kMergeMollified ? d * p.mollifyWidth : d;
   }
@@ -135,6 +138,7 @@ float misWeight(const FullPath& p, int s, Variant variant) {
     add(i, Variant::kMergeOwn);
     add(i, Variant::kMergeMollified);
   }
+  if (k >= 2) add(k - 1, Variant::kMergeSplat);
   return float(1.0 / sum);
 }
 

@@ -79,15 +79,21 @@ struct FullPath {
 // - kMerge, kMergeOwn, kMergeMollified: vertex merging at x_s (1 ≤ s ≤ k − 1, both sides sample
 //   x_s), with a light subpath of the shared family (a path of one group), of the own family through
 //   a fluorescent x_s, or of the own family through an elastic x_s and the wavelength kernel
-//   (docs/bdpt-mis.md §12).
-enum class Variant : uint8_t { kStandard, kLightVertex, kMollified, kOwn, kMerge, kMergeOwn, kMergeMollified };
+//   (docs/bdpt-mis.md §12);
+// - kMergeSplat: vertex merging at x_{k−1}, the camera ray's hit, of the own family through an
+//   elastic x_{k−1}, the sensor at the light vertex's wavelength (no kernel: the camera ray does not
+//   depend on λ, so, like t = 1, the light side draws the last group's wavelength), within the
+//   gather radius (η_g) (docs/bdpt-mis.md §12).
+enum class Variant : uint8_t { kStandard, kLightVertex, kMollified, kOwn, kMerge, kMergeOwn, kMergeMollified, kMergeSplat };
 
 // Whether a variant is one of vertex merging's.
-inline bool isMerge(Variant v) { return v == Variant::kMerge || v == Variant::kMergeOwn || v == Variant::kMergeMollified; }
+inline bool isMerge(Variant v) {
+  return v == Variant::kMerge || v == Variant::kMergeOwn || v == Variant::kMergeMollified || v == Variant::kMergeSplat;
+}
 
-// η of a merge variant, at the first gather vertex or not.
+// η of a merge variant, at the first gather vertex or not (kMergeSplat's x_{k−1} always is one).
 inline double etaOf(const MergeEta& eta, Variant v, bool gather) {
-  return v == Variant::kMergeOwn && gather ? eta.gather : eta.eta;
+  return v == Variant::kMergeSplat || (v == Variant::kMergeOwn && gather) ? eta.gather : eta.eta;
 }
 
 // Weight of strategy (s, variant). Returns 0 if the strategy itself cannot produce the path.

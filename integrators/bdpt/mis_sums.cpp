@@ -50,15 +50,18 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st) {
   return m;
 }
 
-MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, const Strategies& st) {
+MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,
+                          const Strategies& st) {
   if (!mergeable || !st.merge.any()) return {};
   auto squared = [density](double eta) { return (eta * density) * (eta * density); };
   MisSums m;
   m.shared = squared(st.merge.eta);
-  if (lobe == SpectralLobe::Fluorescent)
+  if (lobe == SpectralLobe::Fluorescent) {
     m.own = squared(gather ? st.merge.gather : st.merge.eta);
-  else
+  } else {
     m.mollified = squared(st.merge.eta);
+    if (first) m.ownSplat = squared(st.merge.gather);  // Variant::kMergeSplat
+  }
   return m;
 }
 

@@ -14,8 +14,8 @@
 // wavelength; ε_h the mollification kernel's width; g the lanes' gain (MisFactors::laneGain).
 // hit: the camera subpath reaching the light (s' = 0); nee: next-event estimation; shared: the
 // shared family's joins, t = 1 and merges; own: the own family's joins and light vertex; mollified:
-// its mollified joins; ownSplat: its t = 1, the only strategy whose last wavelength the sensor does
-// not draw.
+// its mollified joins; ownSplat: its t = 1 and its merge at x_{k−1} at the light vertex's
+// wavelength, the only strategies whose last wavelength the sensor does not draw.
 #include "integrators/bdpt/mis.h"
 #include "materials/bsdf_model.h"
 
@@ -94,8 +94,11 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st);
 // on the side that sampled it with density `density` (docs/bdpt-mis.md §12): (η·density)², in the
 // shared family's part (any lobe: the single group is checked by `oneGroup`) and the own family's:
 // exact for a fluorescent lobe (η_g at the first gather vertex), through the wavelength kernel (the
-// mollified part) for an elastic one.
-// `gather`: x_m is the path's first gather vertex (MergeEta).
-MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, const Strategies& st);
+// mollified part) for an elastic one, and at x_{k−1} also exact at the light vertex's wavelength
+// (Variant::kMergeSplat, η_g, in the part whose last wavelength the sensor does not draw).
+// `gather`: x_m is the path's first gather vertex (MergeEta); `first`: x_m is x_{k−1}, the camera
+// ray's hit.
+MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,
+                          const Strategies& st);
 
 }  // namespace kasha::bdpt

@@ -15,8 +15,8 @@ inline double densityRatio(double other, double own) { return own > 0.0 ? other 
 // M of the strategy s' = j (j vertices on the light subpath L, the last of them L[j − 1]) with L[j]
 // using `lobe` and sending `lambdaOut` on (the connection's event there, or its own sampled one),
 // together with the merges at L[j] (docs/bdpt-mis.md §12: a side's strategy s' carries the merges at
-// the vertex that side sampled last). `gather`: L[j] is the path's first gather vertex (MergeEta),
-// as where L[j] connects to the camera.
+// the vertex that side sampled last). `gather`: L[j] connects to the camera (t = 1), so it is
+// x_{k−1}, the path's first gather vertex (MergeEta) and the camera ray's hit (Variant::kMergeSplat).
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
                           const Strategies& st, bool gather = false);
 // The same with L[j]'s own sampled event.

@@ -27,15 +27,15 @@ constexpr float kVerticesPerDisc = 1.0f;
 // The wide gather's radius over the pass's (VcmPaths::Gather): its disc holds 16 times the light
 // vertices, as many as photon mapping's (docs/photon-mapping.md).
 constexpr float kGatherScale = 4.0f;
-// What a light vertex found within a merge's reach costs, in rays (the pilot's cost model): 0.07,
-// 0.15 and 0.19 on uv_caustic_mirror, yamamoto_leds and jung18_fig3, from the extra time per
-// sample of the wide gather over the extra vertices it finds (16 spp, --vcm-paths bidirectional and
-// gather; docs/bdpt-mis.md §14).
-constexpr double kRaysPerMerge = 0.15;
+// What a merge weight computed costs, in rays (the pilot's cost model): 0.28, 0.26, 0.28 and 0.34 on
+// yamamoto_leds, jung18_fig1, jung18_fig3 and viewing_booth, from the extra time per sample of the
+// wide gather over the extra merge weights it computes (8 spp, 1 thread, the fastest of 4 runs of
+// --vcm-paths bidirectional and gather, in bidirectional's time per ray; docs/bdpt-mis.md §14).
+constexpr double kRaysPerMergeWeight = 0.28;
 // Light subpaths of the pilot that counts the vertices a pass keeps per subpath.
 constexpr size_t kPilotPaths = 1024;
 // Light subpaths of the subpath pilot's pass, at most (docs/bdpt-mis.md §14).
-constexpr size_t kPilotLightPaths = 16384;
+constexpr size_t kPilotLightPaths = 8192;
 // The pixels, and samples per pixel, at which the subpath pilot measures what camera paths alone
 // gain from stratified random numbers (docs/bdpt-mis.md §14).
 constexpr size_t kGainPixels = 512;
@@ -157,37 +157,43 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   std::lock_guard<std::mutex> lock(pilotMutex_);
   if (pilot_ && pilot_->seed == seed) return pilot_->run;
   using namespace bdpt;
-  // A pass of its own (lanes, light vertices), then two images of vcm against it, and from their
-  // paths what camera paths alone would add (PilotMoments, Alone::Camera); then two with the wide
-  // gather, against the same light vertices.
+  // Passes of its own (lanes, light vertices), one per sample of a pixel of each image, as a render
+  // takes one per sample per pixel: two images of vcm against them, and from their paths what
+  // camera paths alone would add (PilotMoments, Alone::Camera); then two with the wide gather,
+  // against the same light vertices.
+  const int w = scene.camera.width(), h = scene.camera.height();
   RayCounter passRays;
-  const std::unique_ptr<VcmPass> pass =
-      bidirectionalPass(scene, 0, mixBits(seed ^ 0xa0761d6478bd642fULL), false, passRays, kPilotLightPaths);
-  const double passShare = double(paths_) / double(std::min(kPilotLightPaths, paths_));  // the render's over the pilot's
+  std::vector<std::unique_ptr<VcmPass>> passes;
+  std::vector<const PassData*> passData;
+  for (int i = 0; i < 2 * pilotSamplesPerImage(w, h); ++i) {
+    passes.push_back(bidirectionalPass(scene, i, mixBits(seed ^ 0xa0761d6478bd642fULL), false, passRays, kPilotLightPaths));
+    passData.push_back(passes.back().get());
+  }
+  // The render's light subpaths per pass over the pilot's.
+  const double passShare = double(paths_) / double(std::min(kPilotLightPaths, paths_)) / double(passes.size());
   std::atomic<uint64_t> unsampled{0};
-  std::atomic<uint64_t> merges[2] = {0, 0};  // light vertices found: without and with the wide gather
+  std::atomic<uint64_t> weights[2] = {0, 0};  // merge weights computed: without and with the wide gather
   const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx,
                                std::vector<std::vector<Splat>>& excess) -> Vec3 {
     thread_local PilotMoments moments;
     moments.clear();
-    uint64_t found = 0;
-    const Vec3 v = estimate(scene, pixel, rng, ctx, *pass, &moments, &found);
-    merges[0].fetch_add(found, std::memory_order_relaxed);
+    uint64_t merges = 0;
+    const Vec3 v = estimate(scene, pixel, rng, ctx, static_cast<const VcmPass&>(*ctx.pass), &moments, &merges);
+    weights[0].fetch_add(merges, std::memory_order_relaxed);
     const PilotMoments::Alternative& alt = moments.alone[int(Alone::Camera)];
     if (alt.unsampled > 0) unsampled.fetch_add(uint64_t(alt.unsampled), std::memory_order_relaxed);
     excess[0].insert(excess[0].end(), alt.excess.begin(), alt.excess.end());
     return v;
   };
-  const int w = scene.camera.width(), h = scene.camera.height();
-  const PilotEstimates e = pilotEstimates(w, h, seed, SamplerKind::Independent, 1, both);
-  pass->setGather(true);
+  const PilotEstimates e = pilotEstimates(w, h, seed, SamplerKind::Independent, 1, both, passData);
+  for (const std::unique_ptr<VcmPass>& pass : passes) pass->setGather(true);
   const PilotSample wide = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
-    uint64_t found = 0;
-    const Vec3 v = estimate(scene, pixel, rng, ctx, *pass, nullptr, &found);
-    merges[1].fetch_add(found, std::memory_order_relaxed);
+    uint64_t merges = 0;
+    const Vec3 v = estimate(scene, pixel, rng, ctx, static_cast<const VcmPass&>(*ctx.pass), nullptr, &merges);
+    weights[1].fetch_add(merges, std::memory_order_relaxed);
     return v;
   };
-  const PilotEstimates g = pilotEstimates(w, h, seed, SamplerKind::Independent, 1, wide);
+  const PilotEstimates g = pilotEstimates(w, h, seed, SamplerKind::Independent, 1, wide, passData);
   const PilotSample camera = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
     return cameraAlone_->samplePixel(scene, pixel, rng, ctx);
   };
@@ -217,10 +223,10 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   o.stratification = gain;
   o.cameraRelVar = (e.relVar + e.relExcess[0]) * gain;
   o.cameraRays = double(cameraRays.closest + cameraRays.shadow) / cameraSamples;
-  // The wide gather traces the same rays; the light vertices each finds cost kRaysPerMerge rays.
+  // The wide gather traces the same rays; each merge weight computed costs kRaysPerMergeWeight rays.
   o.gatherRelVar = g.relVar;
-  o.cost = o.rays + kRaysPerMerge * double(merges[0].load()) / double(e.samples);
-  o.gatherCost = o.rays + kRaysPerMerge * double(merges[1].load()) / double(g.samples);
+  o.cost = o.rays + kRaysPerMergeWeight * double(weights[0].load()) / double(e.samples);
+  o.gatherCost = o.rays + kRaysPerMergeWeight * double(weights[1].load()) / double(g.samples);
   double best = o.relVar * o.cost;
   if (o.gatherRelVar * o.gatherCost < best) o.run = VcmPaths::Gather, best = o.gatherRelVar * o.gatherCost;
   if (o.cameraSamplesAll && o.cameraRelVar * o.cameraRays < best) o.run = VcmPaths::Camera;
@@ -286,7 +292,7 @@ Vec3 Vcm::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContex
 }
 
 Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, const VcmPass& pass,
-                   bdpt::PilotMoments* pilot, uint64_t* merges) const {
+                   bdpt::PilotMoments* pilot, uint64_t* mergeWeights) const {
   using namespace bdpt;
   const Lanes& lanes = pass.lanes;
   for (int k = 0; k < lanes_; ++k)
@@ -299,6 +305,7 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
   c.bandwidth = pass.bandwidth;
   c.pilot = pilot;
   c.pixel = pixel;
+  c.mergeWeights = mergeWeights;
   if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
   if (ctx.recordStrategies) c.log = &ctx.strategies;
   float radiance[kMaxLanes];
@@ -316,6 +323,8 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
     for (int t = 2; t <= int(C.size()); ++t) emitterHit(c, C, t, radiance, xyz);
   }
   if (pass.vertices) {
+    thread_local std::vector<SpectralSample> atLight;  // merges at the light vertices' own wavelengths
+    atLight.clear();
     const int maxDepth = pass.walk.maxDepth;
     const float r2 = pass.radius * pass.radius;
     for (int t = 2; t <= int(C.size()) && t - 1 <= maxDepth; ++t) {
@@ -323,13 +332,13 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
       if (!mergeable(b)) continue;
       const float reach = b.gather ? std::max(pass.radius, pass.radiusGather) : pass.radius;
       const std::vector<size_t>& near = pass.vertices->within(b.p, reach);
-      if (merges) *merges += near.size();
       for (size_t i : near) {
         const LightVertex& v = (*pass.vertices)[i];
         const Vec3 d = Vec3(v.p[0], v.p[1], v.p[2]) - b.p;
-        if (v.depth + t - 2 <= maxDepth) merge(c, C, t, v, glm::dot(d, d) <= r2, radiance);
+        if (v.depth + t - 2 <= maxDepth) merge(c, C, t, v, glm::dot(d, d) <= r2, radiance, atLight);
       }
     }
+    for (const SpectralSample& a : atLight) xyz += sensorResponse(ctx, a.lambda, a.value);
   }
   // Each lane's radiance weighted by W(λ_k)/(n·p(λ_k)), as bdpt's.
   for (int k = 0; k < lanes_; ++k)

@@ -64,9 +64,9 @@ class Vcm final : public Integrator {
   std::unique_ptr<VcmPass> bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed, bool gather,
                                              RayCounter& counter, size_t paths = 0) const;
   // One camera sample of every strategy against `pass`; with `pilot`, what the pilot learns from it;
-  // with `merges`, adds the light vertices it found within the merges' reach.
+  // with `mergeWeights`, adds the merge weights it computed (the pilot's cost model).
   Vec3 estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, const VcmPass& pass,
-                bdpt::PilotMoments* pilot, uint64_t* merges = nullptr) const;
+                bdpt::PilotMoments* pilot, uint64_t* mergeWeights = nullptr) const;
 
   WavelengthStrategy sensor_, light_;
   Parts parts_;
