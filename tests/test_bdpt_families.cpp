@@ -80,7 +80,25 @@ TEST(FamilyPilot, RaysOfSamplesAreCountedOnce) {
       });
   EXPECT_EQ(r.closest, 3u * 600u);
   EXPECT_EQ(r.shadow, 600u);
-  for (size_t i = 0; i < pixels.size(); ++i) EXPECT_EQ(pixels[i], i % 2 == 0 ? 1 : 0);  // every other pixel
+  // Each at a pixel of its own, spread over rows and columns (bdpt::spreadPixels: a 28 × 22 grid).
+  int rows = 0, columns = 0, visited = 0;
+  for (int y = 0; y < 30; ++y) {
+    int n = 0;
+    for (int x = 0; x < 40; ++x) n += pixels[size_t(y) * 40 + size_t(x)];
+    rows += n > 0;
+  }
+  for (int x = 0; x < 40; ++x) {
+    int n = 0;
+    for (int y = 0; y < 30; ++y) n += pixels[size_t(y) * 40 + size_t(x)];
+    columns += n > 0;
+  }
+  for (int v : pixels) {
+    EXPECT_LE(v, 1);
+    visited += v;
+  }
+  EXPECT_EQ(visited, 600);
+  EXPECT_EQ(rows, 22);
+  EXPECT_EQ(columns, 28);
 }
 
 // What a contribution tells the pilot about each family alone (connect.h).

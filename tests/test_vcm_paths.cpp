@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
+#include <tuple>
 
 #include "integrators/bdpt/connect_parts.h"
 #include "integrators/bdpt/family_pilot.h"
@@ -59,6 +61,23 @@ TEST(VcmPaths, RelativeVarianceAtPixelsIsKnownAndStratificationLowersIt) {
   EXPECT_NEAR(independent, expected, 4.0 * std::sqrt(6.0 / pixels) / 3.0 + 0.01);
   const double stratified = bdpt::relativeVarianceAtPixels(64, 64, 3, SamplerKind::Sobol, spp, pixels, sample, rays);
   EXPECT_LT(stratified, 0.5 * independent);  // a smooth integrand in 3 dimensions at 16 samples
+}
+
+TEST(VcmPaths, ThePixelsOfTheStratificationEstimateCoverTheImage) {
+  // 512 pixels of a 512×512 image once fell on its first column (j·all/pixels): a 23 × 23 grid now.
+  for (const auto& [w, h, n] : {std::tuple{512, 512, 512}, {256, 144, 512}, {64, 64, 2048}, {7, 3, 21}}) {
+    const std::vector<Vec2> at = bdpt::spreadPixels(w, h, size_t(n));
+    ASSERT_EQ(at.size(), size_t(n));
+    std::set<float> xs, ys;
+    std::set<std::pair<float, float>> distinct;
+    for (const Vec2& p : at) {
+      EXPECT_TRUE(p.x >= 0.0f && p.x < float(w) && p.y >= 0.0f && p.y < float(h)) << p.x << ", " << p.y;
+      xs.insert(p.x), ys.insert(p.y), distinct.insert({p.x, p.y});
+    }
+    EXPECT_EQ(distinct.size(), size_t(n)) << w << "x" << h;
+    EXPECT_GE(double(xs.size()), 0.7 * std::sqrt(double(n) * w / h)) << w << "x" << h;
+    EXPECT_GE(double(ys.size()), 0.7 * std::sqrt(double(n) * h / w)) << w << "x" << h;
+  }
 }
 
 std::unique_ptr<Scene> smallScene(const char* file, int res) {
@@ -138,6 +157,10 @@ TEST(VcmPaths, FixedOrHalvesDecideNothing) {
   EXPECT_TRUE(st.choices.rfind("paths: gather (pilot: ", 0) == 0 || st.choices.rfind("paths: bidirectional (pilot: ", 0) == 0)
       << st.choices;
   EXPECT_NE(st.choices.find("camera alone cannot sample some paths that carry light"), std::string::npos) << st.choices;
+  // Without fluorescence there are no own light vertices: the wide gather is vcm itself, not measured.
+  const auto elastic = smallScene("scenes/validation/smooth_sphere_distant.json", 16);
+  image(*elastic, "vcm", elastic->render, &st);
+  EXPECT_NE(st.choices.find("; gather the same (no own light vertices); "), std::string::npos) << st.choices;
 }
 
 }  // namespace

@@ -143,17 +143,31 @@ PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind 
   return out;
 }
 
+std::vector<Vec2> spreadPixels(int width, int height, size_t pixels) {
+  const double aspect = double(width) / double(height);
+  const int gx = std::clamp(int(std::lround(std::sqrt(double(pixels) * aspect))), 1, width);
+  const int gy = int((pixels + size_t(gx) - 1) / size_t(gx));
+  std::vector<Vec2> out(pixels);
+  for (size_t j = 0; j < pixels; ++j) {
+    const int cx = int(j % size_t(gx)), cy = int(j / size_t(gx));
+    out[j] = Vec2(std::floor((float(cx) + 0.5f) * float(width) / float(gx)),
+                  std::floor((float(cy) + 0.5f) * float(height) / float(gy)));
+  }
+  return out;
+}
+
 double relativeVarianceAtPixels(int width, int height, uint64_t seed, SamplerKind kind, int spp, size_t pixels,
                                 const PilotSample& sample, RayCounter& rays) {
   const size_t all = size_t(width) * size_t(height);
   pixels = std::min(pixels, all);
+  const std::vector<Vec2> at = spreadPixels(width, height, pixels);
   std::vector<double> rel(pixels, 0.0);
   std::vector<SampleContext> ctx(pixels);
   const uint64_t seeds[2] = {seed * 0xC2B2AE3D27D4EB4Full + 0x165667B19E3779F9ull,
                              seed * 0x94D049BB133111EBull + 0x27D4EB2F165667C5ull};
   tbb::parallel_for(size_t(0), pixels, [&](size_t j) {
-    const size_t i = (j * all) / pixels;
-    const Vec2 pixel(float(i % size_t(width)), float(i / size_t(width)));
+    const Vec2 pixel = at[j];
+    const size_t i = size_t(pixel.y) * size_t(width) + size_t(pixel.x);
     std::vector<std::vector<Splat>> excess;
     Image x(2, {0.0, 0.0, 0.0});  // the pixel in each image
     for (int image = 0; image < 2; ++image)
@@ -171,14 +185,14 @@ double relativeVarianceAtPixels(int width, int height, uint64_t seed, SamplerKin
 }
 
 RayCounter raysOfSamples(int width, int height, uint64_t seed, SamplerKind kind, size_t count, const PilotSample& sample) {
-  const size_t pixels = size_t(width) * size_t(height);
+  const std::vector<Vec2> at = spreadPixels(width, height, std::min(count, size_t(width) * size_t(height)));
   std::vector<SampleContext> ctx(count);
   const uint64_t raySeed = seed * 0xD1B54A32D192ED03ull + 0x8CB92BA72F3D8DD7ull;
   tbb::parallel_for(size_t(0), count, [&](size_t j) {
     std::vector<std::vector<Splat>> excess;
-    const size_t i = (j * pixels) / count;
-    Sampler rng(kind, raySeed, uint64_t(i), uint32_t(j));
-    sample(Vec2(float(i % size_t(width)), float(i / size_t(width))), rng, ctx[j], excess);
+    const Vec2 pixel = at[j % at.size()];
+    Sampler rng(kind, raySeed, uint64_t(pixel.y) * uint64_t(width) + uint64_t(pixel.x), uint32_t(j));
+    sample(pixel, rng, ctx[j], excess);
   });
   RayCounter rays;
   for (const SampleContext& c : ctx) rays.closest += c.counter.closest, rays.shadow += c.counter.shadow;

@@ -46,9 +46,13 @@ PilotEstimates pilotEstimates(int width, int height, uint64_t seed, SamplerKind 
 // n, the samples per cell of each of pilotEstimates' images.
 int pilotSamplesPerImage(int width, int height);
 
+// `pixels` pixels (at most width × height) spread evenly over the image: the centres of a grid of
+// about square cells, row by row (their integer corners).
+std::vector<Vec2> spreadPixels(int width, int height, size_t pixels);
+
 // The relative variance per sample of an estimator whose samples do not splat, at `spp` samples per
 // pixel: two independent images (random numbers of `kind`, each image with a seed of its own derived
-// from `seed`) at `pixels` pixels spread evenly over the image, the mean over the pixels of
+// from `seed`) at `pixels` pixels spread evenly over the image (spreadPixels), the mean over the pixels of
 // Σ_XYZ spp·(x₁ − x₂)²/2 / (m² + 10⁻²), m the mean of the two. With a sampler that stratifies the
 // samples of a pixel (Sobol) it shows what the stratification gains at that count. The rays traced
 // are added to `rays`.

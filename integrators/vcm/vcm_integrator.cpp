@@ -186,14 +186,16 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
     return v;
   };
   const PilotEstimates e = pilotEstimates(w, h, seed, SamplerKind::Independent, 1, both, passData);
-  for (const std::unique_ptr<VcmPass>& pass : passes) pass->setGather(true);
+  // The wide gather widens own merges only: without own light vertices it is vcm itself.
+  const bool gatherDiffers = families_.independent;
+  for (const std::unique_ptr<VcmPass>& pass : passes) pass->setGather(gatherDiffers);
   const PilotSample wide = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
     uint64_t merges = 0;
     const Vec3 v = estimate(scene, pixel, rng, ctx, static_cast<const VcmPass&>(*ctx.pass), nullptr, &merges);
     weights[1].fetch_add(merges, std::memory_order_relaxed);
     return v;
   };
-  const PilotEstimates g = pilotEstimates(w, h, seed, SamplerKind::Independent, 1, wide, passData);
+  const PilotEstimates g = gatherDiffers ? pilotEstimates(w, h, seed, SamplerKind::Independent, 1, wide, passData) : e;
   const PilotSample camera = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
     return cameraAlone_->samplePixel(scene, pixel, rng, ctx);
   };
@@ -210,8 +212,9 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
     kinds = 2;
   }
   const double cameraSamples = double(kinds) * 2.0 * kGainSpp * double(std::min(kGainPixels, size_t(w) * size_t(h)));
-  counter.closest = e.rays.closest + g.rays.closest + passRays.closest + cameraRays.closest;
-  counter.shadow = e.rays.shadow + g.rays.shadow + passRays.shadow + cameraRays.shadow;
+  const RayCounter gRays = gatherDiffers ? g.rays : RayCounter{};
+  counter.closest = e.rays.closest + gRays.closest + passRays.closest + cameraRays.closest;
+  counter.shadow = e.rays.shadow + gRays.shadow + passRays.shadow + cameraRays.shadow;
   PilotOutcome o;
   o.seed = seed;
   o.relVar = e.relVar;
@@ -224,9 +227,10 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   o.cameraRelVar = (e.relVar + e.relExcess[0]) * gain;
   o.cameraRays = double(cameraRays.closest + cameraRays.shadow) / cameraSamples;
   // The wide gather traces the same rays; each merge weight computed costs kRaysPerMergeWeight rays.
-  o.gatherRelVar = g.relVar;
   o.cost = o.rays + kRaysPerMergeWeight * double(weights[0].load()) / double(e.samples);
-  o.gatherCost = o.rays + kRaysPerMergeWeight * double(weights[1].load()) / double(g.samples);
+  o.gatherDiffers = gatherDiffers;
+  o.gatherRelVar = g.relVar;
+  o.gatherCost = gatherDiffers ? o.rays + kRaysPerMergeWeight * double(weights[1].load()) / double(g.samples) : o.cost;
   double best = o.relVar * o.cost;
   if (o.gatherRelVar * o.gatherCost < best) o.run = VcmPaths::Gather, best = o.gatherRelVar * o.gatherCost;
   if (o.cameraSamplesAll && o.cameraRelVar * o.cameraRays < best) o.run = VcmPaths::Camera;
@@ -245,11 +249,14 @@ std::string Vcm::choices() const {
                   pilot_->cameraRays, pilot_->stratification);
   else
     std::snprintf(camera, sizeof camera, "cannot sample some paths that carry light");
+  char gather[80] = "the same (no own light vertices)";
+  if (pilot_->gatherDiffers)
+    std::snprintf(gather, sizeof gather, "%.3g, %.3g rays", pilot_->gatherRelVar, pilot_->gatherCost);
   char buf[400];
   std::snprintf(buf, sizeof buf,
                 "paths: %s (pilot: relative variance per sample and cost per sample in rays: bidirectional %.3g, "
-                "%.3g rays; gather %.3g, %.3g rays; camera alone %s)",
-                toString(pilot_->run), pilot_->relVar, pilot_->cost, pilot_->gatherRelVar, pilot_->gatherCost, camera);
+                "%.3g rays; gather %s; camera alone %s)",
+                toString(pilot_->run), pilot_->relVar, pilot_->cost, gather, camera);
   return buf;
 }
 

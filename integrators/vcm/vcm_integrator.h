@@ -91,8 +91,10 @@ class Vcm final : public Integrator {
     // Relative variance per sample (camera paths alone's from vcm's paths, times what their own
     // samples gain from the render's stratified random numbers) and rays per sample.
     double relVar = 0.0, rays = 0.0, cameraRelVar = 0.0, cameraRays = 0.0, stratification = 1.0;
-    // With the merges' cost (kRaysPerMerge); the wide gather's relative variance and cost.
+    // With the merges' cost (kRaysPerMergeWeight); the wide gather's relative variance and cost,
+    // where it differs (a scene that fluoresces: own light vertices).
     double cost = 0.0, gatherRelVar = 0.0, gatherCost = 0.0;
+    bool gatherDiffers = true;
   };
   mutable std::mutex pilotMutex_;
   mutable std::optional<PilotOutcome> pilot_;
