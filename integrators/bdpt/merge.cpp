@@ -174,8 +174,10 @@ void mergeSplat(const Context& c, const std::vector<PathVertex>& C, const LightV
     return fullWeight(c, C, 2, v, lightPath, lobe, Variant::kMergeSplat, sums, g);
   });
   if (!(weight > 0.0f)) return;
-  if (c.pilot) c.pilot->keep(0);  // weigh()'s ratios, in lane 0's slot
-  recordXyz(c, v.depth, 2, Variant::kMergeSplat, 0, Observer::cie1931().weight(lambda) * value, weight);
+  if (c.pilot || c.log) {  // the per-strategy images and the pilot, in lane 0's slot (weigh()'s ratios)
+    if (c.pilot) c.pilot->keep(0);
+    recordXyz(c, v.depth, 2, Variant::kMergeSplat, 0, Observer::cie1931().weight(lambda) * value, weight);
+  }
   atLight.push_back({lambda, value * weight});
 }
 

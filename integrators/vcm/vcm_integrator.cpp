@@ -34,7 +34,7 @@ constexpr float kGatherScale = 4.0f;
 constexpr double kRaysPerMergeWeight = 0.28;
 // Light subpaths of the pilot that counts the vertices a pass keeps per subpath.
 constexpr size_t kPilotPaths = 1024;
-// Light subpaths of the subpath pilot's pass, at most (docs/bdpt-mis.md §14).
+// Light subpaths of each of the subpath pilot's passes, at most (docs/bdpt-mis.md §14).
 constexpr size_t kPilotLightPaths = 8192;
 // The pixels, and samples per pixel, at which the subpath pilot measures what camera paths alone
 // gain from stratified random numbers (docs/bdpt-mis.md §14).
