@@ -8,19 +8,21 @@
 
 namespace kasha {
 
-// "pt" (path tracing), "lt" (light tracing), "bdpt-shared" / "bdpt-independent" (BDPT in either
-// wavelength family; "bdpt" is the independent one), "bdpt-mollified" (independent, with spectral
-// mollification of elastic connections), "ppm" (progressive photon mapping). Throws
-// std::invalid_argument otherwise.
+// "pt" (path tracing), "lt" (light tracing), "bdpt" (BDPT with both wavelength families in one MIS,
+// a pilot choosing per scene whether to run one alone), "bdpt-shared" / "bdpt-independent" (BDPT in
+// one wavelength family), "bdpt-mollified" (independent, with spectral mollification of elastic
+// connections), "ppm" (progressive photon mapping), "vcm" (vertex connection and merging), "vc" /
+// "bpm" (its connections alone / its merges alone); the list is integratorNames() (docs/integrators.md).
+// Throws std::invalid_argument otherwise.
 // settings.heroWavelengths = kAutoLanes becomes defaultLanes(name, settings) (BDPT: its own).
 // Throws FluorescentLanesError for settings.fluorescentLanes = End with any but pt and lt.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& settings);
 std::vector<std::string> integratorNames();
 
 // Wavelength lanes of an integrator when the settings leave them to it: kDefaultLanes for lt, and
-// for pt when its sensor strategy is one density and next-event estimation shares the event's
-// excitation wavelength (what lanes need); 1 otherwise (ppm: no lanes yet). The BDPT estimators
-// decide for themselves (they need the scene): Bdpt's constructor.
+// for pt and ppm when the sensor strategy is one density and next-event estimation shares the
+// event's excitation wavelength (what their camera lanes need); 1 otherwise. The BDPT estimators and
+// vcm, vc, bpm are not asked: their constructors take kDefaultLanes themselves.
 int defaultLanes(const std::string& name, const RenderSettings& settings);
 
 }  // namespace kasha

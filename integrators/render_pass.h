@@ -36,7 +36,7 @@ class PassTracer {
              SamplerKind sampler, bool recordStrategies, bool recordSpectral);
   // Traces samples [first, first + count) of every pixel into `rec`, replacing what it held. Its
   // buffers keep their capacity from pass to pass: a new record per pass freed and faulted in
-  // megabytes of splats each time (README "Benchmarks", "Reused pass buffers").
+  // megabytes of splats each time (docs/benchmarks.md, "Pass buffers and the heap").
   void trace(int first, int count, PassRecord& rec);
   // Adds a record to the film: each pixel's samples in sample order (pixels in tile order, so the
   // first non-finite pixel is the same as with one thread), then the splats; the spectral shares

@@ -1,5 +1,6 @@
 #pragma once
-// The scattering function at one point of a surface, in the local frame (docs/transport.md §2).
+// The scattering function at one point of a surface, in the local frame (docs/transport.md §1–2:
+// elastic and fluorescent lobes, the transport mode).
 // Materials build a Bsdf (materials/bsdf.h) per hit around one of these models; integrators use
 // the Bsdf, and the model tests call the model directly.
 //

@@ -58,7 +58,7 @@ MeasuredMatrix::MeasuredMatrix(const BispectralData& data, MeasuredReradiationOp
   }
   for (size_t i = 0; i < in_.size(); ++i) {
     fluoresces_ = fluoresces_ || columns_[i].integral() > 0.0f;
-    // Energy per input wavelength: d(λ_i) + ∫F dλ_o ≤ 1 (transport.md §6: row sums of M ≤ 1).
+    // Energy per input wavelength: d(λ_i) + ∫F dλ_o ≤ 1 (docs/transport.md §6: row sums of M ≤ 1).
     const float energy = diagonal(in_[i]) + columns_[i].integral();
     if (range.contains(in_[i]) && energy > 1.0f + kEnergyTolerance && !options.allowUnphysical)
       throw InputError(data.source, "ex_" + nm(in_[i]),

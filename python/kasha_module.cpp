@@ -1,6 +1,6 @@
 // The Python module `kasha` (pybind11): scenes from files or dicts, renders to numpy arrays,
 // metrics on arrays, spectral OpenEXR reading. Built by the project's CMake into build/python/
-// (README "Python"). Errors are Python exceptions carrying kasha's message (file, field, reason).
+// (docs/python.md). Errors are Python exceptions carrying kasha's message (file, field, reason).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>

@@ -1,5 +1,5 @@
 #pragma once
-// The batch-statistics check of a render's mean XYZ against the closed forms of validation.md §1–2
+// The batch-statistics check of a render's mean XYZ against the closed forms of docs/validation.md §1–2
 // (tests/spectral_quadrature.h): shared by the per-integrator closed-form tests and the
 // per-wavelength-strategy ones.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Every integrator against the closed forms of validation.md §1–2, with tolerances of 4 standard
+// Every integrator against the closed forms of docs/validation.md §1–2, with tolerances of 4 standard
 // errors estimated from independent batches. Expected values are computed here by quadrature of
 // the formulas from the very spectra the scene files load. This file is compiled once per
 // integrator (tests/CMakeLists.txt), with KASHA_TEST_INTEGRATOR naming it.
@@ -30,7 +30,7 @@ void expectAgreement(Scene& scene, int maxDepth, const Vec3& exact, int batches 
 }
 
 TEST(ClosedForm, WorkedExampleMatchesValidationDoc) {
-  // validation.md §1 quotes L = 1.111 / 2.000 / 3.600 in the absorption / neutral / emission bands.
+  // docs/validation.md §1 quotes L = 1.111 / 2.000 / 3.600 in the absorption / neutral / emission bands.
   auto scene = load("furnace_fluorescent.json");
   const Grid g(scene->range);
   const std::vector<double> L = furnaceClosedForm(g, jung(*scene), emissionOf(*scene));
@@ -124,7 +124,7 @@ TEST(ClosedForm, PointLightInsideFluorescentSphere) {
   expectAgreement(*scene, 1000, toXyz(g, furnaceClosedForm(g, m, L1)));
 }
 
-// validation.md §2, uniform environment: L_o = (1 − c·a)·r·L_i + Q·e·∫ c·a·L_i dλ.
+// docs/validation.md §2, uniform environment: L_o = (1 − c·a)·r·L_i + Q·e·∫ c·a·L_i dλ.
 TEST(ClosedForm, SingleScatteringSphereUnderEnvironment) {
   auto scene = load("single_sphere_environment.json");
   const JungBbrrdf& m = jung(*scene);
@@ -143,7 +143,7 @@ TEST(ClosedForm, SingleScatteringSphereUnderEnvironment) {
   expectAgreement(*scene, 1000, toXyz(g, L), 32, 256);
 }
 
-// validation.md §2, distant light: L_o = cos θ·[(1 − c·a)·r·E + Q·e·∫ c·a·E dλ] / π.
+// docs/validation.md §2, distant light: L_o = cos θ·[(1 − c·a)·r·E + Q·e·∫ c·a·E dλ] / π.
 void checkPlane(const std::string& name) {
   auto scene = load(name);
   const JungBbrrdf& m = jung(*scene);

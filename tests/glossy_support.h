@@ -1,6 +1,6 @@
 #pragma once
 // Test helpers for glossy (non-delta) elastic materials: χ² goodness of fit of direction sampling
-// (validation.md §3), sphere quadrature, and the consistency of one sample with pdf() and eval().
+// (docs/validation.md §3), sphere quadrature, and the consistency of one sample with pdf() and eval().
 //
 // Cells: (cos θ over [−1, 1], φ), both hemispheres, so samples on the wrong side are caught
 // where the density is zero. Expected counts integrate Material::pdf over each cell with a

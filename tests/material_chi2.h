@@ -1,5 +1,5 @@
 #pragma once
-// χ² goodness-of-fit machinery shared by the material tests (validation.md §3):
+// χ² goodness-of-fit machinery shared by the material tests (docs/validation.md §3):
 // quadrature over the sphere, the physical order of a sampled event, and a
 // joint (lobe, direction, wavelength) χ² test of Bsdf::sample against Bsdf::pdf,
 // through the Bsdf a material builds at a hit.

@@ -1,6 +1,6 @@
 #pragma once
 // Independent batch renders of a scene, summed over image regions: the mean and standard error of
-// each region's X, Y and Z (validation.md §4's integrator agreement tests).
+// each region's X, Y and Z (docs/validation.md §4's integrator agreement tests).
 #include <gtest/gtest.h>
 
 #include <algorithm>

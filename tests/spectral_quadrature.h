@@ -1,5 +1,5 @@
 #pragma once
-// Quadrature of spectra on the wavelength range and the closed forms of validation.md §1–2 built
+// Quadrature of spectra on the wavelength range and the closed forms of docs/validation.md §1–2 built
 // from it: shared by the closed-form tests (tests/closed_form_support.h) and the merge-bias bench
 // (bench/merge_bias/), so it needs no test framework.
 #include <functional>
@@ -58,7 +58,7 @@ inline std::vector<double> transport(const Grid& g, const JungBbrrdf& m, const s
   return out;
 }
 
-// validation.md §2 at normal incidence: the radiance a diffuse fluorescent surface reflects under the
+// docs/validation.md §2 at normal incidence: the radiance a diffuse fluorescent surface reflects under the
 // irradiance E(λ), L_o = [(1 − c·a)·r·E + Q·e·∫ c·a·E dλ] / π (times cos θ for oblique light).
 inline std::vector<double> singleScattering(const Grid& g, const JungBbrrdf& m, const Fn& E) {
   const double absorbed = g.integrate(g.sample([&](double l) { return m.c() * m.a(float(l)) * E(l); }));
@@ -68,7 +68,7 @@ inline std::vector<double> singleScattering(const Grid& g, const JungBbrrdf& m, 
   });
 }
 
-// validation.md §1: L = [L_e + Q·e·K] / D, D = 1 − (1 − c·a)·r, K = A / (1 − Q·B).
+// docs/validation.md §1: L = [L_e + Q·e·K] / D, D = 1 − (1 − c·a)·r, K = A / (1 − Q·B).
 inline std::vector<double> furnaceClosedForm(const Grid& g, const JungBbrrdf& m, const Fn& Le) {
   std::vector<double> D = g.sample([&](double l) { return 1.0 - (1.0 - m.c() * m.a(float(l))) * m.r(float(l)); });
   std::vector<double> fa(g.x.size()), fb(g.x.size());

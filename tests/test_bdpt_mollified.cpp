@@ -1,6 +1,6 @@
 // BDPT with spectral mollification (integrator "bdpt-mollified", docs/bdpt-mis.md §6): the
 // bandwidth schedule and the range-renormalised kernel, convergence to the white furnace's
-// closed form (validation.md §1 with c = 0) within 4σ (the bias bound derived below is zero),
+// closed form (docs/validation.md §1 with c = 0) within 4σ (the bias bound derived below is zero),
 // and a scene the exact Independent family cannot render at all, where it agrees with Shared.
 #include <gtest/gtest.h>
 
@@ -117,7 +117,7 @@ void expectWhiteFurnace(int maxDepth, int batches, int spp) {
   const auto& m = dynamic_cast<const JungBbrrdf&>(*scene->materials.at(0));
   ASSERT_EQ(m.c(), 0.0f);
   const double r = m.r(500.0f), Le = scene->shapes.at(0).emission->scale * scene->shapes.at(0).emission->radiance(500.0f);
-  double L = 0.0;  // Σ_{j ≤ d} r^j L_e (the Neumann series, validation.md §1)
+  double L = 0.0;  // Σ_{j ≤ d} r^j L_e (the Neumann series, docs/validation.md §1)
   for (int j = 0; j <= std::min(maxDepth, 2000); ++j) L += std::pow(r, j) * Le;
   const Vec3 exact = cmfIntegral(scene->range.min, scene->range.max) * float(L);
   const Batches run = renderBatches(*scene, "bdpt-mollified", maxDepth, batches, spp, 150.0f);

@@ -1,5 +1,5 @@
 // Unit tests of the coated fluorescent material (materials/coated_fluorescent.h, docs/layered.md):
-// validation.md §3 (joint χ² in both modes, densities, energy, reciprocity) and the limit where the
+// docs/validation.md §3 (joint χ² in both modes, densities, energy, reciprocity) and the limit where the
 // coat has η = 1 and the material is Jung18's BBRRDF.
 #include <gtest/gtest.h>
 
@@ -29,7 +29,7 @@ using test::randomDirection;
 const WavelengthRange kRange{360.0f, 830.0f};
 const TransportMode kModes[] = {TransportMode::Radiance, TransportMode::Importance};
 
-// validation.md §1's box spectra, c and Q inside (0, 1).
+// docs/validation.md §1's box spectra, c and Q inside (0, 1).
 JungParams boxParams() {
   JungParams p;
   p.absorption = Spectrum::box(400.0f, 450.0f, 0.8f);

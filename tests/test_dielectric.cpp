@@ -1,5 +1,5 @@
 // Unit tests of the smooth dielectric (materials/dielectric.h, fresnel.h, specular_lobe.h):
-// validation.md §3 for two specular elastic lobes. Fresnel is checked against Fresnel's
+// docs/validation.md §3 for two specular elastic lobes. Fresnel is checked against Fresnel's
 // trigonometric form of the same equations, the discrete sampling against F by a binomial test,
 // and the transport-mode factor against Veach's relations for refraction (Veach97 §5.2).
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 // - the lane event itself: one new lane per lane before, each serving that lane alone, and
 //   lanesEndAt asks for one to be kept; through, a fresh set serves every lane;
 // - unbiased: pt (the material's own excitation density and a strategy's) and lt match the closed
-//   forms of validation.md §1 (disjoint and overlapping a/e, UV only) within 4 standard errors;
+//   forms of docs/validation.md §1 (disjoint and overlapping a/e, UV only) within 4 standard errors;
 // - the lanes really end: in the UV furnace, where every visible wavelength comes from a fluorescent
 //   event, the variance per sample is larger with `end` than with `through` (and the mean the same).
 #include <gtest/gtest.h>

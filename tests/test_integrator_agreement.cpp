@@ -1,4 +1,4 @@
-// validation.md §4: on the Cornell fluorescent scenes (white light; UV + white; glossy materials:
+// docs/validation.md §4: on the Cornell fluorescent scenes (white light; UV + white; glossy materials:
 // coated fluorescent sphere, frosted glass, brushed metal), every integrator
 // agrees with the path tracer within the standard errors of both, region by region, at a low
 // resolution; and the standard error of each falls as 1/√N with the sample count N.

@@ -1,5 +1,5 @@
 // Unit tests of the Jung18 diffuse fluorescent BBRRDF (materials/jung_bbrrdf.h) and of the
-// wavelength sampling it is built on (core/spectral_distribution.h): validation.md §3.
+// wavelength sampling it is built on (core/spectral_distribution.h): docs/validation.md §3.
 //
 // Every expected value is computed here, either by hand from the paper's formulas (eqs. 4–8) or
 // by numerical quadrature of the material's own eval()/pdf(); none is copied from a run.
@@ -38,7 +38,7 @@ const WavelengthRange kRange{360.0f, 830.0f};
 // ---------------------------------------------------------------------------------------------
 // Parameter sets
 
-// validation.md §1's worked example: a = 0.8 on [400, 450), e a box on [550, 600), r = 0.5.
+// docs/validation.md §1's worked example: a = 0.8 on [400, 450), e a box on [550, 600), r = 0.5.
 JungParams boxParams() {
   JungParams p;
   p.absorption = Spectrum::box(400.0f, 450.0f, 0.8f);

@@ -1,4 +1,4 @@
-// Unit tests of the Lambertian reflector (materials/lambertian.h): validation.md §3 for a material
+// Unit tests of the Lambertian reflector (materials/lambertian.h): docs/validation.md §3 for a material
 // with one elastic lobe. Expected values come from f = r(λ)/π and numerical quadrature of pdf().
 #include <gtest/gtest.h>
 

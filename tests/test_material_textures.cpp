@@ -202,7 +202,7 @@ TEST_F(MaterialTextures, RgbReflectanceIsTheJakobHanikaSpectrum) {
 }
 
 // The per-hit models of the glossy kinds, at a hit where the texture blends two texels (0.35),
-// sample directions with the density they report (validation.md §3), in both modes (elastic only:
+// sample directions with the density they report (docs/validation.md §3), in both modes (elastic only:
 // no fluorescence, as directionChi2 bins the elastic density).
 TEST_F(MaterialTextures, TexturedGlossyModelsPassChi2) {
   writeExr("ramp.exr", 2, 1, {0.25f, 0.75f});

@@ -1,4 +1,4 @@
-// Closed-form furnaces (validation.md §1) for the measured materials: a sphere of the pink Post-it
+// Closed-form furnaces (docs/validation.md §1) for the measured materials: a sphere of the pink Post-it
 // material, emitting L_e = 1 on both sides, seen from its centre. Every direction then carries
 // the same radiance, the solution of L = L_e + T·L with, for the measured matrix,
 //   (T·L)(λ_o) = d(λ_o)·L(λ_o) + ∫ F(λ_o; λ_i)·L(λ_i) dλ_i,

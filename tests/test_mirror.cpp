@@ -1,4 +1,4 @@
-// Unit tests of the smooth mirror (materials/mirror.h): validation.md §3 for a specular elastic
+// Unit tests of the smooth mirror (materials/mirror.h): docs/validation.md §3 for a specular elastic
 // lobe, whose direction density is the discrete probability 1 and whose value is the Dirac delta's
 // coefficient R(λ)/|cos θ|.
 #include <gtest/gtest.h>

@@ -155,7 +155,7 @@ Vec3 kernelBias(const PpmIntegrator& ppm, int passes, const std::vector<double>&
 }
 
 TEST(Ppm, ForcedWavelengthKernelHasItsDerivedBias) {
-  // validation.md §1's worked example with the elastic lobe always through a kernel so wide
+  // docs/validation.md §1's worked example with the elastic lobe always through a kernel so wide
   // (h_1 = 200 nm) that its bias, a few per cent, lies far outside the noise: the mean must be the
   // closed form plus the bias derived by quadrature. Direct light comes by next-event estimation,
   // exactly: only the photons' elastic light, reflected L − L_e, goes through the kernel.
@@ -167,7 +167,7 @@ TEST(Ppm, ForcedWavelengthKernelHasItsDerivedBias) {
   s.ppm.bandwidth = 200.0f;
   constexpr int kPasses = 256;
   const std::vector<double> x = grid(scene->range);
-  // Closed form L = [L_e + Q·e·K]/D, K = A/(1 − Q·B) (validation.md §1), and the elastic part
+  // Closed form L = [L_e + Q·e·K]/D, K = A/(1 − Q·B) (docs/validation.md §1), and the elastic part
   // (1 − c·a)·r·(L − L_e) of the radiance reflected from indirect light.
   double A = 0.0, B = 0.0;
   for (const double l : x) {

@@ -1,7 +1,7 @@
 // Wavelength lanes in ppm's photon pass (integrators/photon_mapping/photon_tracer.h,
 // docs/photon-mapping.md §2): a photon holds up to kPhotonLanes lanes, more lanes are stored as
 // several photons at the same vertex, and the estimate with such split photons still meets the
-// closed form of the fluorescent furnace (validation.md §1).
+// closed form of the fluorescent furnace (docs/validation.md §1).
 #include <gtest/gtest.h>
 
 #include "integrators/photon_mapping/photon.h"

@@ -1,5 +1,5 @@
 // Unit tests of the GGX distribution (materials/ggx.h) and the rough conductor
-// (materials/rough_conductor.h): validation.md §3 for a glossy elastic lobe. Expected values come
+// (materials/rough_conductor.h): docs/validation.md §3 for a glossy elastic lobe. Expected values come
 // from quadrature of the material's own functions or from the formulas in the headers' comments.
 #include <gtest/gtest.h>
 

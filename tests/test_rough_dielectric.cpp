@@ -1,4 +1,4 @@
-// Unit tests of the rough dielectric (materials/rough_dielectric.h): validation.md §3 for glossy
+// Unit tests of the rough dielectric (materials/rough_dielectric.h): docs/validation.md §3 for glossy
 // reflection and refraction, both transport modes, Veach's η² relation, and the smooth limit
 // against materials/dielectric.h.
 #include <gtest/gtest.h>

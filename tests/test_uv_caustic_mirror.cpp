@@ -1,7 +1,7 @@
 // The scene that needs both connections and merging (scenes/uv_caustic_mirror.json, issue 14): a
 // 385 nm LED reaches the Pacific-Blue floor only through a ball lens. Looking at the caustic at low
 // resolution, BDPT (connections) and photon mapping (merging) must agree region by region within 4
-// combined standard errors (validation.md §4), and the caustic must stand out of the floor around it.
+// combined standard errors (docs/validation.md §4), and the caustic must stand out of the floor around it.
 #include <gtest/gtest.h>
 
 #include <memory>

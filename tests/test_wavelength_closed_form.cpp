@@ -1,4 +1,4 @@
-// Every wavelength strategy against the closed forms of validation.md: the fluorescent furnace
+// Every wavelength strategy against the closed forms of docs/validation.md: the fluorescent furnace
 // (all orders of scattering) and the furnace lit only in the UV, with tolerances of 4 standard
 // errors from independent batches (tests/closed_form_support.h). A strategy whose density would
 // miss wavelengths the image needs must be rejected instead, and only where that is expected.
@@ -48,7 +48,7 @@ RenderSettings allOrders(const Scene& scene) {
   return settings;
 }
 
-// The furnace's image XYZ in closed form (validation.md §1).
+// The furnace's image XYZ in closed form (docs/validation.md §1).
 Vec3 furnaceXyz(const Scene& scene) {
   const Grid g(scene.range);
   return toXyz(g, furnaceClosedForm(g, jung(scene), emissionOf(scene)));

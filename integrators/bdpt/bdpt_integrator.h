@@ -1,7 +1,7 @@
 #pragma once
 // Bidirectional path tracing for bispectral scenes (docs/bdpt-mis.md): every (s, t) strategy,
 // densities both ways, every wavelength density in the MIS weights, and the two exact wavelength
-// families of transport.md §3 — light subpaths sharing the camera sample's wavelength (Shared),
+// families of docs/transport.md §3 — light subpaths sharing the camera sample's wavelength (Shared),
 // joined to elastic camera vertices on paths that never fluoresce, and light subpaths drawing their
 // own from the light-start strategy, by default the lights' power spectrum (Independent), joined
 // through a connection vertex that evaluates its fluorescent lobe. `bdpt` (Unified) combines both

@@ -13,7 +13,7 @@
 namespace kasha::bdpt {
 
 // Which light subpaths BDPT combines with each camera subpath: the two exact wavelength families of
-// transport.md §3 alone, or both (docs/bdpt-mis.md §5).
+// docs/transport.md §3 alone, or both (docs/bdpt-mis.md §5).
 enum class WavelengthMode : uint8_t {
   Shared,       // the light subpath starts at the camera sample's wavelength
   Independent,  // the light subpath draws its own wavelength from the light-start strategy

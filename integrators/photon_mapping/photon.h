@@ -2,7 +2,7 @@
 // A photon: a vertex of a light subpath kept for density estimation (Jensen 1996; Hachisuka &
 // Jensen 2009). The subpath carries wavelength lanes (hero wavelengths, as the light tracer's), so a
 // photon holds the lanes that arrive at its vertex, each with its own wavelength and flux
-// (transport.md §4; docs/photon-mapping.md §2): up to kPhotonLanes in one cache line, more as
+// (docs/transport.md §4; docs/photon-mapping.md §2): up to kPhotonLanes in one cache line, more as
 // several photons at the same vertex (the estimate sums over lanes, so the split changes nothing).
 #include <algorithm>
 #include <cstddef>

@@ -15,7 +15,7 @@ void gatherPhotons(const PhotonPass& pass, const Bsdf& bsdf, const Vec3& p, cons
     const bool elastic = int(ph.depth) >= elasticFromDepth;
     for (int l = 0; l < ph.lanes; ++l) {
       const float lambda = ph.lambda[l], power = ph.power[l];
-      // Fluorescent lobe: exact for any pair of wavelengths (transport.md §4).
+      // Fluorescent lobe: exact for any pair of wavelengths (docs/transport.md §4).
       if (fluorescent)
         for (int k = 0; k < lanes.n; ++k)
           sum[k] += bsdf.eval(TransportMode::Radiance, wi, wo, lambda, lanes.lambda[k], SpectralLobe::Fluorescent) * power;

@@ -220,7 +220,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     const Vec3 w = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, w), w};
   }
-  // W(λ_j) times each sensor wavelength's share (transport.md §1).
+  // W(λ_j) times each sensor wavelength's share (docs/transport.md §1).
   for (int j = 0; j < n_; ++j)
     if (L.v[j] != 0.0f) xyz += sensorResponse(ctx, sensorLambda[j], L.v[j]);
   return xyz;

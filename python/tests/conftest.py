@@ -1,4 +1,4 @@
-"""Shared pieces of the Python module's tests: the closed-form furnace of validation.md §1 as a
+"""Shared pieces of the Python module's tests: the closed-form furnace of docs/validation.md §1 as a
 scene dict, its exact spectrum by quadrature, and the CIE 1931 observer read from the repository's
 table (independently of the module)."""
 import os
@@ -10,7 +10,7 @@ REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 
 def furnace_dict(c=1.0, resolution=16, spp=64, seed=7):
-    """validation.md §1: a sphere seen from inside, every surface Jung's BBRRDF (a = 0.8 on
+    """docs/validation.md §1: a sphere seen from inside, every surface Jung's BBRRDF (a = 0.8 on
     [400, 450), e = 1/50 on [550, 600), r = 0.5, Q = 0.9) emitting L_e = 1."""
     return {
         "render": {"spp": spp, "max_depth": 1000, "rr_depth": 3, "seed": seed, "sensor_sampling": "uniform"},
@@ -26,7 +26,7 @@ def furnace_dict(c=1.0, resolution=16, spp=64, seed=7):
 
 
 def furnace_radiance(lam, c):
-    """L(λ) = [L_e + Q·e·K] / D, D = 1 − (1 − c·a)·r, K = A / (1 − Q·B) (validation.md §1), by
+    """L(λ) = [L_e + Q·e·K] / D, D = 1 − (1 − c·a)·r, K = A / (1 − Q·B) (docs/validation.md §1), by
     quadrature on a 0.01 nm grid over 360–830 nm."""
     grid = np.arange(360.0, 830.0, 0.01) + 0.005
     a = lambda l: np.where((l >= 400) & (l < 450), 0.8, 0.0)

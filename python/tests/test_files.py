@@ -1,4 +1,4 @@
-"""Files read and written from Python follow kasha's rules (README "Files in and out"): regular
+"""Files read and written from Python follow kasha's rules (docs/reliability.md "Files in and out"): regular
 files only, strict JSON, outputs checked before the first sample, decoded images counted against
 the memory limit."""
 import json

@@ -1,4 +1,4 @@
-"""kasha.render against closed forms, changing parameters, errors (validation.md §1)."""
+"""kasha.render against closed forms, changing parameters, errors (docs/validation.md §1)."""
 import numpy as np
 import pytest
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# MPI-distributed rendering (README "Distributed rendering"), run by ctest:
+# MPI-distributed rendering (docs/mpi.md), run by ctest:
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR identical INTEGRATOR
 #     renders a small UV Cornell box (128×96, at most 6 bounces, 23 spp: passes of 5 samples, the last of 3) with one
 #     process and with `mpirun -np 2` and `-np 3`; the EXRs (with 8 spectral bins, as in every
