@@ -11,6 +11,8 @@ namespace kasha {
 
 class SmoothDielectric : public UniformMaterial<ElasticModel> {
  public:
+  // Throws std::invalid_argument with checkIor's message if n(λ) is not valid over the range.
+  SmoothDielectric(Ior ior, WavelengthRange range);
   BsdfFlags flags() const final {
     return BsdfFlags::DeltaDirection | flagIf(ior_.dispersive(), BsdfFlags::WavelengthDependentDirection);
   }
@@ -18,8 +20,6 @@ class SmoothDielectric : public UniformMaterial<ElasticModel> {
   const Ior& ior() const { return ior_; }
 
  protected:
-  // Throws std::invalid_argument with checkIor's message if n(λ) is not valid over the range.
-  SmoothDielectric(Ior ior, WavelengthRange range);
   Ior ior_;
 };
 
