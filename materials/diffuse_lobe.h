@@ -23,3 +23,24 @@ inline float pdf(const Vec3& wKnown, const Vec3& wSampled) {
 }
 
 }  // namespace kasha::diffuse
+
+namespace kasha {
+
+// The directional stage of a model whose every lobe is diffuse (the functions above), on top of
+// its spectral stage: Base is BsdfModel (the model writes its own) or ElasticModel.
+template <class Base>
+class DiffuseModel : public Base {
+ public:
+  std::optional<DirectionSample> sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe, float, float,
+                                                 Vec2 u) const final {
+    return diffuse::sample(wKnown, u);
+  }
+  float directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float, float) const final {
+    return diffuse::pdf(wKnown, wSampled);
+  }
+
+ protected:
+  ~DiffuseModel() = default;
+};
+
+}  // namespace kasha

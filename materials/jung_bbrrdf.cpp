@@ -111,16 +111,6 @@ float JungModel::spectralPdf(TransportMode mode, float lambdaKnown, float lambda
   return pFluor * (radiance ? s_->absorption.pdf(lambdaOther) : s_->emission.pdf(lambdaOther));
 }
 
-std::optional<DirectionSample> JungModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe, float, float,
-                                                            Vec2 u) const {
-  return diffuse::sample(wKnown, u);
-}
-
-float JungModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
-                              float) const {
-  return diffuse::pdf(wKnown, wSampled);
-}
-
 ReradiationMatrix JungModel::reradiationMatrix(const std::vector<float>& grid) const {
   ReradiationMatrix out;
   out.grid = grid;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/spectral_distribution.h"
+#include "materials/diffuse_lobe.h"
 #include "materials/surface_texture.h"
 #include "materials/textured_material.h"
 
@@ -51,7 +52,7 @@ struct JungSpectra {
 };
 
 // The BBRRDF at one hit: the surface's spectra with this hit's r(λ), c and Q.
-class JungModel : public BsdfModel {
+class JungModel : public DiffuseModel<BsdfModel> {
  public:
   // `spectra` must outlive the model (the material's).
   JungModel(const JungSpectra& spectra, HitReflectance r, float c, float q) : s_(&spectra), r_(r), c_(c), q_(q) {}
@@ -60,10 +61,6 @@ class JungModel : public BsdfModel {
              SpectralLobe lobe) const override;
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
-  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                 float lambdaIn, float lambdaOut, Vec2 u) const override;
-  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
-                     float lambdaOut) const override;
   BsdfFlags flags() const override {
     return flagIf(fluoresces(), BsdfFlags::Fluorescent | BsdfFlags::FactorisedFluorescence);
   }

@@ -34,8 +34,10 @@ class Material {
   virtual bool textured() const { return false; }
 };
 
-// A material that scatters the same everywhere: it is its own per-hit model.
-class UniformMaterial : public Material, public BsdfModel {
+// A material that scatters the same everywhere: it is its own per-hit model, a Model (BsdfModel or
+// one with shared stages, such as ElasticModel).
+template <class Model>
+class UniformMaterial : public Material, public Model {
  public:
   Bsdf bsdf(const HitContext& ctx) const final { return Bsdf(*this, ctx); }
 };

@@ -161,14 +161,4 @@ float MeasuredModel::spectralPdf(TransportMode mode, float lambdaKnown, float la
   return reradiationScale_ * m_->lineMass(mode == TransportMode::Radiance, lambdaKnown, lambdaOther) / (fl + el);
 }
 
-std::optional<DirectionSample> MeasuredModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe,
-                                                                     float, float, Vec2 u) const {
-  return diffuse::sample(wKnown, u);
-}
-
-float MeasuredModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float,
-                                        float) const {
-  return diffuse::pdf(wKnown, wSampled);
-}
-
 }  // namespace kasha

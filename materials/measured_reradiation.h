@@ -20,6 +20,7 @@
 
 #include "core/bispectral_data.h"
 #include "core/spectral_distribution.h"
+#include "materials/diffuse_lobe.h"
 #include "materials/surface_texture.h"
 #include "materials/textured_material.h"
 
@@ -67,7 +68,7 @@ class MeasuredMatrix {
 };
 
 // The material at one hit: the matrix with factors on its diagonal and its off-diagonal part.
-class MeasuredModel : public BsdfModel {
+class MeasuredModel : public DiffuseModel<BsdfModel> {
  public:
   // `matrix` must outlive the model (the material's).
   MeasuredModel(const MeasuredMatrix& matrix, float diagonalScale, float reradiationScale)
@@ -77,10 +78,6 @@ class MeasuredModel : public BsdfModel {
              SpectralLobe lobe) const override;
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
-  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                 float lambdaIn, float lambdaOut, Vec2 u) const override;
-  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
-                     float lambdaOut) const override;
   BsdfFlags flags() const override {
     return flagIf(m_->fluoresces() && reradiationScale_ > 0.0f, BsdfFlags::Fluorescent);
   }

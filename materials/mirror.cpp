@@ -13,14 +13,6 @@ float MirrorModel::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, floa
   return r_(lambdaIn) / std::abs(wSampled.z);
 }
 
-SpectralChoice MirrorModel::sampleSpectral(TransportMode, float lambdaKnown, float) const {
-  return {SpectralLobe::Elastic, lambdaKnown, r_.reflects(lambdaKnown) ? 1.0f : 0.0f};
-}
-
-float MirrorModel::spectralPdf(TransportMode, float lambdaKnown, float, SpectralLobe lobe) const {
-  return lobe == SpectralLobe::Elastic && r_.reflects(lambdaKnown) ? 1.0f : 0.0f;
-}
-
 std::optional<DirectionSample> MirrorModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe, float,
                                                         float, Vec2) const {
   if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;

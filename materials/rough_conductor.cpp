@@ -29,15 +29,6 @@ float RoughConductorModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, f
   return fresnel(std::abs(glm::dot(wi, h)), lambdaIn) * r;  // Walter07 eq. 20
 }
 
-SpectralChoice RoughConductorModel::sampleSpectral(TransportMode, float lambdaKnown, float) const {
-  // Elastic only; Schlick's F is positive away from normal incidence even where F0 = 0.
-  return {SpectralLobe::Elastic, lambdaKnown, 1.0f};
-}
-
-float RoughConductorModel::spectralPdf(TransportMode, float, float, SpectralLobe lobe) const {
-  return lobe == SpectralLobe::Elastic ? 1.0f : 0.0f;
-}
-
 std::optional<DirectionSample> RoughConductorModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,
                                                                 float, float, Vec2 u) const {
   if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;

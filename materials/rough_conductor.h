@@ -19,27 +19,26 @@
 // Textures (materials/surface_texture.h): "reflectance_texture" on F0, "alpha_texture" on both α
 // (clamped to kMinAlpha).
 #include "core/spectrum.h"
+#include "materials/elastic_model.h"
 #include "materials/ggx.h"
 #include "materials/surface_texture.h"
 #include "materials/textured_material.h"
 
 namespace kasha {
 
-// The model at one hit.
-class RoughConductorModel : public BsdfModel {
+// The model at one hit. It scatters at every wavelength (ElasticModel's default): Schlick's F is
+// positive away from normal incidence even where F0 = 0.
+class RoughConductorModel : public ElasticModel {
  public:
   RoughConductorModel(HitReflectance f0, Ggx ggx) : f0_(f0), ggx_(ggx) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
-  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
-  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
   BsdfFlags flags() const override { return BsdfFlags::None; }
-  float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
 
   // Schlick's Fresnel at cos θ = c (relative to the microfacet normal).
   float fresnel(float c, float lambda) const;

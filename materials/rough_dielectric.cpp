@@ -59,14 +59,6 @@ float RoughDielectricModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, 
          ggx_.g1(wo) / denom;
 }
 
-SpectralChoice RoughDielectricModel::sampleSpectral(TransportMode, float lambdaKnown, float) const {
-  return {SpectralLobe::Elastic, lambdaKnown, 1.0f};
-}
-
-float RoughDielectricModel::spectralPdf(TransportMode, float, float, SpectralLobe lobe) const {
-  return lobe == SpectralLobe::Elastic ? 1.0f : 0.0f;
-}
-
 std::optional<DirectionSample> RoughDielectricModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,
                                                                  float lambdaIn, float, Vec2 u) const {
   if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;

@@ -31,6 +31,7 @@
 // direction that ends on the wrong side of the macro surface, is a failed sample (f = 0 there).
 //
 // Texture (materials/surface_texture.h): "alpha_texture" on both α (clamped to kMinAlpha).
+#include "materials/elastic_model.h"
 #include "materials/ggx.h"
 #include "materials/ior.h"
 #include "materials/surface_texture.h"
@@ -39,21 +40,18 @@
 namespace kasha {
 
 // The model at one hit.
-class RoughDielectricModel : public BsdfModel {
+class RoughDielectricModel : public ElasticModel {
  public:
   RoughDielectricModel(Ior ior, Ggx ggx) : ior_(std::move(ior)), ggx_(ggx) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
-  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
-  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
                                                  float lambdaIn, float lambdaOut, Vec2 u) const override;
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const override;
   // Dispersion changes the refracted direction and the Fresnel choice between the lobes.
   BsdfFlags flags() const override { return flagIf(ior_.dispersive(), BsdfFlags::WavelengthDependentDirection); }
-  float fluorescenceProbability(TransportMode, float) const override { return 0.0f; }
 
   const Ior& ior() const { return ior_; }
   const Ggx& ggx() const { return ggx_; }

@@ -16,8 +16,7 @@ namespace kasha {
 
 class ThinDielectric final : public SmoothDielectric {
  public:
-  // Throws std::invalid_argument with checkIor's message if n(λ) is not valid over the range.
-  ThinDielectric(Ior ior, WavelengthRange range) : SmoothDielectric(std::move(ior), range) {}
+  using SmoothDielectric::SmoothDielectric;
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
