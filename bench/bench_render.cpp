@@ -1,8 +1,7 @@
-// Render benchmark on the default Cornell scene: kasha's path tracer (samples/s, rays/s) beside a
-// plain Embree loop that casts the same numbers of closest-hit and occlusion rays, random and
-// incoherent, into the same Embree scene on the same threads. The ratio says how much of the time
-// is Embree's and how much is kasha's.
-//   bench_render [scene.json] [--spp N] [--resolution N] [--json out.json]
+// Render benchmark on the default Cornell scene: kasha's path tracer as `kasha render` runs it (its
+// default wavelength lanes; samples/s, rays/s) beside a plain Embree loop that casts the same
+// numbers of closest-hit and occlusion rays, random and incoherent, into the same Embree scene on
+// the same threads. The ratio says how much of the time is Embree's and how much is kasha's.
 #include <embree3/rtcore.h>
 #include <tbb/parallel_for.h>
 
@@ -10,12 +9,13 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <string>
 
 #include "core/sampling.h"
 #include "scene/scene_loader.h"
-#include "integrators/path_tracing/path_tracer.h"
+#include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 
 using namespace kasha;
@@ -63,28 +63,42 @@ double plainEmbreeLoop(const Scene& scene, uint64_t closest, uint64_t shadow, ui
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-}  // namespace
+constexpr const char* kUsage =
+    "usage: bench_render [SCENE.json] [--spp N] [--json OUT.json]\n"
+    "  Renders SCENE (default: scenes/cornell_fluorescent.json) with pt on all cores and casts the\n"
+    "  same numbers of closest-hit and shadow rays in a plain Embree loop; prints both ray rates.\n";
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   std::string scenePath = std::string(KASHA_SOURCE_DIR) + "/scenes/cornell_fluorescent.json", jsonOut;
   int spp = 16;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--spp") && i + 1 < argc) spp = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--json") && i + 1 < argc) jsonOut = argv[++i];
-    else scenePath = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+      std::fputs(kUsage, stdout);
+      return 0;
+    } else if (!std::strcmp(argv[i], "--spp") && hasValue) {
+      spp = std::atoi(argv[++i]);
+      if (spp < 1) throw std::invalid_argument(std::string("--spp: must be a positive integer, not '") + argv[i] + "'");
+    } else if (!std::strcmp(argv[i], "--json") && hasValue) {
+      jsonOut = argv[++i];
+    } else if (argv[i][0] == '-') {
+      throw std::invalid_argument(std::string(argv[i]) + ": unknown option or missing value");
+    } else {
+      scenePath = argv[i];
+    }
   }
   auto scene = loadScene(scenePath);
-  PathTracer pt(*scene, scene->render);
+  const std::unique_ptr<Integrator> pt = makeIntegrator("pt", *scene, scene->render);
   Film film(scene->camera.width(), scene->camera.height());
   RenderOptions opt;
   opt.spp = spp;
   opt.seed = 1;
-  const RenderStats st = render(*scene, pt, film, opt);
+  const RenderStats st = render(*scene, *pt, film, opt);
   uint64_t hits = 0;
   const double plain = plainEmbreeLoop(*scene, st.closestRays, st.shadowRays, hits);
   const double plainRate = double(st.rays) / plain;
-  std::printf("scene            %s (%dx%d, %d spp, %d threads)\n", scenePath.c_str(), film.width(), film.height(), st.spp,
-              st.threads);
+  std::printf("scene            %s (%dx%d, %d spp, %d threads, %d lanes)\n", scenePath.c_str(), film.width(), film.height(),
+              st.spp, st.threads, pt->lanes());
   std::printf("kasha pt         %.2f s  %.4g samples/s  %.4g rays/s  (%llu closest-hit + %llu shadow rays)\n", st.seconds,
               st.samplesPerSecond, st.raysPerSecond, (unsigned long long)st.closestRays, (unsigned long long)st.shadowRays);
   std::printf("plain Embree     %.2f s  %.4g rays/s  (same ray counts, random incoherent rays)\n", plain, plainRate);
@@ -98,4 +112,15 @@ int main(int argc, char** argv) {
     std::ofstream(jsonOut) << j.dump(2) << "\n";
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_render: error: %s\n%s", e.what(), kUsage);
+    return 2;
+  }
 }

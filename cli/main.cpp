@@ -618,22 +618,34 @@ int main(int argc, char** argv) {
     return 2;
   }
   // Only `render` is distributed; under an MPI launcher the other commands run once per rank.
+#if KASHA_WITH_MPI
   std::unique_ptr<MpiGroup> mpi;
   if (render->parsed() && (ra.mpi || launchedByMpi())) mpi = std::make_unique<MpiGroup>(&argc, &argv);
+#else
+  const std::unique_ptr<RenderGroup> mpi;
+  if (render->parsed() && ra.mpi) {
+    std::fprintf(stderr, "kasha: error: --mpi: this kasha was built without MPI (install Open MPI and reconfigure)\n");
+    return 2;
+  }
+#endif
   // After an error on one rank the others would wait for it forever: end them all.
   auto fail = [&](const char* what, int code) {
     std::fprintf(stderr, "kasha: error: %s\n", what);
+#if KASHA_WITH_MPI
     if (mpi && mpi->size() > 1) {
       std::fflush(stderr);
       mpi->abort(code);
     }
+#endif
     return code;
   };
   try {
     if (render->parsed()) {
       const int code = runRender(ra, mpi.get());
       // No rank ends (and has mpirun end the job) before rank 0 has written the outputs.
+#if KASHA_WITH_MPI
       if (mpi) mpi->barrier();
+#endif
       return code;
     }
     if (matrix->parsed()) return runMatrix(ma);

@@ -2,7 +2,7 @@
 // The closed form of scenes/validation/single_plane_point.json — a diffuse fluorescent plane under an
 // isotropic point light at height h, seen straight down — exactly, and as vertex merging's disc of
 // radius r blurs it (docs/bdpt-mis.md §12): the expected image of `bpm` after P passes of the
-// shrinking radius. Shared by tests/test_merge_bias.cpp and bench/merge_bias/.
+// shrinking radius. Shared by tests/statistical/test_merge_bias.cpp and bench/merge_bias/.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

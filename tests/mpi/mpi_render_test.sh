@@ -7,7 +7,7 @@
 #     statistics' sample and ray counts (summed over the ranks) the same numbers; with bdpt, the
 #     per-strategy images too. (That the film
 #     adds the passes in pass order is tested where the order shows in the bits:
-#     tests/test_render_group.cpp.)
+#     tests/unit/test_render_group.cpp.)
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR stop
 #     SIGTERM to the last rank of `mpirun -np 3`: every rank stops after the same pass, exit 143,
 #     the partial image and a checkpoint are written; the image equals a one-process render to

@@ -16,7 +16,7 @@
 
 #include "integrators/bdpt/strategy_images.h"
 #include "integrators/integrator_factory.h"
-#include "integrator_names.h"
+#include "tests/integrator_names.h"
 #include "integrators/render_loop.h"
 #include "scene/scene_loader.h"
 #include "tests/region_batches.h"

@@ -5,7 +5,7 @@
 
 #include "scene/scene_loader.h"
 #include "integrators/integrator_factory.h"
-#include "integrator_names.h"
+#include "tests/integrator_names.h"
 #include "integrators/render_loop.h"
 #include "tests/region_batches.h"
 #include "tests/support.h"

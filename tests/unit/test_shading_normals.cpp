@@ -8,7 +8,7 @@
 #include "core/rng.h"
 #include "materials/lambertian.h"
 #include "scene/scene_loader.h"
-#include "temp_dir.h"
+#include "tests/temp_dir.h"
 #include "tests/support.h"
 
 namespace kasha {
