@@ -40,15 +40,19 @@ const CLI::Validator kIntegratorName(
     },
     "INTEGRATOR");
 
-const CLI::Validator kByteSize(
-    [](std::string& v) {
-      try {
-        parseByteSize(v);
-        return std::string();
-      } catch (const std::invalid_argument& e) {
-        return std::string(e.what());
-      }
-    },
-    "BYTES");
+CLI::Validator parseCheck(void (*parse)(const std::string&), const std::string& name) {
+  return CLI::Validator(
+      [parse](std::string& v) {
+        try {
+          parse(v);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      },
+      name);
+}
+
+const CLI::Validator kByteSize = parseCheck([](const std::string& v) { parseByteSize(v); }, "BYTES");
 
 }  // namespace kasha

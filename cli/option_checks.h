@@ -11,6 +11,8 @@ enum class Sign { Any, NonNegative, Positive };
 CLI::Validator numberCheck(Sign sign, bool integer, double max = HUGE_VAL);
 // The largest seed a scene file's /render/seed (an int) can hold; the options allow the same.
 constexpr double kMaxSeed = 2147483647.0;
+// A value `parse` accepts; its std::invalid_argument is the message.
+CLI::Validator parseCheck(void (*parse)(const std::string&), const std::string& name);
 // One of integratorNames() (integrators/integrator_factory.h).
 extern const CLI::Validator kIntegratorName;
 // A byte size such as 512M or 8G (core/memory_budget.h).

@@ -139,16 +139,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
                   "Like --spectral-bins, bins NM wide (must divide the scene's wavelength range)")
       ->check(numberCheck(Sign::Positive, false))
       ->excludes(bins);
-  const CLI::Validator strategy(
-      [](std::string& s) {
-        try {
-          parseWavelengthSpec(s);
-          return std::string();
-        } catch (const std::invalid_argument& e) {
-          return std::string(e.what());
-        }
-      },
-      "STRATEGY");
+  const CLI::Validator strategy = parseCheck([](const std::string& s) { parseWavelengthSpec(s); }, "STRATEGY");
   cmd->add_option("--sensor-sampling", a.sensor,
                   "Camera wavelength strategy (docs/wavelength-sampling.md), e.g. cmf | uniform | light | "
                   "yamamoto=0.5 | mix:cmf,light | ms-power:cmf,light")

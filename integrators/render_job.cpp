@@ -93,26 +93,32 @@ RenderJob::RenderJob(const Scene& scene, RenderJobOptions options) : scene_(scen
 
 RenderJob::~RenderJob() = default;
 
+nlohmann::json RenderJob::settingsRecord() const {
+  const RenderSettings& r = options_.settings;
+  nlohmann::json j = {{"seed", r.seed},
+                      {"sampler", toString(r.sampler)},
+                      {"sensor_sampling", r.wavelengths.sensor.text},
+                      {"fluorescence_sampling", r.wavelengths.fluorescence.text},
+                      {"light_sampling", r.wavelengths.light.text},
+                      {"nee_sampling", r.wavelengths.nee.text},
+                      {"hero_wavelengths", integrator_->lanes()},
+                      {"fluorescent_lanes", toString(r.fluorescentLanes)},
+                      {"max_depth", r.maxDepth}};
+  if (options_.integrator == "bdpt-mollified") j["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
+  return j;
+}
+
 nlohmann::json RenderJob::checkpointSettings() const {
   const RenderSettings& r = options_.settings;
-  nlohmann::json settings = {{"scene_hash", options_.sceneHash},
-                             {"integrator", integrator_->name()},
-                             {"seed", r.seed},
-                             {"sampler", toString(r.sampler)},
-                             {"max_depth", r.maxDepth},
-                             {"rr_depth", r.rrDepth},
-                             {"sensor_sampling", r.wavelengths.sensor.text},
-                             {"fluorescence_sampling", r.wavelengths.fluorescence.text},
-                             {"light_sampling", r.wavelengths.light.text},
-                             {"nee_sampling", r.wavelengths.nee.text},
-                             {"hero_wavelengths", integrator_->lanes()},
-                             {"fluorescent_lanes", toString(r.fluorescentLanes)},
-                             {"bdpt_families", toString(r.bdptFamilies)},
-                             {"vcm_paths", toString(r.vcmPaths)},
-                             {"resolution", {scene_.camera.width(), scene_.camera.height()}},
-                             {"spectral_bins", bins_.enabled() ? nlohmann::json{bins_.min, bins_.step, bins_.count}
-                                                               : nlohmann::json(nullptr)}};
-  if (options_.integrator == "bdpt-mollified") settings["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
+  nlohmann::json settings = settingsRecord();
+  settings.update({{"scene_hash", options_.sceneHash},
+                   {"integrator", integrator_->name()},
+                   {"rr_depth", r.rrDepth},
+                   {"bdpt_families", toString(r.bdptFamilies)},
+                   {"vcm_paths", toString(r.vcmPaths)},
+                   {"resolution", {scene_.camera.width(), scene_.camera.height()}},
+                   {"spectral_bins", bins_.enabled() ? nlohmann::json{bins_.min, bins_.step, bins_.count}
+                                                     : nlohmann::json(nullptr)}});
   return settings;
 }
 
@@ -173,25 +179,15 @@ void RenderJob::run() {
 }
 
 nlohmann::json RenderJob::statistics() const {
-  const RenderSettings& r = options_.settings;
   nlohmann::json j = toJson(stats_);
   j["scene"] = scene_.path;
-  j.update({{"seed", r.seed},
-            {"sampler", toString(r.sampler)},
-            {"sensor_sampling", r.wavelengths.sensor.text},
-            {"fluorescence_sampling", r.wavelengths.fluorescence.text},
-            {"light_sampling", r.wavelengths.light.text},
-            {"nee_sampling", r.wavelengths.nee.text},
-            {"hero_wavelengths", integrator_->lanes()},
-            {"fluorescent_lanes", toString(r.fluorescentLanes)},
-            {"max_depth", r.maxDepth}});
+  j.update(settingsRecord());
   j["resolution"] = {film_->width(), film_->height()};
   if (stats_.nonFiniteSamples)
     j["first_non_finite_pixel"] = {film_->firstNonFinitePixel().first, film_->firstNonFinitePixel().second};
   j["total_seconds"] = previousSeconds_ + stats_.seconds;
   if (!resumed_.is_null()) j["resumed"] = resumed_;
   if (!options_.checkpoint.empty()) j["checkpoint"] = options_.checkpoint;
-  if (options_.integrator == "bdpt-mollified") j["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
   if (spectral_) j["spectral_bins"] = {{"min_nm", bins_.min}, {"step_nm", bins_.step}, {"count", bins_.count}};
   return j;
 }

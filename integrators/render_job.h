@@ -92,6 +92,10 @@ class RenderJob {
   nlohmann::json checkpointSettings() const;
 
  private:
+  // The settings both records name: seed, sampler, the four wavelength strategies, the
+  // integrator's lanes (hero_wavelengths), fluorescent_lanes, maximum depth, and bdpt-mollified's kernel.
+  nlohmann::json settingsRecord() const;
+
   const Scene& scene_;
   RenderJobOptions options_;
   std::unique_ptr<Integrator> integrator_;
