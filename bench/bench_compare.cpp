@@ -69,11 +69,11 @@ int main(int argc, char** argv) {
   for (const std::string& n : names) {
     double sum = 0.0, sum2 = 0.0, spp = 0.0;
     for (int k = 0; k < seeds; ++k) {
-      RenderOptions opt;
-      opt.spp = 1 << 30;
-      opt.timeBudgetSeconds = seconds;
-      opt.seed = uint64_t(k + 1);
-      const ComparisonRow row = compareIntegrators(*scene, {n}, opt, reference)[0];
+      RenderSettings settings = scene->render;
+      settings.spp = 1 << 30;
+      settings.timeBudgetSeconds = seconds;
+      settings.seed = uint64_t(k + 1);
+      const ComparisonRow row = compareIntegrators(*scene, {n}, settings, 0, reference)[0];
       sum += row.error.rmse;
       sum2 += row.error.rmse * row.error.rmse;
       spp += row.stats.spp;

@@ -9,7 +9,7 @@
 #include "core/output_file.h"
 #include "scene/scene_loader.h"
 #include "integrators/comparison.h"
-#include "integrators/integrator_factory.h"
+#include "integrators/render_job.h"
 
 namespace kasha {
 
@@ -17,9 +17,18 @@ int runCompare(const CompareArgs& a) {
   std::unique_ptr<Scene> scene = loadScene(a.scene);
   if (a.time <= 0.0 && a.spp <= 0) throw UsageError("--time/--spp", "", "give a time budget or a sample count");
   if (a.reference.empty()) throw UsageError("--reference", "", "a reference image path is required");
+  // Every render is a RenderJob (integrators/render_job.h), with its checks of the integrator's
+  // settings and of memory; the budget is the same for each integrator.
+  RenderSettings settings = scene->render;
+  settings.spp = a.spp > 0 ? a.spp : 1 << 30;
+  settings.timeBudgetSeconds = a.time;
+  settings.seed = uint64_t(a.seed);
   for (const std::string& n : a.integrators) {  // combinations the integrators refuse, before any render
     try {
-      makeIntegrator(n, *scene, scene->render);
+      RenderJobOptions check;
+      check.integrator = n;
+      check.settings = settings;
+      RenderJob(*scene, std::move(check));
     } catch (const std::invalid_argument& e) {
       throw UsageError("--integrators " + n, "", e.what());
     }
@@ -35,31 +44,26 @@ int runCompare(const CompareArgs& a) {
     std::printf("reference: %s\n", a.reference.c_str());
   } else {
     // Render it: the given integrator for --reference-time seconds, written for reuse.
-    const std::unique_ptr<Integrator> ref = makeIntegrator(a.referenceIntegrator, *scene, scene->render);
-    Film film(scene->camera.width(), scene->camera.height());
-    RenderOptions opt;
-    opt.spp = 1 << 30;
-    opt.timeBudgetSeconds = a.referenceTime;
-    opt.seed = 0x5eed;
-    opt.sampler = scene->render.sampler;
-    opt.threads = a.threads;
-    const RenderStats st = render(*scene, *ref, film, opt);
-    writeExr(film, a.reference);
-    reference = filmToXyz(film);
+    RenderSettings r = scene->render;
+    r.spp = 1 << 30;
+    r.timeBudgetSeconds = a.referenceTime;
+    r.seed = 0x5eed;
+    RenderJobOptions ref;
+    ref.integrator = a.referenceIntegrator;
+    ref.settings = r;
+    ref.threads = a.threads;
+    RenderJob job(*scene, std::move(ref));
+    job.run();
+    writeExr(job.film(), a.reference);
+    reference = filmToXyz(job.film());
     std::printf("reference: %s rendered with %s, %.1f s, %d spp\n", a.reference.c_str(), a.referenceIntegrator.c_str(),
-                st.seconds, st.spp);
+                job.stats().seconds, job.stats().spp);
   }
-  RenderOptions opt;
-  opt.spp = a.spp > 0 ? a.spp : 1 << 30;
-  opt.timeBudgetSeconds = a.time;
-  opt.seed = uint64_t(a.seed);
-  opt.sampler = scene->render.sampler;
-  opt.threads = a.threads;
   std::ostringstream csv;
   csv << "integrator,seconds,spp,samples_per_second,rmse,relmse\n";
   std::printf("%-18s %9s %7s %12s %12s %12s\n", "integrator", "seconds", "spp", "samples/s", "RMSE", "relMSE");
   for (const std::string& n : a.integrators) {
-    const ComparisonRow r = compareIntegrators(*scene, {n}, opt, reference)[0];
+    const ComparisonRow r = compareIntegrators(*scene, {n}, settings, a.threads, reference)[0];
     std::printf("%-18s %9.2f %7d %12.4g %12.5g %12.5g\n", n.c_str(), r.stats.seconds, r.stats.spp,
                 r.stats.samplesPerSecond, r.error.rmse, r.error.relMse);
     csv << n << "," << r.stats.seconds << "," << r.stats.spp << "," << r.stats.samplesPerSecond << ","

@@ -10,9 +10,15 @@ namespace kasha {
 class InputError : public std::runtime_error {
  public:
   InputError(const std::string& where, const std::string& field, const std::string& reason)
-      : std::runtime_error(compose(where, field, reason)) {}
+      : std::runtime_error(compose(where, field, reason)), field_(field), reason_(reason) {}
+  // The parts of the message: a front end that gave the field's value names its own option instead
+  // (`kasha render --set`, docs/cli.md).
+  const std::string& field() const { return field_; }
+  const std::string& reason() const { return reason_; }
 
  private:
+  std::string field_, reason_;
+
   static std::string compose(const std::string& where, const std::string& field,
                              const std::string& reason) {
     std::string s = where;

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "integrators/integrator_factory.h"
+#include "integrators/render_job.h"
 
 namespace kasha {
 
@@ -63,15 +63,19 @@ std::vector<float> relativeErrorMap(const XyzImage& image, const XyzImage& ref) 
 }
 
 std::vector<ComparisonRow> compareIntegrators(const Scene& scene, const std::vector<std::string>& integrators,
-                                              const RenderOptions& options, const XyzImage& reference) {
+                                              const RenderSettings& settings, int threads, const XyzImage& reference) {
   std::vector<ComparisonRow> rows;
   for (const std::string& name : integrators) {
-    const std::unique_ptr<Integrator> integrator = makeIntegrator(name, scene, scene.render);
-    Film film(scene.camera.width(), scene.camera.height());
+    RenderJobOptions options;
+    options.integrator = name;
+    options.settings = settings;
+    options.threads = threads;
+    RenderJob job(scene, std::move(options));
+    job.run();
     ComparisonRow row;
     row.integrator = name;
-    row.stats = render(scene, *integrator, film, options);
-    row.error = compareToReference(film, reference);
+    row.stats = job.stats();
+    row.error = compareToReference(job.film(), reference);
     rows.push_back(row);
   }
   return rows;

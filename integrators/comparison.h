@@ -7,6 +7,7 @@
 #include "core/film.h"
 #include "core/image_input.h"
 #include "integrators/render_loop.h"
+#include "scene/render_settings.h"
 
 namespace kasha {
 
@@ -29,9 +30,9 @@ struct ComparisonRow {
   ImageError error;
 };
 
-// Renders `scene` with each integrator for the same budget (options.timeBudgetSeconds and/or
-// options.spp) and measures each image against the reference.
+// Renders `scene` with each integrator (a RenderJob, render_job.h) for the same budget
+// (settings.timeBudgetSeconds and/or settings.spp) and measures each image against the reference.
 std::vector<ComparisonRow> compareIntegrators(const Scene& scene, const std::vector<std::string>& integrators,
-                                              const RenderOptions& options, const XyzImage& reference);
+                                              const RenderSettings& settings, int threads, const XyzImage& reference);
 
 }  // namespace kasha

@@ -75,6 +75,14 @@ inline Vec3 sensorResponse(SampleContext& ctx, float lambda, float value) {
   return sensorResponse(ctx, lambda, Observer::cie1931().weight(lambda), value);
 }
 
+// What an integrator can do besides estimating pixels: the render job (render_job.h) asks it here,
+// never by its type, before it accepts a render's options.
+struct Capabilities {
+  int lanes = 1;                // wavelengths each path carries (Integrator::lanes)
+  bool strategyImages = false;  // records each (s, t) strategy's share (SampleContext::recordStrategies)
+  bool spectralBins = true;     // reports its samples' spectral shares (SampleContext::recordSpectral)
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -85,6 +93,9 @@ class Integrator {
   virtual std::string name() const = 0;
   // Wavelengths each path carries (wavelength lanes; 1 without them).
   virtual int lanes() const { return 1; }
+  // Every integrator keeps spectral bins (docs/cli.md, `--spectral-bins`); only the bidirectional
+  // engine's have (s, t) strategies.
+  virtual Capabilities capabilities() const { return {lanes(), false, true}; }
 
   // Called by the render loop before each pass, which takes samples [firstSample, firstSample +
   // count) of every pixel; seed is the render's seed. Rays traced here count in `counter`. The

@@ -1,5 +1,6 @@
 #include "integrators/integrator_factory.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "scene/wavelength_strategy.h"
@@ -25,6 +26,28 @@ void requireUnused(const WavelengthSpec& spec, const WavelengthSpec& fallback, W
 }  // namespace
 
 std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent", "bdpt-mollified", "ppm", "vcm", "vc", "bpm"}; }
+
+std::string settingNotRead(const std::string& name, const std::string& key) {
+  // The most specific prefix first: ppm's estimators of direct light are its own, its photon pass
+  // (count, radius, kernel) is vcm's light-vertex pass too (vcm/vcm_integrator.cpp).
+  static const std::vector<std::pair<std::string, std::vector<std::string>>> readers = {
+      {"bdpt_families", {"bdpt"}},
+      {"vcm_paths", {"vcm"}},
+      {"mollify", {"bdpt-mollified"}},
+      {"ppm.direct", {"ppm"}},
+      {"ppm.nee_wavelengths", {"ppm"}},
+      {"ppm.always_wavelength_kernel", {"ppm"}},
+      {"ppm", {"ppm", "vcm", "vc", "bpm"}},
+  };
+  for (const auto& [prefix, names] : readers) {
+    if (key != prefix && key.rfind(prefix + ".", 0) != 0) continue;
+    if (std::find(names.begin(), names.end(), name) != names.end()) return {};
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    return "only for --integrator " + list;
+  }
+  return {};
+}
 
 int defaultLanes(const std::string& name, const RenderSettings& s) {
   if (name == "lt") return kDefaultLanes;

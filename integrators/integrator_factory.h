@@ -19,6 +19,12 @@ namespace kasha {
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& settings);
 std::vector<std::string> integratorNames();
 
+// Why the integrator `name` does not read the render object's setting `key` (a path such as
+// "ppm.direct", docs/scene-format.md), or an empty string if it reads it. The settings only some
+// integrators read are listed here; a render that sets one for another integrator is refused
+// (render_job.h) rather than silently ignored.
+std::string settingNotRead(const std::string& name, const std::string& key);
+
 // Wavelength lanes of an integrator when the settings leave them to it: kDefaultLanes for lt, and
 // for pt and ppm when the sensor strategy is one density and next-event estimation shares the
 // event's excitation wavelength (what their camera lanes need); 1 otherwise. The BDPT estimators and

@@ -7,26 +7,22 @@
 #include "core/image_output.h"
 #include "core/memory_budget.h"
 #include "core/output_file.h"
-#include "core/spectral_film.h"
-#include "integrators/bdpt/bdpt_integrator.h"
-#include "integrators/bdpt/strategy_images.h"
-#include "integrators/integrator_factory.h"
-#include "integrators/render_loop.h"
-#include "integrators/render_setup.h"
+#include "integrators/render_job.h"
 #include "python/py_arrays.h"
+#include "scene/render_overrides.h"
 
 namespace py = pybind11;
 
 namespace kasha::python {
 namespace {
 
-// The scene's JSON with the request's settings in its render object. A time budget alone decides
-// when to stop, as on the command line.
-nlohmann::json withSettings(const nlohmann::json& scene, const RenderRequest& r) {
-  nlohmann::json j = scene;
+// The scene's JSON with the request's settings in its render object (scene/render_overrides.h, as
+// `kasha render --set`). A time budget alone decides when to stop, as on the command line.
+nlohmann::json withSettings(const PyScene& scene, const std::vector<RenderSetting>& set, const RenderRequest& r) {
+  nlohmann::json j = scene.json();
+  applyRenderSettings(j, set, scene.path());
   nlohmann::json& render = j["render"];
   if (!render.is_object()) render = nlohmann::json::object();
-  for (const auto& [key, value] : r.settings) render[py::str(key).cast<std::string>()] = toJson(value);
   if (!r.spp.is_none()) render["spp"] = toJson(r.spp);
   if (!r.time.is_none()) {
     render["time"] = toJson(r.time);
@@ -34,15 +30,6 @@ nlohmann::json withSettings(const nlohmann::json& scene, const RenderRequest& r)
   }
   if (!r.seed.is_none()) render["seed"] = toJson(r.seed);
   return j;
-}
-
-SpectralBins binsFor(const Scene& scene, const RenderRequest& r) {
-  if (r.spectralBins < 0 || !(r.spectralStep >= 0.0f))
-    throw py::value_error("spectral_bins and spectral_step must be positive (0: no spectral bins)");
-  if (r.spectralBins > 0 && r.spectralStep > 0.0f) throw py::value_error("give spectral_bins or spectral_step, not both");
-  if (r.spectralBins > 0) return SpectralBins::fromCount(scene.range, r.spectralBins);
-  if (r.spectralStep > 0.0f) return SpectralBins::fromStep(scene.range, r.spectralStep);
-  return {};
 }
 
 py::array_t<float> binCentres(const SpectralBins& b) {
@@ -55,37 +42,28 @@ py::array_t<float> binCentres(const SpectralBins& b) {
 
 py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& interrupted) {
   const uint64_t memoryLimit = parseByteSize(req.memoryLimit);
-  const Scene& scene = pyScene.load(withSettings(pyScene.json(), req), memoryLimit);
-  RenderSettings settings = scene.render;
-  settings.memoryLimit = memoryLimit;
-  std::unique_ptr<Integrator> integrator = makeIntegrator(req.integrator, scene, settings);
-  const int w = scene.camera.width(), h = scene.camera.height();
-  const SpectralBins bins = binsFor(scene, req);
-  // As on the command line, the output is checked before the first sample (core/output_file.h).
-  if (!req.output.empty()) checkOutputs({{req.output, "output", ".exr", ""}});
-  requireFilmMemory(w, h, bins, false, memoryLimit);
-  requirePassMemory(*integrator, w, h, 0, bins.enabled(), memoryLimit);
-  std::unique_ptr<bdpt::StrategyImages> strategies;
-  if (req.strategyImages) {
-    if (!dynamic_cast<const Bdpt*>(integrator.get()))
-      throw py::value_error("strategy_images: only the BDPT integrators have (s, t) strategies, not '" + req.integrator + "'");
-    requireMemory(bdpt::StrategyImages::bytesFor(w, h, req.strategyDepth), "the strategy images", memoryLimit);
-    strategies = std::make_unique<bdpt::StrategyImages>(w, h, req.strategyDepth);
+  std::vector<RenderSetting> set;  // the keyword arguments, keys of the render object
+  for (const auto& [key, value] : req.settings) {
+    const std::string k = py::str(key).cast<std::string>();
+    set.push_back({k, toJson(value), k});
   }
-  Film film(w, h);
-  std::unique_ptr<SpectralFilm> spectral;
-  if (bins.enabled()) spectral = std::make_unique<SpectralFilm>(w, h, bins);
-
-  RenderOptions opt = renderOptions(settings, req.threads);
-  opt.spectral = spectral.get();
-  if (strategies) opt.strategies = [&](const StrategySample& r) { strategies->add(r); };
+  const Scene& scene = pyScene.load(withSettings(pyScene, set, req), memoryLimit);
+  RenderJobOptions o;
+  o.integrator = req.integrator;
+  o.settings = scene.render;
+  o.settings.memoryLimit = memoryLimit;
+  for (const RenderSetting& s : set) o.setKeys.push_back(s.key);
+  o.threads = req.threads;
+  o.spectralBins = req.spectralBins;
+  o.spectralStep = req.spectralStep;
+  o.strategyDepth = req.strategyImages ? req.strategyDepth : -1;
   std::atomic<int> stop{0};
-  opt.stop = &stop;
+  o.stop = &stop;
   // Between passes: Python's signal handlers (a KeyboardInterrupt stops the render after this
   // pass), then the progress callback (an exception from it stops the render and is re-raised).
   std::optional<py::error_already_set> pending;
   bool keyboardInterrupt = false;
-  opt.progress = [&](int spp, double seconds, double total) {
+  o.progress = [&](int spp, double seconds, double total) {
     py::gil_scoped_acquire gil;
     if (pending) return;
     if (PyErr_CheckSignals() != 0) {
@@ -103,26 +81,31 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
       stop.store(1);
     }
   };
-  RenderStats stats;
+  std::unique_ptr<RenderJob> job;
+  try {
+    job = std::make_unique<RenderJob>(scene, std::move(o));
+  } catch (const RenderJobError& e) {
+    throw py::value_error(e.setting + ": " + e.what());
+  }
+  // As on the command line, the output is checked before the first sample (core/output_file.h).
+  if (!req.output.empty()) checkOutputs({{req.output, "output", ".exr", ""}});
   {
     py::gil_scoped_release release;
-    stats = render(scene, *integrator, film, opt);
+    job->run();
   }
-  if (!req.output.empty()) writeExr(film, req.output, spectral.get());
+  const Film& film = job->film();
+  if (!req.output.empty()) writeExr(film, req.output, job->spectral());
 
   py::dict result;
   result["xyz"] = xyzArray(film);
   result["rgb"] = rgbArray(result["xyz"].cast<py::array_t<float>>());
-  nlohmann::json st = toJson(stats);
-  st.update(settingsRecord(settings, *integrator));
-  result["stats"] = fromJson(st);
-  if (spectral) {
+  result["stats"] = fromJson(job->statistics());
+  if (const SpectralFilm* spectral = job->spectral()) {
     result["spectral"] = spectralArray(*spectral);
-    result["wavelengths"] = binCentres(bins);
-    result["bin_width"] = bins.step;
+    result["wavelengths"] = binCentres(job->bins());
+    result["bin_width"] = job->bins().step;
   }
-  if (strategies) {
-    strategies->setSamplesPerPixel(film.samplesPerPixel());
+  if (const bdpt::StrategyImages* strategies = job->strategies()) {
     py::dict images;
     for (const auto& [name, img] : strategies->images()) {
       images[py::str(name)] = xyzArray(img->weighted);
@@ -132,7 +115,7 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
   }
   if (pending) {
     if (!keyboardInterrupt) throw std::move(*pending);
-    py::object e = interrupted(py::str("render interrupted after " + std::to_string(stats.spp) +
+    py::object e = interrupted(py::str("render interrupted after " + std::to_string(job->stats().spp) +
                                        " samples per pixel; the partial result is in .result"));
     e.attr("result") = result;
     PyErr_SetObject(interrupted.ptr(), e.ptr());

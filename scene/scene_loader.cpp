@@ -531,8 +531,14 @@ std::unique_ptr<Scene> loadSceneFromString(const std::string& text, const std::s
   return loadSceneFromJson(parseJsonStrict(text, path), path, options);
 }
 
-std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& root, const std::string& path,
+std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& original, const std::string& path,
                                          const SceneLoadOptions& options) {
+  nlohmann::json edited;
+  if (!options.renderSettings.empty()) {
+    edited = original;
+    applyRenderSettings(edited, options.renderSettings, path);
+  }
+  const nlohmann::json& root = options.renderSettings.empty() ? original : edited;
   checkFloatRange(root, path, "");
   auto scene = std::make_unique<Scene>();
   scene->path = path;

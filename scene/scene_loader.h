@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "scene/render_overrides.h"
 #include "scene/scene.h"
 
 namespace kasha {
@@ -17,6 +18,9 @@ struct SceneLoadOptions {
   uint64_t memoryLimit = kDefaultMemoryLimit;
   // Where the Mitsuba importer reports its approximations, one line each; nullptr: nowhere.
   std::ostream* notes = &std::cerr;
+  // Written into the render object before it is read (scene/render_overrides.h), so the loader
+  // checks them as the file's own; a Mitsuba scene gets them in its JSON translation.
+  std::vector<RenderSetting> renderSettings;
 };
 
 // The text of a scene file (core/input_file.h: a regular file of at most kMaxJsonFileBytes).

@@ -36,6 +36,8 @@ class Bdpt final : public Integrator {
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override;
   int lanes() const override { return lanes_; }
+  // Its (s, t) strategies can be shown one image each (strategy_images.h, docs/bdpt-mis.md §7).
+  Capabilities capabilities() const override { return {lanes_, true, true}; }
   std::unique_ptr<const PassData> beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                             RayCounter& counter) const override;
   int maxSamplesPerPass() const override;

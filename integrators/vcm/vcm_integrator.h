@@ -45,6 +45,8 @@ class Vcm final : public Integrator {
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override;
   int lanes() const override { return lanes_; }
+  // Its connections and merges are (s, t) strategies of the BDPT kind (docs/bdpt-mis.md §7, §12).
+  Capabilities capabilities() const override { return {lanes_, true, true}; }
   std::string choices() const override;
 
   // The pilot's decision for a render with `seed` (docs/bdpt-mis.md §14): Bidirectional, Gather or

@@ -94,6 +94,25 @@ def test_bdpt_strategy_images_sum_to_the_render():
         kasha.render(scene, integrator="pt", strategy_images=True)
 
 
+def test_vcm_strategy_images_as_on_the_command_line():
+    # Capabilities, not types, decide (integrators/render_job.h): vcm's strategies too, with
+    # vcm_paths "auto" run bidirectional as `kasha render --strategy-images` does (docs/cli.md).
+    scene = kasha.Scene.from_dict(furnace_dict(resolution=8, spp=2))
+    result = kasha.render(scene, integrator="vcm", strategy_images=True, max_depth=3)
+    assert "choices" not in result["stats"]  # no pilot: bidirectional
+    weighted = [v for k, v in result["strategies"].items() if not k.endswith("_unweighted")]
+    np.testing.assert_allclose(np.sum(weighted, axis=0), result["xyz"], rtol=1e-4, atol=1e-5)
+
+
+def test_settings_other_integrators_read_are_refused():
+    # The same rule as `kasha render --set` (integrators/integrator_factory.h, settingNotRead).
+    scene = kasha.Scene.from_dict(furnace_dict(resolution=8, spp=1))
+    with pytest.raises(ValueError, match="vcm_paths: only for --integrator vcm"):
+        kasha.render(scene, integrator="bdpt", vcm_paths="camera")
+    with pytest.raises(ValueError, match="mollify: only for --integrator bdpt-mollified"):
+        kasha.render(scene, integrator="pt", mollify={"alpha": 0.5})
+
+
 def test_bdpt_families_from_python():
     # The fluorescent furnace: `bdpt` runs a pilot and reports its choice; each family alone is
     # bdpt-shared's or bdpt-independent's estimator, image for image; a bad choice names the field.

@@ -105,7 +105,7 @@ class StrategyImagesCli : public ::testing::Test {
 TEST_F(StrategyImagesCli, WritesOneImagePerStrategy) {
   const std::string out = dir + "/strategies";
   const auto r = test::runKasha({"render", test::sourcePath("scenes/validation/furnace_fluorescent.json"), "-q", "--spp",
-                                 "2", "--max-depth", "2", "--integrator", "bdpt", "--bdpt-families", "both", "--strategy-images", out,
+                                 "2", "--max-depth", "2", "--integrator", "bdpt", "--set", "bdpt_families=both", "--strategy-images", out,
                                  "--strategy-unweighted", "-o", dir + "/full.exr"},
                                 dir + "/run");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -129,15 +129,15 @@ TEST_F(StrategyImagesCli, RefusesIntegratorsWithoutStrategies) {
   EXPECT_NE(pt.err.find("--strategy-images"), std::string::npos) << pt.err;
   EXPECT_NE(pt.err.find("only the BDPT integrators"), std::string::npos) << pt.err;
   EXPECT_FALSE(fs::exists(dir + "/pt.exr"));
-  const auto moll = test::runKasha({"render", scene, "-q", "--integrator", "pt", "--mollify-bandwidth", "5", "-o",
+  const auto moll = test::runKasha({"render", scene, "-q", "--integrator", "pt", "--set", "mollify.bandwidth=5", "-o",
                                     dir + "/pt.exr"},
                                    dir + "/run");
   EXPECT_EQ(moll.code, 2);
   EXPECT_NE(moll.err.find("only for --integrator bdpt-mollified"), std::string::npos) << moll.err;
-  const auto alpha = test::runKasha({"render", scene, "-q", "--integrator", "bdpt-mollified", "--mollify-alpha", "1.5"},
+  const auto alpha = test::runKasha({"render", scene, "-q", "--integrator", "bdpt-mollified", "--set", "mollify.alpha=1.5"},
                                     dir + "/run");
   EXPECT_EQ(alpha.code, 2);
-  EXPECT_NE(alpha.err.find("--mollify-alpha"), std::string::npos) << alpha.err;
+  EXPECT_NE(alpha.err.find("--set mollify.alpha=1.5: must be in (0, 1)"), std::string::npos) << alpha.err;
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Wavelength lanes ended at fluorescent events (--fluorescent-lanes end, the experiment that
+// Wavelength lanes ended at fluorescent events (--set fluorescent_lanes=end, the experiment that
 // compares kasha's lanes through fluorescence with what ART, Mojzík et al. and pbrt-style renderers
 // do; docs/wavelength-sampling.md "Lanes through fluorescent events"):
 // - the lane event itself: one new lane per lane before, each serving that lane alone, and

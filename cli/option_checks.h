@@ -1,0 +1,21 @@
+#pragma once
+// Checks of option values shared by the subcommands, with short messages (CLI11's own print the
+// range up to DBL_MAX, and let NaN and infinity through).
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+
+namespace kasha {
+
+enum class Sign { Any, NonNegative, Positive };
+CLI::Validator numberCheck(Sign sign, bool integer, double max = HUGE_VAL);
+// The largest seed a scene file's /render/seed (an int) can hold; the options allow the same.
+constexpr double kMaxSeed = 2147483647.0;
+// A value `parse` accepts; its std::invalid_argument is the message.
+CLI::Validator parseCheck(void (*parse)(const std::string&), const std::string& name);
+// One of integratorNames() (integrators/integrator_factory.h).
+extern const CLI::Validator kIntegratorName;
+// A byte size such as 512M or 8G (core/memory_budget.h).
+extern const CLI::Validator kByteSize;
+
+}  // namespace kasha
