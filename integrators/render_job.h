@@ -93,7 +93,8 @@ class RenderJob {
 
  private:
   // The settings both records name: seed, sampler, the four wavelength strategies, the
-  // integrator's lanes (hero_wavelengths), fluorescent_lanes, maximum depth, and bdpt-mollified's kernel.
+  // integrator's lanes (hero_wavelengths), fluorescent_lanes, maximum depth, bdpt-mollified's kernel
+  // and the photon settings of ppm, vcm, vc and bpm (render.ppm).
   nlohmann::json settingsRecord() const;
 
   const Scene& scene_;

@@ -17,6 +17,10 @@ namespace kasha {
 // fluorescent lobe ("nee-elastic"), next-event estimation for every lobe ("nee"), or photons ("photons").
 enum class PpmDirectLight { NeeElastic, Nee, Photons };
 
+inline const char* toString(PpmDirectLight d) {
+  return d == PpmDirectLight::Nee ? "nee" : d == PpmDirectLight::Photons ? "photons" : "nee-elastic";
+}
+
 // Progressive photon mapping (integrator "ppm", docs/photon-mapping.md); zeros are derived from
 // the scene.
 struct PhotonMappingSettings {

@@ -296,6 +296,28 @@ TEST_P(CheckpointCli, MismatchedOrDamagedCheckpointsAreRefused) {
   EXPECT_EQ(readCheckpoint(ckpt).spp, 128);  // --resume keeps checkpointing into its file
 }
 
+// Every setting that changes the estimator is in the checkpoint: a photon-mapping render resumed
+// under other estimators of direct light (render.ppm.direct) would mix two estimators.
+TEST_P(CheckpointCli, PhotonSettingsAreRecordedAndMustMatch) {
+  const std::string ckpt = dir + "/ppm.ckpt";
+  const std::vector<std::string> ppm = {"render", scene, "-q", "--threads", "2", "--integrator", "ppm"};
+  auto args = ppm;
+  args.insert(args.end(), {"--spp", "2", "-o", dir + "/ppm.exr", "--checkpoint", ckpt});
+  const auto r = runKasha(args, dir + "/ppm");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json recorded = readCheckpoint(ckpt).settings;
+  ASSERT_TRUE(recorded.contains("ppm")) << recorded.dump();
+  EXPECT_EQ(recorded["ppm"]["direct"], "nee-elastic");
+  EXPECT_TRUE(recorded["ppm"].contains("alpha"));
+  args = ppm;
+  args.insert(args.end(), {"-o", dir + "/ppm_resumed.exr", "--resume", ckpt, "--spp", "4", "--set", "ppm.direct=photons"});
+  const auto f = runKasha(args, dir + "/ppm_resumed");
+  EXPECT_EQ(f.code, 1) << f.err;
+  EXPECT_CONTAINS(f.err, "checkpoint was made with ppm");
+  EXPECT_CONTAINS(f.err, "\"direct\":\"photons\"");
+  EXPECT_FALSE(fs::exists(dir + "/ppm_resumed.exr"));
+}
+
 INSTANTIATE_TEST_SUITE_P(Cli, CheckpointCli, ::testing::Values("pt"));
 
 }  // namespace
