@@ -1,7 +1,7 @@
 #pragma once
-// Tallies BDPT's weights computed both ways (recursive and full recomputation, connect.h's
-// WeightCheck) for the recursive-weight tests: each pair must agree (relative 1e-5), and the
-// comparison must not be vacuous.
+// The test oracle of BDPT's recursive weights (docs/bdpt-mis.md §9): every weight the estimator
+// computes, recomputed over the whole path (integrators/bdpt/mis.h, §5), and their tally: each pair
+// must agree (relative 1e-5), and the comparison must not be vacuous.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,17 +9,35 @@
 #include <string>
 #include <vector>
 
-#include "integrators/bdpt/connect.h"
+#include "integrators/bdpt/mis_observer.h"
 
 namespace kasha::test {
+
+// One weight both ways.
+struct WeightCheck {
+  int s, t;
+  uint8_t variant;  // bdpt::Variant
+  float recursive, full;
+};
+
+// Watches the estimator (Context::observer) and recomputes each weight it computes from the path
+// laid out (FullPathLayout).
+class WeightOracle final : public bdpt::MisObserver {
+ public:
+  std::vector<WeightCheck> checks;
+  void onWeight(const bdpt::WeightEvent& e) override {
+    const float full = bdpt::misWeight(e.layout(e.factors), e.s, e.variant);
+    checks.push_back({e.s, e.t, uint8_t(e.variant), e.weight, full});
+  }
+};
 
 struct WeightTally {
   int compared = 0;
   std::map<std::pair<int, int>, int> interior;  // (variant, s + t) → weights strictly inside (0, 1)
 
   // Checks every pair of `checks` (one camera sample's); false after the first that disagrees.
-  bool add(const std::vector<bdpt::WeightCheck>& checks, uint32_t sample) {
-    for (const bdpt::WeightCheck& k : checks) {
+  bool add(const std::vector<WeightCheck>& checks, uint32_t sample) {
+    for (const WeightCheck& k : checks) {
       ++compared;
       EXPECT_NEAR(k.recursive, k.full, 1e-5f * std::max(k.recursive, k.full) + 1e-9f)
           << "s = " << k.s << ", t = " << k.t << ", variant " << int(k.variant) << ", sample " << sample;

@@ -8,6 +8,8 @@
 #include "core/color.h"
 #include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/family_pilot.h"
+#include "integrators/bdpt/pilot_observer.h"
+#include "integrators/bdpt/strategy_images.h"
 #include "integrators/direct_emission.h"
 #include "integrators/progressive_schedule.h"
 
@@ -105,7 +107,8 @@ BdptFamilies Bdpt::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& co
                                std::vector<std::vector<Splat>>& excess) -> Vec3 {
     thread_local PilotMoments moments;
     moments.clear();
-    const Vec3 v = estimate(scene, pixel, rng, ctx, BdptFamilies::Both, &moments);
+    PilotObserver observer(moments);
+    const Vec3 v = estimate(scene, pixel, rng, ctx, BdptFamilies::Both, &observer);
     for (int a = 0; a < kFamilies; ++a) {
       const PilotMoments::Alternative& alt = moments.alone[a];
       if (alt.unsampled > 0) unsampled[a].fetch_add(uint64_t(alt.unsampled), std::memory_order_relaxed);
@@ -176,7 +179,7 @@ Vec3 Bdpt::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleConte
 }
 
 Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, BdptFamilies run,
-                    bdpt::PilotMoments* pilot) const {
+                    bdpt::MisObserver* observer) const {
   using namespace bdpt;
   // The camera subpath, the shared and own light subpaths.
   thread_local std::vector<PathVertex> C, LS, LO;
@@ -200,12 +203,13 @@ Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext&
   }
   Context c{scene, ws, families, lanes, sensor_.density(), ctx.counter};
   c.sharedLightVertices = sharedLightVertices;
-  c.pilot = pilot;
   c.pixel = pixel;
   c.spectralSplats = ctx.recordSpectral;
   if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
   if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;
-  if (ctx.recordStrategies) c.log = &ctx.strategies;
+  // The pilot's samples do not record strategies (pilotEstimates).
+  StrategyLog log(ctx.strategies);
+  c.observer = ctx.recordStrategies ? &log : observer;
 
   float radiance[kMaxLanes];
   Vec3 xyz;

@@ -23,7 +23,7 @@
 
 namespace kasha {
 namespace bdpt {
-struct PilotMoments;  // connect.h
+class MisObserver;  // mis_observer.h
 }
 
 class Bdpt final : public Integrator {
@@ -58,10 +58,10 @@ class Bdpt final : public Integrator {
   // pilot's decision): Both, Shared or Own.
   BdptFamilies familiesOf(const PassData* pass) const;
   // One camera sample of pixel `pixel` (its integer corner) with the mode's families, or (unified
-  // estimator) with `run`'s: the sample's estimate; splats go to ctx. With `pilot`, what the pilot
-  // learns from the sample (bdpt::PilotMoments).
+  // estimator) with `run`'s: the sample's estimate; splats go to ctx. `observer` (the pilot's) watches
+  // it, or else, where ctx asks for them, the per-strategy images.
   Vec3 estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, BdptFamilies run,
-                bdpt::PilotMoments* pilot) const;
+                bdpt::MisObserver* observer) const;
 
   WavelengthStrategy sensor_, light_;
   bdpt::WalkSettings ws_;

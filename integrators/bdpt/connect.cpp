@@ -20,7 +20,7 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
     if (!em.emitsTowards(e.n, towards(e, next))) return;
     const Vec3& value = (*c.directXyz)[size_t(e.light)];
     xyz += value;
-    if (c.log) c.log->push_back({c.pixel, value, value, 0, t, uint8_t(Variant::kStandard)});
+    if (c.observer) c.observer->onStrategy({c.pixel, value, value, 0, t, uint8_t(Variant::kStandard)});
     return;
   }
   float Le[kMaxLanes];
@@ -51,7 +51,7 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
       } else {
         fp.lightSeenByPinhole = e.kind == Kind::Surface;
       }
-      return misWeight(fp, 0, Variant::kStandard);
+      return fp;
     });
   });
   for (int j = e.firstLane(); j < e.endLane(c.lanes); ++j) {
@@ -124,7 +124,7 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
       if (x2.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
       fp.specCam1 = x1.spectralPdf;
       fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-      return misWeight(fp, 1, Variant::kStandard);
+      return fp;
     });
   });
   for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) {
@@ -174,9 +174,9 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
     if (bNext.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
     fp.specCam1 = specCam1;
     fp.specLightLast = t == 2 ? specLightLast(b, F, a.lambda) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-    return misWeight(fp, 1, Variant::kLightVertex);
+    return fp;
   });
-  if (c.pilot) c.pilot->keep(lane);
+  if (c.observer) c.observer->onLaneKept(lane);
   if (!(weight > 0.0f) || !visible(c, b, a)) return;
   const float value = Le * G * f * b.beta[lane] / (a.pdfFwd * a.choicePdf);
   record(c, 1, t, Variant::kLightVertex, lane, value, weight);
@@ -288,7 +288,7 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
         const PathVertex& x1 = L[1];
         fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
         fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambdaB) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-        return misWeight(fp, s, p.variant);
+        return fp;
       });
     });
     if (std::none_of(weight + k0, weight + k1, [](float w) { return w > 0.0f; })) continue;
@@ -399,7 +399,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
         fp.specCam1 = s == 2 ? specCamera(x1, a.lobe, x1.lambda, lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
         fp.specLightLast = a.spectralPdf;
       }
-      return misWeight(fp, s, variant);
+      return fp;
     });
   });
   if (std::none_of(weight + k0, weight + k1, [](float w) { return w > 0.0f; })) return;
@@ -417,12 +417,12 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     // A shared lane's wavelength is the sensor's lane k (whose response is known).
     const Vec3 xyz = shared ? c.lanes.response[k] * v : Observer::cie1931().weight(lambdaK) * v;
     if (c.spectralSplats) splats.push_back({conn->pixel, xyz * weight[k], lambdaK, v * weight[k]});
-    if (c.pilot) c.pilot->add(k, conn->pixel, xyz * weight[k]);
+    if (c.observer) c.observer->onContribution(k, conn->pixel, xyz * weight[k]);
     sum += xyz * weight[k];
     unweighted += xyz;
   }
   if (!c.spectralSplats) splats.push_back({conn->pixel, sum});
-  if (c.log) c.log->push_back({conn->pixel, sum, unweighted, s, 1, uint8_t(variant)});
+  if (c.observer) c.observer->onStrategy({conn->pixel, sum, unweighted, s, 1, uint8_t(variant)});
 }
 
 void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,

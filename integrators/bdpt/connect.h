@@ -1,23 +1,16 @@
 #pragma once
 // The contributions of BDPT's strategies, each with its MIS weight (docs/bdpt-mis.md §3).
-#include <cmath>
 #include <optional>
 #include <vector>
 
 #include "scene/scene.h"
 #include "core/wavelength_density.h"
 #include "integrators/bdpt/mis.h"
+#include "integrators/bdpt/mis_observer.h"
 #include "integrators/bdpt/path_vertex.h"
 #include "integrators/bdpt/subpaths.h"
 
 namespace kasha::bdpt {
-
-// One connection's weight both ways (tests: the recursion against the full recomputation).
-struct WeightCheck {
-  int s, t;
-  uint8_t variant;  // Variant
-  float recursive, full;
-};
 
 // The pinhole's view of a light-subpath vertex (t = 1): where it projects and the camera's density
 // of it; the same for both views at a common vertex.
@@ -62,47 +55,6 @@ class VisibilityMemo {
   int shared_ = 0, stride_ = 0;
 };
 
-// The estimators a pilot weighs against the one it runs (docs/bdpt-mis.md §13, §14): each family
-// alone, as bdpt-shared and bdpt-independent run it (the unified bdpt's pilot), and camera paths
-// alone, path tracing with next-event estimation (vcm's).
-enum class Alone { Shared = 0, Own = 1, Camera = 2 };
-constexpr int kAlternatives = 3;
-
-// What the pilot learns from one camera sample of both families about each alternative, from the
-// weights' sums: for each contribution C (film XYZ), ρ = p_both/p_alone, the two estimators'
-// densities of the path (√ of the ratio of their power-heuristic sums), and the second moment
-// running the family alone would add, C²·(ρ − 1) (Grittmann et al. 2022; negative where the family
-// alone samples the path better), or that p_alone = 0.
-struct PilotMoments {
-  struct Alternative {
-    double ratio[kMaxLanes] = {};  // ρ of the strategy weighed last, per lane (laneWeights)
-    double pending = 1.0;          // ρ of the strategy weigh() saw last
-    int unsampled = 0;             // contributions on paths the family alone cannot sample
-    std::vector<Splat> excess;     // per contribution: its pixel and C²·(ρ − 1) per channel
-  };
-  Alternative alone[kAlternatives];
-
-  void clear() {
-    for (Alternative& a : alone) a.unsampled = 0, a.excess.clear();
-  }
-  // Lane k takes the ratios weigh() saw last.
-  void keep(int k) {
-    for (Alternative& a : alone) a.ratio[k] = a.pending;
-  }
-  // Lane k takes lane `from`'s ratios.
-  void copy(int k, int from) {
-    for (Alternative& a : alone) a.ratio[k] = a.ratio[from];
-  }
-  // Adds lane k's contribution xyz at `pixel`.
-  void add(int k, Vec2 pixel, const Vec3& xyz) {
-    if (!(xyz.x > 0.0f || xyz.y > 0.0f || xyz.z > 0.0f)) return;
-    for (Alternative& a : alone) {
-      if (!std::isfinite(a.ratio[k])) ++a.unsampled;
-      else if (a.ratio[k] != 1.0) a.excess.push_back({pixel, xyz * xyz * float(a.ratio[k] - 1.0)});
-    }
-  }
-};
-
 struct Context {
   const Scene& scene;
   const WalkSettings& walk;
@@ -114,9 +66,7 @@ struct Context {
   // Spectral mollification (Independent only): the wavelength kernel's half-width h of this
   // pass in nm; 0 for none (docs/bdpt-mis.md §6).
   float bandwidth = 0.0f;
-  // Per-strategy records (null unless asked): strategies with t ≥ 2 record at `pixel` (the camera
-  // sample's, which the pilot reads as well), lane k's radiance turned into XYZ by W(λ_k)/(n·p(λ_k)).
-  std::vector<StrategySample>* log = nullptr;
+  // The camera sample's pixel, where strategies with t ≥ 2 report their contributions to the observer.
   Vec2 pixel{0.0f};
   // Whether t = 1 splats keep each lane's wavelength (for spectral bins), or sum the lanes' XYZ.
   bool spectralSplats = false;
@@ -129,13 +79,9 @@ struct Context {
   // (traceMergedLightSubpath); 0 where the light subpaths are separate.
   int sharedLightVertices = 0;
 
-  // Tests only: every weight also recomputed over the whole path (mis.h), both recorded here.
-  std::vector<WeightCheck>* oracle = nullptr;
-
-  // The unified estimator's pilot (docs/bdpt-mis.md §13); null outside it.
-  PilotMoments* pilot = nullptr;
-  // Where set, counts the merges' weights computed (vcm's pilot: their cost, docs/bdpt-mis.md §14).
-  uint64_t* mergeWeights = nullptr;
+  // What watches the weights and contributions (mis_observer.h: the test oracle, the per-strategy
+  // images, a pilot); null in a render that asks for none of them.
+  MisObserver* observer = nullptr;
 };
 
 // Strategies with t ≥ 2 add each lane's radiance at its camera wavelength, weighted, to out[k].

@@ -1,7 +1,6 @@
 #include "integrators/bdpt/connect_parts.h"
 
 #include <cmath>
-#include <limits>
 
 #include "integrators/progressive_schedule.h"
 
@@ -54,6 +53,7 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
   f.sharedFamily = c.families.shared;
   f.ownFamily = c.families.independent;
   f.sensorPdf = sensorPdf;
+  f.lambda0 = lambda0;
   f.oneGroup = oneGroup;
   if (lanesKept && f.ownFamily && c.walk.lightFirst) f.laneGain = c.lanes.n;
   const bool table = lane >= 0 && c.lanes.lights;
@@ -75,28 +75,12 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
       f.ownChoice = c.lanes.ownStart[size_t(lane) * c.scene.lights.size() + size_t(light)];
     else
       f.ownChoice = double(start.lightProbability(size_t(light))) * start.wavelengthPdf(size_t(light), lambda0);
-    if (c.pilot) f.ownAloneChoice = double(c.walk.lightWavelengths->pdf(lambda0)) * f.cameraChoice;
   } else if (f.ownFamily) {
     const double pLight = table ? c.lanes.lightPdf[lane] : c.walk.lightWavelengths->pdf(lambda0);
     f.ownChoice = pLight * f.cameraChoice;
   }
   if (f.ownFamily && c.bandwidth > 0.0f) f.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
   return f;
-}
-
-double densityOverAlone(Alone which, const MisSums& total, const MisFactors& f, double sum) {
-  MisFactors alone = f;
-  if (which == Alone::Camera) {
-    alone.ownFamily = alone.sharedFamily = false;
-  } else if (which == Alone::Shared) {
-    alone.ownFamily = false;
-    alone.sharedChoice = f.cameraChoice;
-  } else {
-    alone.sharedFamily = false;
-    alone.ownChoice = f.ownAloneChoice;
-  }
-  const double a = combine(total, alone);
-  return a > 0.0 ? std::sqrt(sum / a) : std::numeric_limits<double>::infinity();
 }
 
 FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t,
@@ -154,13 +138,13 @@ Vec3 laneScale(const Context& c, int k) {
 }
 
 void record(const Context& c, int s, int t, Variant v, int k, float value, float weight) {
-  recordXyz(c, s, t, v, k, laneScale(c, k) * value, weight);
+  if (c.observer) recordXyz(c, s, t, v, k, laneScale(c, k) * value, weight);
 }
 
 void recordXyz(const Context& c, int s, int t, Variant v, int k, const Vec3& xyz, float weight) {
-  if (c.pilot) c.pilot->add(k, c.pixel, xyz * weight);
-  if (c.log && (xyz.x != 0.0f || xyz.y != 0.0f || xyz.z != 0.0f))
-    c.log->push_back({c.pixel, xyz * weight, xyz, s, t, uint8_t(v)});
+  c.observer->onContribution(k, c.pixel, xyz * weight);
+  if (xyz.x != 0.0f || xyz.y != 0.0f || xyz.z != 0.0f)
+    c.observer->onStrategy({c.pixel, xyz * weight, xyz, s, t, uint8_t(v)});
 }
 
 float emitted(const Context& c, const PathVertex& e, const PathVertex& next, float lambda) {

@@ -69,36 +69,15 @@ double specCamera(const PathVertex& x1, SpectralLobe lobe, float lambda0, float 
 // vertex (then `lobe`/`lambdaIn` give the connection's).
 double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn);
 
-// ρ = p_both/p_alone for a path whose sums with the unified estimator's factors f are `total`
-// (their combination `sum`): p_alone the density of one family alone as bdpt-shared or
-// bdpt-independent runs it (the other family's terms gone; the shared light subpath choosing the
-// light as next-event estimation does, the own one its light and wavelength as bdpt-independent's,
-// f.ownAloneChoice), or of camera paths alone (the camera subpath reaching the light and next-event
-// estimation: both families' terms gone); the square root of the ratio of the power-heuristic sums;
-// infinite where p_alone = 0.
-double densityOverAlone(Alone alone, const MisSums& total, const MisFactors& f, double sum);
-
 // A strategy's weight from the recursive sums: its own c² over the path's whole sum
-// (docs/bdpt-mis.md eq. 11). With c.oracle set, the full recomputation `full(f)` is recorded beside
-// it. With c.pilot set, the path's ρ = p_both/p_alone of each family alone goes to its `pending`
-// (PilotMoments): for the shared family, 1 on paths of one group, where it has every strategy (§5),
-// and, for it and camera paths alone, where the path carries no light for a reason the weights know,
-// a wavelength the sensor does not see (σ = 0) or one its light does not emit (κ = 0); infinite
-// where an alternative cannot sample the path.
-template <class Full>
+// (docs/bdpt-mis.md eq. 11), shown to c.observer with `layout(f)`, the path laid out for the full
+// recomputation (FullPathLayout; built only if the observer asks, as the test oracle does).
+template <class Layout>
 float weigh(const Context& c, int s, int t, Variant v, const MisSums& own, const MisSums& total, const MisFactors& f,
-            Full&& full) {
+            Layout&& layout) {
   const double sum = combine(total, f);
   const float w = sum > 0.0 ? float(combine(own, f) / sum) : 0.0f;
-  if (c.mergeWeights && isMerge(v)) ++*c.mergeWeights;
-  if (c.oracle) c.oracle->push_back({s, t, uint8_t(v), w, full(f)});
-  if (c.pilot) {
-    const bool shared = w > 0.0f && !f.oneGroup && f.sensorPdf > 0.0 && f.cameraChoice > 0.0;
-    c.pilot->alone[int(Alone::Shared)].pending = shared ? densityOverAlone(Alone::Shared, total, f, sum) : 1.0;
-    c.pilot->alone[int(Alone::Own)].pending = w > 0.0f ? densityOverAlone(Alone::Own, total, f, sum) : 1.0;
-    const bool sensed = w > 0.0f && f.sensorPdf > 0.0 && f.cameraChoice > 0.0;
-    c.pilot->alone[int(Alone::Camera)].pending = sensed ? densityOverAlone(Alone::Camera, total, f, sum) : 1.0;
-  }
+  if (c.observer) c.observer->onWeight({c, s, t, v, w, total, f, sum, FullPathLayout(layout)});
   return w;
 }
 
@@ -117,11 +96,11 @@ void laneWeights(const Context& c, int k0, int k1, float* w, Active&& active, We
     if (!active(k)) continue;
     if (first >= 0 && !c.families.independent) {
       w[k] = w[first];
-      if (c.pilot) c.pilot->copy(k, first);
+      if (c.observer) c.observer->onLaneCopied(k, first);
       continue;
     }
     w[k] = weighLane(k);
-    if (c.pilot) c.pilot->keep(k);
+    if (c.observer) c.observer->onLaneKept(k);
     first = k;
   }
 }
@@ -133,10 +112,11 @@ Vec3 laneScale(const Context& c, int k);
 // choice of probability 1/n whose factor n each end's throughput already holds, so 1/n; else 1.
 float keptLaneScale(const Context& c, int laneA, int laneB);
 
-// Records lane k's share of a strategy at the camera sample's pixel (strategies with t ≥ 2), for
-// the per-strategy images and the pilot.
+// Reports lane k's share of a strategy at the camera sample's pixel (strategies with t ≥ 2) to
+// c.observer, if any.
 void record(const Context& c, int s, int t, Variant v, int k, float value, float weight);
-// The same for a contribution whose XYZ (unweighted) the caller has, in the pilot's slot of lane k.
+// The same for a contribution whose XYZ (unweighted) the caller has, in lane k's slot; c.observer
+// must be set.
 void recordXyz(const Context& c, int s, int t, Variant v, int k, const Vec3& xyz, float weight);
 
 // The radiance an emitter vertex e sends towards `next` at wavelength lambda.

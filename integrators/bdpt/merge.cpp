@@ -52,10 +52,9 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   return r;
 }
 
-// The merge's weight recomputed over the whole path (the test oracle, c.oracle), with factors g.
-float fullWeight(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v,
-                 const std::vector<PathVertex>* lightPath, SpectralLobe lobe, Variant variant, const MergeSums& r,
-                 const MisFactors& g) {
+// The merge's path laid out for the full recomputation (FullPathLayout, the test oracle), with factors g.
+FullPath fullPath(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v,
+                  const std::vector<PathVertex>* lightPath, SpectralLobe lobe, const MergeSums& r, const MisFactors& g) {
   const std::vector<PathVertex>& L = *lightPath;
   const int m = v.depth;
   FullPath fp = layout(c, &L, m + 1, C, t - 1, storedLightEnd(L, m + 1), g);
@@ -65,7 +64,7 @@ float fullWeight(const Context& c, const std::vector<PathVertex>& C, int t, cons
   if (t > 2) fp.v[size_t(m + 1)].pdfLight = r.pLightNext;
   fp.specCam1 = m == 1 ? r.specCam : specCamera(L[1], L[1].lobe, L[1].lambda, L[1].lambdaNext);
   fp.specLightLast = t == 2 ? r.specLight : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
-  return misWeight(fp, m, variant);
+  return fp;
 }
 
 // Whether the path of a merge through `lobe` has one group: a property of the path, whichever
@@ -139,7 +138,7 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
                                          c.walk.lightFirst ? v.ownStart : 0.0f)
                                : factors(c, v.light, lambda0, k, c.lanes.sensorPdf[k], single, lanesKept);
       return weigh(c, m, t, variant, mine, sums.total, f, [&](const MisFactors& g) {
-        return fullWeight(c, C, t, v, lightPath, lobe, variant, sums, g);
+        return fullPath(c, C, t, v, lightPath, lobe, sums, g);
       });
     });
     for (int k = k0; k < k1; ++k) {
@@ -171,11 +170,11 @@ void mergeSplat(const Context& c, const std::vector<PathVertex>& C, const LightV
   const MisFactors f = factors(c, v.light, v.lambda0, -1, c.sensor.pdf(lambda), oneGroup(v, b, lobe),
                                v.has(LightVertex::kLanesKept) && b.lanesKept, c.walk.lightFirst ? v.ownStart : 0.0f);
   const float weight = weigh(c, v.depth, 2, Variant::kMergeSplat, mine, sums.total, f, [&](const MisFactors& g) {
-    return fullWeight(c, C, 2, v, lightPath, lobe, Variant::kMergeSplat, sums, g);
+    return fullPath(c, C, 2, v, lightPath, lobe, sums, g);
   });
   if (!(weight > 0.0f)) return;
-  if (c.pilot || c.log) {  // the per-strategy images and the pilot, in lane 0's slot (weigh()'s ratios)
-    if (c.pilot) c.pilot->keep(0);
+  if (c.observer) {  // in lane 0's slot, which takes the weight just computed
+    c.observer->onLaneKept(0);
     recordXyz(c, v.depth, 2, Variant::kMergeSplat, 0, Observer::cie1931().weight(lambda) * value, weight);
   }
   atLight.push_back({lambda, value * weight});

@@ -17,8 +17,8 @@ namespace kasha::bdpt {
 // found v within the pass's radius r (withinRadius), or at C[t−1] the first gather vertex within
 // r_g, where only an own vertex merges (through the fluorescent lobe, and at C[1] at its own
 // wavelength). Adds each lane's weighted radiance to out[k], and the merges at v's own wavelength
-// to `atLight`. With c.oracle set, `lightPath` must be v's light subpath (tests: the weight is also
-// recomputed over the whole path).
+// to `atLight`. With an observer that lays the path out (FullPathLayout: the test oracle recomputes
+// the weight over the whole path), `lightPath` must be v's light subpath.
 void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
            float* out, std::vector<SpectralSample>& atLight, const std::vector<PathVertex>* lightPath = nullptr);
 

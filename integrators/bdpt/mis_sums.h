@@ -37,9 +37,7 @@ struct MisFactors {
   double cameraChoice = 0.0;                     // κ = next-event estimation's probability of the path's light
   double sharedChoice = 0.0;                     // S = the shared light subpath's probability of it
   double ownChoice = 0.0;                        // ℓ = p_light(λ_0)·p(light | λ_0)
-  // The unified estimator's pilot only: ℓ of the own family alone (bdpt-independent's light
-  // subpath: its wavelength from the light-start strategy, its light as next-event estimation's).
-  double ownAloneChoice = 0.0;
+  float lambda0 = 0.0f;                          // λ_0, at which the light's factors are taken
   double mollifyWidth = 0.0;                     // ε_h (0: no mollified joins)
   bool oneGroup = false;                         // every interior vertex is elastic
   // n where every interior vertex keeps the wavelength lanes, else 1: the camera sample's n lanes

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/film.h"
+#include "integrators/bdpt/mis_observer.h"
 #include "integrators/integrator.h"
 
 namespace kasha::bdpt {
@@ -17,6 +18,17 @@ namespace kasha::bdpt {
 // wavelength family), "s1_t2_light_vertex", "s2_t2_mollified", "merge_t3" (every merge at camera
 // vertex t − 1, vcm and bpm).
 std::string strategyName(int s, int t, uint8_t variant);
+
+// Watches one camera sample's strategies (mis_observer.h) for the images: appends their records to
+// `out` (SampleContext::strategies, merged into StrategyImages after each pass).
+class StrategyLog final : public MisObserver {
+ public:
+  explicit StrategyLog(std::vector<StrategySample>& out) : out_(out) {}
+  void onStrategy(const StrategySample& r) override { out_.push_back(r); }
+
+ private:
+  std::vector<StrategySample>& out_;
+};
 
 class StrategyImages {
  public:

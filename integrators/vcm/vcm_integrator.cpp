@@ -9,6 +9,8 @@
 #include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/family_pilot.h"
 #include "integrators/bdpt/merge.h"
+#include "integrators/bdpt/pilot_observer.h"
+#include "integrators/bdpt/strategy_images.h"
 #include "integrators/bdpt/subpath_mis.h"
 #include "integrators/direct_emission.h"
 #include "integrators/integrator_factory.h"
@@ -177,9 +179,9 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
                                std::vector<std::vector<Splat>>& excess) -> Vec3 {
     thread_local PilotMoments moments;
     moments.clear();
-    uint64_t merges = 0;
-    const Vec3 v = estimate(scene, pixel, rng, ctx, static_cast<const VcmPass&>(*ctx.pass), &moments, &merges);
-    weights[0].fetch_add(merges, std::memory_order_relaxed);
+    PilotObserver observer(moments);
+    const Vec3 v = estimate(scene, pixel, rng, ctx, static_cast<const VcmPass&>(*ctx.pass), &observer);
+    weights[0].fetch_add(observer.count, std::memory_order_relaxed);
     const PilotMoments::Alternative& alt = moments.alone[int(Alone::Camera)];
     if (alt.unsampled > 0) unsampled.fetch_add(uint64_t(alt.unsampled), std::memory_order_relaxed);
     excess[0].insert(excess[0].end(), alt.excess.begin(), alt.excess.end());
@@ -190,9 +192,9 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   const bool gatherDiffers = families_.independent;
   for (const std::unique_ptr<VcmPass>& pass : passes) pass->setGather(gatherDiffers);
   const PilotSample wide = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
-    uint64_t merges = 0;
-    const Vec3 v = estimate(scene, pixel, rng, ctx, static_cast<const VcmPass&>(*ctx.pass), nullptr, &merges);
-    weights[1].fetch_add(merges, std::memory_order_relaxed);
+    MergeWeightCount merges;
+    const Vec3 v = estimate(scene, pixel, rng, ctx, static_cast<const VcmPass&>(*ctx.pass), &merges);
+    weights[1].fetch_add(merges.count, std::memory_order_relaxed);
     return v;
   };
   const PilotEstimates g = gatherDiffers ? pilotEstimates(w, h, seed, SamplerKind::Independent, 1, wide, passData) : e;
@@ -299,7 +301,7 @@ Vec3 Vcm::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContex
 }
 
 Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, const VcmPass& pass,
-                   bdpt::PilotMoments* pilot, uint64_t* mergeWeights) const {
+                   bdpt::MisObserver* observer) const {
   using namespace bdpt;
   const Lanes& lanes = pass.lanes;
   for (int k = 0; k < lanes_; ++k)
@@ -310,11 +312,11 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
   Context c{scene, pass.walk, families_, lanes, sensor_.density(), ctx.counter};
   c.spectralSplats = ctx.recordSpectral;
   c.bandwidth = pass.bandwidth;
-  c.pilot = pilot;
   c.pixel = pixel;
-  c.mergeWeights = mergeWeights;
   if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
-  if (ctx.recordStrategies) c.log = &ctx.strategies;
+  // The pilot's samples do not record strategies (pilotEstimates).
+  StrategyLog log(ctx.strategies);
+  c.observer = ctx.recordStrategies ? &log : observer;
   float radiance[kMaxLanes];
   Vec3 xyz(0.0f);
   if (parts_ != Parts::Merges) {

@@ -27,7 +27,7 @@ namespace kasha {
 
 struct VcmPass;
 namespace bdpt {
-struct PilotMoments;
+class MisObserver;
 }
 
 class Vcm final : public Integrator {
@@ -65,10 +65,10 @@ class Vcm final : public Integrator {
   // pass's η).
   std::unique_ptr<VcmPass> bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed, bool gather,
                                              RayCounter& counter, size_t paths = 0) const;
-  // One camera sample of every strategy against `pass`; with `pilot`, what the pilot learns from it;
-  // with `mergeWeights`, adds the merge weights it computed (the pilot's cost model).
+  // One camera sample of every strategy against `pass`; `observer` (the pilot's) watches it, or else,
+  // where ctx asks for them, the per-strategy images.
   Vec3 estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx, const VcmPass& pass,
-                bdpt::PilotMoments* pilot, uint64_t* mergeWeights = nullptr) const;
+                bdpt::MisObserver* observer) const;
 
   WavelengthStrategy sensor_, light_;
   Parts parts_;

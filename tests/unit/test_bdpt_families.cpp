@@ -8,8 +8,8 @@
 #include <limits>
 
 #include "integrators/bdpt/bdpt_integrator.h"
-#include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/family_pilot.h"
+#include "integrators/bdpt/pilot_observer.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "scene/scene_loader.h"
@@ -101,7 +101,7 @@ TEST(FamilyPilot, RaysOfSamplesAreCountedOnce) {
   EXPECT_EQ(columns, 28);
 }
 
-// What a contribution tells the pilot about each family alone (connect.h).
+// What a contribution tells the pilot about each family alone (pilot_observer.h).
 TEST(FamilyPilot, MomentsOfAContribution) {
   bdpt::PilotMoments m;
   auto& shared = m.alone[int(bdpt::Alone::Shared)];

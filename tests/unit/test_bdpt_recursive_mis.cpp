@@ -40,7 +40,7 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   const LightFirstStart lightFirst(*scene, scene->render.wavelengths.light);
   const WalkSettings ws{6, 3, &light.density(), param.merged ? &lightFirst : nullptr, {}};  // paths up to 6 scattering vertices
   std::vector<PathVertex> C, LS, LO;
-  std::vector<WeightCheck> checks;
+  test::WeightOracle oracle;
   LaneTables laneTables;
   std::vector<Splat> splats;
   RayCounter counter;
@@ -64,13 +64,13 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
     Context c{*scene, ws, param.families, lanes, sensor.density(), counter};
     c.sharedLightVertices = sharedLightVertices;
     c.bandwidth = param.bandwidth;
-    c.oracle = &checks;
-    checks.clear();
+    c.observer = &oracle;
+    oracle.checks.clear();
     splats.clear();
     float radiance[kMaxLanes];
     Vec3 xyz;
     connectSubpaths(c, C, LS, LO, rng, splats, radiance, xyz);
-    ASSERT_TRUE(tally.add(checks, sample)) << describe(param);
+    ASSERT_TRUE(tally.add(oracle.checks, sample)) << describe(param);
   }
   tally.expectPower(2000, describe(param));
 }

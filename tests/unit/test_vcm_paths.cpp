@@ -8,7 +8,7 @@
 #include <set>
 #include <tuple>
 
-#include "integrators/bdpt/connect_parts.h"
+#include "integrators/bdpt/pilot_observer.h"
 #include "integrators/bdpt/family_pilot.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
@@ -33,11 +33,11 @@ TEST(VcmPaths, TheDensityOfCameraPathsAlone) {
   const double all = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 3.0) + 9.0 * (4.0 + 0.01 * 5.0)) + 9.0 * 6.0;
   const double camera = 0.25 * 4.0 * (1.0 + 0.0625 * 2.0);
   ASSERT_NEAR(bdpt::combine(total, f), all, 1e-12);
-  EXPECT_NEAR(bdpt::densityOverAlone(bdpt::Alone::Camera, total, f, all), std::sqrt(all / camera), 1e-12);
+  EXPECT_NEAR(bdpt::densityOverAlone(bdpt::Alone::Camera, total, f, all, 0.0), std::sqrt(all / camera), 1e-12);
   // A path neither the camera subpath's hit nor next-event estimation samples.
   bdpt::MisSums joinsOnly;
   joinsOnly.shared = 1.0;
-  EXPECT_TRUE(std::isinf(bdpt::densityOverAlone(bdpt::Alone::Camera, joinsOnly, f, 1.0)));
+  EXPECT_TRUE(std::isinf(bdpt::densityOverAlone(bdpt::Alone::Camera, joinsOnly, f, 1.0, 0.0)));
 }
 
 // 1 + U(−1, 1) per channel: Var = 1/3 around a mean of 1; stratified over a pixel's samples (Sobol)

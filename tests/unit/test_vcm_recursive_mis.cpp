@@ -45,7 +45,7 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
   const Strategies strategies{param.connections, {3.0, 11.0}};
   const WalkSettings ws{6, 3, &light.density(), families.independent ? &lightFirst : nullptr, strategies};
   std::vector<PathVertex> C, LS, LO;
-  std::vector<WeightCheck> checks;
+  test::WeightOracle oracle;
   LaneTables tables;
   std::vector<Splat> splats;
   std::vector<LightVertex> kept;
@@ -68,8 +68,8 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
     Context c{*scene, ws, families, lanes, sensor.density(), counter};
     c.sharedLightVertices = sharedLightVertices;
     c.bandwidth = param.bandwidth;
-    c.oracle = &checks;
-    checks.clear();
+    c.observer = &oracle;
+    oracle.checks.clear();
     splats.clear();
     float radiance[kMaxLanes] = {};
     std::vector<SpectralSample> atLight;
@@ -84,8 +84,8 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
         for (int t = 2; t <= int(C.size()) && v.depth + t - 2 <= ws.maxDepth; ++t)
           if (mergeable(C[size_t(t - 1)])) merge(c, C, t, v, true, radiance, atLight, L);
     }
-    for (const WeightCheck& k : checks) merges += isMerge(Variant(k.variant));
-    ASSERT_TRUE(tally.add(checks, sample)) << describe(param);
+    for (const test::WeightCheck& k : oracle.checks) merges += isMerge(Variant(k.variant));
+    ASSERT_TRUE(tally.add(oracle.checks, sample)) << describe(param);
   }
   EXPECT_GT(merges, 2000) << describe(param);
   // With connections, more than 2000 of them besides the merges.
