@@ -15,7 +15,7 @@
 
 #include "core/sampling.h"
 #include "scene/scene_loader.h"
-#include "integrators/path_tracing/path_tracer.h"
+#include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 
 using namespace kasha;
@@ -74,12 +74,12 @@ int main(int argc, char** argv) {
     else scenePath = argv[i];
   }
   auto scene = loadScene(scenePath);
-  PathTracer pt(*scene, scene->render);
+  const std::unique_ptr<Integrator> pt = makeIntegrator("pt", *scene, scene->render);  // as `kasha render` builds it
   Film film(scene->camera.width(), scene->camera.height());
   RenderOptions opt;
   opt.spp = spp;
   opt.seed = 1;
-  const RenderStats st = render(*scene, pt, film, opt);
+  const RenderStats st = render(*scene, *pt, film, opt);
   uint64_t hits = 0;
   const double plain = plainEmbreeLoop(*scene, st.closestRays, st.shadowRays, hits);
   const double plainRate = double(st.rays) / plain;
