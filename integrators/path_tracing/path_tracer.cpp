@@ -24,6 +24,19 @@ float magnitude(const CameraLanesOf<T>& lanes) {
   return m;
 }
 
+// The event of one lane, which goes on as itself, from its spectral choice; none if its density is 0.
+LaneEvent oneLaneEvent(const SpectralChoice& c) {
+  LaneEvent e;
+  if (!(c.pdf > 0.0f)) return e;
+  e.lobe = c.lobe;
+  e.n = 1;
+  e.lambda[0] = c.lambda;
+  e.scale[0] = 1.0f / c.pdf;
+  e.source[0] = 0;
+  e.odds[0] = 1.0f;
+  return e;
+}
+
 }  // namespace
 
 PathTracer::PathTracer(const Scene& scene, const RenderSettings& s)
@@ -153,9 +166,13 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     const float uLobe = rng.uniform();
     const float uLane = oneLane ? 0.0f : rng.uniform();  // the lane kept where the lanes end
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));
-    LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Radiance, known, n_, uLobe,
-                                  excitation_.draws(shape.material) ? &excitation_.density(shape.material) : nullptr,
-                                  atFluorescence_);
+    // The lobe and λ_i (Jung18 eq. 7's P_c, then the fluorescence strategy or the material's own
+    // density): one lane samples them as sampleLaneEvent would with N = 1, without its mixture.
+    LaneEvent e = oneLane ? oneLaneEvent(excitation_.sample(bsdf, shape.material, lanes.lambda[0], uLobe))
+                          : sampleLaneEvent(bsdf, TransportMode::Radiance, known, n_, uLobe,
+                                            excitation_.draws(shape.material) ? &excitation_.density(shape.material)
+                                                                              : nullptr,
+                                            atFluorescence_);
     if (e.n == 0) break;
     // The lanes share one direction sample only where its density is the same for every lane:
     // next-event estimation below weights all of them with one direction density. (And they end
@@ -206,13 +223,14 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     const std::optional<DirectionSample> ds =
         bsdf.sampleDirection(TransportMode::Radiance, wo, e.lobe, e.lambda[0], lambdaOut0, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
-    CameraLanesOf<T> next;
-    next.n = e.n;
+    T next[kMaxLanes];
+    for (int k = 0; k < e.n; ++k)
+      next[k] = laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, ds->w, wo) * (std::abs(ds->w.z) / ds->pdf);
+    lanes.n = e.n;
     for (int k = 0; k < e.n; ++k) {
-      next.lambda[k] = e.lambda[k];
-      next.T[k] = laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, ds->w, wo) * (std::abs(ds->w.z) / ds->pdf);
+      lanes.lambda[k] = e.lambda[k];
+      lanes.T[k] = next[k];
     }
-    lanes = next;
     const float m = magnitude(lanes);
     if (!(m > 0.0f)) break;
     prevDirPdf = ds->pdf;
