@@ -176,8 +176,8 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     if (e.n == 0) break;
     // The lanes share one direction sample only where its density is the same for every lane:
     // next-event estimation below weights all of them with one direction density. (And they end
-    // at a fluorescent event with --fluorescent-lanes end.)
-    if (lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
+    // at a fluorescent event with --fluorescent-lanes end.) One lane has nothing to end.
+    if (!oneLane && lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
     // Direction sampling uses lane 0's wavelengths (the density is every lane's).
     const float lambdaOut0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lanes.lambda[0];
 
@@ -227,11 +227,12 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     for (int k = 0; k < e.n; ++k)
       next[k] = laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, ds->w, wo) * (std::abs(ds->w.z) / ds->pdf);
     lanes.n = e.n;
+    float m = 0.0f;  // their magnitude
     for (int k = 0; k < e.n; ++k) {
       lanes.lambda[k] = e.lambda[k];
       lanes.T[k] = next[k];
+      m += sum(next[k]);
     }
-    const float m = magnitude(lanes);
     if (!(m > 0.0f)) break;
     prevDirPdf = ds->pdf;
     prevSpecular = ds->specular;
