@@ -88,7 +88,7 @@ int run(int argc, char** argv) {
     }
   }
   auto scene = loadScene(scenePath);
-  const std::unique_ptr<Integrator> pt = makeIntegrator("pt", *scene, scene->render);
+  const std::unique_ptr<Integrator> pt = makeIntegrator("pt", *scene, scene->render);  // as `kasha render` builds it
   Film film(scene->camera.width(), scene->camera.height());
   RenderOptions opt;
   opt.spp = spp;

@@ -5,7 +5,6 @@
 
 #include "scene/wavelength_strategy.h"
 #include "integrators/bdpt/bdpt_integrator.h"
-#include "integrators/path_tracing/hero_path_tracer.h"
 #include "integrators/light_tracing/light_tracer.h"
 #include "integrators/path_tracing/path_tracer.h"
 #include "integrators/photon_mapping/ppm_integrator.h"
@@ -71,8 +70,7 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
                                       : " (its camera lanes go through fluorescent events; leave it at 'through')"));
   if (name == "pt") {
     requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
-    if (s.heroWavelengths > 1) return std::make_unique<HeroPathTracer>(scene, s);
-    return std::make_unique<PathTracer>(scene, s);
+    return std::make_unique<PathTracer>(scene, s);  // checks its strategies and lanes
   }
   if (name == "ppm") return std::make_unique<PpmIntegrator>(scene, s);  // checks its strategies and lanes
   if (name != "lt" && !bdpt) {

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "scene/light_selector.h"
 #include "integrators/wavelength_lanes.h"
 
 namespace kasha {
@@ -45,6 +46,15 @@ class LaneLightChoice {
  private:
   std::vector<float> power_;  // Φ_l(λ_k) at k·lights + l
   std::vector<float> pmf_;    // P(l)
+};
+
+// The choice for one lane at wavelength λ: the scene's LightSelector, P(l) = Φ_l(λ)/Φ(λ), which
+// both parts of LaneLightChoice's P(l) reduce to with one lane, without a table per vertex.
+struct OneLaneLightChoice {
+  const LightSelector& selector;
+  float lambda;
+  std::pair<size_t, float> select(float u) const { return selector.select(lambda, u); }
+  float probability(size_t light) const { return selector.probability(light, lambda); }
 };
 
 }  // namespace kasha

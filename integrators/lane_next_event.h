@@ -1,6 +1,6 @@
 #pragma once
 // Next-event estimation for the wavelength lanes of a camera path (Radiance mode), shared by the
-// path tracer with lanes and photon mapping (docs/wavelength-sampling.md "Hero wavelengths",
+// path tracer and photon mapping (docs/wavelength-sampling.md "Hero wavelengths",
 // docs/photon-mapping.md §3). One light is chosen for the lanes after the vertex's spectral event
 // (LaneLightChoice: after the lanes' weights and the lights' power at them), one point on it serves
 // every lane (a light's geometry does not depend on λ), and lane k of the event adds
@@ -40,16 +40,26 @@ enum class NeeWeight {
   Alone,           // the path never reaches a light through a non-specular direction: weight 1
 };
 
+// The wavelength densities that next-event estimation's MIS weight compares where it drew a λ_i
+// of its own instead of the event's (the path tracer's nee_sampling, one lane): the light sample's
+// P_c·p_nee(λ_i) and the event's P_c·p_event(λ_i) (docs/wavelength-sampling.md, "Fluorescent event
+// override"). Both 1 where the light sample serves the event's own lanes: the densities cancel.
+struct NeeSpectralPdfs {
+  float nee = 1.0f, event = 1.0f;
+};
+
 // The contribution of one light sample to every lane of event `e` at the non-specular vertex
 // `hit` (outgoing direction wo in the Bsdf's frame); `before[j]` is lane j's throughput before
 // the event at the known wavelength known[j], `lights` the light choice for the event's lanes
-// (reset with e.lambda), lambdaOut0 the outgoing wavelength the direction sampling of the event's
-// lane 0 uses (for the power heuristic). uLight chooses the light, uPos the point on it. Returns
-// zero at a purely specular vertex. T is the lanes' throughput type.
-template <class T>
+// (a LaneLightChoice reset with e.lambda, or a OneLaneLightChoice), lambdaOut0 the outgoing
+// wavelength the direction sampling of the event's lane 0 uses (for the power heuristic), `spectral`
+// the wavelength densities the power heuristic compares besides the directions'. uLight chooses the
+// light, uPos the point on it. Returns zero at a purely specular vertex. T is the lanes' throughput
+// type.
+template <class T, class LightChoice>
 T laneNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, std::span<const float> known,
-                const T* before, const LaneEvent& e, const LaneLightChoice& lights, float lambdaOut0, float uLight,
-                Vec2 uPos, NeeWeight weighting, RayCounter& counter) {
+                const T* before, const LaneEvent& e, const LightChoice& lights, float lambdaOut0, float uLight,
+                Vec2 uPos, NeeWeight weighting, RayCounter& counter, NeeSpectralPdfs spectral = {}) {
   T sum = before[0] * 0.0f;
   if (e.n == 0 || bsdf.has(BsdfFlags::DeltaDirection)) return sum;
   const auto [li, pSelect] = lights.select(uLight);
@@ -60,8 +70,9 @@ T laneNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3
   const float lightPdf = pSelect * ls->pdf;
   const float w = ls->delta || weighting == NeeWeight::Alone
                       ? 1.0f
-                      : powerHeuristic(lightPdf, bsdf.directionPdf(TransportMode::Radiance, wo, wi, e.lobe, e.lambda[0],
-                                                                   lambdaOut0));
+                      : powerHeuristic(lightPdf * spectral.nee,
+                                       bsdf.directionPdf(TransportMode::Radiance, wo, wi, e.lobe, e.lambda[0], lambdaOut0) *
+                                           spectral.event);
   for (int k = 0; k < e.n; ++k) {
     // The light's geometry does not depend on λ: the same point at every lane's wavelength.
     const float Li = k == 0 ? ls->Li : scene.lights[li]->Li(*ls, e.lambda[k]);

@@ -1,42 +1,132 @@
 #include "integrators/path_tracing/path_tracer.h"
 
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
 #include "core/color.h"
 #include "core/sampling.h"
-#include "integrators/shadow_ray.h"
+#include "integrators/direct_emission.h"
+#include "integrators/lane_light_choice.h"
+#include "integrators/lane_next_event.h"
 
 namespace kasha {
+namespace {
+
+float sum(float t) { return t; }
+float sum(const Vec3& t) { return t.x + t.y + t.z; }
+float sum(const SensorShares& t) { return t.sum(); }
+
+template <class T>
+float magnitude(const CameraLanesOf<T>& lanes) {
+  float m = 0.0f;
+  for (int j = 0; j < lanes.n; ++j) m += sum(lanes.T[j]);
+  return m;
+}
+
+// The event of one lane, which goes on as itself, from its spectral choice; none if its density is 0.
+LaneEvent oneLaneEvent(const SpectralChoice& c) {
+  LaneEvent e;
+  if (!(c.pdf > 0.0f)) return e;
+  e.lobe = c.lobe;
+  e.n = 1;
+  e.lambda[0] = c.lambda;
+  e.scale[0] = 1.0f / c.pdf;
+  e.source[0] = 0;
+  e.odds[0] = 1.0f;
+  return e;
+}
+
+}  // namespace
 
 PathTracer::PathTracer(const Scene& scene, const RenderSettings& s)
     : sources_(scene),
       sensor_(s.wavelengths.sensor, sources_, WavelengthSite::Sensor),
-      fluorescence_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
+      excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
       nee_(s.wavelengths.nee, sources_, scene.materials.size(), WavelengthSite::Nee),
+      n_(s.heroWavelengths),
+      atFluorescence_(s.fluorescentLanes),
       maxDepth_(s.maxDepth),
-      rrDepth_(s.rrDepth) {}
+      rrDepth_(s.rrDepth),
+      directXyz_(directEmissionXyz(scene)) {
+  if (n_ == 1) return;  // one wavelength: any sensor, fluorescence and nee strategy
+  requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "with hero wavelengths (their strata need p)");
+  requireLaneSettings(s, n_, 2, "hero wavelengths");
+}
 
 Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const {
-  Vec3 xyz(0.0f);
-  for (int i = 0; i < sensor_.samplesPerEstimate(); ++i) {
-    const WavelengthStrategy::Draw d = sensor_.draw(i, rng.uniform());
-    const Vec2 jitter = rng.uniform2();
-    if (!(d.weight > 0.0f)) continue;
-    const Ray ray = scene.camera.generateRay(pixel + jitter);
-    const float L = radiance(scene, ray, d.lambda, rng, ctx.counter);
-    // W(λ)·L(λ)·(MIS weight)/p(λ): the sensor responds at the wavelength arriving at it (transport.md §1).
-    xyz += sensorResponse(ctx, d.lambda, L * d.weight);
+  if (n_ == 1) {
+    // One path per draw of the sensor strategy, its lane's throughput (MIS weight)/p(λ); the sensor
+    // responds with W(λ) at the wavelength arriving at it (transport.md §1).
+    Vec3 xyz(0.0f);
+    for (int i = 0; i < sensor_.samplesPerEstimate(); ++i) {
+      const WavelengthStrategy::Draw d = sensor_.draw(i, rng.uniform());
+      const Vec2 jitter = rng.uniform2();
+      if (!(d.weight > 0.0f)) continue;
+      CameraLanesOf<float> lane;
+      lane.n = 1;
+      lane.lambda[0] = d.lambda;
+      lane.T[0] = d.weight;
+      const float L = radiance(scene, scene.camera.generateRay(pixel + jitter), lane, rng, ctx.counter);
+      xyz += sensorResponse(ctx, d.lambda, L);
+    }
+    return xyz;
   }
+  const WavelengthDensity& p = sensor_.density();
+  const float u = rng.uniform();
+  const Vec2 jitter = rng.uniform2();
+  // Lane j at the stratum (u + j/N) of p's inverse CDF: distributed as p, weighted by 1/(N·p(λ_j)).
+  float lambda[kMaxLanes], pdf[kMaxLanes];
+  for (int j = 0; j < n_; ++j) {
+    const WavelengthSample s = p.sample(laneStratum(u, j, n_));
+    lambda[j] = s.lambda;
+    pdf[j] = s.pdf;
+  }
+  const Ray ray = scene.camera.generateRay(pixel + jitter);
+  if (!ctx.recordSpectral) {
+    // The lanes' XYZ throughput W(λ_j)/(N·p(λ_j)).
+    CameraLanesOf<Vec3> lanes;
+    lanes.n = n_;
+    for (int j = 0; j < n_; ++j) {
+      lanes.lambda[j] = lambda[j];
+      lanes.T[j] = pdf[j] > 0.0f ? Observer::cie1931().weight(lambda[j]) / (float(n_) * pdf[j]) : Vec3(0.0f);
+    }
+    return radiance(scene, ray, lanes, rng, ctx.counter);
+  }
+  // Each lane in its own share of the sensor, which responds at the end (transport.md §1).
+  CameraLanes lanes;
+  lanes.n = n_;
+  for (int j = 0; j < n_; ++j) {
+    lanes.lambda[j] = lambda[j];
+    lanes.T[j].v[j] = pdf[j] > 0.0f ? 1.0f / (float(n_) * pdf[j]) : 0.0f;
+  }
+  const SensorShares L = radiance(scene, ray, lanes, rng, ctx.counter);
+  Vec3 xyz(0.0f);
+  for (int j = 0; j < n_; ++j)
+    if (L.v[j] != 0.0f) xyz += sensorResponse(ctx, lambda[j], L.v[j]);
   return xyz;
 }
 
-float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Sampler& rng, RayCounter& counter) const {
-  const LightSelector& lights = *scene.lightSelector;
-  float L = 0.0f, beta = 1.0f;
+template <class T>
+T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sampler& rng, RayCounter& counter) const {
+  constexpr bool oneLane = std::is_same_v<T, float>;
+  T L = lanes.T[0] * 0.0f;
+  const float magnitude0 = magnitude(lanes);  // Russian roulette compares the throughput with this
   float prevDirPdf = 0.0f;     // solid-angle density of the direction that led here
-  // The spectral event's density at the last vertex, and the one next-event estimation had for
-  // the same λ_i (they differ only for a fluorescent event with its own nee_sampling).
+  // The wavelength density of the last vertex's event for the λ_i the path took, and the one
+  // next-event estimation had for it: they differ only where next-event estimation drew its own λ_i
+  // (nee_sampling, N = 1); elsewhere both are left at 1, being the same (they cancel).
   float prevSpectralPdf = 1.0f, prevNeeSpectralPdf = 1.0f;
   bool prevSpecular = true;    // the camera ray counts as specular: no MIS on direct hits
   Vec3 prevP = ray.o;
+  // Next-event estimation's light choice for the lanes at this vertex and at the last one (the
+  // emitter-hit MIS weight needs its P(l)). One lane takes the scene's at its wavelength instead.
+  thread_local LaneLightChoice lightChoice[2];
+  int current = 0;
+  const auto lastLightProbability = [&](size_t light) {
+    if constexpr (oneLane) return scene.lightSelector->probability(light, lanes.lambda[0]);
+    else return lightChoice[current ^ 1].probability(light);
+  };
   const uint32_t firstDimension = rng.dimension();
   for (int depth = 0;; ++depth) {
     rng.startVertex(firstDimension, depth);
@@ -44,92 +134,118 @@ float PathTracer::radiance(const Scene& scene, Ray ray, float lambda, Sampler& r
     ++counter.closest;
     if (!hit) {
       if (const EnvironmentLight* env = scene.environment()) {
-        const float Le = env->Le(lambda, ray.d);
         float w = 1.0f;
-        if (!prevSpecular) {
-          const float lightPdf = lights.probability(size_t(scene.environmentLight), lambda) * env->pdfDirection(ray.d);
-          w = powerHeuristic(prevDirPdf * prevSpectralPdf, lightPdf * prevNeeSpectralPdf);
-        }
-        L += beta * Le * w;
+        if (!prevSpecular)
+          w = powerHeuristic(prevDirPdf * prevSpectralPdf, lastLightProbability(size_t(scene.environmentLight)) *
+                                                               env->pdfDirection(ray.d) * prevNeeSpectralPdf);
+        for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (env->Le(lanes.lambda[j], ray.d) * w);
       }
       break;
     }
     const Shape& shape = scene.shapes[hit->shape];
     if (shape.emission) {
-      const float Le = shape.emission->eval(lambda, hit->ng, -ray.d);
-      if (Le > 0.0f) {
-        float w = 1.0f;
-        if (!prevSpecular) {
-          const size_t li = size_t(scene.shapeLight[hit->shape]);
-          const float lightPdf = lights.probability(li, lambda) * scene.lights[li]->pdfLi(prevP, hit->p, hit->ng);
-          w = powerHeuristic(prevDirPdf * prevSpectralPdf, lightPdf * prevNeeSpectralPdf);
-        }
-        L += beta * Le * w;
+      float w = 1.0f;
+      if (!prevSpecular) {
+        const size_t li = size_t(scene.shapeLight[hit->shape]);
+        w = powerHeuristic(prevDirPdf * prevSpectralPdf, lastLightProbability(li) *
+                                                             scene.lights[li]->pdfLi(prevP, hit->p, hit->ng) *
+                                                             prevNeeSpectralPdf);
+      }
+      // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact.
+      // Spectral bins need each lane's share, and one lane its wavelength: there the lanes estimate it.
+      if (depth > 0 || !std::is_same_v<T, Vec3>) {
+        for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (shape.emission->eval(lanes.lambda[j], hit->ng, -ray.d) * w);
+      } else if constexpr (std::is_same_v<T, Vec3>) {
+        if (shape.emission->emitsTowards(hit->ng, -ray.d)) L += directXyz_[size_t(scene.shapeLight[hit->shape])];
       }
     }
     if (depth >= maxDepth_) break;
 
-    const Bsdf bsdf = scene.bsdf(*hit, {&lambda, 1});
+    const Bsdf bsdf = scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)});
     const Vec3 wo = bsdf.toLocal(-ray.d);
-    // Spectral stage: lobe and the wavelength the light had before this vertex.
-    const SpectralChoice sc = fluorescence_.sample(bsdf, shape.material, lambda, rng.uniform());
-    if (sc.pdf <= 0.0f) break;
-    const float lambdaIn = sc.lambda;
+    const float uLobe = rng.uniform();
+    const float uLane = oneLane ? 0.0f : rng.uniform();  // the lane kept where the lanes end
+    const std::span<const float> known(lanes.lambda, size_t(lanes.n));
+    // The lobe and λ_i (Jung18 eq. 7's P_c, then the fluorescence strategy or the material's own
+    // density): one lane samples them as sampleLaneEvent would with N = 1, without its mixture.
+    LaneEvent e = oneLane ? oneLaneEvent(excitation_.sample(bsdf, shape.material, lanes.lambda[0], uLobe))
+                          : sampleLaneEvent(bsdf, TransportMode::Radiance, known, n_, uLobe,
+                                            excitation_.draws(shape.material) ? &excitation_.density(shape.material)
+                                                                              : nullptr,
+                                            atFluorescence_);
+    if (e.n == 0) break;
+    // The lanes share one direction sample only where its density is the same for every lane:
+    // next-event estimation below weights all of them with one direction density. (And they end
+    // at a fluorescent event with --fluorescent-lanes end.) One lane has nothing to end.
+    if (!oneLane && lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
+    // Direction sampling uses lane 0's wavelengths (the density is every lane's).
+    const float lambdaOut0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lanes.lambda[0];
 
-    // Next-event estimation at λ_i, or after a fluorescent event at a wavelength of its own
-    // (nee_sampling). Its MIS weight then compares full densities, wavelength included: the light
-    // sample's P_c·p_nee(λ)·p_light against the event's P_c·p_event(λ)·p_dir.
-    prevSpectralPdf = prevNeeSpectralPdf = sc.pdf;
-    float lambdaNee = lambdaIn, neeSpectralPdf = sc.pdf, eventPdfAtNee = sc.pdf;
-    const bool ownNee = sc.lobe == SpectralLobe::Fluorescent && nee_.draws(shape.material);
-    if (ownNee) {
-      const WavelengthSample ws = nee_.sampleExcitation(shape.material, rng.uniform());
-      lambdaNee = ws.lambda;
-      neeSpectralPdf = ws.pdf > 0.0f ? bsdf.fluorescenceProbability(TransportMode::Radiance, lambda) * ws.pdf : 0.0f;
-      eventPdfAtNee = fluorescence_.pdf(bsdf, shape.material, lambda, lambdaNee, SpectralLobe::Fluorescent);
-      prevNeeSpectralPdf = nee_.pdf(bsdf, shape.material, lambda, lambdaIn, SpectralLobe::Fluorescent);
-    }
+    // Next-event estimation for every lane through one light sample. One lane (nee_sampling needs
+    // N = 1), after a fluorescent event with an nee strategy: with a λ_i of its own, its MIS weight
+    // comparing full densities, wavelength included: the light sample's P_c·p_nee(λ)·p_light against
+    // the event's P_c·p_event(λ)·p_dir.
+    const bool ownNee = oneLane && e.lobe == SpectralLobe::Fluorescent && nee_.draws(shape.material);
+    const float uNee = ownNee ? rng.uniform() : 0.0f;
     const float uLight = rng.uniform();
     const Vec2 uPos = rng.uniform2();
-    if (!bsdf.has(BsdfFlags::DeltaDirection) && neeSpectralPdf > 0.0f) {
-      const auto [li, pSelect] = lights.select(lambdaNee, uLight);
-      if (pSelect > 0.0f) {
-        const std::optional<LightSample> ls = scene.lights[li]->sampleLi(hit->p, lambdaNee, uPos);
-        if (ls && ls->Li > 0.0f && ls->pdf > 0.0f) {
-          const Vec3 wi = bsdf.toLocal(ls->wi);
-          const float f = bsdf.eval(TransportMode::Radiance, wi, wo, lambdaNee, lambda, sc.lobe);
-          if (f > 0.0f) {
-            if (lightVisible(scene, *hit, *ls, counter)) {
-              const float lightPdf = pSelect * ls->pdf;
-              const float dirPdf = bsdf.directionPdf(TransportMode::Radiance, wo, wi, sc.lobe, lambdaNee, lambda);
-              const float w =
-                  ls->delta ? 1.0f : powerHeuristic(lightPdf * neeSpectralPdf, dirPdf * eventPdfAtNee);
-              L += beta * (f * std::abs(wi.z) / neeSpectralPdf) * ls->Li * w / lightPdf;
-            }
-          }
-        }
+    prevSpectralPdf = prevNeeSpectralPdf = 1.0f;
+    if constexpr (oneLane) {
+      LaneEvent own;
+      NeeSpectralPdfs spectral;
+      if (ownNee) {
+        const WavelengthSample ws = nee_.sampleExcitation(shape.material, uNee);
+        spectral.nee = ws.pdf > 0.0f ? bsdf.fluorescenceProbability(TransportMode::Radiance, lambdaOut0) * ws.pdf : 0.0f;
+        spectral.event = excitation_.pdf(bsdf, shape.material, lambdaOut0, ws.lambda, e.lobe);
+        own = e;
+        own.lambda[0] = ws.lambda;
+        own.scale[0] = spectral.nee > 0.0f ? 1.0f / spectral.nee : 0.0f;
+        prevSpectralPdf = excitation_.pdf(bsdf, shape.material, lambdaOut0, e.lambda[0], e.lobe);
+        prevNeeSpectralPdf = nee_.pdf(bsdf, shape.material, lambdaOut0, e.lambda[0], e.lobe);
       }
+      const LaneEvent& nee = ownNee ? own : e;
+      L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, nee,
+                         OneLaneLightChoice{*scene.lightSelector, nee.lambda[0]}, lambdaOut0, uLight, uPos,
+                         NeeWeight::PowerHeuristic, counter, spectral);
+    } else {
+      LaneLightChoice& lights = lightChoice[current];
+      if (!bsdf.has(BsdfFlags::DeltaDirection)) {
+        float before[kMaxLanes], importance[kMaxLanes];
+        for (int j = 0; j < lanes.n; ++j) before[j] = sum(lanes.T[j]);
+        laneImportance(bsdf, TransportMode::Radiance, known, before, e, importance);
+        lights.reset(scene, {e.lambda, size_t(e.n)}, importance);
+      }
+      L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, e, lights, lambdaOut0, uLight, uPos,
+                         NeeWeight::PowerHeuristic, counter);
     }
 
-    // Direction stage.
+    // Direction stage at lane 0's wavelengths; every lane has the same density.
     const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(TransportMode::Radiance, wo, sc.lobe, lambdaIn, lambda, rng.uniform2());
+        bsdf.sampleDirection(TransportMode::Radiance, wo, e.lobe, e.lambda[0], lambdaOut0, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
-    const float f = bsdf.eval(TransportMode::Radiance, ds->w, wo, lambdaIn, lambda, sc.lobe);
-    beta *= f * std::abs(ds->w.z) / (sc.pdf * ds->pdf);
-    if (!(beta > 0.0f)) break;
+    T next[kMaxLanes];
+    for (int k = 0; k < e.n; ++k)
+      next[k] = laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, ds->w, wo) * (std::abs(ds->w.z) / ds->pdf);
+    lanes.n = e.n;
+    float m = 0.0f;  // their magnitude
+    for (int k = 0; k < e.n; ++k) {
+      lanes.lambda[k] = e.lambda[k];
+      lanes.T[k] = next[k];
+      m += sum(next[k]);
+    }
+    if (!(m > 0.0f)) break;
     prevDirPdf = ds->pdf;
     prevSpecular = ds->specular;
+    current ^= 1;
     prevP = hit->p;
-    lambda = lambdaIn;
     const Vec3 wiWorld = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(hit->p, hit->ng, wiWorld), wiWorld};
 
-    // Russian roulette on the throughput.
+    // Russian roulette on the lanes' total throughput (every lane divided by the same q).
     if (depth + 1 >= rrDepth_) {
-      const float q = std::min(1.0f, beta);
+      const float q = std::min(1.0f, m / magnitude0);
       if (rng.uniform() >= q) break;
-      beta /= q;
+      for (int j = 0; j < lanes.n; ++j) lanes.T[j] /= q;
     }
   }
   return L;

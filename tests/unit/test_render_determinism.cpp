@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/scene_loader.h"
-#include "integrators/path_tracing/path_tracer.h"
+#include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "tests/support.h"
 
@@ -11,13 +11,13 @@ namespace {
 
 std::vector<Vec3> renderCornell(int threads, uint64_t seed) {
   auto scene = loadScene(test::sourcePath("scenes/cornell_fluorescent.json"));
-  PathTracer pt(*scene, scene->render);
+  const std::unique_ptr<Integrator> pt = makeIntegrator("pt", *scene, scene->render);  // default lanes
   Film film(scene->camera.width(), scene->camera.height());
   RenderOptions opt;
   opt.spp = 2;
   opt.seed = seed;
   opt.threads = threads;
-  render(*scene, pt, film, opt);
+  render(*scene, *pt, film, opt);
   std::vector<Vec3> px;
   for (int y = 0; y < film.height(); ++y)
     for (int x = 0; x < film.width(); ++x) px.push_back(film.xyz(x, y));
