@@ -104,15 +104,15 @@ nlohmann::json RenderJob::settingsRecord() const {
                       {"hero_wavelengths", integrator_->lanes()},
                       {"fluorescent_lanes", toString(r.fluorescentLanes)},
                       {"max_depth", r.maxDepth}};
-  const std::string& name = options_.integrator;
-  if (name == "bdpt-mollified") j["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
-  // The photon (light-vertex) pass of ppm, vcm, vc and bpm, and ppm's own estimators of direct
-  // light: each changes the estimator, so a checkpoint must not be resumed under others.
-  if (name == "ppm" || name == "vcm" || name == "vc" || name == "bpm") {
+  // The integrators' own settings that change the estimator, wherever the integrator reads them
+  // (settingNotRead, integrator_factory.h): a checkpoint must not be resumed under others.
+  const auto reads = [&](const char* key) { return settingNotRead(options_.integrator, key).empty(); };
+  if (reads("mollify")) j["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
+  if (reads("ppm")) {  // the photon (light-vertex) pass of ppm, vcm, vc and bpm
     const PhotonMappingSettings& p = r.ppm;
     j["ppm"] = {{"photons_per_pass", p.photonsPerPass}, {"radius", p.radius}, {"alpha", p.alpha},
                 {"bandwidth", p.bandwidth}};
-    if (name == "ppm")
+    if (reads("ppm.direct"))  // ppm's own estimators of direct light
       j["ppm"].update({{"always_wavelength_kernel", p.alwaysKernel}, {"direct", toString(p.direct)},
                        {"nee_wavelengths", p.neeWavelengths}});
   }
