@@ -274,7 +274,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   nlohmann::json j = job->statistics();
   if (sig != 0) j["signal"] = signalName(sig);
   j["outputs"] = {{"exr", exr}, {"png", png}};
-  if (bdpt::StrategyImages* strategies = job->strategies())
+  if (bidir::StrategyImages* strategies = job->strategies())
     j["outputs"]["strategy_images"] = strategies->write(a.strategyImages, a.strategyUnweighted, !png.empty(), a.exposure);
   writeTextFile(stats, j.dump(2) + "\n");
   std::printf("%s\nwrote %s%s%s, %s\n", summaryLine(st).c_str(), exr.c_str(), png.empty() ? "" : ", ", png.c_str(),

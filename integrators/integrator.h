@@ -44,7 +44,7 @@ struct StrategySample {
   Vec2 pixel;
   Vec3 weighted, unweighted;
   int s = 0, t = 0;
-  uint8_t variant = 0;  // the integrator's own strategy variant (BDPT: bdpt::Variant)
+  uint8_t variant = 0;  // the integrator's own strategy variant (BDPT: bidir::Variant)
 };
 
 // What an integrator prepares before a pass and its samples only read (a photon map).

@@ -4,11 +4,11 @@
 #include <stdexcept>
 
 #include "scene/wavelength_strategy.h"
-#include "integrators/bdpt/bdpt_integrator.h"
+#include "integrators/bidirectional/bdpt.h"
 #include "integrators/light_tracing/light_tracer.h"
 #include "integrators/path_tracing/path_tracer.h"
 #include "integrators/photon_mapping/ppm_integrator.h"
-#include "integrators/vcm/vcm_integrator.h"
+#include "integrators/bidirectional/vcm.h"
 
 namespace kasha {
 namespace {
@@ -28,7 +28,7 @@ std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "bdpt-s
 
 std::string settingNotRead(const std::string& name, const std::string& key) {
   // The most specific prefix first: ppm's estimators of direct light are its own, its photon pass
-  // (count, radius, kernel) is vcm's light-vertex pass too (vcm/vcm_integrator.cpp).
+  // (count, radius, kernel) is vcm's light-vertex pass too (bidirectional/vcm.cpp).
   static const std::vector<std::pair<std::string, std::vector<std::string>>> readers = {
       {"bdpt_families", {"bdpt"}},
       {"vcm_paths", {"vcm"}},
@@ -93,9 +93,9 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
   }
   // Every other name is a BDPT's (unknown ones were refused above).
   if (name == "bdpt-shared") requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
-  const bdpt::WavelengthMode mode = name == "bdpt-shared" ? bdpt::WavelengthMode::Shared
-                                    : name == "bdpt"      ? bdpt::WavelengthMode::Unified
-                                                          : bdpt::WavelengthMode::Independent;
+  const bidir::WavelengthMode mode = name == "bdpt-shared" ? bidir::WavelengthMode::Shared
+                                    : name == "bdpt"      ? bidir::WavelengthMode::Unified
+                                                          : bidir::WavelengthMode::Independent;
   return std::make_unique<Bdpt>(scene, s, mode, mollified ? &s.mollify : nullptr);
 }
 

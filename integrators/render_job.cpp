@@ -138,9 +138,9 @@ void RenderJob::run() {
   const uint64_t limit = o.settings.memoryLimit;
   const int width = scene_.camera.width(), height = scene_.camera.height();
   if (o.strategyDepth >= 0) {
-    requireMemory(bdpt::StrategyImages::bytesFor(width, height, o.strategyDepth),
+    requireMemory(bidir::StrategyImages::bytesFor(width, height, o.strategyDepth),
                   "the strategy images (depth " + std::to_string(o.strategyDepth) + ")", limit);
-    strategies_ = std::make_unique<bdpt::StrategyImages>(width, height, o.strategyDepth);
+    strategies_ = std::make_unique<bidir::StrategyImages>(width, height, o.strategyDepth);
   }
   const nlohmann::json settings = checkpointSettings();
   requireFilmMemory(width, height, bins_, !o.resume.empty(), limit);

@@ -17,7 +17,7 @@
 
 #include "core/film.h"
 #include "core/spectral_film.h"
-#include "integrators/bdpt/strategy_images.h"
+#include "integrators/bidirectional/strategy_images.h"
 #include "integrators/integrator.h"
 #include "integrators/render_loop.h"
 #include "scene/render_settings.h"
@@ -81,7 +81,7 @@ class RenderJob {
   // statistics of this run.
   const Film& film() const { return *film_; }
   const SpectralFilm* spectral() const { return spectral_.get(); }
-  bdpt::StrategyImages* strategies() { return strategies_.get(); }
+  bidir::StrategyImages* strategies() { return strategies_.get(); }
   const RenderStats& stats() const { return stats_; }
   // The statistics record (`kasha render`'s .stats.json without the front end's outputs and
   // signal): the render statistics, the settings, resolution, seconds including the runs a
@@ -103,7 +103,7 @@ class RenderJob {
   SpectralBins bins_;
   std::unique_ptr<Film> film_;
   std::unique_ptr<SpectralFilm> spectral_;
-  std::unique_ptr<bdpt::StrategyImages> strategies_;
+  std::unique_ptr<bidir::StrategyImages> strategies_;
   RenderStats stats_;
   double previousSeconds_ = 0.0;
   nlohmann::json resumed_;

@@ -105,7 +105,7 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
     result["wavelengths"] = binCentres(job->bins());
     result["bin_width"] = job->bins().step;
   }
-  if (const bdpt::StrategyImages* strategies = job->strategies()) {
+  if (const bidir::StrategyImages* strategies = job->strategies()) {
     py::dict images;
     for (const auto& [name, img] : strategies->images()) {
       images[py::str(name)] = xyzArray(img->weighted);

@@ -1,6 +1,6 @@
 #pragma once
 // The test oracle of BDPT's recursive weights (docs/bdpt-mis.md §9): every weight the estimator
-// computes, recomputed over the whole path (integrators/bdpt/mis.h, §5), and their tally: each pair
+// computes, recomputed over the whole path (integrators/bidirectional/mis.h, §5), and their tally: each pair
 // must agree (relative 1e-5), and the comparison must not be vacuous.
 #include <gtest/gtest.h>
 
@@ -9,24 +9,24 @@
 #include <string>
 #include <vector>
 
-#include "integrators/bdpt/mis_observer.h"
+#include "integrators/bidirectional/mis_observer.h"
 
 namespace kasha::test {
 
 // One weight both ways.
 struct WeightCheck {
   int s, t;
-  uint8_t variant;  // bdpt::Variant
+  uint8_t variant;  // bidir::Variant
   float recursive, full;
 };
 
 // Watches the estimator (Context::observer) and recomputes each weight it computes from the path
 // laid out (FullPathLayout).
-class WeightOracle final : public bdpt::MisObserver {
+class WeightOracle final : public bidir::MisObserver {
  public:
   std::vector<WeightCheck> checks;
-  void onWeight(const bdpt::WeightEvent& e) override {
-    const float full = bdpt::misWeight(e.layout(e.factors), e.s, e.variant);
+  void onWeight(const bidir::WeightEvent& e) override {
+    const float full = bidir::misWeight(e.layout(e.factors), e.s, e.variant);
     checks.push_back({e.s, e.t, uint8_t(e.variant), e.weight, full});
   }
 };

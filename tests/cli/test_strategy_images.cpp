@@ -1,4 +1,4 @@
-// One image per BDPT strategy (integrators/bdpt/strategy_images.h, `kasha render
+// One image per BDPT strategy (integrators/bidirectional/strategy_images.h, `kasha render
 // --strategy-images`): with the same seed the MIS-weighted images sum to the render pixel by
 // pixel; an unweighted strategy that can sample every path is an estimator of the whole image on
 // its own; the command line writes the files and refuses integrators without strategies.
@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene_loader.h"
-#include "integrators/bdpt/strategy_images.h"
+#include "integrators/bidirectional/strategy_images.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "tests/process.h"
@@ -26,12 +26,12 @@ namespace fs = std::filesystem;
 std::unique_ptr<Scene> load(const std::string& name) { return loadScene(test::sourcePath("scenes/validation/" + name)); }
 
 // Renders with strategy records; `depth` is the longest path with images of its own.
-bdpt::StrategyImages renderWithStrategies(const Scene& scene, const std::string& integrator, int maxDepth, int depth,
+bidir::StrategyImages renderWithStrategies(const Scene& scene, const std::string& integrator, int maxDepth, int depth,
                                           int spp, uint64_t seed, Film& film) {
   RenderSettings s = scene.render;
   s.maxDepth = maxDepth;
   const auto bdpt = test::makeTestIntegrator(integrator, scene, s);
-  bdpt::StrategyImages images(film.width(), film.height(), depth);
+  bidir::StrategyImages images(film.width(), film.height(), depth);
   RenderOptions opt;
   opt.spp = spp;
   opt.seed = seed;
@@ -49,7 +49,7 @@ TEST(StrategyImages, WeightedImagesSumToTheRender) {
       SCOPED_TRACE(std::string(name) + " " + integrator);
       auto scene = load(name);
       Film film(scene->camera.width(), scene->camera.height());
-      const bdpt::StrategyImages images = renderWithStrategies(*scene, integrator, 6, depth, 8, 11, film);
+      const bidir::StrategyImages images = renderWithStrategies(*scene, integrator, 6, depth, 8, 11, film);
       if (depth == 2) EXPECT_TRUE(images.images().count("deeper"));
       if (depth == 2) EXPECT_GE(images.images().size(), 5u);
       if (depth == 4 && std::string(integrator) == "bdpt-mollified") EXPECT_TRUE(images.images().count("s3_t3_mollified"));
@@ -77,7 +77,7 @@ TEST(StrategyImages, UnweightedCameraPathsAloneEstimateTheImage) {
   std::vector<double> diff;
   for (int b = 0; b < 8; ++b) {
     Film film(scene->camera.width(), scene->camera.height());
-    const bdpt::StrategyImages images = renderWithStrategies(*scene, "bdpt-independent", 3, 3, 32, 70 + uint64_t(b), film);
+    const bidir::StrategyImages images = renderWithStrategies(*scene, "bdpt-independent", 3, 3, 32, 70 + uint64_t(b), film);
     ASSERT_FALSE(images.images().count("deeper"));
     double s0 = 0.0;
     for (const auto& [strategy, img] : images.images())

@@ -8,8 +8,8 @@
 
 #include "core/color.h"
 #include "scene/scene_loader.h"
-#include "integrators/bdpt/bdpt_integrator.h"
-#include "integrators/bdpt/strategy_images.h"
+#include "integrators/bidirectional/bdpt.h"
+#include "integrators/bidirectional/strategy_images.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/progressive_schedule.h"
 #include "integrators/render_loop.h"
@@ -39,7 +39,7 @@ TEST(BdptMollified, BandwidthShrinksLikeThePhotonMappingRadius) {
   m.alpha = 0.5f;
   RenderSettings rs = scene->render;
   rs.wavelengths.sensor = parseWavelengthSpec("uniform");
-  const Bdpt bdpt(*scene, rs, bdpt::WavelengthMode::Independent, &m);
+  const Bdpt bdpt(*scene, rs, bidir::WavelengthMode::Independent, &m);
   EXPECT_TRUE(bdpt.mollifies());
   EXPECT_EQ(bdpt.name(), "bdpt-mollified");
   EXPECT_EQ(bdpt.maxSamplesPerPass(), 1);  // one iteration per sample index
@@ -62,8 +62,8 @@ TEST(BdptMollified, BandwidthShrinksLikeThePhotonMappingRadius) {
   EXPECT_NEAR(wavelengthKernelMass(-5.0f, 7.0f, 12.0f), mass, 1e-5);
   MollificationSettings bad = m;
   bad.alpha = 1.0f;
-  EXPECT_THROW(Bdpt(*scene, rs, bdpt::WavelengthMode::Independent, &bad), std::invalid_argument);
-  EXPECT_THROW(Bdpt(*scene, rs, bdpt::WavelengthMode::Shared, &m), std::invalid_argument);
+  EXPECT_THROW(Bdpt(*scene, rs, bidir::WavelengthMode::Independent, &bad), std::invalid_argument);
+  EXPECT_THROW(Bdpt(*scene, rs, bidir::WavelengthMode::Shared, &m), std::invalid_argument);
 }
 
 struct Batches {
@@ -86,7 +86,7 @@ Batches renderBatches(Scene& scene, const std::string& integrator, int maxDepth,
   Batches run;
   for (int i = 0; i < batches; ++i) {
     Film film(scene.camera.width(), scene.camera.height());
-    bdpt::StrategyImages images(film.width(), film.height(), 64);
+    bidir::StrategyImages images(film.width(), film.height(), 64);
     RenderOptions opt;
     opt.spp = spp;
     opt.seed = 500 + uint64_t(i);

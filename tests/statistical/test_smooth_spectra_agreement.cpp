@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "integrators/bdpt/strategy_images.h"
+#include "integrators/bidirectional/strategy_images.h"
 #include "integrators/integrator_factory.h"
 #include "tests/integrator_names.h"
 #include "integrators/render_loop.h"
@@ -84,7 +84,7 @@ TEST(SmoothSpectraStrategies, UnweightedStrategiesOfTheSamePathsAgree) {
   constexpr int kBatches = 10;
   for (int b = 0; b < kBatches; ++b) {
     Film film(kRes, kRes);
-    bdpt::StrategyImages images(kRes, kRes, 3);
+    bidir::StrategyImages images(kRes, kRes, 3);
     RenderOptions opt;
     opt.spp = 512;
     opt.seed = 31 * uint64_t(b + 1);

@@ -1,4 +1,4 @@
-// Vertex connection and merging's settings and passes (integrators/vcm/, docs/bdpt-mis.md §12):
+// Vertex connection and merging's settings and passes (integrators/bidirectional/, docs/bdpt-mis.md §12):
 // its defaults, the memory limit of a pass's light vertices, bit-identical images for any number
 // of threads, and the settings it refuses.
 #include <gtest/gtest.h>
@@ -9,8 +9,8 @@
 #include "integrators/integrator_factory.h"
 #include "integrators/progressive_schedule.h"
 #include "integrators/render_loop.h"
-#include "integrators/vcm/light_vertex_pass.h"
-#include "integrators/vcm/vcm_integrator.h"
+#include "integrators/bidirectional/light_vertex_pass.h"
+#include "integrators/bidirectional/vcm.h"
 #include "scene/scene_loader.h"
 #include "tests/integrator_names.h"
 #include "tests/support.h"
@@ -42,7 +42,7 @@ TEST(Vcm, DefaultsComeFromTheScene) {
 TEST(Vcm, RefusesWhatItCannotDo) {
   auto scene = load("furnace_fluorescent.json");
   RenderSettings s = scene->render;
-  s.heroWavelengths = bdpt::kLightVertexLanes + 1;  // a light vertex keeps 4 lanes
+  s.heroWavelengths = bidir::kLightVertexLanes + 1;  // a light vertex keeps 4 lanes
   EXPECT_THROW(makeIntegrator("vcm", *scene, s), std::invalid_argument);
   s = scene->render;
   s.ppm.alpha = 0.3f;  // the kernel in wavelength needs α > 1/3

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <limits>
 
-#include "integrators/bdpt/bdpt_integrator.h"
-#include "integrators/bdpt/family_pilot.h"
-#include "integrators/bdpt/pilot_observer.h"
+#include "integrators/bidirectional/bdpt.h"
+#include "integrators/bidirectional/family_pilot.h"
+#include "integrators/bidirectional/pilot_observer.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
 #include "scene/scene_loader.h"
@@ -30,7 +30,7 @@ double noisyStandardError(int pixels) { return std::sqrt(3.0 * (16.0 / 15.0 - 4.
 // alternatives. 64 × 48 pixels are sampled one by one; 256 × 256 in cells of 4 × 2 pixels, whose
 // splats add up in the cell: the estimates are the same.
 void measuresKnownVariances(int w, int h) {
-  const bdpt::PilotEstimates e = bdpt::pilotEstimates(
+  const bidir::PilotEstimates e = bidir::pilotEstimates(
       w, h, 5, SamplerKind::Independent, 2,
       [](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>& excess) {
         ctx.splats.push_back({pixel + Vec2(0.5f), 0.5f * noisy(rng)});
@@ -57,7 +57,7 @@ TEST(FamilyPilot, LargeImagesAreSampledInCells) { measuresKnownVariances(256, 25
 TEST(FamilyPilot, SmallImagesTakeSeveralSamplesPerPixel) {
   constexpr int w = 16, h = 8;  // 128 pixels: 64 samples per pixel and image
   std::vector<int> samples(size_t(w * h), 0);
-  const bdpt::PilotEstimates e = bdpt::pilotEstimates(
+  const bidir::PilotEstimates e = bidir::pilotEstimates(
       w, h, 5, SamplerKind::Independent, 0,
       [&](Vec2 pixel, Sampler& rng, SampleContext&, std::vector<std::vector<Splat>>&) {
         ++samples[size_t(pixel.y) * w + size_t(pixel.x)];  // each row is one task
@@ -71,7 +71,7 @@ TEST(FamilyPilot, SmallImagesTakeSeveralSamplesPerPixel) {
 
 TEST(FamilyPilot, RaysOfSamplesAreCountedOnce) {
   std::vector<int> pixels(size_t(40 * 30), 0);
-  const RayCounter r = bdpt::raysOfSamples(
+  const RayCounter r = bidir::raysOfSamples(
       40, 30, 5, SamplerKind::Independent, 600,
       [&](Vec2 pixel, Sampler&, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
         ++pixels[size_t(pixel.y) * 40 + size_t(pixel.x)];  // a task each
@@ -80,7 +80,7 @@ TEST(FamilyPilot, RaysOfSamplesAreCountedOnce) {
       });
   EXPECT_EQ(r.closest, 3u * 600u);
   EXPECT_EQ(r.shadow, 600u);
-  // Each at a pixel of its own, spread over rows and columns (bdpt::spreadPixels: a 28 × 22 grid).
+  // Each at a pixel of its own, spread over rows and columns (bidir::spreadPixels: a 28 × 22 grid).
   int rows = 0, columns = 0, visited = 0;
   for (int y = 0; y < 30; ++y) {
     int n = 0;
@@ -103,9 +103,9 @@ TEST(FamilyPilot, RaysOfSamplesAreCountedOnce) {
 
 // What a contribution tells the pilot about each family alone (pilot_observer.h).
 TEST(FamilyPilot, MomentsOfAContribution) {
-  bdpt::PilotMoments m;
-  auto& shared = m.alone[int(bdpt::Alone::Shared)];
-  auto& own = m.alone[int(bdpt::Alone::Own)];
+  bidir::PilotMoments m;
+  auto& shared = m.alone[int(bidir::Alone::Shared)];
+  auto& own = m.alone[int(bidir::Alone::Own)];
   shared.ratio[0] = 3.0, own.ratio[0] = 0.5;  // p_both = 3 p_shared-alone, p_both = p_own-alone / 2
   shared.ratio[1] = own.ratio[1] = 1.0;       // the same density
   shared.ratio[2] = std::numeric_limits<double>::infinity(), own.ratio[2] = 1.0;  // p_shared-alone = 0

@@ -2,9 +2,9 @@
 #include <gtest/gtest.h>
 
 #include "core/rng.h"
-#include "integrators/bdpt/mis.h"
+#include "integrators/bidirectional/mis.h"
 
-namespace kasha::bdpt {
+namespace kasha::bidir {
 namespace {
 
 constexpr SpectralLobe E = SpectralLobe::Elastic, F = SpectralLobe::Fluorescent;
@@ -255,4 +255,4 @@ TEST(BdptMis, DeltaVerticesCannotBeConnected) {
 }
 
 }  // namespace
-}  // namespace kasha::bdpt
+}  // namespace kasha::bidir

@@ -1,18 +1,18 @@
 // BDPT's recursive MIS weights (docs/bdpt-mis.md §9) against the full recomputation over the whole
-// path (integrators/bdpt/mis.h, §5): on subpaths traced in scenes with area, point, spot, distant
+// path (integrators/bidirectional/mis.h, §5): on subpaths traced in scenes with area, point, spot, distant
 // and environment lights, elastic, fluorescent, glossy and specular vertices, every connection's
 // weight computed both ways must agree (relative 1e-5), for each wavelength family alone and both
 // together, with and without spectral mollification, and with wavelength lanes.
 #include <gtest/gtest.h>
 
-#include "integrators/bdpt/connect.h"
-#include "integrators/bdpt/subpaths.h"
+#include "integrators/bidirectional/connect.h"
+#include "integrators/bidirectional/subpaths.h"
 #include "scene/scene_loader.h"
 #include "scene/wavelength_strategy.h"
 #include "tests/support.h"
 #include "tests/weight_checks.h"
 
-namespace kasha::bdpt {
+namespace kasha::bidir {
 namespace {
 
 struct Case {
@@ -117,4 +117,4 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 }  // namespace
-}  // namespace kasha::bdpt
+}  // namespace kasha::bidir

@@ -8,11 +8,11 @@
 #include <set>
 #include <tuple>
 
-#include "integrators/bdpt/pilot_observer.h"
-#include "integrators/bdpt/family_pilot.h"
+#include "integrators/bidirectional/pilot_observer.h"
+#include "integrators/bidirectional/family_pilot.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_loop.h"
-#include "integrators/vcm/vcm_integrator.h"
+#include "integrators/bidirectional/vcm.h"
 #include "scene/scene_loader.h"
 #include "tests/support.h"
 
@@ -22,9 +22,9 @@ namespace {
 // ρ = p_vcm/p_camera from the power-heuristic sums: camera paths alone keep the camera subpath
 // reaching the light and next-event estimation (σ²·g²·(hit + κ²·nee)), every other term goes.
 TEST(VcmPaths, TheDensityOfCameraPathsAlone) {
-  bdpt::MisSums total;
+  bidir::MisSums total;
   total.hit = 1.0, total.nee = 2.0, total.shared = 3.0, total.own = 4.0, total.mollified = 5.0, total.ownSplat = 6.0;
-  bdpt::MisFactors f;
+  bidir::MisFactors f;
   f.sharedFamily = f.ownFamily = true;
   f.oneGroup = true;
   f.sensorPdf = 0.5, f.laneGain = 2.0, f.cameraChoice = 0.25, f.sharedChoice = 0.5, f.ownChoice = 3.0;
@@ -32,12 +32,12 @@ TEST(VcmPaths, TheDensityOfCameraPathsAlone) {
   // By hand: σ²·(g²·(1 + κ²·2 + S²·3) + ℓ²·(4 + ε²·5)) + ℓ²·6, and σ²·g²·(1 + κ²·2).
   const double all = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 3.0) + 9.0 * (4.0 + 0.01 * 5.0)) + 9.0 * 6.0;
   const double camera = 0.25 * 4.0 * (1.0 + 0.0625 * 2.0);
-  ASSERT_NEAR(bdpt::combine(total, f), all, 1e-12);
-  EXPECT_NEAR(bdpt::densityOverAlone(bdpt::Alone::Camera, total, f, all, 0.0), std::sqrt(all / camera), 1e-12);
+  ASSERT_NEAR(bidir::combine(total, f), all, 1e-12);
+  EXPECT_NEAR(bidir::densityOverAlone(bidir::Alone::Camera, total, f, all, 0.0), std::sqrt(all / camera), 1e-12);
   // A path neither the camera subpath's hit nor next-event estimation samples.
-  bdpt::MisSums joinsOnly;
+  bidir::MisSums joinsOnly;
   joinsOnly.shared = 1.0;
-  EXPECT_TRUE(std::isinf(bdpt::densityOverAlone(bdpt::Alone::Camera, joinsOnly, f, 1.0, 0.0)));
+  EXPECT_TRUE(std::isinf(bidir::densityOverAlone(bidir::Alone::Camera, joinsOnly, f, 1.0, 0.0)));
 }
 
 // 1 + U(−1, 1) per channel: Var = 1/3 around a mean of 1; stratified over a pixel's samples (Sobol)
@@ -45,7 +45,7 @@ TEST(VcmPaths, TheDensityOfCameraPathsAlone) {
 Vec3 noisy(Sampler& rng) { return Vec3(1.0f) + 2.0f * rng.uniform3() - Vec3(1.0f); }
 
 TEST(VcmPaths, RelativeVarianceAtPixelsIsKnownAndStratificationLowersIt) {
-  const bdpt::PilotSample sample = [](Vec2, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
+  const bidir::PilotSample sample = [](Vec2, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
     ++ctx.counter.closest;
     return noisy(rng);
   };
@@ -53,20 +53,20 @@ TEST(VcmPaths, RelativeVarianceAtPixelsIsKnownAndStratificationLowersIt) {
   constexpr int spp = 16;
   constexpr size_t pixels = 2048;
   const double independent =
-      bdpt::relativeVarianceAtPixels(64, 64, 3, SamplerKind::Independent, spp, pixels, sample, rays);
+      bidir::relativeVarianceAtPixels(64, 64, 3, SamplerKind::Independent, spp, pixels, sample, rays);
   EXPECT_EQ(rays.closest, uint64_t(2 * spp * pixels));
   // Σ_XYZ (1/3)/(1 + 10⁻²), m ≈ 1 up to its noise; the standard error of the mean over the pixels of
   // Σ_XYZ spp·(x₁ − x₂)²/2 with x₁ − x₂ normal of variance 2/(3·spp): √(3·2/pixels)·(1/3).
   const double expected = 3.0 * (1.0 / 3.0) / 1.01;
   EXPECT_NEAR(independent, expected, 4.0 * std::sqrt(6.0 / pixels) / 3.0 + 0.01);
-  const double stratified = bdpt::relativeVarianceAtPixels(64, 64, 3, SamplerKind::Sobol, spp, pixels, sample, rays);
+  const double stratified = bidir::relativeVarianceAtPixels(64, 64, 3, SamplerKind::Sobol, spp, pixels, sample, rays);
   EXPECT_LT(stratified, 0.5 * independent);  // a smooth integrand in 3 dimensions at 16 samples
 }
 
 TEST(VcmPaths, ThePixelsOfTheStratificationEstimateCoverTheImage) {
   // 512 pixels of a 512×512 image once fell on its first column (j·all/pixels): a 23 × 23 grid now.
   for (const auto& [w, h, n] : {std::tuple{512, 512, 512}, {256, 144, 512}, {64, 64, 2048}, {7, 3, 21}}) {
-    const std::vector<Vec2> at = bdpt::spreadPixels(w, h, size_t(n));
+    const std::vector<Vec2> at = bidir::spreadPixels(w, h, size_t(n));
     ASSERT_EQ(at.size(), size_t(n));
     std::set<float> xs, ys;
     std::set<std::pair<float, float>> distinct;

@@ -1,21 +1,21 @@
 // Vertex merging's recursive MIS weights (docs/bdpt-mis.md §12) against the full recomputation over
-// the whole path (integrators/bdpt/mis.h): on subpaths traced as vcm traces them (both wavelength
+// the whole path (integrators/bidirectional/mis.h): on subpaths traced as vcm traces them (both wavelength
 // families on one light subpath where the scene fluoresces, lanes, elastic, fluorescent, glossy and
 // specular vertices), every connection's and every merge's weight computed both ways must agree
 // (relative 1e-5), with connections and merges (vcm) and merges alone (bpm), with and without the
 // wavelength kernel that lets own light vertices merge through elastic lobes.
 #include <gtest/gtest.h>
 
-#include "integrators/bdpt/connect.h"
-#include "integrators/bdpt/merge.h"
-#include "integrators/bdpt/subpath_mis.h"
-#include "integrators/bdpt/subpaths.h"
+#include "integrators/bidirectional/connect.h"
+#include "integrators/bidirectional/merge.h"
+#include "integrators/bidirectional/subpath_mis.h"
+#include "integrators/bidirectional/subpaths.h"
 #include "scene/scene_loader.h"
 #include "scene/wavelength_strategy.h"
 #include "tests/support.h"
 #include "tests/weight_checks.h"
 
-namespace kasha::bdpt {
+namespace kasha::bidir {
 namespace {
 
 struct Case {
@@ -114,4 +114,4 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 }  // namespace
-}  // namespace kasha::bdpt
+}  // namespace kasha::bidir

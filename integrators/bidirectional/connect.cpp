@@ -1,0 +1,456 @@
+#include "integrators/bidirectional/connect.h"
+
+#include <algorithm>
+
+#include "core/color.h"
+#include "integrators/bidirectional/connect_parts.h"
+#include "integrators/progressive_schedule.h"
+
+namespace kasha::bidir {
+
+void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float* out, Vec3& xyz) {
+  const PathVertex& e = C[size_t(t - 1)];
+  if (e.light < 0) return;
+  const PathVertex& next = C[size_t(t - 2)];
+  if (t == 2 && e.kind == Kind::Surface && c.directXyz) {
+    // The path x_0 x_1 (the light seen by the pinhole) has two strategies, this one and the light
+    // vertex splatted to the camera; this one is exact, so it takes weight 1 and the other 0
+    // (docs/bdpt-mis.md §10).
+    const AreaEmission& em = *static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission;
+    if (!em.emitsTowards(e.n, towards(e, next))) return;
+    const Vec3& value = (*c.directXyz)[size_t(e.light)];
+    xyz += value;
+    if (c.observer) c.observer->onStrategy({c.pixel, value, value, 0, t, uint8_t(Variant::kStandard)});
+    return;
+  }
+  float Le[kMaxLanes];
+  bool any = false;
+  for (int k = e.firstLane(); k < e.endLane(c.lanes); ++k) {
+    Le[k] = emitted(c, e, next, e.lambdaOf(c.lanes, k));
+    any = any || Le[k] > 0.0f;
+  }
+  if (!any) return;
+  const LightEnd end = lightEnd(c, e.light, e, next);
+  const int k = t - 1;
+  // The strategies with one light vertex: next-event estimation and the light vertex at x_1, or
+  // for k = 1 the light seen by the camera.
+  const Strategies& st = c.walk.strategies;
+  const MisSums m1 = k >= 2 ? firstVertexMultiplicity(next.connectible(), next.lobe, next.spectralPdf, end.finite, st)
+                            : directLightMultiplicity(e.kind == Kind::Surface, st);
+  const MisSums own = hitMultiplicity();
+  const MisSums total = own + cameraSum(c, C, t, end.pdf0, m1, end.pdf1);
+  float weight[kMaxLanes];
+  laneWeights(c, e.firstLane(), e.endLane(c.lanes), weight, [&](int j) { return Le[j] > 0.0f; }, [&](int j) {
+    const MisFactors f = factors(c, e.light, e.lambdaOf(c.lanes, j), e.elasticBefore ? j : -1, c.lanes.sensorPdf[j],
+                                 e.elasticBefore, next.lanesKept);
+    return weigh(c, 0, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
+      FullPath fp = layout(c, nullptr, 0, C, t, end, g);
+      if (k >= 2) {
+        fp.specCam1 = next.spectralPdf;
+        fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+      } else {
+        fp.lightSeenByPinhole = e.kind == Kind::Surface;
+      }
+      return fp;
+    });
+  });
+  for (int j = e.firstLane(); j < e.endLane(c.lanes); ++j) {
+    const float value = e.beta[j] * Le[j];
+    record(c, 0, t, Variant::kStandard, j, value, weight[j]);
+    out[j] += value * weight[j];
+  }
+}
+
+void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sampler& rng, float* out) {
+  const PathVertex& x1 = C[size_t(t - 1)];
+  const float uSel = rng.uniform();
+  const Vec2 uPos = rng.uniform2();
+  if (!x1.eventSampled || !x1.connectible()) return;
+  const float lambda0 = x1.lambdaNext;
+  // On a path that has not fluoresced the light is chosen for the lanes, as light subpaths choose it.
+  const bool cameraGroup = x1.elasticBefore && x1.lobe == SpectralLobe::Elastic;
+  const auto [li, pSel] = cameraGroup ? selectLight(c.scene, c.lanes, uSel) : c.scene.lightSelector->select(lambda0, uSel);
+  if (pSel <= 0.0f) return;
+  const Light& light = *c.scene.lights[li];
+  const std::optional<LightSample> ls = light.sampleLi(x1.p, lambda0, uPos);
+  if (!ls || ls->pdf <= 0.0f) return;
+  // The light vertex x_0.
+  PathVertex x0;
+  x0.kind = light.atInfinity() ? Kind::Infinite : Kind::Light;
+  x0.light = int(li);
+  x0.lambda = lambda0;
+  x0.deltaPosition = light.isDelta() && !light.atInfinity();
+  if (light.atInfinity()) {
+    x0.dir = -ls->wi;
+  } else {
+    x0.p = x1.p + ls->wi * ls->dist;
+    x0.n = ls->n;
+  }
+  const Bsdf& f = *x1.bsdf;
+  const PathVertex& x2 = C[size_t(t - 2)];
+  const Vec3 wi = f.toLocal(ls->wi), wo = f.toLocal(towards(x1, x2));
+  // Each lane through x_1's event: elastic at the lane's own wavelength when every lane reaches x_1.
+  float value[kMaxLanes];
+  bool any = false;
+  const bool lanes = x1.allLanes(c.lanes);
+  for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) {
+    const float lambda = lanes ? c.lanes.lambda[k] : lambda0;
+    const float fx = lanes ? x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda, lambda, x1.lobe)
+                           : x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda0, x1.lambda, x1.lobe);
+    // The light's geometry does not depend on λ: the same point at every lane's wavelength.
+    const float Li = lanes ? light.Li(*ls, lambda) : ls->Li;
+    value[k] = fx > 0.0f ? x1.beta[k] * fx * std::abs(wi.z) / x1.spectralPdf * Li / (pSel * ls->pdf) : 0.0f;
+    any = any || value[k] > 0.0f;
+  }
+  if (!any || !visible(c, x1, x0)) return;
+  const int lightIndex = int(li);  // a structured binding cannot be captured (clang 14)
+  const LightEnd end = lightEnd(c, lightIndex, x0, x1);
+  const double pCam0 = cameraSide(c.scene, x1, wo, wi, x0, x1.lobe, lambda0, x1.lambda);
+  const double pLight2 = x2.kind != Kind::Camera ? lightSide(c.scene, x1, wi, wo, x2, x1.lobe, lambda0, x1.lambda) : 0.0;
+  const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite, c.walk.strategies);
+  MisSums own;
+  own.nee = x1.spectralPdf * double(x1.spectralPdf);
+  const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, c.walk.strategies), pLight2);
+  float weight[kMaxLanes];
+  laneWeights(c, x1.firstLane(), x1.endLane(c.lanes), weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
+    const MisFactors f = factors(c, lightIndex, lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
+                                 c.lanes.sensorPdf[k], cameraGroup, x1.lanesKept);
+    return weigh(c, 1, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
+      PathVertex lightVertex = x0;
+      lightVertex.pdfFwd = float(end.pdf0);
+      lightVertex.pdfRev = float(pCam0);
+      const std::vector<PathVertex> L1{lightVertex};
+      FullPath fp = layout(c, &L1, 1, C, t, end, g);
+      if (x2.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
+      fp.specCam1 = x1.spectralPdf;
+      fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+      return fp;
+    });
+  });
+  for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) {
+    if (!(value[k] > 0.0f)) continue;
+    record(c, 1, t, Variant::kStandard, k, value[k], weight[k]);
+    out[k] += value[k] * weight[k];
+  }
+}
+
+// x_1 = b is fluorescent, so one lane reaches it (docs/bdpt-mis.md §10).
+void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, const std::vector<PathVertex>& C, int t,
+                        float* out) {
+  const PathVertex& a = L[0];
+  const PathVertex& b = C[size_t(t - 1)];
+  if (a.kind != Kind::Light || b.kind != Kind::Surface || !b.connectible() || !b.bsdf->has(BsdfFlags::Fluorescent)) return;
+  const PathVertex& bNext = C[size_t(t - 2)];
+  const Vec3 d = b.p - a.p;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f)) return;
+  const Vec3 w = d / std::sqrt(dist2);
+  const float Le = c.scene.lights[size_t(a.light)]->emittedTowards(a.lambda, a.n, w);
+  if (!(Le > 0.0f)) return;
+  const Bsdf& fb = *b.bsdf;
+  const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
+  // x_1 bridges the light's wavelength to the camera's with its fluorescent lobe.
+  constexpr SpectralLobe F = SpectralLobe::Fluorescent;
+  const float f = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, a.lambda, b.lambda, F);
+  if (!(f > 0.0f)) return;
+  const int lane = b.firstLane();
+  const float cosA = glm::dot(a.n, a.n) > 0.0f ? std::abs(glm::dot(a.n, w)) : 1.0f;
+  const float G = cosA * std::abs(bWi.z) / dist2;
+  const LightEnd end = lightEnd(c, a.light, a, b);
+  const double pCam0 = cameraSide(c.scene, b, bWo, bWi, a, F, a.lambda, b.lambda);
+  const double pLight2 = bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, F, a.lambda, b.lambda) : 0.0;
+  const double specCam1 = specCamera(b, F, a.lambda, b.lambda);
+  MisSums own;
+  own.own = 1.0;
+  const Strategies& st = c.walk.strategies;
+  const MisSums total = firstVertexMultiplicity(true, F, specCam1, true, st) + lightEndSum(pCam0, a.pdfFwd) +
+                        cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, st), pLight2);
+  const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false, false,
+                                c.walk.lightFirst ? a.choicePdf : 0.0f);
+  const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, mf, [&](const MisFactors& g) {
+    FullPath fp = layout(c, &L, 1, C, t, end, g);
+    fp.v[1].lobe = F;
+    fp.v[0].pdfCam = pCam0;
+    if (bNext.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
+    fp.specCam1 = specCam1;
+    fp.specLightLast = t == 2 ? specLightLast(b, F, a.lambda) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+    return fp;
+  });
+  if (c.observer) c.observer->onLaneKept(lane);
+  if (!(weight > 0.0f) || !visible(c, b, a)) return;
+  const float value = Le * G * f * b.beta[lane] / (a.pdfFwd * a.choicePdf);
+  record(c, 1, t, Variant::kLightVertex, lane, value, weight);
+  out[lane] += value * weight;
+}
+
+void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+             const std::vector<PathVertex>& C, int t, float* out, VisibilityMemo* memo) {
+  const PathVertex& a = L[size_t(s - 1)];
+  const PathVertex& b = C[size_t(t - 1)];
+  if (a.kind != Kind::Surface || b.kind != Kind::Surface || !a.connectible() || !b.connectible()) return;
+  // An own join needs a fluorescent end, or two elastic ones and the mollifying kernel (below).
+  if (family == LightFamily::Own && !(c.bandwidth > 0.0f) && !a.bsdf->has(BsdfFlags::Fluorescent) &&
+      !b.bsdf->has(BsdfFlags::Fluorescent))
+    return;
+  // The lanes served: those that reach both ends on a shared subpath (it carries the camera
+  // sample's); one on an own subpath, whose single wavelength meets one camera lane.
+  int k0, k1;
+  float laneScale = 1.0f;
+  if (family == LightFamily::Shared) {
+    k0 = std::max(a.firstLane(), b.firstLane()), k1 = std::min(a.endLane(c.lanes), b.endLane(c.lanes));
+    laneScale = keptLaneScale(c, a.lane, b.lane);
+  } else {
+    const auto [lane, scale] = ownJoinLane(c, b);
+    k0 = lane, k1 = lane + 1, laneScale = scale;
+  }
+  if (k0 >= k1) return;
+  const PathVertex& aPrev = L[size_t(s - 2)];
+  const PathVertex& bNext = C[size_t(t - 2)];
+  const Vec3 d = b.p - a.p;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f)) return;
+  const Vec3 w = d / std::sqrt(dist2);  // from a to b
+  const Bsdf &fa = *a.bsdf, &fb = *b.bsdf;
+  const Vec3 aWi = fa.toLocal(towards(a, aPrev)), aWo = fa.toLocal(w);
+  const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
+  const float G = std::abs(aWo.z) * std::abs(bWi.z) / dist2;
+  // b's wavelength: an own join serves lane k0 only.
+  const float lambdaB = family == LightFamily::Own ? b.lambdaOf(c.lanes, k0) : b.lambda;
+
+  // The exact lobe pairs (docs/bdpt-mis.md §4), each with the connecting segment's wavelength as
+  // a and b see it; the same for both except in the mollified elastic pair (§6), where a keeps the
+  // light side's wavelength, b the camera side's, and a kernel joins them.
+  struct Pair {
+    SpectralLobe la, lb;
+    float lambdaA, lambdaB;
+    Variant variant;
+  };
+  Pair pairs[3];
+  int n = 0;
+  if (family == LightFamily::Shared) {
+    // Each end's densities at its own wavelength: the lane's, or with several lanes one at which it
+    // scatters (docs/bdpt-mis.md §10).
+    pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kStandard};
+  } else {
+    if (a.bsdf->has(BsdfFlags::Fluorescent))
+      pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, lambdaB, lambdaB, Variant::kOwn};
+    if (b.bsdf->has(BsdfFlags::Fluorescent))
+      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda, a.lambda, Variant::kOwn};
+    if (c.bandwidth > 0.0f && std::abs(a.lambda - lambdaB) < c.bandwidth)
+      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, lambdaB, Variant::kMollified};
+  }
+  const LightEnd end = storedLightEnd(L, s);
+  bool checked = false, unoccluded = false;
+  for (int i = 0; i < n; ++i) {
+    const Pair& p = pairs[i];
+    // f at both ends for each lane: the shared family's elastic pair at every lane's own wavelength.
+    float fA[kMaxLanes], fB[kMaxLanes];
+    bool any = false;
+    for (int k = k0; k < k1; ++k) {
+      // An end that several lanes reach scatters each elastically at its own wavelength (shared).
+      const float lambda = c.lanes.lambda[k];
+      const bool lanesA = family == LightFamily::Shared && a.allLanes(c.lanes);
+      const bool lanesB = family == LightFamily::Shared && b.allLanes(c.lanes);
+      fA[k] = a.bsdf->eval(TransportMode::Importance, aWi, aWo, lanesA ? lambda : a.lambda, lanesA ? lambda : p.lambdaA, p.la);
+      fB[k] = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, lanesB ? lambda : p.lambdaB, lanesB ? lambda : lambdaB, p.lb);
+      any = any || (fA[k] > 0.0f && fB[k] > 0.0f);
+    }
+    if (!any) continue;
+    // The four densities next to the connection, for its lobes and wavelengths.
+    const double pLightB = lightSide(c.scene, a, aWi, aWo, b, p.la, a.lambda, p.lambdaA);
+    const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, p.lb, p.lambdaB, lambdaB) : 0.0;
+    const double pCamA = cameraSide(c.scene, b, bWo, bWi, a, p.lb, p.lambdaB, lambdaB);
+    const double pCamAPrev = cameraSide(c.scene, a, aWo, aWi, aPrev, p.la, a.lambda, p.lambdaA);
+    const Strategies& st = c.walk.strategies;
+    const MisSums sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st), pCamAPrev) +
+                          cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st), pLightBNext);
+    const MisSums here = joinMultiplicity(true, p.la, p.lb, st);
+    MisSums own;
+    (p.variant == Variant::kStandard ? own.shared : p.variant == Variant::kOwn ? own.own : own.mollified) = 1.0;
+    const bool oneGroup = a.elasticBefore && b.elasticBefore && p.la == SpectralLobe::Elastic && p.lb == SpectralLobe::Elastic;
+    const bool lanesKept = a.lanesKept && b.lanesKept;
+    float weight[kMaxLanes];
+    laneWeights(c, k0, k1, weight, [&](int k) { return fA[k] > 0.0f && fB[k] > 0.0f; }, [&](int k) {
+      // The path's first wavelength: lane k's on a shared subpath, the own subpath's own.
+      const MisFactors f = family == LightFamily::Shared
+                               ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup,
+                                         lanesKept)
+                               : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup, lanesKept,
+                                         c.walk.lightFirst ? L[0].choicePdf : 0.0f);
+      return weigh(c, s, t, p.variant, own, here + sides, f, [&](const MisFactors& g) {
+        FullPath fp = layout(c, &L, s, C, t, end, g);
+        fp.v[size_t(s - 1)].lobe = p.la;
+        fp.v[size_t(s)].lobe = p.lb;
+        fp.v[size_t(s)].pdfLight = pLightB;
+        fp.v[size_t(s + 1)].pdfLight = pLightBNext;
+        fp.v[size_t(s - 1)].pdfCam = pCamA;
+        fp.v[size_t(s - 2)].pdfCam = pCamAPrev;
+        const PathVertex& x1 = L[1];
+        fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+        fp.specLightLast = t == 2 ? specLightLast(b, p.lb, p.lambdaB) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+        return fp;
+      });
+    });
+    if (std::none_of(weight + k0, weight + k1, [](float w) { return w > 0.0f; })) continue;
+    if (!checked) {
+      checked = true;
+      unoccluded = memo ? memo->get(s, t, [&] { return visible(c, a, b); }) : visible(c, a, b);
+    }
+    if (!unoccluded) return;
+    // Mollified: the delta δ(λ_a − λ_b) of the elastic pair widened to K_h (Jung et al. 2020),
+    // renormalised to its mass inside the wavelength range (docs/bdpt-mis.md eq. 5).
+    const WavelengthRange& r = c.scene.range;
+    const float kernel = p.variant == Variant::kMollified
+                             ? wavelengthKernel(a.lambda - lambdaB, c.bandwidth) /
+                                   wavelengthKernelMass(r.min - lambdaB, r.max - lambdaB, c.bandwidth)
+                             : 1.0f;
+    for (int k = k0; k < k1; ++k) {
+      const float value = a.beta[family == LightFamily::Shared ? k : 0] * fA[k] * G * fB[k] * b.beta[k] * kernel * laneScale;
+      record(c, s, t, p.variant, k, value, weight[k]);
+      out[k] += value * weight[k];
+    }
+  }
+}
+
+void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+                     std::vector<Splat>& splats, VisibilityMemo* memo) {
+  const PathVertex& a = L[size_t(s - 1)];
+  if (a.kind == Kind::Infinite || !a.connectible()) return;
+  PathVertex cam;
+  cam.kind = Kind::Camera;
+  cam.p = c.scene.camera.position();
+  cam.deltaPosition = true;
+  // The camera's density of a: its direction over the whole film (the sensor's density of the
+  // wavelength arriving is a factor, mis_sums.h).
+  const auto makeLink = [&] {
+    CameraLink l{c.scene.camera.connect(a.p)};
+    if (l.connection) l.pdfCam = toAreaDensity(l.connection->pdfDir, cam, a);
+    return l;
+  };
+  const CameraLink link = memo ? memo->link(s, makeLink) : makeLink();
+  const std::optional<Camera::Connection>& conn = link.connection;
+  if (!conn) return;
+  // The wavelength arriving at the pinhole: the light itself for s = 1, else the one a's sampled
+  // spectral event sends towards the camera; with several lanes at a, each lane's own.
+  const float lambda = s == 1 ? a.lambda : a.lambdaNext;
+  const bool lanes = a.allLanes(c.lanes);
+  const bool shared = family == LightFamily::Shared;
+  const Variant variant = shared ? Variant::kStandard : Variant::kOwn;
+  const double pCamA = link.pdfCam;
+  const LightEnd end = storedLightEnd(L, s);
+  float value[kMaxLanes];
+  bool any = false;
+  MisSums here, own, sides;
+  bool oneGroup = true;
+  double pCamAPrev = 0.0;
+  if (s == 1) {
+    // The light itself, seen directly (area lights only; weight 0 where the camera's s = 0 adds it
+    // exactly, see emitterHit).
+    if (a.kind != Kind::Light || a.deltaPosition || c.directXyz) return;
+    const AreaEmission& em = *static_cast<const AreaLight&>(*c.scene.lights[size_t(a.light)]).shape().emission;
+    for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
+      const float Le = em.eval(lanes ? c.lanes.lambda[k] : lambda, a.n, conn->wi);
+      value[k] = Le * std::abs(glm::dot(a.n, conn->wi)) / (a.pdfFwd * a.choicePdf);
+      any = any || Le > 0.0f;
+    }
+    here = directLightMultiplicity(true, c.walk.strategies);
+    (shared ? own.shared : own.ownSplat) = 1.0;
+    sides = lightEndSum(pCamA, a.pdfFwd);
+  } else {
+    // The light side's own spectral event at a (λ_o from e when fluorescent): the sensor
+    // responds at the wavelength it chose.
+    if (!a.eventSampled) return;
+    const PathVertex& aPrev = L[size_t(s - 2)];
+    const Bsdf& f = *a.bsdf;
+    const Vec3 wi = f.toLocal(towards(a, aPrev)), wo = f.toLocal(conn->wi);
+    for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
+      const float fa = lanes ? a.bsdf->eval(TransportMode::Importance, wi, wo, c.lanes.lambda[k], c.lanes.lambda[k], a.lobe)
+                             : a.bsdf->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, a.lobe);
+      value[k] = a.beta[k] * fa * std::abs(wo.z) / a.spectralPdf;
+      any = any || fa > 0.0f;
+    }
+    pCamAPrev = cameraSide(c.scene, a, wo, wi, aPrev, a.lobe, a.lambda, lambda);
+    here = lightTracingMultiplicity(true, a.spectralPdf, c.walk.strategies);
+    (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
+    // a, next to the camera, is the path's first gather vertex.
+    sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, c.walk.strategies, true), pCamAPrev);
+    oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
+  }
+  if (!any) return;
+  const int k0 = a.firstLane(), k1 = a.endLane(c.lanes);
+  float weight[kMaxLanes];
+  laneWeights(c, k0, k1, weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
+    // A shared lane's wavelength is the sensor's lane k; an own subpath's arrives from the light.
+    const bool lanesKept = s == 1 || a.lanesKept;
+    const MisFactors mf = shared ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup,
+                                           lanesKept)
+                                 : factors(c, L[0].light, L[0].lambda, -1, c.sensor.pdf(lambda), oneGroup, lanesKept,
+                                           c.walk.lightFirst ? L[0].choicePdf : 0.0f);
+    return weigh(c, s, 1, variant, own, here + sides, mf, [&](const MisFactors& g) {
+      const std::vector<PathVertex> camOnly{cam};
+      FullPath fp = layout(c, &L, s, camOnly, 1, end, g);
+      const int last = s;
+      fp.v[size_t(last - 1)].pdfCam = pCamA;
+      if (s == 1) {
+        fp.lightSeenByPinhole = true;
+      } else {
+        fp.v[size_t(last - 2)].pdfCam = pCamAPrev;
+        const PathVertex& x1 = L[1];
+        fp.specCam1 = s == 2 ? specCamera(x1, a.lobe, x1.lambda, lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+        fp.specLightLast = a.spectralPdf;
+      }
+      return fp;
+    });
+  });
+  if (std::none_of(weight + k0, weight + k1, [](float w) { return w > 0.0f; })) return;
+  if (!(memo ? memo->get(s, 1, [&] { return visible(c, a, cam); }) : visible(c, a, cam))) return;
+  // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel); a
+  // shared lane's wavelength was the sensor's sample, one of n.
+  const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
+  Vec3 sum(0.0f), unweighted(0.0f);  // the lanes' XYZ
+  for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
+    if (!(value[k] > 0.0f)) continue;
+    const float lambdaK = lanes ? c.lanes.lambda[k] : lambda;
+    float sensorWeight = perPath;
+    if (shared) sensorWeight /= float(c.lanes.n) * c.lanes.sensorPdf[k];
+    const float v = value[k] * conn->importance * sensorWeight;
+    // A shared lane's wavelength is the sensor's lane k (whose response is known).
+    const Vec3 xyz = shared ? c.lanes.response[k] * v : Observer::cie1931().weight(lambdaK) * v;
+    if (c.spectralSplats) splats.push_back({conn->pixel, xyz * weight[k], lambdaK, v * weight[k]});
+    if (c.observer) c.observer->onContribution(k, conn->pixel, xyz * weight[k]);
+    sum += xyz * weight[k];
+    unweighted += xyz;
+  }
+  if (!c.spectralSplats) splats.push_back({conn->pixel, sum});
+  if (c.observer) c.observer->onStrategy({conn->pixel, sum, unweighted, s, 1, uint8_t(variant)});
+}
+
+void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const std::vector<PathVertex>& LS,
+                     const std::vector<PathVertex>& LO, Sampler& rng, std::vector<Splat>& splats, float* out,
+                     Vec3& xyz) {
+  const int maxDepth = c.walk.maxDepth;
+  // The merged subpath's two views share their common vertices' visibility (docs/bdpt-mis.md §11).
+  thread_local VisibilityMemo sharedVisibility;
+  VisibilityMemo* memo = c.sharedLightVertices > 0 ? &sharedVisibility : nullptr;
+  if (memo) memo->reset(std::min(c.sharedLightVertices, int(std::min(LS.size(), LO.size()))), int(C.size()));
+  std::fill(out, out + c.lanes.n, 0.0f);
+  xyz = Vec3(0.0f);
+  // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelengths.
+  for (int t = 2; t <= int(C.size()); ++t) {
+    emitterHit(c, C, t, out, xyz);
+    if (C[size_t(t - 1)].kind != Kind::Surface) continue;
+    if (t - 1 <= maxDepth) {
+      nextEvent(c, C, t, rng, out);
+      if (!LO.empty()) connectLightVertex(c, LO, C, t, out);
+    }
+    for (int s = 2; s <= int(LS.size()) && (s - 1) + (t - 1) <= maxDepth; ++s)
+      connect(c, LS, LightFamily::Shared, s, C, t, out, memo);
+    for (int s = 2; s <= int(LO.size()) && (s - 1) + (t - 1) <= maxDepth; ++s)
+      connect(c, LO, LightFamily::Own, s, C, t, out, memo);
+  }
+  // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
+  for (int s = 1; s <= int(LS.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LS, LightFamily::Shared, s, splats, memo);
+  for (int s = 1; s <= int(LO.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LO, LightFamily::Own, s, splats, memo);
+}
+
+}  // namespace kasha::bidir

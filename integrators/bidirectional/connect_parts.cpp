@@ -1,0 +1,187 @@
+#include "integrators/bidirectional/connect_parts.h"
+
+#include <cmath>
+
+#include "integrators/progressive_schedule.h"
+
+namespace kasha::bidir {
+
+Vec3 towards(const PathVertex& from, const PathVertex& to) {
+  return to.kind == Kind::Infinite ? -to.dir : glm::normalize(to.p - from.p);
+}
+
+double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathVertex& target) {
+  if (target.kind == Kind::Camera || target.deltaPosition) return 0.0;
+  if (target.kind == Kind::Infinite) return scene.lights[size_t(target.light)]->isDelta() ? 0.0 : pdfSA;
+  return toAreaDensity(pdfSA, at, target);
+}
+
+double cameraSide(const Scene& scene, const PathVertex& at, const Vec3& wCam, const Vec3& wTarget,
+                  const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut) {
+  const float pdf = at.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe) *
+                    at.bsdf->directionPdf(TransportMode::Radiance, wCam, wTarget, lobe, lambdaIn, lambdaOut);
+  return toArea(scene, pdf, at, target);
+}
+
+double lightSide(const Scene& scene, const PathVertex& at, const Vec3& wLight, const Vec3& wTarget,
+                 const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut) {
+  const float pdf = at.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe) *
+                    at.bsdf->directionPdf(TransportMode::Importance, wLight, wTarget, lobe, lambdaIn, lambdaOut);
+  return toArea(scene, pdf, at, target);
+}
+
+LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathVertex& x1) {
+  const Light& L = *c.scene.lights[size_t(light)];
+  const Vec3 w = L.atInfinity() ? x0.dir : glm::normalize(x1.p - x0.p);
+  float pdfPos = 0.0f, pdfDir = 0.0f;
+  L.emissionPdfs(x0.p, x0.n, w, pdfPos, pdfDir);
+  LightEnd e;
+  e.pdf0 = L.atInfinity() ? pdfDir : pdfPos;
+  if (x1.kind != Kind::Camera)
+    e.pdf1 = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
+  e.finite = !L.atInfinity();
+  return e;
+}
+
+LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s) {
+  return {L[0].pdfFwd, s >= 2 ? double(L[1].pdfFwd) : 0.0, L[0].kind == Kind::Light};
+}
+
+MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup,
+                   bool lanesKept, float ownStart) {
+  MisFactors f;
+  f.sharedFamily = c.families.shared;
+  f.ownFamily = c.families.independent;
+  f.sensorPdf = sensorPdf;
+  f.lambda0 = lambda0;
+  f.oneGroup = oneGroup;
+  if (lanesKept && f.ownFamily && c.walk.lightFirst) f.laneGain = c.lanes.n;
+  const bool table = lane >= 0 && c.lanes.lights;
+  if (table && oneGroup && !f.ownFamily) {
+    f.cameraChoice = f.sharedChoice = c.lanes.lights->probability(size_t(light));
+    return f;
+  }
+  f.cameraChoice = table ? c.lanes.lights->laneProbability(size_t(light), lane)
+                         : c.scene.lightSelector->probability(size_t(light), lambda0);
+  // The shared light subpath's choice: where it rides the merged subpath, that start's Q(l), exact
+  // and a function of the light alone (light_first.h); else the camera family's.
+  f.sharedChoice = f.ownFamily && c.walk.lightFirst ? c.walk.lightFirst->lightProbability(size_t(light)) : f.cameraChoice;
+  if (f.ownFamily && c.walk.lightFirst) {
+    // The merged subpath's start (light_first.h): Q(l)·p_l(λ_0), tabulated at the lanes.
+    const LightFirstStart& start = *c.walk.lightFirst;
+    if (ownStart > 0.0f)
+      f.ownChoice = ownStart;
+    else if (table && c.lanes.ownStart)
+      f.ownChoice = c.lanes.ownStart[size_t(lane) * c.scene.lights.size() + size_t(light)];
+    else
+      f.ownChoice = double(start.lightProbability(size_t(light))) * start.wavelengthPdf(size_t(light), lambda0);
+  } else if (f.ownFamily) {
+    const double pLight = table ? c.lanes.lightPdf[lane] : c.walk.lightWavelengths->pdf(lambda0);
+    f.ownChoice = pLight * f.cameraChoice;
+  }
+  if (f.ownFamily && c.bandwidth > 0.0f) f.mollifyWidth = 1.0 / wavelengthKernel(0.0f, c.bandwidth);
+  return f;
+}
+
+FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t,
+                const LightEnd& end, const MisFactors& f) {
+  FullPath fp;
+  fp.families = c.families;
+  fp.sensorPdf = f.sensorPdf;
+  fp.laneGain = f.laneGain;
+  fp.cameraChoice = f.cameraChoice;
+  fp.sharedChoice = f.sharedChoice;
+  fp.ownChoice = f.ownChoice;
+  fp.mollifyWidth = f.mollifyWidth;
+  fp.connections = c.walk.strategies.connections;
+  fp.mergeEta = c.walk.strategies.merge;
+  const int k = s + t - 1;
+  fp.v.resize(size_t(k + 1));
+  for (int i = 0; i < s; ++i) {
+    const PathVertex& v = (*L)[size_t(i)];
+    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible()};
+  }
+  for (int j = 0; j < t; ++j) {
+    const PathVertex& v = C[size_t(j)];
+    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible()};
+  }
+  fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
+  fp.v[size_t(k)].pdfLight = 0.0;
+  // The light end where no light subpath vertex stores it.
+  if (s == 0) fp.v[0].pdfLight = end.pdf0;
+  if (s <= 1 && end.pdf1 > 0.0) fp.v[1].pdfLight = end.pdf1;
+  fp.v[0].connectible = true;
+  fp.pdfNee = fp.v[0].pdfLight;  // p_A: the light choice is cameraChoice
+  fp.lightVertexConnectible = end.finite;
+  return fp;
+}
+
+double specCamera(const PathVertex& x1, SpectralLobe lobe, float lambda0, float lambda1) {
+  return x1.bsdf->spectralPdf(TransportMode::Radiance, lambda1, lambda0, lobe);
+}
+
+double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn) {
+  return c1.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, c1.lambda, lobe);
+}
+
+std::pair<int, float> ownJoinLane(const Context& c, const PathVertex& b) {
+  if (!b.allLanes(c.lanes)) return {b.firstLane(), 1.0f};
+  return {std::min(int(b.laneU * float(c.lanes.n)), c.lanes.n - 1), float(c.lanes.n)};
+}
+
+float keptLaneScale(const Context& c, int laneA, int laneB) {
+  return laneA >= 0 && laneB >= 0 && c.lanes.n > 1 ? 1.0f / float(c.lanes.n) : 1.0f;
+}
+
+Vec3 laneScale(const Context& c, int k) {
+  return c.lanes.response[k] / (float(c.lanes.n) * c.lanes.sensorPdf[k]);
+}
+
+void record(const Context& c, int s, int t, Variant v, int k, float value, float weight) {
+  if (c.observer) recordXyz(c, s, t, v, k, laneScale(c, k) * value, weight);
+}
+
+void recordXyz(const Context& c, int s, int t, Variant v, int k, const Vec3& xyz, float weight) {
+  c.observer->onContribution(k, c.pixel, xyz * weight);
+  if (xyz.x != 0.0f || xyz.y != 0.0f || xyz.z != 0.0f)
+    c.observer->onStrategy({c.pixel, xyz * weight, xyz, s, t, uint8_t(v)});
+}
+
+float emitted(const Context& c, const PathVertex& e, const PathVertex& next, float lambda) {
+  if (e.kind == Kind::Infinite) return c.scene.environment()->Le(lambda, -e.dir);
+  return static_cast<const AreaLight&>(*c.scene.lights[size_t(e.light)]).shape().emission->eval(lambda, e.n,
+                                                                                                towards(e, next));
+}
+
+bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
+  ++c.counter.shadow;
+  if (b.kind == Kind::Infinite) return !c.scene.accel->occluded(offsetPoint(a.p, a.n, -b.dir), -b.dir, kInf);
+  const Vec3 d = b.p - a.p;
+  const float dist = glm::length(d);
+  const Vec3 w = d / dist;
+  const Vec3 o = glm::dot(a.n, a.n) > 0.0f ? offsetPoint(a.p, a.n, w) : a.p;
+  const float shorten = glm::dot(b.n, b.n) > 0.0f ? rayEpsilon(b.p) : 0.0f;
+  return !c.scene.accel->occluded(o, w, dist * (1.0f - 1e-4f) - shorten - rayEpsilon(a.p));
+}
+
+MisSums cameraSum(const Context& c, const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast,
+                  double pBefore) {
+  const PathVertex& b = C[size_t(t - 1)];
+  const PathVertex& bNext = C[size_t(t - 2)];
+  return sideSum(b.sums, densityRatio(pBefore, bNext.pdfFwd), cameraMultiplicity(C, t - 2, c.walk.strategies),
+                 densityRatio(pLast, b.pdfFwd),
+                 mLast);
+}
+
+MisSums lightSum(const Context& c, const std::vector<PathVertex>& L, int s, double pLast, const MisSums& mLast,
+                 double pBefore) {
+  const PathVertex& a = L[size_t(s - 1)];
+  const PathVertex& aPrev = L[size_t(s - 2)];
+  return sideSum(a.sums, densityRatio(pBefore, aPrev.pdfFwd), lightMultiplicity(L, s - 2, c.walk.strategies),
+                 densityRatio(pLast, a.pdfFwd),
+                 mLast);
+}
+
+MisSums lightEndSum(double pCam0, double pLight0) { return extend({}, densityRatio(pCam0, pLight0), hitMultiplicity()); }
+
+}  // namespace kasha::bidir

@@ -1,0 +1,215 @@
+#include "integrators/bidirectional/merge.h"
+
+#include <algorithm>
+
+#include "integrators/bidirectional/connect_parts.h"
+#include "integrators/progressive_schedule.h"
+
+namespace kasha::bidir {
+
+namespace {
+
+// What a merge of v with b = C[t−1] through `lobe` (λ_in arriving from v, λ_out leaving towards
+// the camera) needs for its weight besides its own term (docs/bdpt-mis.md §12): the sums of every
+// other strategy of the path, and the densities of b's neighbours the merge recomputes.
+struct MergeSums {
+  MisSums total;
+  double specCam = 0.0, specLight = 0.0;  // b's event: the camera side's and the light side's
+  double pCamPrev = 0.0;                  // the camera side's density of x_{m−1}, sampled at x_m
+  double pLightNext = 0.0;                // the light side's of x_{m+1} (t > 2)
+};
+
+MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v,
+                    SpectralLobe lobe, float lambdaIn, float lambdaOut, bool gather, const Vec3& bWi, const Vec3& bWo) {
+  const PathVertex& b = C[size_t(t - 1)];
+  const PathVertex& bNext = C[size_t(t - 2)];
+  const Bsdf& fb = *b.bsdf;
+  const Strategies& st = c.walk.strategies;
+  const int m = v.depth;
+  MergeSums r;
+  r.specCam = fb.spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe);
+  r.specLight = fb.spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe);
+  r.pCamPrev =
+      r.specCam * fb.directionPdf(TransportMode::Radiance, bWo, bWi, lobe, lambdaIn, lambdaOut) * v.prevGeometry;
+  // The light side (eq. 10 from the sum the light vertex kept): the strategy s' = m, whose
+  // connection ends at x_m, with the merges at x_m.
+  const SpectralLobe prevLobe =
+      v.has(LightVertex::kPrevFluorescent) ? SpectralLobe::Fluorescent : SpectralLobe::Elastic;
+  const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, t == 2, st) +
+                        (m == 1 ? firstVertexMultiplicity(true, lobe, r.specCam, v.has(LightVertex::kFiniteLight), st)
+                                : joinMultiplicity(v.has(LightVertex::kPrevConnectible), prevLobe, lobe, st));
+  const double rPrev = densityRatio(r.pCamPrev, v.pdfPrev);
+  r.total = extend(v.sums * (rPrev * rPrev), densityRatio(b.pdfFwd, v.pdfFwd), mLast);
+  // The strategy s' = m + 1 (x_m the last light vertex), and the camera side beyond it.
+  if (t == 2) {
+    r.total = r.total + lightTracingMultiplicity(true, r.specLight, st);
+  } else {
+    const double pdf = r.specLight * fb.directionPdf(TransportMode::Importance, bWi, bWo, lobe, lambdaIn, lambdaOut);
+    r.pLightNext = toArea(c.scene, float(pdf), b, bNext);
+    r.total = r.total + joinMultiplicity(bNext.connectible(), lobe, bNext.lobe, st) +
+              cameraSum(c, C, t - 1, r.pLightNext, cameraMultiplicity(C, t - 2, st), C[size_t(t - 3)].pdfRev);
+  }
+  return r;
+}
+
+// The merge's path laid out for the full recomputation (FullPathLayout, the test oracle), with factors g.
+FullPath fullPath(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v,
+                  const std::vector<PathVertex>* lightPath, SpectralLobe lobe, const MergeSums& r, const MisFactors& g) {
+  const std::vector<PathVertex>& L = *lightPath;
+  const int m = v.depth;
+  FullPath fp = layout(c, &L, m + 1, C, t - 1, storedLightEnd(L, m + 1), g);
+  fp.v[size_t(m)].lobe = lobe;
+  fp.v[size_t(m)].pdfCam = C[size_t(t - 1)].pdfFwd;
+  fp.v[size_t(m - 1)].pdfCam = r.pCamPrev;
+  if (t > 2) fp.v[size_t(m + 1)].pdfLight = r.pLightNext;
+  fp.specCam1 = m == 1 ? r.specCam : specCamera(L[1], L[1].lobe, L[1].lambda, L[1].lambdaNext);
+  fp.specLightLast = t == 2 ? r.specLight : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
+  return fp;
+}
+
+// Whether the path of a merge through `lobe` has one group: a property of the path, whichever
+// family made it.
+bool oneGroup(const LightVertex& v, const PathVertex& b, SpectralLobe lobe) {
+  return lobe == SpectralLobe::Elastic && v.has(LightVertex::kElasticBefore) && b.elasticBefore;
+}
+
+// Merges v with b = C[t−1] at lanes [k0, k1) (docs/bdpt-mis.md §12; `gather`: b is the path's first
+// gather vertex, merge.h for withinRadius): lambdaB the wavelength of b's densities (and of an own
+// vertex's one lane), betaB b's throughput per lane, times laneFactor.
+void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
+                bool gather, int k0, int k1, float lambdaB, const float* betaB, float laneFactor, float* out,
+                const std::vector<PathVertex>* lightPath) {
+  const PathVertex& b = C[size_t(t - 1)];
+  const PathVertex& bNext = C[size_t(t - 2)];
+  const bool own = v.has(LightVertex::kOwn);
+  // The exact merges (docs/bdpt-mis.md §12): a shared vertex through the elastic lobe at the
+  // camera's (the pass's) wavelengths; an own vertex through the fluorescent lobe, from its
+  // wavelength to the camera's, or through the elastic lobe and the wavelength kernel.
+  struct Kind {
+    SpectralLobe lobe;
+    Variant variant;
+  };
+  Kind kinds[2];
+  int n = 0;
+  if (!own && withinRadius) kinds[n++] = {SpectralLobe::Elastic, Variant::kMerge};
+  if (own && (withinRadius || gather) && b.bsdf->has(BsdfFlags::Fluorescent))
+    kinds[n++] = {SpectralLobe::Fluorescent, Variant::kMergeOwn};
+  if (own && withinRadius && c.bandwidth > 0.0f && std::abs(v.lambda - lambdaB) < c.bandwidth)
+    kinds[n++] = {SpectralLobe::Elastic, Variant::kMergeMollified};
+  const Bsdf& fb = *b.bsdf;
+  const Vec3 bWi(v.wi[0], v.wi[1], v.wi[2]), bWo = fb.toLocal(towards(b, bNext));
+  const int m = v.depth;
+  for (int i = 0; i < n; ++i) {
+    const SpectralLobe lobe = kinds[i].lobe;
+    const Variant variant = kinds[i].variant;
+    const double etaMerge = etaOf(c.walk.strategies.merge, variant, gather);
+    const float scale = fb.incidentShadingRatio(bWi) * laneFactor / float(etaMerge);
+    // The wavelengths of the densities at x_m: the light arriving and the camera's leaving, the
+    // same through the elastic lobe (the camera's, one that scatters there, §10).
+    const float lambdaOut = lambdaB;
+    const float lambdaIn = variant == Variant::kMergeOwn ? v.lambda : lambdaOut;
+    // Mollified: δ(λ_v − λ_b) widened to K_h, renormalised inside the range (docs/bdpt-mis.md eq. 5).
+    const WavelengthRange& r = c.scene.range;
+    const float kernel = variant == Variant::kMergeMollified
+                             ? wavelengthKernel(v.lambda - lambdaB, c.bandwidth) /
+                                   wavelengthKernelMass(r.min - lambdaB, r.max - lambdaB, c.bandwidth)
+                             : 1.0f;
+    float value[kMaxLanes];
+    bool any = false;
+    for (int k = k0; k < k1; ++k) {
+      const float lambda = b.lanesEndHere || b.allLanes(c.lanes) ? c.lanes.lambda[k] : lambdaB;
+      const float f = own ? fb.eval(TransportMode::Radiance, bWi, bWo, lambdaIn, lambdaOut, lobe)
+                          : fb.eval(TransportMode::Radiance, bWi, bWo, lambda, lambda, lobe);
+      value[k] = betaB[k] * f * v.beta[own ? 0 : k] * scale * kernel;
+      any = any || value[k] > 0.0f;
+    }
+    if (!any) continue;
+    const MergeSums sums = mergeSums(c, C, t, v, lobe, lambdaIn, lambdaOut, gather, bWi, bWo);
+    // This merge: (η·pC_m)² relative to the strategy s' = m + 1.
+    const double eta = etaMerge * b.pdfFwd;
+    MisSums mine;
+    (variant == Variant::kMerge ? mine.shared : variant == Variant::kMergeOwn ? mine.own : mine.mollified) = eta * eta;
+    const bool single = oneGroup(v, b, lobe);
+    const bool lanesKept = v.has(LightVertex::kLanesKept) && b.lanesKept;
+    float weight[kMaxLanes];
+    laneWeights(c, k0, k1, weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
+      const float lambda0 = own ? v.lambda0 : v.lane < 0 && c.lanes.n > 1 ? c.lanes.lambda[k] : v.lambda;
+      const MisFactors f = own ? factors(c, v.light, lambda0, -1, c.lanes.sensorPdf[k], single, lanesKept,
+                                         c.walk.lightFirst ? v.ownStart : 0.0f)
+                               : factors(c, v.light, lambda0, k, c.lanes.sensorPdf[k], single, lanesKept);
+      return weigh(c, m, t, variant, mine, sums.total, f, [&](const MisFactors& g) {
+        return fullPath(c, C, t, v, lightPath, lobe, sums, g);
+      });
+    });
+    for (int k = k0; k < k1; ++k) {
+      if (!(value[k] > 0.0f)) continue;
+      record(c, m, t, variant, k, value[k], weight[k]);
+      out[k] += value[k] * weight[k];
+    }
+  }
+}
+
+// Merges own vertex v with b = C[1], the camera ray's hit, through b's elastic lobe at v's own
+// wavelength, where the sensor responds (Variant::kMergeSplat, docs/bdpt-mis.md §12); betaB b's
+// throughput, which does not depend on λ. Appends the weighted radiance at v.lambda to `atLight`.
+void mergeSplat(const Context& c, const std::vector<PathVertex>& C, const LightVertex& v, float betaB,
+                std::vector<SpectralSample>& atLight, const std::vector<PathVertex>* lightPath) {
+  const PathVertex& b = C[1];
+  const Bsdf& fb = *b.bsdf;
+  const Vec3 bWi(v.wi[0], v.wi[1], v.wi[2]), bWo = fb.toLocal(towards(b, C[0]));
+  const SpectralLobe lobe = SpectralLobe::Elastic;
+  const float lambda = v.lambda;
+  const double etaMerge = c.walk.strategies.merge.gather;
+  const float value = betaB * fb.eval(TransportMode::Radiance, bWi, bWo, lambda, lambda, lobe) * v.beta[0] *
+                      fb.incidentShadingRatio(bWi) / float(etaMerge);
+  if (!(value > 0.0f)) return;
+  const MergeSums sums = mergeSums(c, C, 2, v, lobe, lambda, lambda, true, bWi, bWo);
+  const double eta = etaMerge * b.pdfFwd;
+  MisSums mine;
+  mine.ownSplat = eta * eta;
+  const MisFactors f = factors(c, v.light, v.lambda0, -1, c.sensor.pdf(lambda), oneGroup(v, b, lobe),
+                               v.has(LightVertex::kLanesKept) && b.lanesKept, c.walk.lightFirst ? v.ownStart : 0.0f);
+  const float weight = weigh(c, v.depth, 2, Variant::kMergeSplat, mine, sums.total, f, [&](const MisFactors& g) {
+    return fullPath(c, C, 2, v, lightPath, lobe, sums, g);
+  });
+  if (!(weight > 0.0f)) return;
+  if (c.observer) {  // in lane 0's slot, which takes the weight just computed
+    c.observer->onLaneKept(0);
+    recordXyz(c, v.depth, 2, Variant::kMergeSplat, 0, Observer::cie1931().weight(lambda) * value, weight);
+  }
+  atLight.push_back({lambda, value * weight});
+}
+
+}  // namespace
+
+void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
+           float* out, std::vector<SpectralSample>& atLight, const std::vector<PathVertex>* lightPath) {
+  const PathVertex& b = C[size_t(t - 1)];
+  const bool gather = b.gather;
+  const bool own = v.has(LightVertex::kOwn);
+  if (!mergeable(b) || (!withinRadius && !(gather && own))) return;
+  // b's lanes as the light arriving there sees them: where b ended the lanes on arrival, every lane
+  // that arrived (the merge evaluates b's event itself, docs/bdpt-mis.md §12).
+  const bool ended = b.lanesEndHere;
+  const float* beta = ended ? b.betaArriving : b.beta;
+  const int bLane = ended ? -1 : b.lane;
+  if (own && t == 2 && c.walk.strategies.merge.gather > 0.0) mergeSplat(c, C, v, beta[0], atLight, lightPath);
+  // The lanes served: on a shared vertex (it carries the camera sample's lanes) those both reach; on
+  // an own one every lane that reaches b, each a merge of its own (an own join keeps one of them at
+  // random, ownJoinLane: the merge sums them all, that choice's expectation).
+  const int k0 = std::max(own || v.lane < 0 ? 0 : int(v.lane), bLane < 0 ? 0 : bLane);
+  const int k1 = std::min(own || v.lane < 0 ? c.lanes.n : v.lane + 1, bLane < 0 ? c.lanes.n : bLane + 1);
+  const float laneFactor = own ? 1.0f : keptLaneScale(c, v.lane, bLane);
+  // Where several lanes reach b and its densities depend on λ (own merges; b that ended them), each
+  // lane's densities at its own wavelength.
+  if (k1 - k0 > 1 && (own || ended)) {
+    for (int k = k0; k < k1; ++k)
+      if (beta[k] > 0.0f)
+        mergeLanes(c, C, t, v, withinRadius, gather, k, k + 1, c.lanes.lambda[k], beta, laneFactor, out, lightPath);
+  } else if (k0 < k1) {
+    const float lambdaB = ended ? c.lanes.lambda[k0] : b.lambda;
+    mergeLanes(c, C, t, v, withinRadius, gather, k0, k1, lambdaB, beta, laneFactor, out, lightPath);
+  }
+}
+
+}  // namespace kasha::bidir

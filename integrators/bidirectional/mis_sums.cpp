@@ -1,0 +1,68 @@
+#include "integrators/bidirectional/mis_sums.h"
+
+namespace kasha::bidir {
+
+double combine(const MisSums& m, const MisFactors& f) {
+  double chosen = f.cameraChoice * f.cameraChoice * m.nee;
+  if (f.sharedFamily && f.oneGroup) chosen += f.sharedChoice * f.sharedChoice * m.shared;
+  double sensed = f.laneGain * f.laneGain * (m.hit + chosen);
+  double sum = 0.0;
+  if (f.ownFamily) {
+    const double l2 = f.ownChoice * f.ownChoice;
+    sensed += l2 * (m.own + f.mollifyWidth * f.mollifyWidth * m.mollified);
+    sum += l2 * m.ownSplat;
+  }
+  return sum + f.sensorPdf * f.sensorPdf * sensed;
+}
+
+MisSums joinMultiplicity(bool connectible, SpectralLobe la, SpectralLobe lb, const Strategies& st) {
+  if (!connectible || !st.connections) return {};
+  const bool fa = la == SpectralLobe::Fluorescent, fb = lb == SpectralLobe::Fluorescent;
+  MisSums m;
+  m.shared = 1.0;
+  if (fa != fb) m.own = 1.0;
+  if (!fa && !fb) m.mollified = 1.0;
+  return m;
+}
+
+MisSums firstVertexMultiplicity(bool connectible, SpectralLobe lobe, double specCam1, bool finiteLight,
+                                const Strategies& st) {
+  if (!connectible || !st.connections) return {};
+  MisSums m;
+  m.nee = specCam1 * specCam1;  // next-event estimation: specCam1·p_NEE, and p_NEE = pL_0
+  if (finiteLight && lobe == SpectralLobe::Fluorescent) m.own = 1.0;
+  return m;
+}
+
+MisSums lightTracingMultiplicity(bool connectible, double specLight, const Strategies& st) {
+  if (!connectible || !(specLight > 0.0) || !st.connections) return {};
+  MisSums m;
+  m.shared = specLight * specLight;
+  m.ownSplat = specLight * specLight;
+  return m;
+}
+
+MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st) {
+  if (!seenByPinhole || !st.connections) return {};
+  MisSums m;
+  m.shared = 1.0;
+  m.ownSplat = 1.0;
+  return m;
+}
+
+MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,
+                          const Strategies& st) {
+  if (!mergeable || !st.merge.any()) return {};
+  auto squared = [density](double eta) { return (eta * density) * (eta * density); };
+  MisSums m;
+  m.shared = squared(st.merge.eta);
+  if (lobe == SpectralLobe::Fluorescent) {
+    m.own = squared(gather ? st.merge.gather : st.merge.eta);
+  } else {
+    m.mollified = squared(st.merge.eta);
+    if (first) m.ownSplat = squared(st.merge.gather);  // Variant::kMergeSplat
+  }
+  return m;
+}
+
+}  // namespace kasha::bidir

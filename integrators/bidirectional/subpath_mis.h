@@ -1,0 +1,47 @@
+#pragma once
+// The recursive MIS weights' per-subpath part (docs/bdpt-mis.md §9): each vertex stores the running
+// sum R over the strategies with at least two fewer vertices on its side, so that a connection
+// completes its weight from the two vertices next to it in O(1).
+#include <vector>
+
+#include "integrators/bidirectional/mis_sums.h"
+#include "integrators/bidirectional/path_vertex.h"
+
+namespace kasha::bidir {
+
+// Other side's density over own side's; 0 where the own side's is 0.
+inline double densityRatio(double other, double own) { return own > 0.0 ? other / own : 0.0; }
+
+// M of the strategy s' = j (j vertices on the light subpath L, the last of them L[j − 1]) with L[j]
+// using `lobe` and sending `lambdaOut` on (the connection's event there, or its own sampled one),
+// together with the merges at L[j] (docs/bdpt-mis.md §12: a side's strategy s' carries the merges at
+// the vertex that side sampled last). `gather`: L[j] connects to the camera (t = 1), so it is
+// x_{k−1}, the path's first gather vertex (MergeEta) and the camera ray's hit (Variant::kMergeSplat).
+MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
+                          const Strategies& st, bool gather = false);
+// The same with L[j]'s own sampled event.
+MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st, bool gather = false);
+
+// M of the strategy with j vertices on the camera subpath C (t' = j, s' = k + 1 − j), C[j] using
+// `lobe` with `lambdaIn` arriving from the light side, together with the merges at C[j].
+MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn,
+                           const Strategies& st);
+// The same with C[j]'s own sampled event.
+MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st);
+
+// Whether a merge can happen at v: a surface without a delta lobe.
+inline bool mergeable(const PathVertex& v) { return v.onSurface() && v.connectible(); }
+
+// Sets the running sum and the elastic flag of the subpath's newest vertex (Radiance: a camera
+// subpath, Importance: a light subpath). Called once per vertex, in order, once the vertex two
+// before has its reverse density.
+void updateSums(std::vector<PathVertex>& path, TransportMode mode, const Strategies& st);
+
+// R_n of one side at a connection through its vertex v_{n−1} (docs/bdpt-mis.md eq. 10): from the
+// sum stored at v_{n−1}, the ratio and M recomputed at v_{n−2} and at v_{n−1}.
+inline MisSums sideSum(const MisSums& stored, double ratioBefore, const MisSums& before, double ratioLast,
+                       const MisSums& last) {
+  return extend(extend(stored, ratioBefore, before), ratioLast, last);
+}
+
+}  // namespace kasha::bidir
