@@ -34,6 +34,8 @@ const CLI::Validator kIntegratorName(
     [](std::string& v) {
       const std::vector<std::string> names = integratorNames();
       if (std::find(names.begin(), names.end(), v) != names.end()) return std::string();
+      for (const IntegratorAlias& alias : integratorAliases())
+        if (alias.name == v) return std::string();
       std::string list;
       for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
       return "unknown integrator '" + v + "' (" + list + ")";

@@ -17,6 +17,7 @@
 #include "core/image_output.h"
 #include "core/memory_budget.h"
 #include "core/output_file.h"
+#include "integrators/integrator_factory.h"
 #include "integrators/photon_mapping/direct_light_wavelengths.h"
 #include "integrators/render_job.h"
 #include "scene/scene_loader.h"
@@ -122,8 +123,9 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--threads", a.threads, "Worker threads (default: all cores)")
       ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 4096));
   cmd->add_option("--integrator", a.integrator,
-                  "Integrator: pt | lt | bdpt (both wavelength families) | bdpt-shared | bdpt-independent | bdpt-mollified | ppm | "
-                  "vcm (bdpt's connections and vertex merging) | vc (its connections) | bpm (its merges)")
+                  "Integrator: pt | lt | bdpt (bidirectional; render/bdpt) | ppm (photon mapping; render/ppm) | "
+                  "vcm (bdpt's connections and vertex merging; render/vcm) | vc (its connections) | bpm (its merges); "
+                  "bdpt-shared, bdpt-independent, bdpt-mollified stand for bdpt with render/bdpt settings")
       ->check(kIntegratorName);
   cmd->add_option("--strategy-images", a.strategyImages,
                   "BDPT: also write one image per (s, t) strategy (MIS-weighted) into this directory");
@@ -194,6 +196,13 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     } catch (const std::invalid_argument& e) {
       throw UsageError("--set " + text, "", e.what());
     }
+  }
+  for (const IntegratorAlias& alias : integratorAliases()) {
+    if (alias.name != a.integrator || (group && group->rank() != 0)) continue;
+    std::string sets;
+    for (const std::string& setting : alias.settings) sets += " --set " + setting;
+    std::fprintf(stderr, "kasha: note: --integrator %s stands for --integrator %s%s\n", alias.name.c_str(),
+                 alias.integrator.c_str(), sets.c_str());
   }
   SceneLoadOptions load;
   load.memoryLimit = memoryLimit;

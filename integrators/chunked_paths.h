@@ -15,12 +15,18 @@
 
 namespace kasha {
 
+// What the records of traceInChunks are, for its memory message: "the photon map of one pass",
+// "photons", "render/ppm/photons_per_pass".
+struct ChunkedRecords {
+  const char *store, *records, *pathsSetting;
+};
+
 // Calls trace(j, records, counter) for every path j < paths, 1024 paths to a chunk, each chunk with
 // its own buffer and ray counter; returns the records in path order and adds the rays to `counter`.
-// Throws MemoryLimitError ("<what(n)> needs …", n the records kept so far) as soon as the records
-// kept exceed memoryLimit / bytesPerRecord.
-template <class Record, class Trace, class What>
-std::vector<Record> traceInChunks(size_t paths, uint64_t memoryLimit, size_t bytesPerRecord, What&& what,
+// Throws MemoryLimitError ("<store> (at least n <records> …) needs …", n the records kept so far) as
+// soon as the records kept exceed memoryLimit / bytesPerRecord.
+template <class Record, class Trace>
+std::vector<Record> traceInChunks(size_t paths, uint64_t memoryLimit, size_t bytesPerRecord, const ChunkedRecords& what,
                                   RayCounter& counter, Trace&& trace) {
   constexpr size_t kPathsPerChunk = 1024;
   const size_t chunks = (paths + kPathsPerChunk - 1) / kPathsPerChunk;
@@ -38,7 +44,12 @@ std::vector<Record> traceInChunks(size_t paths, uint64_t memoryLimit, size_t byt
   });
   for (const RayCounter& c : counters) counter.closest += c.closest, counter.shadow += c.shadow;
   const size_t total = kept.load();
-  if (overflow) requireMemory(saturatingMul(total, bytesPerRecord), what(total), memoryLimit);
+  if (overflow)
+    requireMemory(saturatingMul(total, bytesPerRecord),
+                  std::string(what.store) + " (at least " + std::to_string(total) + " " + what.records + " × " +
+                      std::to_string(bytesPerRecord) + " bytes from " + std::to_string(paths) + " light subpaths; lower " +
+                      what.pathsSetting + ")",
+                  memoryLimit);
   // The records in path order: each chunk's at its offset, copied in parallel, each chunk freed once copied.
   std::vector<size_t> offset(chunks + 1, 0);
   for (size_t c = 0; c < chunks; ++c) offset[c + 1] = offset[c] + parts[c].size();

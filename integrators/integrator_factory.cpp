@@ -24,19 +24,35 @@ void requireUnused(const WavelengthSpec& spec, const WavelengthSpec& fallback, W
 
 }  // namespace
 
-std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "bdpt-shared", "bdpt-independent", "bdpt-mollified", "ppm", "vcm", "vc", "bpm"}; }
+std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "ppm", "vcm", "vc", "bpm"}; }
 
-std::string settingNotRead(const std::string& name, const std::string& key) {
-  // The most specific prefix first: ppm's estimators of direct light are its own, its photon pass
-  // (count, radius, kernel) is vcm's light-vertex pass too (bidirectional/vcm.cpp).
+const std::vector<IntegratorAlias>& integratorAliases() {
+  static const std::vector<IntegratorAlias> aliases = {
+      {"bdpt-shared", "bdpt", {"bdpt.families=shared"}},
+      {"bdpt-independent", "bdpt", {"bdpt.families=own"}},
+      {"bdpt-mollified", "bdpt", {"bdpt.families=own", "bdpt.mollify=true"}},
+  };
+  return aliases;
+}
+
+std::string resolveIntegrator(const std::string& name, RenderSettings& s) {
+  if (name == "bdpt-shared") s.bdpt.families = BdptFamilies::Shared;
+  else if (name == "bdpt-independent") s.bdpt.families = BdptFamilies::Own;
+  else if (name == "bdpt-mollified") s.bdpt.families = BdptFamilies::Own, s.bdpt.mollify = true;
+  else return name;
+  return "bdpt";
+}
+
+std::string settingNotRead(const std::string& alias, const std::string& key) {
+  RenderSettings unused;
+  const std::string name = resolveIntegrator(alias, unused);
+  // The most specific prefix first.
   static const std::vector<std::pair<std::string, std::vector<std::string>>> readers = {
-      {"bdpt_families", {"bdpt"}},
-      {"vcm_paths", {"vcm"}},
-      {"mollify", {"bdpt-mollified"}},
-      {"ppm.direct", {"ppm"}},
-      {"ppm.nee_wavelengths", {"ppm"}},
-      {"ppm.always_wavelength_kernel", {"ppm"}},
-      {"ppm", {"ppm", "vcm", "vc", "bpm"}},
+      {"bdpt", {"bdpt"}},
+      {"vcm.paths", {"vcm"}},
+      {"vcm.photons_per_pass", {"vcm", "vc", "bpm"}},
+      {"vcm", {"vcm", "bpm"}},  // the radius and the wavelength kernel of the merges
+      {"ppm", {"ppm"}},
   };
   for (const auto& [prefix, names] : readers) {
     if (key != prefix && key.rfind(prefix + ".", 0) != 0) continue;
@@ -56,13 +72,13 @@ int defaultLanes(const std::string& name, const RenderSettings& s) {
   return 1;
 }
 
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& requested) {
+std::unique_ptr<Integrator> makeIntegrator(const std::string& alias, const Scene& scene, const RenderSettings& requested) {
   RenderSettings s = requested;
+  const std::string name = resolveIntegrator(alias, s);
   const WavelengthSettings& w = s.wavelengths;
   const WavelengthSettings defaults;
-  const bool mollified = name == "bdpt-mollified";
   const bool vcm = name == "vcm" || name == "vc" || name == "bpm";
-  const bool bdpt = name == "bdpt" || name == "bdpt-independent" || name == "bdpt-shared" || mollified || vcm;
+  const bool bdpt = name == "bdpt" || vcm;
   if (s.heroWavelengths == kAutoLanes && !bdpt) s.heroWavelengths = defaultLanes(name, s);
   if (s.fluorescentLanes == FluorescentLanes::End && name != "pt" && name != "lt")
     throw FluorescentLanesError("fluorescent_lanes 'end' is an experiment of pt and lt, not of " + name +
@@ -91,12 +107,9 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene&
                                                                                   : Vcm::Parts::ConnectionsAndMerges;
     return std::make_unique<Vcm>(scene, s, parts);
   }
-  // Every other name is a BDPT's (unknown ones were refused above).
-  if (name == "bdpt-shared") requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
-  const bidir::WavelengthMode mode = name == "bdpt-shared" ? bidir::WavelengthMode::Shared
-                                    : name == "bdpt"      ? bidir::WavelengthMode::Unified
-                                                          : bidir::WavelengthMode::Independent;
-  return std::make_unique<Bdpt>(scene, s, mode, mollified ? &s.mollify : nullptr);
+  // The shared family alone draws no light-start wavelength.
+  if (s.bdpt.families == BdptFamilies::Shared) requireUnused(w.light, defaults.light, WavelengthSite::LightStart, "bdpt with families \"shared\"");
+  return std::make_unique<Bdpt>(scene, s);
 }
 
 }  // namespace kasha

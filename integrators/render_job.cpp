@@ -70,11 +70,23 @@ SpectralBins binsFor(const Scene& scene, int count, float step) {
 RenderJob::RenderJob(const Scene& scene, RenderJobOptions options) : scene_(scene), options_(std::move(options)) {
   keepHeapBetweenPasses();
   RenderJobOptions& o = options_;
+  // An alias's settings are its own: a caller's setting of the same key would be overruled.
+  for (const IntegratorAlias& alias : integratorAliases()) {
+    if (alias.name != o.integrator) continue;
+    for (const std::string& key : o.setKeys)
+      for (const std::string& set : alias.settings) {
+        const std::string aliasKey = set.substr(0, set.find('='));
+        if (key == aliasKey || key.rfind(aliasKey + ".", 0) == 0 || aliasKey.rfind(key + ".", 0) == 0)
+          throw RenderJobError(key, "the integrator " + alias.name + " stands for " + alias.integrator + " with " + set +
+                                        " (choose " + alias.integrator + " to set it)");
+      }
+  }
+  o.integrator = resolveIntegrator(o.integrator, o.settings);
   for (const std::string& key : o.setKeys)
     if (const std::string why = settingNotRead(o.integrator, key); !why.empty()) throw RenderJobError(key, why);
   const bool strategyImages = o.strategyDepth >= 0;
   // Per-strategy images are of vcm's strategies: camera paths alone (pt) have none to show.
-  if (strategyImages && o.settings.vcmPaths == VcmPaths::Auto) o.settings.vcmPaths = VcmPaths::Bidirectional;
+  if (strategyImages && o.settings.vcm.paths == VcmPaths::Auto) o.settings.vcm.paths = VcmPaths::Bidirectional;
   integrator_ = makeIntegrator(o.integrator, scene, o.settings);
   const Capabilities can = integrator_->capabilities();
   // A resumed render keeps checkpointing into the file it resumes from unless another is named.
@@ -84,8 +96,9 @@ RenderJob::RenderJob(const Scene& scene, RenderJobOptions options) : scene_(scen
     throw RenderJobError(o.spectralBins > 0 ? "spectral_bins" : "spectral_step", "the integrator " + o.integrator + " keeps none");
   if (strategyImages) {
     if (!can.strategyImages)
-      throw RenderJobError("strategy_images", "only the BDPT integrators have (s, t) strategies (bdpt, bdpt-shared, "
-                                              "bdpt-independent, bdpt-mollified, vcm, vc, bpm), not '" + o.integrator + "'");
+      throw RenderJobError("strategy_images", "the integrator " + o.integrator +
+                                                  " has no (s, t) strategies (the bidirectional engine's integrators have; "
+                                                  "docs/integrators.md)");
     if (!o.checkpoint.empty())
       throw RenderJobError("strategy_images", "cannot be combined with --checkpoint or --resume");
   }
@@ -107,15 +120,25 @@ nlohmann::json RenderJob::settingsRecord() const {
   // The integrators' own settings that change the estimator, wherever the integrator reads them
   // (settingNotRead, integrator_factory.h): a checkpoint must not be resumed under others.
   const auto reads = [&](const char* key) { return settingNotRead(options_.integrator, key).empty(); };
-  if (reads("mollify")) j["mollify"] = {{"bandwidth", r.mollify.bandwidth}, {"alpha", r.mollify.alpha}};
-  if (reads("ppm")) {  // the photon (light-vertex) pass of ppm, vcm, vc and bpm
-    const PhotonMappingSettings& p = r.ppm;
-    j["ppm"] = {{"photons_per_pass", p.photonsPerPass}, {"radius", p.radius}, {"alpha", p.alpha},
-                {"bandwidth", p.bandwidth}};
-    if (reads("ppm.direct"))  // ppm's own estimators of direct light
-      j["ppm"].update({{"always_wavelength_kernel", p.alwaysKernel}, {"direct", toString(p.direct)},
-                       {"nee_wavelengths", p.neeWavelengths}});
-  }
+  // Each object with the fields the integrator reads (vc: vcm's photons per pass, not its radius).
+  const auto record = [&](const char* object, const nlohmann::json& fields) {
+    for (const auto& [key, value] : fields.items())
+      if (reads((std::string(object) + "." + key).c_str())) j[object][key] = value;
+  };
+  const BdptSettings& b = r.bdpt;
+  record("bdpt", {{"families", toString(b.families)}, {"mollify", b.mollify}, {"mollify_bandwidth", b.mollifyBandwidth},
+                  {"mollify_alpha", b.mollifyAlpha}});
+  const auto progressive = [](const ProgressiveSettings& p) {
+    return nlohmann::json{{"photons_per_pass", p.photonsPerPass}, {"radius", p.radius}, {"alpha", p.alpha},
+                          {"bandwidth", p.bandwidth}};
+  };
+  nlohmann::json vcm = progressive(r.vcm);
+  vcm["paths"] = toString(r.vcm.paths);
+  record("vcm", vcm);
+  nlohmann::json ppm = progressive(r.ppm);
+  ppm.update({{"always_wavelength_kernel", r.ppm.alwaysKernel}, {"direct", toString(r.ppm.direct)},
+              {"nee_wavelengths", r.ppm.neeWavelengths}});
+  record("ppm", ppm);
   return j;
 }
 
@@ -125,8 +148,6 @@ nlohmann::json RenderJob::checkpointSettings() const {
   settings.update({{"scene_hash", options_.sceneHash},
                    {"integrator", integrator_->name()},
                    {"rr_depth", r.rrDepth},
-                   {"bdpt_families", toString(r.bdptFamilies)},
-                   {"vcm_paths", toString(r.vcmPaths)},
                    {"resolution", {scene_.camera.width(), scene_.camera.height()}},
                    {"spectral_bins", bins_.enabled() ? nlohmann::json{bins_.min, bins_.step, bins_.count}
                                                      : nlohmann::json(nullptr)}});

@@ -25,7 +25,7 @@
 namespace kasha {
 
 // A job option or setting the integrator cannot use. `setting` names it as the render object does
-// ("bdpt_families", "ppm.direct") or as RenderJobOptions does ("strategy_images", "spectral_bins",
+// ("bdpt.families", "ppm.direct") or as RenderJobOptions does ("strategy_images", "spectral_bins",
 // "spectral_step"), so that a front end can name its own option in the message.
 struct RenderJobError : std::invalid_argument {
   RenderJobError(std::string setting, const std::string& reason)
@@ -63,7 +63,8 @@ struct RenderJobOptions {
 class RenderJob {
  public:
   // Builds the integrator and checks the options against it. Throws what makeIntegrator throws
-  // (integrator_factory.h) and RenderJobError. With strategy images, vcm_paths "auto" becomes
+  // (integrator_factory.h) and RenderJobError. An alias (integratorAliases) becomes the integrator
+  // it stands for, with its settings. With strategy images, vcm.paths "auto" becomes
   // "bidirectional": the images are of vcm's strategies, and camera paths alone have none.
   RenderJob(const Scene& scene, RenderJobOptions options);
   ~RenderJob();
@@ -93,8 +94,8 @@ class RenderJob {
 
  private:
   // The settings both records name: seed, sampler, the four wavelength strategies, the
-  // integrator's lanes (hero_wavelengths), fluorescent_lanes, maximum depth, bdpt-mollified's kernel
-  // and the photon settings of ppm, vcm, vc and bpm (render.ppm).
+  // integrator's lanes (hero_wavelengths), fluorescent_lanes, maximum depth, and of the integrator's
+  // own settings (render.bdpt, render.vcm, render.ppm) those it reads.
   nlohmann::json settingsRecord() const;
 
   const Scene& scene_;

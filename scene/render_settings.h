@@ -2,6 +2,7 @@
 // Render and integrator settings: read from a scene file's "render" object and the command line,
 // used by the integrators.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -21,13 +22,17 @@ inline const char* toString(PpmDirectLight d) {
   return d == PpmDirectLight::Nee ? "nee" : d == PpmDirectLight::Photons ? "photons" : "nee-elastic";
 }
 
-// Progressive photon mapping (integrator "ppm", docs/photon-mapping.md); zeros are derived from
-// the scene.
-struct PhotonMappingSettings {
+// The light-vertex pass and the progressive radius shared by photon mapping and vertex merging;
+// zeros are derived from the scene.
+struct ProgressiveSettings {
   int photonsPerPass = 0;      // light subpaths per pass; 0: one per pixel
-  float radius = 0.0f;         // gather radius r_1 of the first pass, scene units; 0: from the surface area
+  float radius = 0.0f;         // gather radius r_1 of the first pass, scene units; 0: from the scene
   float alpha = 2.0f / 3.0f;   // radius reduction (Knaus & Zwicker 2011 eq. 15), in (1/3, 1)
   float bandwidth = 0.0f;      // half-width h_1 of the elastic wavelength kernel, nm; 0: 1% of the range
+};
+
+// Progressive photon mapping, render/ppm (integrator "ppm", docs/photon-mapping.md).
+struct PhotonMappingSettings : ProgressiveSettings {
   bool alwaysKernel = false;   // elastic lobe through the kernel even where the sensor is evaluated exactly
   PpmDirectLight direct = PpmDirectLight::NeeElastic;
   // The wavelengths of next-event estimation's elastic lobe at the first camera vertex, where the
@@ -48,13 +53,6 @@ inline std::string ppmNeeWavelengthsError(const std::string& text) {
   }
   return {};
 }
-
-// Spectral mollification of BDPT's elastic connections (integrator "bdpt-mollified",
-// docs/bdpt-mis.md §6); a zero bandwidth is derived from the scene.
-struct MollificationSettings {
-  float bandwidth = 0.0f;     // half-width h_1 of the wavelength kernel in the first pass, nm; 0: 2% of the range
-  float alpha = 2.0f / 3.0f;  // h_i² = h_{i−1}²·(i − 1 + α)/i (the PPM radius schedule), in (0, 1)
-};
 
 // Wavelength sampling strategies per site (docs/wavelength-sampling.md).
 struct WavelengthSettings {
@@ -78,9 +76,9 @@ inline std::optional<FluorescentLanes> parseFluorescentLanes(const std::string& 
   return std::nullopt;
 }
 
-// Which light subpaths the unified `bdpt` traces in a scene that fluoresces (docs/bdpt-mis.md §13):
-// both families, the shared family alone (bdpt-shared), the own family alone (bdpt-independent), or
-// (auto, the default) whichever a pilot estimates the most efficient.
+// Which light subpaths `bdpt` traces (docs/bdpt-mis.md §13): both families (in a scene that
+// fluoresces; else the shared one), the shared family alone, the own family alone, or (auto, the
+// default) whichever a pilot estimates the most efficient where the scene fluoresces.
 enum class BdptFamilies { Auto, Both, Shared, Own };
 
 inline const char* toString(BdptFamilies f) {
@@ -125,6 +123,29 @@ inline std::optional<VcmPaths> parseVcmPaths(const std::string& text) {
   return std::nullopt;
 }
 
+// Bidirectional path tracing, render/bdpt (integrator "bdpt", docs/bdpt-mis.md).
+struct BdptSettings {
+  BdptFamilies families = BdptFamilies::Auto;
+  // Spectral mollification of the own family's elastic connections (docs/bdpt-mis.md §6): a
+  // wavelength kernel of half-width h_1 in the first pass (nm; 0: 2% of the range) that shrinks as
+  // h_i² = h_{i−1}²·(i − 1 + α)/i (the PPM radius schedule), α in (0, 1).
+  bool mollify = false;
+  float mollifyBandwidth = 0.0f;
+  float mollifyAlpha = 2.0f / 3.0f;
+};
+
+// Vertex connection and merging, render/vcm (integrators "vcm", "vc" and "bpm", docs/bdpt-mis.md §12).
+struct VcmSettings : ProgressiveSettings {
+  VcmPaths paths = VcmPaths::Auto;  // vcm's subpaths
+};
+
+// The ranges of the integrators' own settings, checked in one place for the scene loader and for
+// integrators built from code: `fail(key, reason)` is called for the first field out of range
+// (key as in the scene file, "alpha") and must not return.
+using SettingFailure = std::function<void(const char* key, const std::string& reason)>;
+void checkProgressiveSettings(const ProgressiveSettings& p, const SettingFailure& fail);
+void checkBdptSettings(const BdptSettings& b, const SettingFailure& fail);
+
 // Thrown when an integrator cannot do what fluorescent_lanes asks (its message says why).
 struct FluorescentLanesError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
@@ -146,13 +167,13 @@ struct RenderSettings {
   // wavelength strategies carry lanes, else 1).
   int heroWavelengths = kAutoLanes;
   FluorescentLanes fluorescentLanes = FluorescentLanes::Through;
-  BdptFamilies bdptFamilies = BdptFamilies::Auto;  // the unified bdpt's light subpaths
-  VcmPaths vcmPaths = VcmPaths::Auto;              // vcm's subpaths
   // Largest buffer an integrator may allocate (photon maps, ...): check with requireMemory()
   // before allocating. Set by `kasha render --memory-limit`; not a scene-file setting.
   uint64_t memoryLimit = kDefaultMemoryLimit;
+  // Each integrator's own settings (render/<integrator>).
+  BdptSettings bdpt;
+  VcmSettings vcm;
   PhotonMappingSettings ppm;
-  MollificationSettings mollify;
 };
 
 }  // namespace kasha

@@ -146,14 +146,14 @@ struct Loader {
     const std::string lanes = f.string("fluorescent_lanes", toString(r.fluorescentLanes));
     if (const auto at = parseFluorescentLanes(lanes)) r.fluorescentLanes = *at;
     else f.fail("fluorescent_lanes", "'" + lanes + "' is not what lanes do at fluorescent events (through, end)");
-    const std::string families = f.string("bdpt_families", toString(r.bdptFamilies));
-    if (const auto fam = parseBdptFamilies(families)) r.bdptFamilies = *fam;
-    else f.fail("bdpt_families", "'" + families + "' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
-    const std::string vcmPaths = f.string("vcm_paths", toString(r.vcmPaths));
-    if (const auto paths = parseVcmPaths(vcmPaths)) r.vcmPaths = *paths;
-    else f.fail("vcm_paths", "'" + vcmPaths + "' is not a choice of vcm's subpaths (auto, bidirectional, gather, camera)");
+    // The integrators' own settings, each in its object (before session 20's consolidation they
+    // were spread over the render object; say where they went).
+    for (const auto& [old, now] : {std::pair{"bdpt_families", "render/bdpt/families"}, std::pair{"vcm_paths", "render/vcm/paths"},
+                                   std::pair{"mollify", "render/bdpt/mollify, mollify_bandwidth and mollify_alpha"}})
+      if (f.has(old)) f.fail(old, std::string("is now ") + now + " (docs/scene-format.md)");
+    bdpt(f);
+    vcm(f);
     photonMapping(f);
-    mollification(f);
     f.finish();
   }
 
@@ -168,19 +168,21 @@ struct Loader {
     }
   }
 
+  // The light-vertex pass and the radius of /render/ppm and /render/vcm.
+  static void progressive(JsonFields& f, ProgressiveSettings& p) {
+    p.photonsPerPass = f.integer("photons_per_pass", p.photonsPerPass);
+    p.radius = f.number("radius", p.radius);
+    p.alpha = f.number("alpha", p.alpha);
+    p.bandwidth = f.number("bandwidth", p.bandwidth);
+    checkProgressiveSettings(p, [&](const char* key, const std::string& why) { f.fail(key, why); });
+  }
+
   // /render/ppm (docs/photon-mapping.md).
   void photonMapping(JsonFields& render) {
     if (!render.has("ppm")) return;
     JsonFields f(render.get("ppm"), file, render.path("ppm"));
     PhotonMappingSettings& p = scene.render.ppm;
-    p.photonsPerPass = f.integer("photons_per_pass", p.photonsPerPass);
-    if (p.photonsPerPass < 0) f.fail("photons_per_pass", "must not be negative (0: one per pixel)");
-    p.radius = f.number("radius", p.radius);
-    if (!(p.radius >= 0.0f)) f.fail("radius", "must not be negative (0: from the scene's surface area)");
-    p.alpha = f.number("alpha", p.alpha);
-    if (!(p.alpha > 1.0f / 3.0f && p.alpha < 1.0f)) f.fail("alpha", "must be in (1/3, 1)");
-    p.bandwidth = f.number("bandwidth", p.bandwidth);
-    if (!(p.bandwidth >= 0.0f)) f.fail("bandwidth", "must not be negative (0: 1% of the wavelength range)");
+    progressive(f, p);
     p.alwaysKernel = f.boolean("always_wavelength_kernel", p.alwaysKernel);
     const std::string direct = f.string("direct", "nee-elastic");
     if (direct == "nee-elastic") p.direct = PpmDirectLight::NeeElastic;
@@ -192,15 +194,30 @@ struct Loader {
     f.finish();
   }
 
-  // /render/mollify (docs/bdpt-mis.md §6).
-  void mollification(JsonFields& render) {
-    if (!render.has("mollify")) return;
-    JsonFields f(render.get("mollify"), file, render.path("mollify"));
-    MollificationSettings& m = scene.render.mollify;
-    m.bandwidth = f.number("bandwidth", m.bandwidth);
-    if (!(m.bandwidth >= 0.0f)) f.fail("bandwidth", "must not be negative (0: 2% of the wavelength range)");
-    m.alpha = f.number("alpha", m.alpha);
-    if (!(m.alpha > 0.0f && m.alpha < 1.0f)) f.fail("alpha", "must be in (0, 1)");
+  // /render/vcm (docs/bdpt-mis.md §12, §14).
+  void vcm(JsonFields& render) {
+    if (!render.has("vcm")) return;
+    JsonFields f(render.get("vcm"), file, render.path("vcm"));
+    VcmSettings& v = scene.render.vcm;
+    progressive(f, v);
+    const std::string paths = f.string("paths", toString(v.paths));
+    if (const auto choice = parseVcmPaths(paths)) v.paths = *choice;
+    else f.fail("paths", "'" + paths + "' is not a choice of vcm's subpaths (auto, bidirectional, gather, camera)");
+    f.finish();
+  }
+
+  // /render/bdpt (docs/bdpt-mis.md §6, §13).
+  void bdpt(JsonFields& render) {
+    if (!render.has("bdpt")) return;
+    JsonFields f(render.get("bdpt"), file, render.path("bdpt"));
+    BdptSettings& b = scene.render.bdpt;
+    const std::string families = f.string("families", toString(b.families));
+    if (const auto choice = parseBdptFamilies(families)) b.families = *choice;
+    else f.fail("families", "'" + families + "' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
+    b.mollify = f.boolean("mollify", b.mollify);
+    b.mollifyBandwidth = f.number("mollify_bandwidth", b.mollifyBandwidth);
+    b.mollifyAlpha = f.number("mollify_alpha", b.mollifyAlpha);
+    checkBdptSettings(b, [&](const char* key, const std::string& why) { f.fail(key, why); });
     f.finish();
   }
 

@@ -31,10 +31,10 @@ inline void aimCamera(Scene& scene, Vec3 target, float fovY, int res) {
 
 // Photon mapping's and vertex merging's defaults scale with the pixel count (one photon per pixel and
 // pass), far too few at the agreement tests' resolutions: a fixed number of photons per pass and
-// first-pass radius (render.ppm).
+// first-pass radius (render.ppm and render.vcm).
 inline void setPhotons(Scene& scene, int perPass, float radius) {
-  scene.render.ppm.photonsPerPass = perPass;
-  scene.render.ppm.radius = radius;
+  scene.render.ppm.photonsPerPass = scene.render.vcm.photonsPerPass = perPass;
+  scene.render.ppm.radius = scene.render.vcm.radius = radius;
 }
 
 // Stats of region r, channel c at index r·3 + c. Batch b uses seed seedStep·(b + 1).

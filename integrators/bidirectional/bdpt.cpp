@@ -37,13 +37,28 @@ constexpr size_t kRaySamples = 1024;
 
 }  // namespace
 
-Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bidir::WavelengthMode mode, const MollificationSettings* m)
+namespace {
+
+// The families' choice as a wavelength mode: one family alone, or both in one MIS (the pilot may
+// still run one alone per render).
+bidir::WavelengthMode modeOf(BdptFamilies families) {
+  if (families == BdptFamilies::Shared) return bidir::WavelengthMode::Shared;
+  if (families == BdptFamilies::Own) return bidir::WavelengthMode::Independent;
+  return bidir::WavelengthMode::Unified;
+}
+
+}  // namespace
+
+Bdpt::Bdpt(const Scene& scene, const RenderSettings& s)
     : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
       light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
-      ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}}, mode_(mode), families_(bidir::familiesFor(scene, mode)),
-      directXyz_(directEmissionXyz(scene)) {
+      ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}}, mode_(modeOf(s.bdpt.families)),
+      families_(bidir::familiesFor(scene, mode_)), directXyz_(directEmissionXyz(scene)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by bdpt (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by bdpt (its MIS weights need the light-start density)");
+  checkBdptSettings(s.bdpt, [](const char* key, const std::string& why) {
+    throw std::invalid_argument(std::string("bdpt: render/bdpt/") + key + " " + why);
+  });
   // Wavelength lanes (docs/bdpt-mis.md §10), in every family.
   // The unified estimator carries both families on one light subpath (docs/bdpt-mis.md §11).
   if (mode_ == bidir::WavelengthMode::Unified && families_.independent) {
@@ -51,26 +66,18 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s, bidir::WavelengthMode mo
     ws_.lightFirst = lightFirst_.get();
     wsAlone_ = ws_;
     wsAlone_.lightFirst = nullptr;
-    familyChoice_ = s.bdptFamilies;
+    familyChoice_ = s.bdpt.families;
   }
   lanes_ = s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths;
   if (lanes_ < 1 || lanes_ > kMaxLanes)
     throw std::invalid_argument("bdpt: hero wavelengths " + std::to_string(lanes_) + " is outside [1, " +
                                 std::to_string(kMaxLanes) + "]");
-  if (!m) return;
-  if (mode_ != bidir::WavelengthMode::Independent)
-    throw std::invalid_argument("bdpt: mollification needs the independent wavelength family");
-  if (!(m->bandwidth >= 0.0f)) throw std::invalid_argument("bdpt: the mollification bandwidth must not be negative");
-  if (!(m->alpha > 0.0f && m->alpha < 1.0f)) throw std::invalid_argument("bdpt: the mollification alpha must be in (0, 1)");
-  bandwidth1_ = m->bandwidth > 0.0f ? m->bandwidth : 0.02f * (scene.range.max - scene.range.min);
-  alpha_ = m->alpha;
+  if (!s.bdpt.mollify) return;
+  bandwidth1_ = s.bdpt.mollifyBandwidth > 0.0f ? s.bdpt.mollifyBandwidth : 0.02f * (scene.range.max - scene.range.min);
+  alpha_ = s.bdpt.mollifyAlpha;
 }
 
-std::string Bdpt::name() const {
-  if (mollifies()) return "bdpt-mollified";
-  if (mode_ == bidir::WavelengthMode::Unified) return "bdpt";
-  return mode_ == bidir::WavelengthMode::Shared ? "bdpt-shared" : "bdpt-independent";
-}
+std::string Bdpt::name() const { return "bdpt"; }
 
 float Bdpt::bandwidth(int sample) const {
   return bandwidth1_ * std::sqrt(progressiveRadiusSquared(1.0f, alpha_, sample + 1));
@@ -153,8 +160,9 @@ BdptFamilies Bdpt::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& co
 }
 
 std::string Bdpt::choices() const {
+  if (mode_ == bidir::WavelengthMode::Shared) return "families: shared";
+  if (mode_ == bidir::WavelengthMode::Independent) return "families: own";
   if (!lightFirst_ || familyChoice_ == BdptFamilies::Both) return {};
-  if (familyChoice_ != BdptFamilies::Auto) return std::string("families: ") + toString(familyChoice_);
   std::lock_guard<std::mutex> lock(pilotMutex_);
   if (!pilot_) return {};
   const auto alone = [](const PilotOutcome::Candidate& c) {

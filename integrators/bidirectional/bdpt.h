@@ -1,16 +1,16 @@
 #pragma once
 // Bidirectional path tracing for bispectral scenes (docs/bdpt-mis.md): every (s, t) strategy,
 // densities both ways, every wavelength density in the MIS weights, and the two exact wavelength
-// families of docs/transport.md §3 — light subpaths sharing the camera sample's wavelength (Shared),
+// families of docs/transport.md §3 — light subpaths sharing the camera sample's wavelength (shared),
 // joined to elastic camera vertices on paths that never fluoresce, and light subpaths drawing their
-// own from the light-start strategy, by default the lights' power spectrum (Independent), joined
-// through a connection vertex that evaluates its fluorescent lobe. `bdpt` (Unified) combines both
-// in one MIS (docs/bdpt-mis.md §5), on one light subpath that carries both (§11); `bdpt-shared`
-// and `bdpt-independent` are each family alone.
+// own from the light-start strategy, by default the lights' power spectrum (own), joined through a
+// connection vertex that evaluates its fluorescent lobe. By default both in one MIS
+// (docs/bdpt-mis.md §5), on one light subpath that carries both (§11), with a pilot that may run one
+// family alone (§13); render/bdpt/families fixes the choice.
 // The sensor and light-start strategies must be densities (single or mix:), which enter the MIS
-// weights. Optionally (Independent only) spectral mollification joins elastic connection
-// vertices through a wavelength kernel whose half-width shrinks pass by pass (docs/bdpt-mis.md
-// §6); each pass then takes one sample per pixel.
+// weights. Optionally (the own family alone) spectral mollification joins elastic connection
+// vertices through a wavelength kernel whose half-width shrinks pass by pass (render/bdpt/mollify,
+// docs/bdpt-mis.md §6); each pass then takes one sample per pixel.
 #include "scene/wavelength_strategy.h"
 #include <memory>
 #include <mutex>
@@ -29,10 +29,8 @@ class MisObserver;  // mis_observer.h
 class Bdpt final : public Integrator {
  public:
   // Throws std::invalid_argument if a wavelength strategy does not apply (docs/wavelength-sampling.md)
-  // or the mollification settings are out of range. `mollify` is used only if given (Independent
-  // mode); a zero bandwidth becomes 2% of the scene's wavelength range.
-  Bdpt(const Scene& scene, const RenderSettings& settings, bidir::WavelengthMode mode,
-       const MollificationSettings* mollify = nullptr);
+  // or render/bdpt is out of range (checkBdptSettings).
+  Bdpt(const Scene& scene, const RenderSettings& settings);
   Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const override;
   std::string name() const override;
   int lanes() const override { return lanes_; }

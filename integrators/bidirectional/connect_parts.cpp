@@ -164,22 +164,27 @@ bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
   return !c.scene.accel->occluded(o, w, dist * (1.0f - 1e-4f) - shorten - rayEpsilon(a.p));
 }
 
+namespace {
+
+// The sums at the last vertex `end` of a subpath, before it `before` with `multiplicity`, given the
+// join's densities towards them (pLast, pBefore).
+MisSums endSum(const PathVertex& end, const PathVertex& before, const MisSums& multiplicity, double pLast,
+               const MisSums& mLast, double pBefore) {
+  return sideSum(end.sums, densityRatio(pBefore, before.pdfFwd), multiplicity, densityRatio(pLast, end.pdfFwd), mLast);
+}
+
+}  // namespace
+
 MisSums cameraSum(const Context& c, const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast,
                   double pBefore) {
-  const PathVertex& b = C[size_t(t - 1)];
-  const PathVertex& bNext = C[size_t(t - 2)];
-  return sideSum(b.sums, densityRatio(pBefore, bNext.pdfFwd), cameraMultiplicity(C, t - 2, c.walk.strategies),
-                 densityRatio(pLast, b.pdfFwd),
-                 mLast);
+  return endSum(C[size_t(t - 1)], C[size_t(t - 2)], cameraMultiplicity(C, t - 2, c.walk.strategies), pLast, mLast,
+                pBefore);
 }
 
 MisSums lightSum(const Context& c, const std::vector<PathVertex>& L, int s, double pLast, const MisSums& mLast,
                  double pBefore) {
-  const PathVertex& a = L[size_t(s - 1)];
-  const PathVertex& aPrev = L[size_t(s - 2)];
-  return sideSum(a.sums, densityRatio(pBefore, aPrev.pdfFwd), lightMultiplicity(L, s - 2, c.walk.strategies),
-                 densityRatio(pLast, a.pdfFwd),
-                 mLast);
+  return endSum(L[size_t(s - 1)], L[size_t(s - 2)], lightMultiplicity(L, s - 2, c.walk.strategies), pLast, mLast,
+                pBefore);
 }
 
 MisSums lightEndSum(double pCam0, double pLight0) { return extend({}, densityRatio(pCam0, pLight0), hitMultiplicity()); }

@@ -11,12 +11,8 @@ std::vector<bidir::LightVertex> traceLightVertices(const Scene& scene, const bid
                                                   const bidir::WalkSettings& ws, const LightVertexTracing& t,
                                                   uint64_t seed, RayCounter& counter) {
   using namespace bidir;
-  auto what = [&](size_t total) {
-    return "the light vertices of one vcm pass (at least " + std::to_string(total) + " vertices × " +
-           std::to_string(kBytesPerLightVertex) + " bytes from " + std::to_string(t.paths) +
-           " light subpaths; lower render/ppm/photons_per_pass)";
-  };
-  return traceInChunks<LightVertex>(t.paths, t.memoryLimit, kBytesPerLightVertex, what, counter,
+  return traceInChunks<LightVertex>(t.paths, t.memoryLimit, kBytesPerLightVertex,
+                                    {"the light vertices of one vcm pass", "vertices", "render/vcm/photons_per_pass"}, counter,
                                     [&](size_t j, std::vector<LightVertex>& out, RayCounter& rays) {
                                       thread_local std::vector<PathVertex> LS, LO;
                                       Sampler rng(t.sampler, seed, 0, uint32_t(j));

@@ -74,7 +74,7 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
       ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}},
       families_(bidir::familiesFor(scene, bidir::WavelengthMode::Unified)),
       lanes_(s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths),
-      alpha_(s.ppm.alpha),
+      alpha_(s.vcm.alpha),
       memoryLimit_(s.memoryLimit),
       sampler_(s.sampler),
       directXyz_(directEmissionXyz(scene)) {
@@ -88,14 +88,10 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
     lightFirst_ = std::make_unique<bidir::LightFirstStart>(scene, s.wavelengths.light);
     ws_.lightFirst = lightFirst_.get();
   }
-  const PhotonMappingSettings& p = s.ppm;
-  if (p.photonsPerPass < 0 || !(p.radius >= 0.0f))
-    throw std::invalid_argument(name() + ": render/ppm/photons_per_pass and radius must not be negative");
-  if (!(p.bandwidth >= 0.0f)) throw std::invalid_argument(name() + ": render/ppm/bandwidth must not be negative");
-  // Consistency of the merges through the wavelength kernel (two dimensions in space, one in
-  // wavelength) needs α > 1/3.
-  if (!(p.alpha > 1.0f / 3.0f && p.alpha < 1.0f))
-    throw std::invalid_argument(name() + ": render/ppm/alpha must be in (1/3, 1)");
+  const VcmSettings& p = s.vcm;
+  checkProgressiveSettings(p, [&](const char* key, const std::string& why) {
+    throw std::invalid_argument(name() + ": render/vcm/" + key + " " + why);
+  });
   // SmallVCM's choice: as many light subpaths per pass as pixels.
   paths_ = p.photonsPerPass > 0 ? size_t(p.photonsPerPass) : size_t(scene.camera.width()) * size_t(scene.camera.height());
   double area = 0.0;
@@ -116,13 +112,13 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
   }
   radius1_ = p.radius > 0.0f ? p.radius : float(std::sqrt(kVerticesPerDisc * area / (kPi * kept)));
   // Own light vertices merge through an elastic lobe with a wavelength kernel, as photon mapping's
-  // (render/ppm/bandwidth, by default 1% of the range), shrinking with the radius.
+  // (render/vcm/bandwidth, by default 1% of the range), shrinking with the radius.
   if (parts_ != Parts::Connections && families_.independent)
     bandwidth1_ = p.bandwidth > 0.0f ? p.bandwidth : 0.01f * (scene.range.max - scene.range.min);
   ws_.strategies.connections = parts_ != Parts::Merges;
   // Without light subpaths vertex connection and merging is path tracing with next-event
   // estimation (its strategies s = 0 and s = 1): pt's estimator, at the same wavelength settings.
-  if (parts_ == Parts::ConnectionsAndMerges) pathsChoice_ = s.vcmPaths;
+  if (parts_ == Parts::ConnectionsAndMerges) pathsChoice_ = s.vcm.paths;
   if (pathsChoice_ == VcmPaths::Auto || pathsChoice_ == VcmPaths::Camera) {
     RenderSettings camera = s;
     camera.wavelengths.light = WavelengthSettings().light;  // pt traces no light subpaths

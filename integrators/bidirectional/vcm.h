@@ -2,17 +2,17 @@
 // Vertex connection and merging for bispectral scenes (Georgiev et al. 2012; Hachisuka et al. 2012;
 // docs/bdpt-mis.md §12): the unified BDPT's connections (both wavelength families, §5–§11) and
 // vertex merging at every connectible camera vertex against the light vertices of the pass, in one
-// set of recursive power-heuristic weights. Each pass traces N light subpaths (render/ppm/
+// set of recursive power-heuristic weights. Each pass traces N light subpaths (render/vcm/
 // photons_per_pass, by default one per pixel) at one set of wavelength lanes shared by every camera
 // sample of the pass, so that a merge through an elastic vertex meets light at exactly the camera's
 // wavelengths; an own-family light vertex merges through a fluorescent camera vertex, whose lobe
 // takes it from its own wavelength to the camera's, or an elastic one through a wavelength kernel
 // (with the own family's mollified joins, docs/bdpt-mis.md §6). The radius and the kernel shrink pass
-// by pass as in `ppm` (render/ppm/radius, bandwidth, alpha). `vc` has the connections alone (no
+// by pass as in `ppm` (render/vcm/radius, bandwidth, alpha). `vc` has the connections alone (no
 // kernel), `bpm` the merges alone (with the camera subpath reaching the light), as SmallVCM's
 // algorithm list. `vcm` without light subpaths is path tracing with next-event estimation: a pilot
 // chooses per render between it, every strategy, and every strategy with the wide final gather
-// (docs/bdpt-mis.md §12, §14, render/vcm_paths).
+// (docs/bdpt-mis.md §12, §14, render/vcm/paths).
 #include <memory>
 #include <mutex>
 #include <optional>

@@ -63,12 +63,8 @@ void tracePath(const Scene& scene, const PhotonTracing& s, Sampler& rng, std::ve
 }  // namespace
 
 std::vector<Photon> tracePhotons(const Scene& scene, const PhotonTracing& s, uint64_t seed, RayCounter& counter) {
-  auto what = [&](size_t total) {
-    return "the photon map of one pass (at least " + std::to_string(total) + " photons × " +
-           std::to_string(kBytesPerPhoton) + " bytes from " + std::to_string(s.paths) +
-           " light subpaths; lower render/ppm/photons_per_pass)";
-  };
-  return traceInChunks<Photon>(s.paths, s.memoryLimit, kBytesPerPhoton, what, counter,
+  return traceInChunks<Photon>(s.paths, s.memoryLimit, kBytesPerPhoton,
+                               {"the photon map of one pass", "photons", "render/ppm/photons_per_pass"}, counter,
                                [&](size_t j, std::vector<Photon>& out, RayCounter& rays) {
                                  Sampler rng(s.sampler, seed, 0, uint32_t(j));
                                  tracePath(scene, s, rng, out, rays);

@@ -81,10 +81,9 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
                                   "fluorescence_sampling '" + s.wavelengths.fluorescence.text +
                                       "' applies to ppm only with render/ppm/direct \"nee\" (leave it at 'material')");
   const PhotonMappingSettings& p = s.ppm;
-  if (p.photonsPerPass < 0 || !(p.radius >= 0.0f) || !(p.bandwidth >= 0.0f))
-    throw std::invalid_argument("ppm: photons per pass, radius and bandwidth must not be negative");
-  // Consistency of the elastic kernel (three dimensions: two in space, one in wavelength) needs α > 1/3.
-  if (!(p.alpha > 1.0f / 3.0f && p.alpha < 1.0f)) throw std::invalid_argument("ppm: alpha must be in (1/3, 1)");
+  checkProgressiveSettings(p, [](const char* key, const std::string& why) {
+    throw std::invalid_argument(std::string("ppm: render/ppm/") + key + " " + why);
+  });
   // SmallVCM's choice: as many light subpaths per iteration as pixels.
   photonsPerPass_ = p.photonsPerPass > 0 ? size_t(p.photonsPerPass)
                                          : size_t(scene.camera.width()) * size_t(scene.camera.height());

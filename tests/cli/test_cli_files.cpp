@@ -153,11 +153,15 @@ TEST_F(CliFiles, CommandLineMistakesExitWith2) {
   expectRefused({"render", scene, "-q", "--set", "ppm.direct=photons"}, 2, "--set ppm.direct=photons: only for --integrator ppm");
   expectRefused({"render", scene, "-q", "--integrator", "vcm", "--set", "ppm.direct=photons"}, 2,
                 "--set ppm.direct=photons: only for --integrator ppm");
-  expectRefused({"render", scene, "-q", "--integrator", "bdpt-shared", "--set", "bdpt_families=both"}, 2,
-                "--set bdpt_families=both: only for --integrator bdpt");
-  expectRefused({"render", scene, "-q", "--integrator", "bpm", "--set", "vcm_paths=camera"}, 2,
-                "--set vcm_paths=camera: only for --integrator vcm");
-  expectRefused({"render", scene, "-q", "--integrator", "vcm", "--set", "vcm_paths=light"}, 2, "--set vcm_paths=light: ");
+  expectRefused({"render", scene, "-q", "--integrator", "vcm", "--set", "bdpt.families=both"}, 2,
+                "--set bdpt.families=both: only for --integrator bdpt");
+  expectRefused({"render", scene, "-q", "--integrator", "bpm", "--set", "vcm.paths=camera"}, 2,
+                "--set vcm.paths=camera: only for --integrator vcm");
+  expectRefused({"render", scene, "-q", "--integrator", "vc", "--set", "vcm.radius=0.1"}, 2,
+                "--set vcm.radius=0.1: only for --integrator vcm, bpm");
+  expectRefused({"render", scene, "-q", "--integrator", "ppm", "--set", "vcm.photons_per_pass=100"}, 2,
+                "--set vcm.photons_per_pass=100: only for --integrator vcm, vc, bpm");
+  expectRefused({"render", scene, "-q", "--integrator", "vcm", "--set", "vcm.paths=light"}, 2, "--set vcm.paths=light: ");
   expectRefused({"render", scene, "-q", "--integrator", "ppm", "--set", "ppm.nee_wavelengths=camera,cmf"}, 2,
                 "--set ppm.nee_wavelengths=camera,cmf: ");
   expectRefused({"render", scene, "-q", "--integrator", "ppm", "--set", "ppm.direct=both"}, 2,

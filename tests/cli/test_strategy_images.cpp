@@ -105,7 +105,7 @@ class StrategyImagesCli : public ::testing::Test {
 TEST_F(StrategyImagesCli, WritesOneImagePerStrategy) {
   const std::string out = dir + "/strategies";
   const auto r = test::runKasha({"render", test::sourcePath("scenes/validation/furnace_fluorescent.json"), "-q", "--spp",
-                                 "2", "--max-depth", "2", "--integrator", "bdpt", "--set", "bdpt_families=both", "--strategy-images", out,
+                                 "2", "--max-depth", "2", "--integrator", "bdpt", "--set", "bdpt.families=both", "--strategy-images", out,
                                  "--strategy-unweighted", "-o", dir + "/full.exr"},
                                 dir + "/run");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -127,17 +127,28 @@ TEST_F(StrategyImagesCli, RefusesIntegratorsWithoutStrategies) {
                                  dir + "/run");
   EXPECT_EQ(pt.code, 2);  // a combination of options the integrator refuses
   EXPECT_NE(pt.err.find("--strategy-images"), std::string::npos) << pt.err;
-  EXPECT_NE(pt.err.find("only the BDPT integrators"), std::string::npos) << pt.err;
+  EXPECT_NE(pt.err.find("the integrator pt has no (s, t) strategies"), std::string::npos) << pt.err;
   EXPECT_FALSE(fs::exists(dir + "/pt.exr"));
-  const auto moll = test::runKasha({"render", scene, "-q", "--integrator", "pt", "--set", "mollify.bandwidth=5", "-o",
+  const auto moll = test::runKasha({"render", scene, "-q", "--integrator", "pt", "--set", "bdpt.mollify_bandwidth=5", "-o",
                                     dir + "/pt.exr"},
                                    dir + "/run");
   EXPECT_EQ(moll.code, 2);
-  EXPECT_NE(moll.err.find("only for --integrator bdpt-mollified"), std::string::npos) << moll.err;
-  const auto alpha = test::runKasha({"render", scene, "-q", "--integrator", "bdpt-mollified", "--set", "mollify.alpha=1.5"},
+  EXPECT_NE(moll.err.find("--set bdpt.mollify_bandwidth=5: only for --integrator bdpt"), std::string::npos) << moll.err;
+  const auto alpha = test::runKasha({"render", scene, "-q", "--integrator", "bdpt-mollified", "--set", "bdpt.mollify_alpha=1.5"},
                                     dir + "/run");
   EXPECT_EQ(alpha.code, 2);
-  EXPECT_NE(alpha.err.find("--set mollify.alpha=1.5: must be in (0, 1)"), std::string::npos) << alpha.err;
+  EXPECT_NE(alpha.err.find("--set bdpt.mollify_alpha=1.5: must be in (0, 1)"), std::string::npos) << alpha.err;
+  // An alias names the integrator it stands for, and its settings are its own.
+  EXPECT_NE(alpha.err.find("kasha: note: --integrator bdpt-mollified stands for --integrator bdpt --set bdpt.families=own "
+                           "--set bdpt.mollify=true"),
+            std::string::npos)
+      << alpha.err;
+  const auto families = test::runKasha({"render", scene, "-q", "--integrator", "bdpt-mollified", "--set", "bdpt.families=both"},
+                                       dir + "/run");
+  EXPECT_EQ(families.code, 2);
+  EXPECT_NE(families.err.find("--set bdpt.families=both: the integrator bdpt-mollified stands for bdpt with bdpt.families=own"),
+            std::string::npos)
+      << families.err;
 }
 
 }  // namespace

@@ -34,14 +34,14 @@ Vec3 cmfIntegral(float lo, float hi) {
 
 TEST(BdptMollified, BandwidthShrinksLikeThePhotonMappingRadius) {
   auto scene = load("furnace_white.json");
-  MollificationSettings m;
-  m.bandwidth = 12.0f;
-  m.alpha = 0.5f;
   RenderSettings rs = scene->render;
   rs.wavelengths.sensor = parseWavelengthSpec("uniform");
-  const Bdpt bdpt(*scene, rs, bidir::WavelengthMode::Independent, &m);
+  rs.bdpt.families = BdptFamilies::Own;
+  rs.bdpt.mollify = true;
+  rs.bdpt.mollifyBandwidth = 12.0f;
+  rs.bdpt.mollifyAlpha = 0.5f;
+  const Bdpt bdpt(*scene, rs);
   EXPECT_TRUE(bdpt.mollifies());
-  EXPECT_EQ(bdpt.name(), "bdpt-mollified");
   EXPECT_EQ(bdpt.maxSamplesPerPass(), 1);  // one iteration per sample index
   double h2 = 144.0;
   for (int i = 1; i <= 2000; ++i) {
@@ -60,10 +60,12 @@ TEST(BdptMollified, BandwidthShrinksLikeThePhotonMappingRadius) {
   double mass = 0.0;
   for (double x = -5.0 + 0.0005; x < 7.0; x += 0.001) mass += wavelengthKernel(float(x), 12.0f) * 0.001;
   EXPECT_NEAR(wavelengthKernelMass(-5.0f, 7.0f, 12.0f), mass, 1e-5);
-  MollificationSettings bad = m;
-  bad.alpha = 1.0f;
-  EXPECT_THROW(Bdpt(*scene, rs, bidir::WavelengthMode::Independent, &bad), std::invalid_argument);
-  EXPECT_THROW(Bdpt(*scene, rs, bidir::WavelengthMode::Shared, &m), std::invalid_argument);
+  RenderSettings bad = rs;
+  bad.bdpt.mollifyAlpha = 1.0f;
+  EXPECT_THROW(Bdpt(*scene, bad), std::invalid_argument);
+  bad = rs;
+  bad.bdpt.families = BdptFamilies::Shared;  // mollification is of the own family's connections
+  EXPECT_THROW(Bdpt(*scene, bad), std::invalid_argument);
 }
 
 struct Batches {
@@ -79,7 +81,7 @@ Batches renderBatches(Scene& scene, const std::string& integrator, int maxDepth,
   s.maxDepth = maxDepth;
   s.rrDepth = 3;
   s.wavelengths.sensor = parseWavelengthSpec("uniform");
-  s.mollify.bandwidth = bandwidth;
+  s.bdpt.mollifyBandwidth = bandwidth;
   const auto bdpt = makeIntegrator(integrator, scene, s);
   std::vector<double> b[3];
   double mollified = 0.0, total = 0.0;

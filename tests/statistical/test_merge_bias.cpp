@@ -51,18 +51,18 @@ TEST(MergeBias, BpmMeetsTheBlurOfItsShrinkingDiscs) {
   auto scene = load("single_plane_point.json");
   const PointLitPlane p = pointLitPlane(*scene);
   RenderSettings settings = scene->render;
-  settings.ppm.radius = 1.0f;
-  settings.ppm.photonsPerPass = 256;
+  settings.vcm.radius = 1.0f;
+  settings.vcm.photonsPerPass = 256;
   // The prediction blurs in space only: a negligible wavelength kernel keeps the own-wavelength
   // merges through the elastic lobe from blurring in wavelength too.
-  settings.ppm.bandwidth = 0.01f;
+  settings.vcm.bandwidth = 0.01f;
   const Vec3 exact = exactMeanXyz(p);
   for (int passes : {4, 64}) {
     // Every camera sample and light subpath of a pass shares its lanes and keeps the same one where
     // they end (docs/bdpt-mis.md §10), so a few passes see few wavelengths: more batches there.
     const Measured got = measure(*scene, settings, passes, passes == 4 ? 64 : 16);
-    const Vec3 blurred = mergedMeanXyz(p, settings.ppm.radius, settings.ppm.alpha, passes);
-    const Vec3 fixedRadius = mergedMeanXyz(p, settings.ppm.radius, 1.0f, passes);  // α = 1: r_i = r_1
+    const Vec3 blurred = mergedMeanXyz(p, settings.vcm.radius, settings.vcm.alpha, passes);
+    const Vec3 fixedRadius = mergedMeanXyz(p, settings.vcm.radius, 1.0f, passes);  // α = 1: r_i = r_1
     for (int c = 0; c < 3; ++c) {
       const BatchStats& s = got.s[c];
       SCOPED_TRACE(std::to_string(passes) + " passes, channel " + std::string(1, "XYZ"[c]));

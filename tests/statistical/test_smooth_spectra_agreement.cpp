@@ -30,8 +30,8 @@ constexpr int kRes = 16, kRegions = 2;  // 2×2 regions of a 16×16 image
 std::vector<test::BatchStats> estimate(const Scene& scene, const std::string& name, int spp, int batches) {
   RenderSettings settings = scene.render;
   // Vertex merging: its defaults scale with the pixel count, far too coarse for 16×16 pixels.
-  settings.ppm.photonsPerPass = 10000;
-  settings.ppm.radius = 0.02f;
+  settings.vcm.photonsPerPass = 10000;
+  settings.vcm.radius = 0.02f;
   if (name != "lt") settings.wavelengths.sensor = parseWavelengthSpec("mix:cmf,uniform");
   if (name != "pt" && name != "bdpt-shared") settings.wavelengths.light = parseWavelengthSpec("mix:light,uniform");
   const std::unique_ptr<Integrator> integrator = test::makeTestIntegrator(name, scene, settings);
@@ -77,7 +77,7 @@ TEST(SmoothSpectraStrategies, UnweightedStrategiesOfTheSamePathsAgree) {
   RenderSettings settings = scene->render;
   settings.wavelengths.sensor = parseWavelengthSpec("mix:cmf,uniform");
   settings.wavelengths.light = parseWavelengthSpec("mix:light,uniform");
-  settings.bdptFamilies = BdptFamilies::Both;  // every strategy of both families, whatever a pilot would choose
+  settings.bdpt.families = BdptFamilies::Both;  // every strategy of both families, whatever a pilot would choose
   const std::unique_ptr<Integrator> bdpt = makeIntegrator("bdpt", *scene, settings);
   const std::vector<std::vector<std::string>> groups = {{"s0_t3", "s1_t2", "s2_t1_own"}, {"s0_t4", "s1_t3", "s3_t1_own"}};
   std::map<std::string, std::vector<std::vector<double>>> sums;  // strategy → region·3 + channel → batches

@@ -32,7 +32,7 @@ TEST(Vcm, DefaultsComeFromTheScene) {
   EXPECT_GT(vcm.radius(0), 0.2 * onePerPath);
   EXPECT_NEAR(vcm.radius(99) / vcm.radius(0), std::sqrt(progressiveRadiusSquared(1.0f, 2.0f / 3.0f, 100)), 1e-6);
   RenderSettings s = scene->render;
-  s.ppm.radius = 0.05f;  // render/ppm/radius: the first pass's, as given
+  s.vcm.radius = 0.05f;  // render/vcm/radius: the first pass's, as given
   EXPECT_FLOAT_EQ(Vcm(*scene, s, Vcm::Parts::Merges).radius(0), 0.05f);
   EXPECT_EQ(vcm.name(), "vcm");
   EXPECT_EQ(makeIntegrator("vc", *scene, scene->render)->name(), "vc");
@@ -45,17 +45,17 @@ TEST(Vcm, RefusesWhatItCannotDo) {
   s.heroWavelengths = bidir::kLightVertexLanes + 1;  // a light vertex keeps 4 lanes
   EXPECT_THROW(makeIntegrator("vcm", *scene, s), std::invalid_argument);
   s = scene->render;
-  s.ppm.alpha = 0.3f;  // the kernel in wavelength needs α > 1/3
+  s.vcm.alpha = 0.3f;  // the kernel in wavelength needs α > 1/3
   EXPECT_THROW(makeIntegrator("bpm", *scene, s), std::invalid_argument);
   s = scene->render;
-  s.ppm.radius = -1.0f;
+  s.vcm.radius = -1.0f;
   EXPECT_THROW(makeIntegrator("vc", *scene, s), std::invalid_argument);
 }
 
 TEST(Vcm, MemoryLimitIsCheckedAsTheLightVerticesAccumulate) {
   auto scene = load("furnace_fluorescent.json");
   RenderSettings s = scene->render;
-  s.ppm.photonsPerPass = 3000;
+  s.vcm.photonsPerPass = 3000;
   s.memoryLimit = 2000 * kBytesPerLightVertex;  // a furnace keeps several vertices per subpath
   const std::unique_ptr<Integrator> bpm = makeIntegrator("bpm", *scene, s);
   Film film(scene->camera.width(), scene->camera.height());
@@ -67,7 +67,7 @@ TEST(Vcm, MemoryLimitIsCheckedAsTheLightVerticesAccumulate) {
 TEST(Vcm, ImageDoesNotDependOnTheThreadCount) {
   auto scene = load("furnace_overlap.json");
   RenderSettings s = scene->render;
-  s.ppm.photonsPerPass = 5000;  // several chunks of light subpaths
+  s.vcm.photonsPerPass = 5000;  // several chunks of light subpaths
   for (const char* name : {"vcm", "vcm.bidirectional", "bpm"}) {  // vcm: its pilot's choice as well
     const std::unique_ptr<Integrator> integrator = test::makeTestIntegrator(name, *scene, s);
     std::vector<Vec3> images[2];

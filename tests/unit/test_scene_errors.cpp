@@ -99,8 +99,9 @@ TEST_F(SceneLoader, BaseSceneLoadsWithDefaults) {
   EXPECT_EQ(scene->render.rrDepth, 3);
   EXPECT_EQ(scene->render.seed, 1u);
   EXPECT_EQ(scene->render.wavelengths.sensor.text, "cmf");
-  EXPECT_EQ(scene->render.mollify.bandwidth, 0.0f);
-  EXPECT_EQ(scene->render.mollify.alpha, 2.0f / 3.0f);
+  EXPECT_FALSE(scene->render.bdpt.mollify);
+  EXPECT_EQ(scene->render.bdpt.mollifyBandwidth, 0.0f);
+  EXPECT_EQ(scene->render.bdpt.mollifyAlpha, 2.0f / 3.0f);
   EXPECT_EQ(scene->camera.width(), 8);
   EXPECT_EQ(scene->camera.height(), 8);
   ASSERT_EQ(scene->shapes.size(), 1u);
@@ -376,10 +377,22 @@ TEST_F(SceneLoader, UnknownTypes) {
               "/materials/white/reflectance/type", "unknown spectrum type 'hsv'");
   expectError([](json& j) { j["render"] = {{"sensor_sampling", "random"}}; }, "/render/sensor_sampling",
               "unknown kind 'random'");
-  expectError([](json& j) { j["render"] = {{"mollify", {{"alpha", 1.0}}}}; }, "/render/mollify/alpha", "must be in (0, 1)");
-  expectError([](json& j) { j["render"] = {{"mollify", {{"bandwidth", -2}}}}; }, "/render/mollify/bandwidth",
+  expectError([](json& j) { j["render"] = {{"bdpt", {{"mollify_alpha", 1.0}}}}; }, "/render/bdpt/mollify_alpha",
+              "must be in (0, 1)");
+  expectError([](json& j) { j["render"] = {{"bdpt", {{"mollify_bandwidth", -2}}}}; }, "/render/bdpt/mollify_bandwidth",
               "must not be negative");
-  expectError([](json& j) { j["render"] = {{"mollify", {{"h", 2}}}}; }, "/render/mollify/h", "unknown field");
+  expectError([](json& j) { j["render"] = {{"bdpt", {{"mollify", true}}}}; }, "/render/bdpt/mollify",
+              "needs render/bdpt/families \"own\"");
+  expectError([](json& j) { j["render"] = {{"bdpt", {{"h", 2}}}}; }, "/render/bdpt/h", "unknown field");
+  expectError([](json& j) { j["render"] = {{"vcm", {{"alpha", 0.3}}}}; }, "/render/vcm/alpha", "must be in (1/3, 1)");
+  expectError([](json& j) { j["render"] = {{"vcm", {{"photons_per_pass", -1}}}}; }, "/render/vcm/photons_per_pass",
+              "must not be negative");
+  // Where the integrators' settings were before they had objects of their own.
+  expectError([](json& j) { j["render"] = {{"mollify", {{"alpha", 0.5}}}}; }, "/render/mollify",
+              "is now render/bdpt/mollify");
+  expectError([](json& j) { j["render"] = {{"bdpt_families", "own"}}; }, "/render/bdpt_families",
+              "is now render/bdpt/families");
+  expectError([](json& j) { j["render"] = {{"vcm_paths", "camera"}}; }, "/render/vcm_paths", "is now render/vcm/paths");
   expectError([](json& j) { j["render"] = {{"ppm", {{"nee_wavelengths", "cmf*sun"}}}}; }, "/render/ppm/nee_wavelengths",
               "expected \"cmf*light\", \"camera\" or a wavelength strategy");
   expectError([](json& j) { j["render"] = {{"ppm", {{"nee_wavelengths", "ms-power:cmf,light"}}}}; },
@@ -392,9 +405,9 @@ TEST_F(SceneLoader, UnknownTypes) {
               "must be in [1, 16]");
   expectError([](json& j) { j["render"] = {{"fluorescent_lanes", "sideways"}}; }, "/render/fluorescent_lanes",
               "'sideways' is not what lanes do at fluorescent events (through, end)");
-  expectError([](json& j) { j["render"] = {{"bdpt_families", "neither"}}; }, "/render/bdpt_families",
+  expectError([](json& j) { j["render"] = {{"bdpt", {{"families", "neither"}}}}; }, "/render/bdpt/families",
               "'neither' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
-  expectError([](json& j) { j["render"] = {{"vcm_paths", "light"}}; }, "/render/vcm_paths",
+  expectError([](json& j) { j["render"] = {{"vcm", {{"paths", "light"}}}}; }, "/render/vcm/paths",
               "'light' is not a choice of vcm's subpaths (auto, bidirectional, gather, camera)");
 }
 

@@ -89,7 +89,7 @@ std::unique_ptr<Scene> smallScene(const char* file, int res) {
 
 VcmPaths pilotChoice(const Scene& scene) {
   RenderSettings settings = scene.render;
-  settings.vcmPaths = VcmPaths::Auto;
+  settings.vcm.paths = VcmPaths::Auto;
   const std::unique_ptr<Integrator> in = makeIntegrator("vcm", scene, settings);
   RayCounter rays;
   return dynamic_cast<const Vcm&>(*in).pilotChoice(scene, 1, rays);
@@ -128,11 +128,11 @@ TEST(VcmPaths, CameraPathsAloneArePt) {
   const auto scene = smallScene("scenes/cornell_fluorescent.json", 24);
   RenderSettings settings = scene->render;
   const std::vector<Vec3> pt = image(*scene, "pt", settings, nullptr);
-  settings.vcmPaths = VcmPaths::Camera;
+  settings.vcm.paths = VcmPaths::Camera;
   RenderStats fixed, chosen;
   EXPECT_EQ(image(*scene, "vcm", settings, &fixed), pt);
   EXPECT_EQ(fixed.choices, "paths: camera");
-  settings.vcmPaths = VcmPaths::Auto;
+  settings.vcm.paths = VcmPaths::Auto;
   EXPECT_EQ(image(*scene, "vcm", settings, &chosen), pt);
   EXPECT_EQ(chosen.choices.rfind("paths: camera (pilot: relative variance per sample and cost per sample in rays: "
                                  "bidirectional ",
@@ -146,9 +146,9 @@ TEST(VcmPaths, CameraPathsAloneArePt) {
 TEST(VcmPaths, FixedOrHalvesDecideNothing) {
   const auto scene = smallScene("scenes/uv_caustic.json", 16);
   RenderSettings settings = scene->render;
-  settings.vcmPaths = VcmPaths::Bidirectional;
+  settings.vcm.paths = VcmPaths::Bidirectional;
   EXPECT_EQ(makeIntegrator("vcm", *scene, settings)->choices(), "");
-  settings.vcmPaths = VcmPaths::Auto;
+  settings.vcm.paths = VcmPaths::Auto;
   EXPECT_EQ(makeIntegrator("vc", *scene, settings)->choices(), "");
   EXPECT_EQ(makeIntegrator("bpm", *scene, settings)->choices(), "");
   RenderStats st;

@@ -294,7 +294,7 @@ TEST(WavelengthStrategy, RejectsStrategiesThatWouldBeBiasedOrDoNotApply) {
   expectStrategyError([&] { makeIntegrator("bdpt", *scene, with("cmf", "uniform", "light")); },
                       WavelengthSite::Fluorescence, "does not apply to the integrator bdpt");
   expectStrategyError([&] { makeIntegrator("bdpt-shared", *scene, with("cmf", "material", "uniform")); },
-                      WavelengthSite::LightStart, "does not apply to the integrator bdpt-shared");
+                      WavelengthSite::LightStart, "does not apply to the integrator bdpt with families \"shared\"");
   expectStrategyError([&] { makeIntegrator("bdpt", *scene, with("ms-balance:cmf,uniform", "material", "light")); },
                       WavelengthSite::Sensor, "needs one density");
   expectStrategyError([&] { makeIntegrator("ppm", *scene, with("cmf", "material", "os-power:light,uniform")); },
