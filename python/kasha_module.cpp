@@ -24,9 +24,10 @@ using kasha::python::PyScene;
 
 namespace {
 
-py::dict readExr(const std::string& path, const py::object& memoryLimit) {
+py::dict readExr(const py::object& path, const py::object& memoryLimit) {
   py::dict out;
-  const kasha::ExrImage img = kasha::readExrImage(path, kasha::python::byteSize(memoryLimit, {"kasha.read_exr", "memory_limit"}));
+  const kasha::ExrImage img = kasha::readExrImage(kasha::python::filePath(path, {"kasha.read_exr", "path"}),
+                                                 kasha::python::byteSize(memoryLimit, {"kasha.read_exr", "memory_limit"}));
   out["xyz"] = kasha::python::xyzArray(img.xyz);
   if (!img.spectral.wavelengths.empty()) {
     const kasha::SpectralImage& s = img.spectral;
@@ -78,12 +79,21 @@ PYBIND11_MODULE(kasha, m) {
       "`.result` is the partial result (every pixel has the same number of samples).";
 
   py::class_<PyScene>(m, "Scene", "A scene in kasha's JSON format (docs/scene-format.md), editable before each render.")
-      .def(py::init(&PyScene::fromFile), py::arg("path"),
+      .def(py::init([](const py::object& path) { return PyScene::fromFile(kasha::python::filePath(path, {"kasha.Scene", "path"})); }),
+           py::arg("path"),
            "Loads the scene file at `path` (JSON). Errors (a missing file, malformed JSON) raise kasha.InputError; "
            "the scene's contents are checked when it is rendered.")
-      .def_static("from_dict", &PyScene::fromDict, py::arg("scene"), py::arg("base_dir") = ".",
+      .def_static(
+          "from_dict",
+          [](const py::object& scene, const py::object& baseDir) {
+            if (!py::isinstance<py::dict>(scene)) kasha::python::refuseType({"Scene.from_dict", "scene"}, "a dict", scene);
+            return PyScene::fromDict(scene.cast<py::dict>(), kasha::python::filePath(baseDir, {"Scene.from_dict", "base_dir"}));
+          },
+          py::arg("scene"), py::arg("base_dir") = ".",
                   "A scene from a dict in the JSON scene format; relative file names start from `base_dir`.")
-      .def("get", &PyScene::get, py::arg("pointer"),
+      .def(
+          "get", [](const PyScene& s, const py::object& pointer) { return s.get(kasha::python::text(pointer, {"Scene.get", "pointer"})); },
+          py::arg("pointer"),
            "The value at a JSON pointer, e.g. scene.get('/materials/dye/c'); KeyError if there is none.")
       .def(
           "set",
@@ -106,7 +116,10 @@ PYBIND11_MODULE(kasha, m) {
           },
           py::arg("pointer"), py::arg("wavelengths"), py::arg("values"),
           "Sets a spectrum (e.g. '/materials/dye/absorption') to a table of (wavelength in nm, value).")
-      .def("spectrum", &PyScene::spectrum, py::arg("pointer"),
+      .def(
+          "spectrum",
+          [](const PyScene& s, const py::object& pointer) { return s.spectrum(kasha::python::text(pointer, {"Scene.spectrum", "pointer"})); },
+          py::arg("pointer"),
            "The spectrum at a JSON pointer (a number, a name, a table, a Gaussian, ...) as (wavelengths, values): "
            "the knots of the piecewise-linear function kasha renders with.")
       .def(
@@ -159,7 +172,7 @@ PYBIND11_MODULE(kasha, m) {
         if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
           kasha::python::refuseType(arg("progress"), "a callable or None", progress);
         r.progress = progress;
-        r.output = kasha::python::text(output, arg("output"));
+        r.output = kasha::python::filePath(output, arg("output"));
         r.settings = settings;
         return kasha::python::render(scene.cast<PyScene&>(), r, interrupted);
       },

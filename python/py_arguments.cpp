@@ -57,6 +57,16 @@ std::string text(const py::handle& value, const Argument& arg) {
   return value.cast<std::string>();
 }
 
+std::string filePath(const py::handle& value, const Argument& arg) {
+  if (PyObject* fs = PyOS_FSPath(value.ptr())) {  // the str itself, or what __fspath__ returns
+    const py::object name = py::reinterpret_steal<py::object>(fs);
+    if (py::isinstance<py::str>(name)) return name.cast<std::string>();
+  } else {
+    PyErr_Clear();
+  }
+  refuseType(arg, "a file name (str or os.PathLike)", value);
+}
+
 bool flag(const py::handle& value, const Argument& arg) {
   if (!PyBool_Check(value.ptr())) refuseType(arg, "True or False", value);
   return value.ptr() == Py_True;

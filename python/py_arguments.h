@@ -25,6 +25,8 @@ double number(const pybind11::handle& value, const Argument& arg, const NumberRu
 int integer(const pybind11::handle& value, const Argument& arg, const NumberRule& rule);
 // A str.
 std::string text(const pybind11::handle& value, const Argument& arg);
+// A file name: a str or an os.PathLike naming one (pathlib.Path).
+std::string filePath(const pybind11::handle& value, const Argument& arg);
 // True or False.
 bool flag(const pybind11::handle& value, const Argument& arg);
 // A byte size such as "512M" or "8G" (core/memory_budget.h).

@@ -60,7 +60,7 @@ def refused(call, *fragments):
     ("memory_limit", 8, "expected a string, got int 8"),
     ("integrator", 3, "expected a string, got int 3"),
     ("integrator", "nope", "unknown integrator 'nope'"),
-    ("output", 1, "expected a string"),
+    ("output", 1, "expected a file name (str or os.PathLike), got int 1"),
     ("progress", 5, "expected a callable or None, got int 5"),
 ])
 def test_render_arguments_are_checked(name, value, reason):
@@ -78,6 +78,19 @@ def test_render_object_keywords_are_checked(name, value):
 
 def test_the_scene_argument_is_checked():
     refused(lambda: kasha.render("scene.json", spp=1), "kasha.render: scene: expected a kasha.Scene, got str")
+
+
+def test_names_and_dicts_are_checked(tmp_path):
+    refused(lambda: kasha.Scene(5), "kasha.Scene: path: expected a file name (str or os.PathLike), got int 5")
+    refused(lambda: kasha.Scene.from_dict([1]), "Scene.from_dict: scene: expected a dict, got list [1]")
+    refused(lambda: kasha.Scene.from_dict({}, base_dir=None), "Scene.from_dict: base_dir: expected a file name")
+    refused(lambda: tiny_scene().get(b"/render"), "Scene.get: pointer: expected a string, got bytes")
+    refused(lambda: tiny_scene().spectrum(None), "Scene.spectrum: pointer: expected a string")
+    refused(lambda: kasha.read_exr(3.0), "kasha.read_exr: path: expected a file name")
+    # os.PathLike names are file names like str ones.
+    path = tmp_path / "scene.json"
+    path.write_text('{"render": {"spp": 1}}')
+    assert kasha.Scene(path).get("/render/spp") == 1
 
 
 def test_numbers_of_any_python_kind_within_the_rules_are_taken():
