@@ -5,7 +5,6 @@
 
 #include "core/error.h"
 #include "core/image_output.h"
-#include "core/memory_budget.h"
 #include "core/output_file.h"
 #include "integrators/photon_mapping/direct_light_wavelengths.h"
 #include "integrators/render_job.h"
@@ -38,7 +37,6 @@ nlohmann::json withSettings(const PyScene& scene, const std::vector<RenderSettin
 // The render job of `scene`; what it refuses raises InputError naming the argument or the render
 // object's setting (a keyword argument or the scene's own) that caused it.
 std::unique_ptr<RenderJob> makeJob(const Scene& scene, RenderJobOptions o) {
-  const std::string integrator = o.integrator;
   try {
     return std::make_unique<RenderJob>(scene, std::move(o));
   } catch (const RenderJobError& e) {

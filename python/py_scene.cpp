@@ -2,8 +2,11 @@
 
 #include <pybind11/numpy.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/json_parse.h"
@@ -66,7 +69,7 @@ void requireWithinLists(const nlohmann::json& json, nlohmann::json::json_pointer
     const size_t index = t->size() > 18 ? SIZE_MAX : std::stoull(*t);
     if (index > size)
       throw InputError(where, pointer, "index " + *t + " is past the end of a list of " + std::to_string(size) +
-                                           " elements (at most " + std::to_string(size) + " appends one)");
+                                           " (index " + std::to_string(size) + " or '-' appends one)");
     node = index < size ? &(*node)[index] : nullptr;
   }
 }
