@@ -28,6 +28,7 @@
 #include "cli/option_checks.h"
 #include "cli/render_command.h"
 #include "core/error.h"
+#include "integrators/render_numbers.h"
 
 int main(int argc, char** argv) {
   using namespace kasha;
@@ -45,16 +46,16 @@ int main(int argc, char** argv) {
   compare->add_option("scene", ca.scene, "Scene file (JSON)")->required();
   compare->add_option("--reference", ca.reference, "Reference OpenEXR (rendered first if it does not exist)")->required();
   compare->add_option("--integrators", ca.integrators, "Comma-separated integrators")->delimiter(',')->check(kIntegratorName);
-  compare->add_option("--time", ca.time, "Seconds per integrator")->check(numberCheck(Sign::NonNegative, false));
-  compare->add_option("--spp", ca.spp, "Samples per pixel per integrator")->check(numberCheck(Sign::Positive, true));
+  compare->add_option("--time", ca.time, "Seconds per integrator")->check(numberCheck(render_numbers::kTime));
+  compare->add_option("--spp", ca.spp, "Samples per pixel per integrator")->check(numberCheck(render_numbers::kSpp));
   compare->add_option("--reference-time", ca.referenceTime, "Seconds for the reference (default 60)")
       ->check(numberCheck(Sign::Positive, false));
   compare->add_option("--reference-integrator", ca.referenceIntegrator, "Integrator for the reference (default pt)")
       ->check(kIntegratorName);
   compare->add_option("--csv", ca.csv, "Write the table as CSV");
-  compare->add_option("--seed", ca.seed, "Random seed (0 to 2147483647)")->check(numberCheck(Sign::NonNegative, true, kMaxSeed));
+  compare->add_option("--seed", ca.seed, "Random seed (0 to 2147483647)")->check(numberCheck(render_numbers::kSeed));
   compare->add_option("--threads", ca.threads, "Worker threads (default: all cores)")
-      ->check(numberCheck(Sign::NonNegative, true));
+      ->check(numberCheck(render_numbers::kThreads));
 
   MetricsArgs mt;
   CLI::App* metrics = app.add_subcommand("metrics", "Print the RMSE and relMSE (XYZ) of a render against a reference as JSON");

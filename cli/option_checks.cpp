@@ -1,7 +1,6 @@
 #include "cli/option_checks.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -10,25 +9,18 @@
 
 namespace kasha {
 
-CLI::Validator numberCheck(Sign sign, bool integer, double max) {
+CLI::Validator numberCheck(const NumberRule& rule) {
   return CLI::Validator(
       [=](std::string& v) {
         char* end = nullptr;
         const double d = std::strtod(v.c_str(), &end);
-        if (end == v.c_str() || *end != '\0' || !std::isfinite(d))
-          return "expected a finite " + std::string(integer ? "integer" : "number") + ", got '" + v + "'";
-        if (integer && d != std::floor(d)) return "expected an integer, got '" + v + "'";
-        if (sign == Sign::NonNegative && d < 0.0) return "must not be negative, got '" + v + "'";
-        if (sign == Sign::Positive && !(d > 0.0)) return "must be positive, got '" + v + "'";
-        if (d > max) {
-          char limit[32];
-          std::snprintf(limit, sizeof limit, "%.10g", max);
-          return "must be at most " + std::string(limit) + ", got '" + v + "'";
-        }
-        return std::string();
+        return numberProblem(end == v.c_str() || *end != '\0' ? NAN : d, v, rule);
       },
-      integer ? (sign == Sign::Positive ? "INT>0" : "INT>=0") : (sign == Sign::Positive ? "NUMBER>0" : sign == Sign::NonNegative ? "NUMBER>=0" : "NUMBER"));
+      rule.integer ? (rule.sign == Sign::Positive ? "INT>0" : "INT>=0")
+                   : (rule.sign == Sign::Positive ? "NUMBER>0" : rule.sign == Sign::NonNegative ? "NUMBER>=0" : "NUMBER"));
 }
+
+CLI::Validator numberCheck(Sign sign, bool integer, double max) { return numberCheck(NumberRule{sign, integer, max}); }
 
 const CLI::Validator kIntegratorName(
     [](std::string& v) {

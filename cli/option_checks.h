@@ -5,12 +5,13 @@
 
 #include <cmath>
 
+#include "core/number_check.h"
+
 namespace kasha {
 
-enum class Sign { Any, NonNegative, Positive };
+// A number keeping `rule` (the render's own in integrators/render_numbers.h).
+CLI::Validator numberCheck(const NumberRule& rule);
 CLI::Validator numberCheck(Sign sign, bool integer, double max = HUGE_VAL);
-// The largest seed a scene file's /render/seed (an int) can hold; the options allow the same.
-constexpr double kMaxSeed = 2147483647.0;
 // A value `parse` accepts; its std::invalid_argument is the message.
 CLI::Validator parseCheck(void (*parse)(const std::string&), const std::string& name);
 // One of integratorNames() (integrators/integrator_factory.h).

@@ -20,6 +20,7 @@
 #include "integrators/integrator_factory.h"
 #include "integrators/photon_mapping/direct_light_wavelengths.h"
 #include "integrators/render_job.h"
+#include "integrators/render_numbers.h"
 #include "scene/scene_loader.h"
 #include "scene/wavelength_strategy.h"
 
@@ -116,12 +117,12 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("-o,--output", a.output, "OpenEXR output (default: <scene name>.exr)");
   cmd->add_option("--png", a.png, "PNG output (default: beside the EXR)");
   cmd->add_flag("--no-png", a.noPng, "Do not write a PNG");
-  cmd->add_option("--spp", a.spp, "Samples per pixel (overrides the scene)")->check(numberCheck(Sign::Positive, true));
-  cmd->add_option("--time", a.time, "Time budget in seconds (whole passes)")->check(numberCheck(Sign::NonNegative, false));
+  cmd->add_option("--spp", a.spp, "Samples per pixel (overrides the scene)")->check(numberCheck(render_numbers::kSpp));
+  cmd->add_option("--time", a.time, "Time budget in seconds (whole passes)")->check(numberCheck(render_numbers::kTime));
   cmd->add_option("--seed", a.seed, "Random seed (0 to 2147483647, as in a scene file)")
-      ->check(numberCheck(Sign::NonNegative, true, kMaxSeed));
+      ->check(numberCheck(render_numbers::kSeed));
   cmd->add_option("--threads", a.threads, "Worker threads (default: all cores)")
-      ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 4096));
+      ->check(numberCheck(render_numbers::kThreads));
   cmd->add_option("--integrator", a.integrator,
                   "Integrator: pt | lt | bdpt (bidirectional; render/bdpt) | ppm (photon mapping; render/ppm) | "
                   "vcm (bdpt's connections and vertex merging; render/vcm) | vc (its connections) | bpm (its merges); "
@@ -132,7 +133,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_flag("--strategy-unweighted", a.strategyUnweighted, "With --strategy-images: also the unweighted images");
   cmd->add_option("--strategy-depth", a.strategyDepth,
                   "With --strategy-images: longest path (scattering events) with its own images; longer ones go to deeper.exr (default 4)")
-      ->check(numberCheck(Sign::NonNegative, true) & CLI::Range(0, 64));
+      ->check(numberCheck(render_numbers::kStrategyDepth));
   CLI::Option* bins = cmd->add_option("--spectral-bins", a.spectralBins,
                   "Also write the spectral radiance per nm in N equal bins of the scene's wavelength range "
                   "(S0.<nm> channels, Fichet et al. 2021 layout)")

@@ -27,6 +27,14 @@ std::string pixelName(size_t index, int width) {
   return "pixel (" + std::to_string(index % size_t(width)) + ", " + std::to_string(index / size_t(width)) + ")";
 }
 
+void requireFinitePixels(const XyzImage& image, const std::string& where, const std::string& problem) {
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const Vec3& p = image.pixels[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError(where, "", pixelName(i, image.width) + " " + problem);
+  }
+}
+
 XyzImage readExrXyz(const std::string& path, uint64_t memoryLimit) {
   ExrInput in(path, "image file");
   return readExrXyz(in, path, memoryLimit);
@@ -38,9 +46,7 @@ XyzImage readExrXyz(ExrInput& in, const std::string& path, uint64_t memoryLimit)
     if (!file.header().channels().findChannel(c)) {
       if (hasEmissiveChannels(in)) {
         XyzImage img = spectralToXyz(readSpectralExr(in, path, memoryLimit));
-        for (size_t i = 0; i < img.pixels.size(); ++i)  // finite values may still sum past FLT_MAX
-          if (!std::isfinite(img.pixels[i].x) || !std::isfinite(img.pixels[i].y) || !std::isfinite(img.pixels[i].z))
-            throw InputError(path, "", pixelName(i, img.width) + " integrates to a non-finite XYZ");
+        requireFinitePixels(img, path, "integrates to a non-finite XYZ");  // finite values may still sum past FLT_MAX
         return img;
       }
       throw InputError(path, c, "missing channel (not a kasha render with an XYZ layer, nor a spectral image with S0.* channels)");
@@ -64,11 +70,8 @@ XyzImage readExrXyz(ExrInput& in, const std::string& path, uint64_t memoryLimit)
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     img.pixels.resize(ch[0].size());
-    for (size_t i = 0; i < img.pixels.size(); ++i) {
-      img.pixels[i] = Vec3(ch[0][i], ch[1][i], ch[2][i]);
-      if (!std::isfinite(ch[0][i]) || !std::isfinite(ch[1][i]) || !std::isfinite(ch[2][i]))
-        throw InputError(path, "", pixelName(i, img.width) + " is not finite");
-    }
+    for (size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = Vec3(ch[0][i], ch[1][i], ch[2][i]);
+    requireFinitePixels(img, path);
     return img;
   } catch (const InputError&) {
     throw;

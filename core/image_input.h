@@ -25,6 +25,10 @@ void requireImageMemory(const std::string& path, uint64_t width, uint64_t height
 
 // "pixel (x, y)" for the row-major index of a pixel in an image `width` pixels wide (messages).
 std::string pixelName(size_t index, int width);
+// Throws InputError naming `where` and the first pixel with a non-finite X, Y or Z, e.g. "pixel
+// (3, 1) is not finite": images read back (`kasha metrics`, Python's kasha.metrics) are measured
+// only when every value is finite.
+void requireFinitePixels(const XyzImage& image, const std::string& where, const std::string& problem = "is not finite");
 
 class ExrInput;  // core/exr_input.h
 

@@ -13,6 +13,8 @@
 #include "core/spectral_exr.h"
 #include "integrators/comparison.h"
 #include "integrators/integrator_factory.h"
+#include "integrators/render_numbers.h"
+#include "python/py_arguments.h"
 #include "python/py_arrays.h"
 #include "python/py_render.h"
 #include "python/py_scene.h"
@@ -22,11 +24,10 @@ using kasha::python::PyScene;
 
 namespace {
 
-using Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
-
-py::dict readExr(const std::string& path, const std::string& memoryLimit) {
+py::dict readExr(const py::object& path, const py::object& memoryLimit) {
   py::dict out;
-  const kasha::ExrImage img = kasha::readExrImage(path, kasha::parseByteSize(memoryLimit));
+  const kasha::ExrImage img = kasha::readExrImage(kasha::python::filePath(path, {"kasha.read_exr", "path"}),
+                                                 kasha::python::byteSize(memoryLimit, {"kasha.read_exr", "memory_limit"}));
   out["xyz"] = kasha::python::xyzArray(img.xyz);
   if (!img.spectral.wavelengths.empty()) {
     const kasha::SpectralImage& s = img.spectral;
@@ -36,13 +37,31 @@ py::dict readExr(const std::string& path, const std::string& memoryLimit) {
   return out;
 }
 
-py::array_t<float> errorMap(const Array& image, const Array& reference) {
-  const kasha::XyzImage a = kasha::python::toXyzImage(image, "image"), r = kasha::python::toXyzImage(reference, "reference");
+// The image and the reference of kasha.metrics or kasha.error_map (`function`), checked as
+// `kasha metrics` checks its files: the same size, at least one pixel, every value finite.
+std::pair<kasha::XyzImage, kasha::XyzImage> imagePair(const py::object& image, const py::object& reference,
+                                                      const char* function) {
+  kasha::XyzImage a = kasha::python::toXyzImage(image, {function, "image"});
+  kasha::XyzImage r = kasha::python::toXyzImage(reference, {function, "reference"});
+  if (a.width != r.width || a.height != r.height)
+    throw kasha::InputError(function, "reference", "is " + std::to_string(r.height) + "x" + std::to_string(r.width) +
+                                                       " pixels, the image " + std::to_string(a.height) + "x" +
+                                                       std::to_string(a.width));
+  return {std::move(a), std::move(r)};
+}
+
+py::array_t<float> errorMap(const py::object& image, const py::object& reference) {
+  const auto [a, r] = imagePair(image, reference, "kasha.error_map");
   const std::vector<float> map = kasha::relativeErrorMap(a, r);
   py::array_t<float> out({py::ssize_t(a.height), py::ssize_t(a.width)});
   std::copy(map.begin(), map.end(), out.mutable_data());
   return out;
 }
+
+// Keyword arguments of kasha.render that RenderJobOptions takes as they are (0: none), beside the
+// ones the command line shares (integrators/render_numbers.h).
+constexpr kasha::NumberRule kSpectralBins{kasha::Sign::NonNegative, true, kasha::SpectralBins::kMaxBins};
+constexpr kasha::NumberRule kSpectralStep{kasha::Sign::NonNegative, false};
 
 }  // namespace
 
@@ -60,32 +79,53 @@ PYBIND11_MODULE(kasha, m) {
       "`.result` is the partial result (every pixel has the same number of samples).";
 
   py::class_<PyScene>(m, "Scene", "A scene in kasha's JSON format (docs/scene-format.md), editable before each render.")
-      .def(py::init(&PyScene::fromFile), py::arg("path"),
+      .def(py::init([](const py::object& path) { return PyScene::fromFile(kasha::python::filePath(path, {"kasha.Scene", "path"})); }),
+           py::arg("path"),
            "Loads the scene file at `path` (JSON). Errors (a missing file, malformed JSON) raise kasha.InputError; "
            "the scene's contents are checked when it is rendered.")
-      .def_static("from_dict", &PyScene::fromDict, py::arg("scene"), py::arg("base_dir") = ".",
+      .def_static(
+          "from_dict",
+          [](const py::object& scene, const py::object& baseDir) {
+            if (!py::isinstance<py::dict>(scene)) kasha::python::refuseType({"Scene.from_dict", "scene"}, "a dict", scene);
+            return PyScene::fromDict(scene.cast<py::dict>(), kasha::python::filePath(baseDir, {"Scene.from_dict", "base_dir"}));
+          },
+          py::arg("scene"), py::arg("base_dir") = ".",
                   "A scene from a dict in the JSON scene format; relative file names start from `base_dir`.")
-      .def("get", &PyScene::get, py::arg("pointer"),
+      .def(
+          "get", [](const PyScene& s, const py::object& pointer) { return s.get(kasha::python::text(pointer, {"Scene.get", "pointer"})); },
+          py::arg("pointer"),
            "The value at a JSON pointer, e.g. scene.get('/materials/dye/c'); KeyError if there is none.")
-      .def("set", &PyScene::set, py::arg("pointer"), py::arg("value"),
-           "Sets the value at a JSON pointer, e.g. scene.set('/materials/dye/c', 0.5) or "
-           "scene.set('/render/sensor_sampling', 'uniform'). Checked (and the scene reloaded) at the next render.")
+      .def(
+          "set",
+          [](PyScene& s, const py::object& pointer, const py::object& value) {
+            s.set(kasha::python::text(pointer, {"Scene.set", "pointer"}), value);
+          },
+          py::arg("pointer"), py::arg("value"),
+          "Sets the value at a JSON pointer, e.g. scene.set('/materials/dye/c', 0.5) or "
+          "scene.set('/render/sensor_sampling', 'uniform'); a list grows by one element at its end (its index or "
+          "'-'). Checked (and the scene reloaded) at the next render; renders already running are not affected. "
+          "An index past a list's end, a malformed pointer or a value that is not JSON (NaN) raise kasha.InputError.")
       .def(
           "set_spectrum",
-          [](PyScene& s, const std::string& pointer, const Array& wavelengths, const Array& values) {
-            nlohmann::json t = {{"type", "tabulated"},
-                                {"wavelengths", kasha::python::toJson(wavelengths)},
-                                {"values", kasha::python::toJson(values)}};
-            s.set(pointer, kasha::python::fromJson(t));
+          [](PyScene& s, const py::object& pointer, const py::object& wavelengths, const py::object& values) {
+            py::dict t;
+            t["type"] = "tabulated";
+            t["wavelengths"] = wavelengths;
+            t["values"] = values;
+            s.set(kasha::python::text(pointer, {"Scene.set_spectrum", "pointer"}), t);
           },
           py::arg("pointer"), py::arg("wavelengths"), py::arg("values"),
           "Sets a spectrum (e.g. '/materials/dye/absorption') to a table of (wavelength in nm, value).")
-      .def("spectrum", &PyScene::spectrum, py::arg("pointer"),
+      .def(
+          "spectrum",
+          [](const PyScene& s, const py::object& pointer) { return s.spectrum(kasha::python::text(pointer, {"Scene.spectrum", "pointer"})); },
+          py::arg("pointer"),
            "The spectrum at a JSON pointer (a number, a name, a table, a Gaussian, ...) as (wavelengths, values): "
            "the knots of the piecewise-linear function kasha renders with.")
       .def(
           "set_material",
-          [](PyScene& s, const std::string& name, const py::kwargs& params) {
+          [](PyScene& s, const py::object& material, const py::kwargs& params) {
+            const std::string name = kasha::python::text(material, {"Scene.set_material", "name"});
             if (!s.json().contains("materials") || !s.json()["materials"].contains(name))
               throw kasha::InputError(s.path(), "/materials/" + name, "no such material");
             for (const auto& [key, value] : params) s.set("/materials/" + name + "/" + py::str(key).cast<std::string>(),
@@ -109,23 +149,32 @@ PYBIND11_MODULE(kasha, m) {
 
   m.def(
       "render",
-      [](PyScene& scene, const std::string& integrator, const py::object& spp, const py::object& time,
-         const py::object& seed, int threads, int spectralBins, float spectralStep, bool strategyImages,
-         int strategyDepth, const std::string& memoryLimit, const py::object& progress, const std::string& output,
+      [](const py::object& scene, const py::object& integrator, const py::object& spp, const py::object& time,
+         const py::object& seed, const py::object& threads, const py::object& spectralBins,
+         const py::object& spectralStep, const py::object& strategyImages, const py::object& strategyDepth,
+         const py::object& memoryLimit, const py::object& progress, const py::object& output,
          const py::kwargs& settings) {
+        namespace rn = kasha::render_numbers;
+        using kasha::python::integer, kasha::python::number;
+        const auto arg = [](const char* name) { return kasha::python::Argument{"kasha.render", name}; };
+        if (!py::isinstance<PyScene>(scene)) kasha::python::refuseType(arg("scene"), "a kasha.Scene", scene);
         kasha::python::RenderRequest r;
-        r.integrator = integrator;
-        r.spp = spp, r.time = time, r.seed = seed;
-        r.threads = threads;
-        r.spectralBins = spectralBins;
-        r.spectralStep = spectralStep;
-        r.strategyImages = strategyImages;
-        r.strategyDepth = strategyDepth;
-        r.memoryLimit = memoryLimit;
+        r.integrator = kasha::python::text(integrator, arg("integrator"));
+        if (!spp.is_none()) r.spp = integer(spp, arg("spp"), rn::kSpp);
+        if (!time.is_none()) r.time = number(time, arg("time"), rn::kTime);
+        if (!seed.is_none()) r.seed = integer(seed, arg("seed"), rn::kSeed);
+        r.threads = integer(threads, arg("threads"), rn::kThreads);
+        r.spectralBins = integer(spectralBins, arg("spectral_bins"), kSpectralBins);
+        r.spectralStep = float(number(spectralStep, arg("spectral_step"), kSpectralStep));
+        r.strategyImages = kasha::python::flag(strategyImages, arg("strategy_images"));
+        r.strategyDepth = integer(strategyDepth, arg("strategy_depth"), rn::kStrategyDepth);
+        r.memoryLimit = kasha::python::byteSize(memoryLimit, arg("memory_limit"));
+        if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+          kasha::python::refuseType(arg("progress"), "a callable or None", progress);
         r.progress = progress;
-        r.output = output;
+        r.output = kasha::python::filePath(output, arg("output"));
         r.settings = settings;
-        return kasha::python::render(scene, r, interrupted);
+        return kasha::python::render(scene.cast<PyScene&>(), r, interrupted);
       },
       py::arg("scene"), py::arg("integrator") = "pt", py::arg("spp") = py::none(), py::arg("time") = py::none(),
       py::arg("seed") = py::none(), py::arg("threads") = 0, py::arg("spectral_bins") = 0,
@@ -142,14 +191,18 @@ PYBIND11_MODULE(kasha, m) {
       "`output` also writes an OpenEXR (with the spectral bins).\n\n"
       "The GIL is released while rendering. `progress(spp, seconds, estimated_total_seconds)` is called after "
       "every pass. Ctrl-C stops after the current pass and raises kasha.RenderInterrupted (a KeyboardInterrupt) "
-      "whose `result` is the partial result. Bad scenes raise kasha.InputError with kasha's message (file, "
-      "JSON pointer, reason); memory beyond `memory_limit` raises kasha.MemoryLimitError.");
+      "whose `result` is the partial result. The render is of the scene as it was when it started: edits and "
+      "other renders of it (other threads, the progress callback) affect only later renders.\n\n"
+      "Bad scenes raise kasha.InputError with kasha's message (file, JSON pointer, reason), and so do bad "
+      "arguments, by the command line's rules (NaN, infinite, negative or fractional spp, time, seed, threads, "
+      "strategy_depth, ...: 'kasha.render: spp: must be positive, got -3'); memory beyond `memory_limit` raises "
+      "kasha.MemoryLimitError.");
 
   m.def(
       "metrics",
-      [](const Array& image, const Array& reference) {
-        const kasha::ImageError e = kasha::compareImages(kasha::python::toXyzImage(image, "image"),
-                                                         kasha::python::toXyzImage(reference, "reference"));
+      [](const py::object& image, const py::object& reference) {
+        const auto [a, r] = imagePair(image, reference, "kasha.metrics");
+        const kasha::ImageError e = kasha::compareImages(a, r);
         py::dict d;
         d["rmse"] = e.rmse;
         d["relmse"] = e.relMse;
@@ -157,7 +210,8 @@ PYBIND11_MODULE(kasha, m) {
       },
       py::arg("image"), py::arg("reference"),
       "RMSE and relMSE (mean of (x - ref)^2 / (ref^2 + 0.01)) over X, Y, Z of every pixel of two XYZ arrays of "
-      "shape (height, width, 3), as `kasha metrics` computes them.");
+      "shape (height, width, 3), as `kasha metrics` computes them. Arrays of other shapes or sizes, empty ones and "
+      "non-finite values raise kasha.InputError.");
   m.def("error_map", &errorMap, py::arg("image"), py::arg("reference"),
         "Per-pixel relative squared error (height, width), averaged over X, Y, Z; its mean is metrics()['relmse'].");
   m.def("read_exr", &readExr, py::arg("path"), py::arg("memory_limit") = "8G",

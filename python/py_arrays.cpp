@@ -1,6 +1,10 @@
 #include "python/py_arrays.h"
 
+#include <climits>
+#include <string>
+
 #include "core/color.h"
+#include "core/error.h"
 
 namespace py = pybind11;
 
@@ -55,9 +59,15 @@ py::array_t<float> spectralArray(const SpectralImage& image) {
   return a;
 }
 
-XyzImage toXyzImage(const py::array_t<float, py::array::c_style | py::array::forcecast>& a, const char* what) {
-  if (a.ndim() != 3 || a.shape(2) != 3)
-    throw py::value_error(std::string(what) + ": expected an XYZ array of shape (height, width, 3)");
+XyzImage toXyzImage(const py::handle& value, const Argument& arg) {
+  using Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
+  const Array a = Array::ensure(value);  // null if numpy cannot make float32 of it
+  const std::string where = std::string(arg.function) + ": " + arg.name;
+  if (!a || a.ndim() != 3 || a.shape(2) != 3)
+    throw InputError(where, "", "expected an XYZ array of shape (height, width, 3)");
+  const std::string size = std::to_string(a.shape(0)) + "x" + std::to_string(a.shape(1));
+  if (a.shape(0) == 0 || a.shape(1) == 0) throw InputError(where, "", "is empty (" + size + " pixels)");
+  if (a.shape(0) > INT_MAX || a.shape(1) > INT_MAX) throw InputError(where, "", size + " pixels are more than an image holds");
   XyzImage img;
   img.height = int(a.shape(0));
   img.width = int(a.shape(1));
@@ -65,6 +75,7 @@ XyzImage toXyzImage(const py::array_t<float, py::array::c_style | py::array::for
   img.pixels.resize(size_t(img.width) * img.height);
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) img.pixels[size_t(y) * img.width + x] = Vec3(v(y, x, 0), v(y, x, 1), v(y, x, 2));
+  requireFinitePixels(img, where);
   return img;
 }
 

@@ -7,6 +7,7 @@
 #include "core/image_input.h"
 #include "core/spectral_exr.h"
 #include "core/spectral_film.h"
+#include "python/py_arguments.h"
 
 namespace kasha::python {
 
@@ -16,8 +17,8 @@ pybind11::array_t<float> xyzArray(const XyzImage& image);
 pybind11::array_t<float> rgbArray(const pybind11::array_t<float>& xyz);
 pybind11::array_t<float> spectralArray(const SpectralFilm& film);
 pybind11::array_t<float> spectralArray(const SpectralImage& image);
-// A (height, width, 3) array as an XyzImage; ValueError naming `what` for any other shape.
-XyzImage toXyzImage(const pybind11::array_t<float, pybind11::array::c_style | pybind11::array::forcecast>& a,
-                    const char* what);
+// An array of shape (height, width, 3), at least one pixel, every value finite (read as float32), as
+// an XyzImage; anything else raises InputError naming `arg`.
+XyzImage toXyzImage(const pybind11::handle& value, const Argument& arg);
 
 }  // namespace kasha::python

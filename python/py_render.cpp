@@ -5,11 +5,13 @@
 
 #include "core/error.h"
 #include "core/image_output.h"
-#include "core/memory_budget.h"
 #include "core/output_file.h"
+#include "integrators/photon_mapping/direct_light_wavelengths.h"
 #include "integrators/render_job.h"
 #include "python/py_arrays.h"
 #include "scene/render_overrides.h"
+#include "scene/render_settings.h"
+#include "scene/wavelength_strategy.h"
 
 namespace py = pybind11;
 
@@ -23,13 +25,31 @@ nlohmann::json withSettings(const PyScene& scene, const std::vector<RenderSettin
   applyRenderSettings(j, set, scene.path());
   nlohmann::json& render = j["render"];
   if (!render.is_object()) render = nlohmann::json::object();
-  if (!r.spp.is_none()) render["spp"] = toJson(r.spp);
-  if (!r.time.is_none()) {
-    render["time"] = toJson(r.time);
-    if (r.spp.is_none()) render["spp"] = 1 << 30;
+  if (r.spp) render["spp"] = *r.spp;
+  if (r.time) {
+    render["time"] = *r.time;
+    if (!r.spp) render["spp"] = 1 << 30;
   }
-  if (!r.seed.is_none()) render["seed"] = toJson(r.seed);
+  if (r.seed) render["seed"] = *r.seed;
   return j;
+}
+
+// The render job of `scene`; what it refuses raises InputError naming the argument or the render
+// object's setting (a keyword argument or the scene's own) that caused it.
+std::unique_ptr<RenderJob> makeJob(const Scene& scene, RenderJobOptions o) {
+  try {
+    return std::make_unique<RenderJob>(scene, std::move(o));
+  } catch (const RenderJobError& e) {
+    throw InputError("kasha.render", e.setting, e.what());
+  } catch (const WavelengthStrategyError& e) {
+    throw InputError(scene.path, "/render/" + std::string(settingName(e.site())), e.what());
+  } catch (const PpmNeeWavelengthsError& e) {
+    throw InputError(scene.path, "/render/ppm/nee_wavelengths", e.what());
+  } catch (const FluorescentLanesError& e) {
+    throw InputError(scene.path, "/render/fluorescent_lanes", e.what());
+  } catch (const std::invalid_argument& e) {  // an unknown integrator, or settings it cannot take
+    throw InputError("kasha.render", "integrator", e.what());
+  }
 }
 
 py::array_t<float> binCentres(const SpectralBins& b) {
@@ -41,17 +61,18 @@ py::array_t<float> binCentres(const SpectralBins& b) {
 }  // namespace
 
 py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& interrupted) {
-  const uint64_t memoryLimit = parseByteSize(req.memoryLimit);
   std::vector<RenderSetting> set;  // the keyword arguments, keys of the render object
   for (const auto& [key, value] : req.settings) {
     const std::string k = py::str(key).cast<std::string>();
-    set.push_back({k, toJson(value), k});
+    set.push_back({k, toJson(value, "kasha.render", k), k});
   }
-  const Scene& scene = pyScene.load(withSettings(pyScene, set, req), memoryLimit);
+  // Held until the render ends: edits and other renders of pyScene meanwhile load scenes of their
+  // own and never free this one (py_scene.h).
+  const std::shared_ptr<const Scene> scene = pyScene.load(withSettings(pyScene, set, req), req.memoryLimit);
   RenderJobOptions o;
   o.integrator = req.integrator;
-  o.settings = scene.render;
-  o.settings.memoryLimit = memoryLimit;
+  o.settings = scene->render;
+  o.settings.memoryLimit = req.memoryLimit;
   for (const RenderSetting& s : set) o.setKeys.push_back(s.key);
   o.threads = req.threads;
   o.spectralBins = req.spectralBins;
@@ -81,12 +102,7 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
       stop.store(1);
     }
   };
-  std::unique_ptr<RenderJob> job;
-  try {
-    job = std::make_unique<RenderJob>(scene, std::move(o));
-  } catch (const RenderJobError& e) {
-    throw py::value_error(e.setting + ": " + e.what());
-  }
+  const std::unique_ptr<RenderJob> job = makeJob(*scene, std::move(o));
   // As on the command line, the output is checked before the first sample (core/output_file.h).
   if (!req.output.empty()) checkOutputs({{req.output, "output", ".exr", ""}});
   {

@@ -4,21 +4,27 @@
 // run Python's signal handlers (Ctrl-C) and the progress callback.
 #include <pybind11/pybind11.h>
 
+#include <cstdint>
+#include <optional>
 #include <string>
+
+#include "core/memory_budget.h"
 
 #include "python/py_scene.h"
 
 namespace kasha::python {
 
+// kasha.render's arguments, read and checked by python/py_arguments.h.
 struct RenderRequest {
   std::string integrator = "pt";
-  pybind11::object spp, time, seed;  // None: the scene's
+  std::optional<int> spp, seed;  // none: the scene's
+  std::optional<double> time;
   int threads = 0;
   int spectralBins = 0;
   float spectralStep = 0.0f;
   bool strategyImages = false;
   int strategyDepth = 4;
-  std::string memoryLimit = "8G";
+  uint64_t memoryLimit = kDefaultMemoryLimit;
   pybind11::object progress;  // None or callable(spp, seconds, estimated_total_seconds)
   std::string output;         // an OpenEXR to write as well (with the spectral bins)
   pybind11::dict settings;    // further keys of the scene's render object
@@ -26,7 +32,9 @@ struct RenderRequest {
 
 // Returns a dict: xyz, rgb, stats, and spectral + wavelengths + bin_width (with bins) and
 // strategies (with strategy images). Ctrl-C raises `interrupted` (a KeyboardInterrupt subclass)
-// after the current pass, with the partial result as its `result` attribute.
+// after the current pass, with the partial result as its `result` attribute. The render works on
+// the scene as it is now: edits of `scene` and other renders of it, from other threads or from
+// the progress callback, do not change it.
 pybind11::dict render(PyScene& scene, const RenderRequest& request, const pybind11::object& interrupted);
 
 }  // namespace kasha::python

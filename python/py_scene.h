@@ -24,7 +24,10 @@ class PyScene {
 
   // The JSON value at a JSON pointer ("/materials/dye/c"), as a Python object; KeyError if absent.
   pybind11::object get(const std::string& pointer) const;
-  // Sets the value at a JSON pointer (numpy arrays become lists); the next render reloads.
+  // Sets the value at a JSON pointer (numpy arrays become lists); the next render reloads. Missing
+  // objects on the way are created, a list may grow by one element at its end (its index or "-");
+  // anything else raises InputError: a malformed pointer, an index past a list's end, a step into
+  // a number or string, a value that is not JSON (NaN, an object).
   void set(const std::string& pointer, const pybind11::object& value);
   // The spectrum at a JSON pointer as its piecewise-linear knots (wavelengths in nm, values).
   pybind11::tuple spectrum(const std::string& pointer) const;
@@ -32,20 +35,23 @@ class PyScene {
   // The scene's JSON as edited so far, and the name it goes by in messages.
   const nlohmann::json& json() const { return json_; }
   const std::string& path() const { return path_; }
-  // The scene loaded from `json` (the scene's own JSON with `render` merged into its render
-  // object); the last one is kept and reused while the text is the same.
-  const Scene& load(const nlohmann::json& json, uint64_t memoryLimit);
+  // The scene loaded from `json` (the scene's own JSON with the render's settings in its render
+  // object); the last one is kept and reused while the text is the same. A render holds the
+  // pointer until it ends: edits change only the JSON, and a render of other JSON replaces the
+  // kept scene without freeing it under a render still using it (docs/python.md, "Threads").
+  std::shared_ptr<const Scene> load(const nlohmann::json& json, uint64_t memoryLimit);
 
  private:
   nlohmann::json json_;
   std::string path_;
   std::string loadedText_;
   uint64_t loadedLimit_ = 0;
-  std::unique_ptr<Scene> loaded_;
+  std::shared_ptr<const Scene> loaded_;
 };
 
-// Python object ↔ JSON, through Python's json module (numpy arrays through tolist()).
-nlohmann::json toJson(const pybind11::handle& value);
+// Python object ↔ JSON, through Python's json module (numpy arrays and scalars through tolist()).
+// A value JSON cannot hold (NaN, infinity, an arbitrary object) raises InputError(where, field).
+nlohmann::json toJson(const pybind11::handle& value, const std::string& where, const std::string& field);
 pybind11::object fromJson(const nlohmann::json& value);
 
 }  // namespace kasha::python
