@@ -130,8 +130,9 @@ void readHeader(const nlohmann::json& header, const std::string& path, Checkpoin
   d.width = film.integer("width");
   d.height = film.integer("height");
   d.spp = film.integer("spp");
-  if (d.width < 1 || d.height < 1 || d.width > kMaxCheckpointSide || d.height > kMaxCheckpointSide)
-    film.fail("width", "film size " + std::to_string(d.width) + "x" + std::to_string(d.height) + " is out of range");
+  for (const auto& [key, side] : {std::pair<const char*, int>{"width", d.width}, {"height", d.height}})
+    if (side < 1 || side > kMaxCheckpointSide)
+      film.fail(key, std::to_string(side) + " is out of range (1 to " + std::to_string(kMaxCheckpointSide) + ")");
   if (d.spp < 0) film.fail("spp", "must not be negative");
   const nlohmann::json& nonFinite = film.get("non_finite_samples");
   if (!nonFinite.is_number_unsigned()) film.fail("non_finite_samples", "expected a count");

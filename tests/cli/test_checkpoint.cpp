@@ -427,6 +427,7 @@ TEST_P(CheckpointCli, ForgedHeadersAreRefusedInOneLine) {
   };
   expectRefused("width_float", with("/film/width"_json_pointer, 1e300), "/film/width: expected an integer");
   expectRefused("width_huge", with("/film/width"_json_pointer, uint64_t(1) << 40), "/film/width: integer 1099511627776 is out of range");
+  expectRefused("height_huge", with("/film/height"_json_pointer, 100000), "/film/height: 100000 is out of range");
   expectRefused("width_wrong", with("/film/width"_json_pointer, 33), "pixel count does not match the film size");
   expectRefused("spp_negative", with("/film/spp"_json_pointer, -5), "/film/spp: must not be negative");
   expectRefused("pixel_outside", with("/film/first_non_finite_pixel"_json_pointer, json{99999, 0}), "/film/first_non_finite_pixel");
