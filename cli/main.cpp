@@ -28,6 +28,7 @@
 #include "cli/option_checks.h"
 #include "cli/render_command.h"
 #include "core/error.h"
+#include "integrators/rank_agreement.h"
 #include "integrators/render_numbers.h"
 
 int main(int argc, char** argv) {
@@ -138,6 +139,13 @@ int main(int argc, char** argv) {
     if (compare->parsed()) return runCompare(ca);
     if (metrics->parsed()) return runMetrics(mt);
     if (extract->parsed()) return runExtract(xa);
+  } catch (const RanksDisagree& e) {  // every rank knows: rank 0 says why, and no rank is aborted
+    if (e.print()) std::fprintf(stderr, "kasha: error: %s\n", e.what());
+    std::fflush(stderr);
+#if KASHA_WITH_MPI
+    mpi->barrier();  // no rank ends (and has mpirun end the job) before rank 0 has said why
+#endif
+    return 2;
   } catch (const UsageError& e) {  // a command-line mistake
     return fail(e.what(), 2);
   } catch (const std::exception& e) {  // InputError included

@@ -93,6 +93,11 @@ void MpiGroup::maxOverRanks(std::span<int> values) {
   MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_INT, MPI_MAX, MPI_COMM_WORLD);
 }
 
+void MpiGroup::gatherToRoot(std::span<const std::byte> mine, std::span<std::byte> all) {
+  MPI_Gather(mine.data(), int(mine.size()), MPI_BYTE, rank_ == 0 ? all.data() : nullptr, int(mine.size()), MPI_BYTE, 0,
+             MPI_COMM_WORLD);
+}
+
 void MpiGroup::barrier() { MPI_Barrier(MPI_COMM_WORLD); }
 
 void MpiGroup::abort(int code) {

@@ -22,6 +22,7 @@ class MpiGroup final : public RenderGroup {
   void send(const PassRecord& record) override;
   PassRecord receive(int from, int width, int height) override;
   void maxOverRanks(std::span<int> values) override;
+  void gatherToRoot(std::span<const std::byte> mine, std::span<std::byte> all) override;
   // Returns when every rank has called it.
   void barrier();
   // Ends every rank of the job with exit code `code` (after an error on this rank that the

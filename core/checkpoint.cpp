@@ -8,6 +8,8 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/json_fields.h"
+#include "core/json_parse.h"
 #include "core/output_file.h"
 #include "core/rng.h"
 
@@ -18,6 +20,8 @@ constexpr char kMagic[8] = {'K', 'A', 'S', 'H', 'A', 'C', 'K', 'P'};
 constexpr uint32_t kVersion = 1;
 // Headers are small; a larger length means a corrupted or foreign file.
 constexpr uint64_t kMaxHeader = uint64_t(1) << 20;
+// The largest film side a checkpoint may hold (the scene loader's limit).
+constexpr int kMaxCheckpointSide = 16384;
 
 const char* byteOrder() { return std::endian::native == std::endian::little ? "little" : "big"; }
 
@@ -113,6 +117,43 @@ class Reader {
   Hasher hash_;
 };
 
+// The header's fields, each checked for its type and range (JsonFields names its pointer).
+void readHeader(const nlohmann::json& header, const std::string& path, CheckpointData& d) {
+  JsonFields h(header, path, "");
+  if (h.string("byte_order") != byteOrder())
+    throw InputError(path, "", "checkpoint was written on a machine of another byte order");
+  d.settings = h.get("settings");
+  d.run = h.get("run");
+  if (!d.settings.is_object()) h.fail("settings", "expected an object");
+  if (!d.run.is_object()) h.fail("run", "expected an object");
+  JsonFields film(h.get("film"), path, "/film");
+  d.width = film.integer("width");
+  d.height = film.integer("height");
+  d.spp = film.integer("spp");
+  for (const auto& [key, side] : {std::pair<const char*, int>{"width", d.width}, {"height", d.height}})
+    if (side < 1 || side > kMaxCheckpointSide)
+      film.fail(key, std::to_string(side) + " is out of range (1 to " + std::to_string(kMaxCheckpointSide) + ")");
+  if (d.spp < 0) film.fail("spp", "must not be negative");
+  const nlohmann::json& nonFinite = film.get("non_finite_samples");
+  if (!nonFinite.is_number_unsigned()) film.fail("non_finite_samples", "expected a count");
+  d.nonFiniteSamples = nonFinite.get<uint64_t>();
+  const nlohmann::json& first = film.get("first_non_finite_pixel");
+  if (!first.is_array() || first.size() != 2 || !first[0].is_number_integer() || !first[1].is_number_integer() ||
+      first[0].get<int64_t>() < -1 || first[0].get<int64_t>() >= d.width || first[1].get<int64_t>() < -1 ||
+      first[1].get<int64_t>() >= d.height)
+    film.fail("first_non_finite_pixel", "expected [x, y] in the film or [-1, -1]");
+  d.firstNonFinitePixel = {first[0].get<int>(), first[1].get<int>()};
+  if (film.has("spectral_bins")) {
+    JsonFields b(film.get("spectral_bins"), path, "/film/spectral_bins");
+    d.spectralBins = {b.number("min"), b.number("step"), b.integer("count")};
+    if (d.spectralBins.count < 1 || d.spectralBins.count > SpectralBins::kMaxBins || !(d.spectralBins.step > 0.0f))
+      b.fail("count", "spectral bins out of range");
+    b.finish();
+  }
+  film.finish();
+  h.finish();
+}
+
 }  // namespace
 
 uint64_t hashBytes(const void* data, size_t size, uint64_t seed) {
@@ -158,8 +199,12 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& settings, co
 }
 
 CheckpointData readCheckpoint(const std::string& path) {
-  // Its size is checked against the header below; the size of the file opened, not of whatever
-  // the name points to by now (a running render replaces its checkpoint by renaming a new one over it).
+  // Every byte is read and the checksum verified before the header is parsed: a forged or damaged
+  // header never reaches the JSON parser unless it was written with the checksum of the format, and
+  // then the parse is bounded (parseJsonStrict: nesting, duplicate keys; each field read by
+  // JsonFields, typed and in range). The file's size bounds what is allocated: the size of the
+  // file opened, not of whatever the name points to by now (a running render replaces its
+  // checkpoint by renaming a new one over it).
   InputFile in(path, "checkpoint file", UINT64_MAX);
   const uint64_t fileSize = in.size();
   Reader r(in);
@@ -173,39 +218,20 @@ CheckpointData readCheckpoint(const std::string& path) {
   r.value<uint32_t>();
   const uint64_t headerLength = r.value<uint64_t>();
   if (headerLength > kMaxHeader) throw InputError(path, "", "checkpoint is corrupted (header length)");
+  constexpr uint64_t kFixed = 8 + 4 + 4 + 8 + 8 + 8;  // magic, version, reserved, two lengths, checksum
+  if (fileSize < kFixed + headerLength) throw InputError(path, "", "checkpoint is truncated");
   std::string text(headerLength, '\0');
   r.bytes(text.data(), text.size());
-  CheckpointData d;
-  try {
-    const nlohmann::json header = nlohmann::json::parse(text);
-    if (header.at("byte_order").get<std::string>() != byteOrder())
-      throw InputError(path, "", "checkpoint was written on a machine of another byte order");
-    d.settings = header.at("settings");
-    d.run = header.at("run");
-    const nlohmann::json& film = header.at("film");
-    d.width = film.at("width").get<int>();
-    d.height = film.at("height").get<int>();
-    d.spp = film.at("spp").get<int>();
-    d.nonFiniteSamples = film.at("non_finite_samples").get<uint64_t>();
-    d.firstNonFinitePixel = {film.at("first_non_finite_pixel").at(0).get<int>(), film.at("first_non_finite_pixel").at(1).get<int>()};
-    if (film.contains("spectral_bins")) {
-      const nlohmann::json& b = film.at("spectral_bins");
-      d.spectralBins = {b.at("min").get<float>(), b.at("step").get<float>(), b.at("count").get<int>()};
-      if (d.spectralBins.count < 1 || d.spectralBins.count > SpectralBins::kMaxBins || !(d.spectralBins.step > 0.0f))
-        throw InputError(path, "", "checkpoint header is corrupted (spectral bins)");
-    }
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(path, "", std::string("checkpoint header is corrupted: ") + e.what());
-  }
-  if (d.width < 1 || d.height < 1 || d.width > 16384 || d.height > 16384 || d.spp < 0)
-    throw InputError(path, "", "checkpoint header is corrupted (film size or sample count)");
+  // The film's layout follows from the pixel count and the file's size: sums and splats, then
+  // whole spectral bins of every pixel.
   const uint64_t pixels = r.value<uint64_t>();
-  if (pixels != uint64_t(d.width) * uint64_t(d.height))
-    throw InputError(path, "", "checkpoint is corrupted (pixel count does not match the film size)");
-  // The file must be as long as the header says before anything that size is allocated.
-  const uint64_t spectralValues = pixels * uint64_t(d.spectralBins.count);
-  const uint64_t expected = 8 + 4 + 4 + 8 + headerLength + 8 + 2 * pixels * sizeof(DVec3) + spectralValues * sizeof(double) + 8;
-  if (fileSize != expected) throw InputError(path, "", "checkpoint is truncated or has trailing data");
+  const uint64_t payload = fileSize - kFixed - headerLength;
+  constexpr uint64_t kMaxPixels = uint64_t(kMaxCheckpointSide) * kMaxCheckpointSide;
+  if (pixels < 1 || pixels > kMaxPixels || 2 * pixels * sizeof(DVec3) > payload ||
+      (payload - 2 * pixels * sizeof(DVec3)) % (pixels * sizeof(double)) != 0)
+    throw InputError(path, "", "checkpoint is truncated or has trailing data");
+  const uint64_t spectralValues = (payload - 2 * pixels * sizeof(DVec3)) / sizeof(double);
+  CheckpointData d;
   d.sums.resize(pixels);
   d.splats.resize(pixels);
   r.bytes(d.sums.data(), pixels * sizeof(DVec3));
@@ -215,6 +241,11 @@ CheckpointData readCheckpoint(const std::string& path) {
     r.bytes(d.spectral.data(), spectralValues * sizeof(double));
   }
   r.checksum();
+  readHeader(parseJsonStrict(text, path), path, d);
+  if (uint64_t(d.width) * uint64_t(d.height) != pixels)
+    throw InputError(path, "", "checkpoint is corrupted (pixel count does not match the film size)");
+  if (spectralValues != pixels * uint64_t(d.spectralBins.count))
+    throw InputError(path, "", "checkpoint is corrupted (spectral sums do not match the header's bins)");
   for (const double v : d.spectral)
     if (!std::isfinite(v)) throw InputError(path, "", "checkpoint is corrupted (a non-finite spectral sum)");
   for (const std::vector<DVec3>* buffer : {&d.sums, &d.splats})
@@ -224,18 +255,25 @@ CheckpointData readCheckpoint(const std::string& path) {
   return d;
 }
 
+bool reportedBefore(const std::string& a, const std::string& b) {
+  const auto group = [](const std::string& key) { return key == "integrator" ? 0 : key == "scene_hash" ? 2 : 1; };
+  return group(a) != group(b) ? group(a) < group(b) : a < b;
+}
+
 void requireSameSettings(const nlohmann::json& saved, const nlohmann::json& current, const std::string& path) {
-  for (auto it = current.begin(); it != current.end(); ++it) {
-    const auto s = saved.find(it.key());
-    if (s == saved.end())
-      throw InputError(path, "", "checkpoint does not record '" + it.key() + "' (written by another kasha version?)");
-    if (*s != it.value())
-      throw InputError(path, "", "checkpoint was made with " + it.key() + " " + s->dump() + ", this render has " +
-                                     it.key() + " " + it.value().dump() + "; resume with the same scene and options");
+  std::vector<std::string> keys;
+  for (const nlohmann::json* settings : {&saved, &current})
+    for (auto it = settings->begin(); it != settings->end(); ++it) keys.push_back(it.key());
+  std::sort(keys.begin(), keys.end(), reportedBefore);
+  for (const std::string& key : keys) {
+    const auto s = saved.find(key), c = current.find(key);
+    if (s == saved.end()) throw InputError(path, "", "checkpoint does not record '" + key + "' (written by another kasha version?)");
+    if (c == current.end())
+      throw InputError(path, "", "checkpoint records '" + key + "', which this kasha version does not know");
+    if (*s != *c)
+      throw InputError(path, "", "checkpoint was made with " + key + " " + s->dump() + ", this render has " + key + " " +
+                                     c->dump() + "; resume with the same scene and options");
   }
-  for (auto it = saved.begin(); it != saved.end(); ++it)
-    if (!current.contains(it.key()))
-      throw InputError(path, "", "checkpoint records '" + it.key() + "', which this kasha version does not know");
 }
 
 void restoreFilm(CheckpointData&& d, Film& film, SpectralFilm* spectral) {

@@ -13,7 +13,10 @@
 //   u64       pixel count w·h, then w·h·3 doubles of camera-sample sums, w·h·3 doubles of splat sums
 //   if the header's film has "spectral_bins" {min, step, count}: w·h·count doubles of spectral
 //   sums (core/spectral_film.h), pixel-major
-//   u64       checksum of every byte before it
+//   u64       checksum of every byte before it (hashBytes)
+// The reader verifies the checksum over the whole file before it parses the header (the layout of
+// the sums follows from the pixel count and the file's size), and bounds the parse: at most 1 MiB
+// of header, nested at most kMaxJsonDepth levels, every field typed and in range.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -42,12 +45,20 @@ struct CheckpointData {
 void writeCheckpoint(const std::string& path, const nlohmann::json& settings, const nlohmann::json& run, const Film& film,
                      const SpectralFilm* spectral = nullptr);
 
-// Reads a checkpoint. A missing, truncated, corrupted or foreign file is an InputError naming it.
+// Reads a checkpoint. A missing, truncated, corrupted, forged or foreign file is an InputError
+// naming it (one line), never a crash or an allocation larger than the file.
 CheckpointData readCheckpoint(const std::string& path);
 
-// Throws an InputError naming `path` for the first entry of `saved` that differs from `current`
-// ("was made with seed 1, this render has seed 2"); entries missing from either count as different.
+// Throws an InputError naming `path` for the first entry (in reportedBefore's order) of `saved` that
+// differs from `current` ("was made with seed 1, this render has seed 2"); entries missing from
+// either count as different.
 void requireSameSettings(const nlohmann::json& saved, const nlohmann::json& current, const std::string& path);
+
+// The order in which settings that differ are reported, here and between MPI ranks
+// (integrators/rank_agreement.h): the integrator first (another one records other settings),
+// scene_hash last (it covers the --set options too, which a setting of its own names better),
+// the rest by name.
+bool reportedBefore(const std::string& a, const std::string& b);
 
 // Puts a checkpoint's state into the film (which must have its resolution) and the spectral film,
 // which must be given, with the same bins, exactly when the checkpoint has spectral sums.

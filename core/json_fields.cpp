@@ -32,8 +32,9 @@ float JsonFields::number(const std::string& key) {
 
 float JsonFields::number(const std::string& key, float fallback) { return has(key) ? number(key) : fallback; }
 
-int JsonFields::integer(const std::string& key, int fallback) {
-  if (!has(key)) return fallback;
+int JsonFields::integer(const std::string& key, int fallback) { return has(key) ? integer(key) : fallback; }
+
+int JsonFields::integer(const std::string& key) {
   const nlohmann::json& v = get(key);
   if (!v.is_number_integer()) fail(key, "expected an integer, got " + jsonTypeName(v));
   const bool fits = v.is_number_unsigned() ? v.get<uint64_t>() <= uint64_t(INT_MAX)

@@ -23,6 +23,7 @@ class JsonFields {
 
   float number(const std::string& key);
   float number(const std::string& key, float fallback);
+  int integer(const std::string& key);  // required
   int integer(const std::string& key, int fallback);
   bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key);

@@ -4,7 +4,9 @@
 // other rank sends its PassRecord to rank 0, and rank 0 commits the round's records in pass
 // order, so its film holds exactly the sums of a one-process render. All decisions that end a
 // render (a stop request on any rank, rank 0's time budget) are agreed on collectively after the
-// same round, so every rank stops at the same pass.
+// same round, so every rank stops at the same pass. Before all that, rank 0 checks that every rank
+// renders the same image (rank_agreement.h).
+#include <cstddef>
 #include <span>
 
 #include "integrators/render_pass.h"
@@ -24,6 +26,10 @@ class RenderGroup {
   virtual PassRecord receive(int from, int width, int height) = 0;
   // Every rank, collectively: replaces each value by its maximum over the ranks.
   virtual void maxOverRanks(std::span<int> values) = 0;
+  // Every rank, collectively, with `mine` of the same size on every rank: rank 0 receives rank
+  // r's bytes at all[r·mine.size()] (all holds size()·mine.size() bytes there; elsewhere it is
+  // not used). Only rank 0 waits for the others.
+  virtual void gatherToRoot(std::span<const std::byte> mine, std::span<std::byte> all) = 0;
 };
 
 }  // namespace kasha

@@ -3,12 +3,14 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <mutex>
 
 #include "core/checkpoint.h"
 #include "core/error.h"
+#include "core/json_fields.h"
 #include "core/memory_budget.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/render_pass.h"
@@ -174,16 +176,17 @@ void RenderJob::run() {
   opt.sampler = o.settings.sampler;
   opt.threads = o.threads;
   opt.group = o.group;
+  opt.image = settings;  // ranks that disagree on it are refused before the first pass
   if (!o.resume.empty()) {
     CheckpointData d = readCheckpoint(o.resume);
     requireSameSettings(d.settings, settings, o.resume);
-    try {
-      opt.samplesPerPass = d.run.at("samples_per_pass").get<int>();
-      opt.previousSeconds = d.run.at("seconds").get<double>();
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError(o.resume, "", std::string("checkpoint header is corrupted: ") + e.what());
-    }
-    if (opt.samplesPerPass < 1 || !(opt.previousSeconds >= 0.0)) throw InputError(o.resume, "", "checkpoint header is corrupted");
+    JsonFields run(d.run, o.resume, "/run");
+    opt.samplesPerPass = run.integer("samples_per_pass");
+    if (opt.samplesPerPass < 1) run.fail("samples_per_pass", "must be at least 1");
+    const nlohmann::json& seconds = run.get("seconds");
+    opt.previousSeconds = seconds.is_number() ? seconds.get<double>() : -1.0;
+    if (!(opt.previousSeconds >= 0.0 && std::isfinite(opt.previousSeconds)))
+      run.fail("seconds", "expected a finite number of seconds, at least 0");
     opt.startSpp = d.spp;
     resumed_ = {{"checkpoint", o.resume}, {"spp", d.spp}, {"seconds", opt.previousSeconds}};
     restoreFilm(std::move(d), *film_, spectral_.get());

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "integrators/rank_agreement.h"
 
 namespace kasha {
 
@@ -30,6 +31,14 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   // The stream of a sample depends only on its index, not on how samples are grouped into passes.
   const int perPass = std::min(opt.samplesPerPass > 0 ? opt.samplesPerPass : defaultSamplesPerPass(w, h),
                                integrator.maxSamplesPerPass());
+  if (opt.group) {  // the group's first exchange: every rank renders the same passes of the same image
+    nlohmann::json record = opt.image;
+    record.update({{"spp", opt.spp}, {"time", opt.timeBudgetSeconds}, {"seed", opt.seed},
+                   {"sampler", toString(opt.sampler)}, {"start_spp", opt.startSpp}, {"samples_per_pass", perPass},
+                   {"resolution", {w, h}}, {"strategy_images", bool(opt.strategies)},
+                   {"spectral", opt.spectral != nullptr}});
+    requireSameRecord(*opt.group, record);
+  }
   st.samplesPerPass = perPass;
   PassTracer tracer(scene, integrator, w, h, opt.seed, opt.sampler, bool(opt.strategies), opt.spectral != nullptr);
   RayCounter rays;  // of the committed passes: on rank 0, those of every rank

@@ -14,6 +14,8 @@
 #include <functional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "core/film.h"
 #include "core/spectral_film.h"
 #include "integrators/integrator.h"
@@ -78,17 +80,17 @@ struct RenderOptions {
   // progress, checkpoint and strategies. A stop request on any rank stops all after the same pass;
   // rank 0's clock decides the time budget.
   RenderGroup* group = nullptr;
+  // In a group: what else determines the image (RenderJob: its checkpoint settings, with the
+  // scene's hash and the integrator's). Before anything else is exchanged, rank 0 checks that every
+  // rank renders with the same record, these options' own fields added (requireSameRecord,
+  // rank_agreement.h).
+  nlohmann::json image = nlohmann::json::object();
 };
 
 // Renders into `film` until options.spp, the time budget or a stop request; returns the
 // statistics (on rank 0 of a group: summed over the ranks).
 RenderStats render(const Scene& scene, const Integrator& integrator, Film& film, const RenderOptions& options);
 
-}  // namespace kasha
-
-#include <nlohmann/json.hpp>
-
-namespace kasha {
 nlohmann::json toJson(const RenderStats& s);
 // One line for the terminal: time, spp, samples/s, rays/s.
 std::string summaryLine(const RenderStats& s);

@@ -1,9 +1,11 @@
 #pragma once
 // The ranks of a RenderGroup (integrators/render_group.h) as threads of one process: the render
 // loop's dealing of passes and its collective decisions, tested without MPI (and under the
-// sanitizers). Records travel through per-sender mailboxes; maxOverRanks is a barrier.
+// sanitizers). Records travel through per-sender mailboxes; maxOverRanks is a barrier; gatherToRoot
+// leaves each rank's bytes in its slot for rank 0.
 #include <algorithm>
 #include <condition_variable>
+#include <cstddef>
 #include <deque>
 #include <mutex>
 #include <vector>
@@ -14,7 +16,7 @@ namespace kasha::test {
 
 class ThreadGroup {
  public:
-  explicit ThreadGroup(int size) : size_(size), mail_(size_t(size)) {}
+  explicit ThreadGroup(int size) : size_(size), mail_(size_t(size)), gathered_(size_t(size)) {}
 
   class Rank final : public RenderGroup {
    public:
@@ -49,6 +51,20 @@ class ThreadGroup {
       std::copy(g_.result_.begin(), g_.result_.end(), values.begin());
     }
 
+    void gatherToRoot(std::span<const std::byte> mine, std::span<std::byte> all) override {
+      std::unique_lock<std::mutex> lock(g_.m_);
+      g_.gathered_[size_t(rank_)].assign(mine.begin(), mine.end());
+      g_.cv_.notify_all();
+      if (rank_ != 0) return;
+      g_.cv_.wait(lock, [&] {
+        return std::all_of(g_.gathered_.begin(), g_.gathered_.end(), [](const auto& b) { return !b.empty(); });
+      });
+      for (size_t r = 0; r < g_.gathered_.size(); ++r) {
+        std::copy(g_.gathered_[r].begin(), g_.gathered_[r].end(), all.begin() + std::ptrdiff_t(r * mine.size()));
+        g_.gathered_[r].clear();
+      }
+    }
+
    private:
     ThreadGroup& g_;
     int rank_;
@@ -62,6 +78,7 @@ class ThreadGroup {
   int arrived_ = 0;
   uint64_t generation_ = 0;
   std::vector<int> acc_, result_;
+  std::vector<std::vector<std::byte>> gathered_;  // gatherToRoot: each rank's bytes until rank 0 takes them
 };
 
 }  // namespace kasha::test

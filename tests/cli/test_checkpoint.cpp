@@ -4,8 +4,9 @@
 //   path tracer (camera samples only) and the light tracer (splats);
 // - SIGINT and SIGTERM stop a render after the current pass: the image, PNG, statistics
 //   ("interrupted": true) and checkpoint are written, and the exit code is 130 or 143;
-// - a checkpoint that does not match the render, or is truncated or corrupted, is refused with
-//   one line naming it.
+// - a checkpoint that does not match the render (any setting of the estimator), or is truncated,
+//   corrupted or forged (a deeply nested or out-of-range header, with or without the right
+//   checksum), is refused with one line naming it.
 //
 // Why bit-identical and not merely close: sample s of pixel p draws from the PCG32 stream
 // (seed, p, s) whatever the pass or thread; a pixel's camera samples are added to its double sum in
@@ -20,6 +21,7 @@
 #include <ImfInputFile.h>
 #include <ImfChannelList.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -316,6 +318,142 @@ TEST_P(CheckpointCli, PhotonSettingsAreRecordedAndMustMatch) {
   EXPECT_CONTAINS(f.err, "checkpoint was made with ppm");
   EXPECT_CONTAINS(f.err, "\"direct\":\"photons\"");
   EXPECT_FALSE(fs::exists(dir + "/ppm_resumed.exr"));
+}
+
+// Every other setting of the estimator is recorded too: a resume under another is refused, naming
+// it. Each case makes a checkpoint with its integrator (1 spp) and resumes it with one setting changed.
+TEST_P(CheckpointCli, EveryEstimatorSettingIsRecordedAndMustMatch) {
+  struct Case {
+    std::string integrator;
+    std::vector<std::string> changed;
+    std::string field;
+    std::vector<std::string> both = {};  // options of the checkpointed render and the resumed one
+  };
+  const std::vector<Case> cases = {
+      {"pt", {"--integrator", "lt"}, "integrator"},
+      {"pt", {"--sampler", "independent"}, "sampler"},
+      {"pt", {"--hero", "2"}, "hero_wavelengths"},
+      {"pt", {"--nee-sampling", "uniform"}, "nee_sampling", {"--hero", "1"}},  // one lane with either
+      {"pt", {"--fluorescence-sampling", "uniform"}, "fluorescence_sampling"},
+      {"pt", {"--spectral-bins", "4"}, "spectral_bins"},
+      {"pt", {"--set", "rr_depth=5"}, "rr_depth"},
+      {"pt", {"--set", "fluorescent_lanes=end"}, "fluorescent_lanes"},
+      {"lt", {"--light-sampling", "uniform"}, "light_sampling"},
+      {"bdpt", {"--set", "bdpt_families=own"}, "bdpt_families"},
+      {"vcm", {"--set", "vcm_paths=camera"}, "vcm_paths"},
+      {"vcm", {"--set", "ppm.radius=0.1"}, "ppm"},
+      {"bdpt-mollified", {"--set", "mollify.alpha=0.5"}, "mollify"},
+      {"ppm", {"--set", "ppm.nee_wavelengths=camera"}, "ppm"},
+      {"ppm", {"--set", "ppm.always_wavelength_kernel=true"}, "ppm"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.integrator + " " + c.changed.back());
+    std::string name = c.integrator;
+    for (const std::string& o : c.both) name += o;
+    const std::string ckpt = dir + "/" + name + ".ckpt";
+    const auto args = [&](const std::string& out, std::vector<std::string> extra) {
+      std::vector<std::string> a = {"render", scene, "-q", "--threads", "2", "-o", dir + "/" + out + ".exr"};
+      a.insert(a.end(), c.both.begin(), c.both.end());
+      if (std::find(extra.begin(), extra.end(), "--integrator") == extra.end()) extra.insert(extra.begin(), {"--integrator", c.integrator});
+      a.insert(a.end(), extra.begin(), extra.end());
+      return a;
+    };
+    if (!fs::exists(ckpt)) {
+      const auto r = runKasha(args(name, {"--spp", "1", "--checkpoint", ckpt}), dir + "/" + name);
+      ASSERT_EQ(r.code, 0) << r.err;
+    }
+    std::vector<std::string> resume = {"--spp", "2", "--resume", ckpt};
+    resume.insert(resume.end(), c.changed.begin(), c.changed.end());
+    const auto f = runKasha(args("resumed", resume), dir + "/resumed");
+    EXPECT_EQ(f.code, 1) << f.err;
+    const auto lines = test::textLines(f.err);
+    ASSERT_EQ(lines.size(), 1u) << f.err;
+    EXPECT_CONTAINS(lines[0], "kasha: error: " + ckpt + ": checkpoint was made with " + c.field + " ");
+    EXPECT_FALSE(fs::exists(dir + "/resumed.exr"));
+  }
+}
+
+// `original` (a checkpoint's bytes) with `header` as its JSON header, and the checksum of the
+// format (hashBytes of every byte before it: a forger can compute it too) or a wrong one.
+std::string forgeCheckpoint(const std::string& original, const std::string& header, bool rightChecksum) {
+  uint64_t length = 0;
+  std::memcpy(&length, original.data() + 16, sizeof length);
+  std::string bytes = original.substr(0, 16);
+  const uint64_t newLength = header.size();
+  bytes.append(reinterpret_cast<const char*>(&newLength), sizeof newLength);
+  bytes += header;
+  bytes += original.substr(24 + length, original.size() - 24 - length - 8);
+  const uint64_t sum = hashBytes(bytes.data(), bytes.size()) + (rightChecksum ? 0 : 1);
+  bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+  return bytes;
+}
+
+// Forged checkpoints: the checksum is verified over the whole file before the header is parsed,
+// and a header with the right checksum is parsed within bounds (nesting, types, ranges). Each is
+// refused with one line naming the file, never a crash.
+TEST_P(CheckpointCli, ForgedHeadersAreRefusedInOneLine) {
+  const std::string ckpt = dir + "/small.ckpt";
+  const auto r = runKasha(renderArgs("small", {"--spp", "64", "--checkpoint", ckpt}), dir + "/small");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string original = test::readTextFile(ckpt);
+  uint64_t length = 0;
+  std::memcpy(&length, original.data() + 16, sizeof length);
+  const json header = json::parse(original.substr(24, length));
+  // The forger's file, resumed: one line naming it and the reason.
+  auto expectRefused = [&](const std::string& name, const std::string& bytes, const std::string& reason) {
+    SCOPED_TRACE(name);
+    const std::string path = dir + "/" + name + ".ckpt";
+    std::ofstream(path, std::ios::binary) << bytes;
+    const auto f = runKasha(renderArgs("resumed", {"--resume", path}), dir + "/resumed");
+    EXPECT_EQ(f.code, 1) << f.err;
+    const auto lines = test::textLines(f.err);
+    ASSERT_EQ(lines.size(), 1u) << f.err.substr(0, 2000);
+    EXPECT_EQ(lines[0].rfind("kasha: error: " + path + ": ", 0), 0u) << lines[0];
+    EXPECT_CONTAINS(lines[0], reason);
+    EXPECT_FALSE(fs::exists(dir + "/resumed.exr"));
+  };
+  // Settings nested 100000 arrays deep (400 kB, within the header's 1 MiB).
+  json deep = header;
+  deep["settings"] = "NESTED";
+  std::string nested = deep.dump();
+  nested.replace(nested.find("\"NESTED\""), 8, std::string(100000, '[') + std::string(100000, ']'));
+  expectRefused("nested_wrong_checksum", forgeCheckpoint(original, nested, false), "checksum mismatch");
+  expectRefused("nested", forgeCheckpoint(original, nested, true), "nested more than 64 levels deep");
+  // The right checksum, fields out of type or range.
+  auto with = [&](const json::json_pointer& at, const json& value) {
+    json h = header;
+    h[at] = value;
+    return forgeCheckpoint(original, h.dump(), true);
+  };
+  expectRefused("width_float", with("/film/width"_json_pointer, 1e300), "/film/width: expected an integer");
+  expectRefused("width_huge", with("/film/width"_json_pointer, uint64_t(1) << 40), "/film/width: integer 1099511627776 is out of range");
+  expectRefused("height_huge", with("/film/height"_json_pointer, 100000), "/film/height: 100000 is out of range");
+  expectRefused("width_wrong", with("/film/width"_json_pointer, 33), "pixel count does not match the film size");
+  expectRefused("spp_negative", with("/film/spp"_json_pointer, -5), "/film/spp: must not be negative");
+  expectRefused("pixel_outside", with("/film/first_non_finite_pixel"_json_pointer, json{99999, 0}), "/film/first_non_finite_pixel");
+  expectRefused("bins_huge", with("/film/spectral_bins"_json_pointer, json{{"min", 400}, {"step", 1}, {"count", 1 << 30}}),
+                "spectral bins out of range");
+  expectRefused("samples_per_pass_float", with("/run/samples_per_pass"_json_pointer, 1e300),
+                "/run/samples_per_pass: expected an integer");
+  expectRefused("seconds_string", with("/run/seconds"_json_pointer, "long"), "/run/seconds: expected a finite number");
+  expectRefused("settings_array", with("/settings"_json_pointer, json::array()), "/settings: expected an object");
+  std::string duplicate = header.dump();
+  duplicate.insert(1, "\"byte_order\":\"little\",");
+  expectRefused("duplicate_key", forgeCheckpoint(original, duplicate, true), "duplicate key 'byte_order'");
+  expectRefused("not_json", forgeCheckpoint(original, "{\"settings\": [1, 2", true), "malformed JSON");
+  // Lengths in the binary part: a header length beyond 1 MiB, a pixel count beyond the file.
+  std::string longHeader = original;
+  const uint64_t huge = uint64_t(1) << 62;
+  std::memcpy(longHeader.data() + 16, &huge, sizeof huge);
+  expectRefused("header_length", longHeader, "header length");
+  std::string pixels = original;
+  std::memcpy(pixels.data() + 24 + length, &huge, sizeof huge);
+  const uint64_t sum = hashBytes(pixels.data(), pixels.size() - 8);
+  std::memcpy(pixels.data() + pixels.size() - 8, &sum, sizeof sum);
+  expectRefused("pixel_count", pixels, "truncated or has trailing data");
+  // The unforged file still resumes.
+  const auto ok = runKasha(renderArgs("more", {"--resume", ckpt, "--spp", "128"}), dir + "/more");
+  EXPECT_EQ(ok.code, 0) << ok.err;
 }
 
 INSTANTIATE_TEST_SUITE_P(Cli, CheckpointCli, ::testing::Values("pt"));

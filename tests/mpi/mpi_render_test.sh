@@ -15,6 +15,10 @@
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR error
 #     a missing scene under `mpirun -np 2`: exit code 1 with the error line (from each rank), no
 #     hang, nothing written.
+#   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR disagree WHAT
+#     two ranks (mpirun's MPMD form, `-np 1 kasha ... : -np 1 kasha ...`) given another scene,
+#     seed, spp, integrator or depth (WHAT): within seconds, exit code 2 and one line from kasha,
+#     `kasha: error: --mpi: rank 1 disagrees with rank 0 on FIELD (...)`, nothing written.
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR time
 #     `--time 1` with `-np 2` ends every rank after the same pass; the image equals a one-process
 #     render to the spp reached.
@@ -103,6 +107,29 @@ error)
   [ "$code" -eq 1 ] || fail "a missing scene under mpirun exited with $code, expected 1"
   grep -q "^kasha: error: missing.json: cannot open scene file" error.err || fail "no error line naming the file"
   [ ! -e missing.exr ] || fail "an image was written"
+  ;;
+disagree)
+  what=$integrator
+  python3 -c 'import json; s = json.load(open("scene.json")); s["camera"]["fov"] += 1; json.dump(s, open("other.json", "w"))'
+  case $what in
+  scene) a=(scene.json) b=(other.json) field=scene_hash ;;
+  seed) a=(scene.json --seed 1) b=(scene.json --seed 2) field=seed ;;
+  spp) a=(scene.json --spp 4) b=(scene.json --spp 1000000) field=spp ;;
+  integrator) a=(scene.json) b=(scene.json --integrator lt) field=integrator ;;
+  depth) a=(scene.json --max-depth 6) b=(scene.json --max-depth 5) field=max_depth ;;
+  *) fail "unknown disagreement $what" ;;
+  esac
+  common=(-q --no-png --spectral-bins 8 -o mixed.exr)
+  start=$SECONDS code=0
+  timeout 60 mpirun "${root[@]}" --oversubscribe -np 1 "$kasha" render "${a[@]}" "${common[@]}" : \
+    -np 1 "$kasha" render "${b[@]}" "${common[@]}" >disagree.out 2>disagree.err || code=$?
+  [ "$code" -ne 124 ] || fail "ranks given another $what hang"
+  [ "$code" -eq 2 ] || { cat disagree.err >&2; fail "ranks given another $what exited with $code, expected 2"; }
+  [ $((SECONDS - start)) -le 30 ] || fail "ranks given another $what took $((SECONDS - start)) s to stop"
+  [ "$(grep -c '^kasha: ' disagree.err)" -eq 1 ] || { cat disagree.err >&2; fail "not one line from kasha"; }
+  grep -q "^kasha: error: --mpi: rank 1 disagrees with rank 0 on $field (" disagree.err ||
+    { cat disagree.err >&2; fail "no error line naming $field"; }
+  [ ! -e mixed.exr ] || fail "an image was written"
   ;;
 *) fail "unknown mode $mode" ;;
 esac
