@@ -72,7 +72,8 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
 }  // namespace
 
 std::string SceneJson::addMaterial(const XmlImport& xml, pugi::xml_node bsdf, json material) {
-  // Ids are unique (XmlImport::claimId); an unnamed BSDF's label may repeat, or match an id.
+  // Ids are unique per kind (XmlImport::claimId), but a shape's default material is named after the
+  // shape's id, which a <bsdf> may share, and an unnamed BSDF's label may repeat: later ones get #2, #3.
   const std::string id = bsdf.attribute("id") ? xml.attribute(bsdf, "id") : "";
   const std::string base = id.empty() ? xml.label(bsdf) : id;
   std::string name = base;

@@ -28,7 +28,7 @@ constexpr int kMaxIncludeDepth = 16;
 // Everything one import shares: the parsed files, the parameters and the approximation notes.
 class XmlImport {
  public:
-  // Parses `text` as the file `path` (the top-level scene); malformed XML, content after the
+  // Parses `text` as the file `path` (the top-level scene); malformed XML, content outside the
   // root element, elements nested deeper than kMaxXmlDepth and elements inside a property or a
   // transform operation are InputErrors naming the file and line.
   const pugi::xml_document& parse(const std::string& text, const std::string& path);
