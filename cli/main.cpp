@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
 #endif
   // After an error on one rank the others would wait for it forever: end them all.
   auto fail = [&](const char* what, int code) {
-    std::fprintf(stderr, "kasha: error: %s\n", what);
+    std::fprintf(stderr, "kasha: error: %s\n", printable(what).c_str());  // library messages may quote files
 #if KASHA_WITH_MPI
     if (mpi && mpi->size() > 1) {
       std::fflush(stderr);

@@ -30,7 +30,7 @@ struct RenderArgs {
   bool strategyUnweighted = false;
   int strategyDepth = 4;
   int spectralBins = 0;        // 0: none
-  float spectralStep = 0.0f;   // nm; 0: none
+  double spectralStep = 0.0;   // nm; 0: none (a double: 1e-300 must not become 0)
   bool mpi = false;  // initialise MPI even if no MPI launcher is detected
 };
 

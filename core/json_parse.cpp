@@ -33,7 +33,7 @@ struct KeyTracker {
   bool operator()(int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using E = nlohmann::json::parse_event_t;
     if (depth > kMaxJsonDepth)
-      throw InputError(path, childPointer(), "nested more than " + std::to_string(kMaxJsonDepth) + " levels deep");
+      throw InputError(path, childPointer(), nestedDeeperThan(kMaxJsonDepth));
     switch (event) {
       case E::object_start:
       case E::array_start:

@@ -65,11 +65,11 @@ void OutputFile::fail(const std::string& what, int error) {
   fd_ = -1;
   if (!tmp_.empty()) ::unlink(tmp_.c_str());
   tmp_.clear();
-  throw OutputError("cannot write '" + path_ + "': " + what + " (" + std::strerror(error) + ")");
+  throw OutputError(path_, what + " (" + std::strerror(error) + ")");
 }
 
 void OutputFile::write(const void* data, size_t n) {
-  if (fd_ < 0) throw OutputError("cannot write '" + path_ + "': the file is closed");
+  if (fd_ < 0) throw OutputError(path_, "the file is closed");
   const char* p = static_cast<const char*>(data);
   while (n > 0) {
     const ssize_t w = ::write(fd_, p, n);
@@ -80,13 +80,13 @@ void OutputFile::write(const void* data, size_t n) {
 }
 
 void OutputFile::seek(uint64_t position) {
-  if (fd_ < 0) throw OutputError("cannot write '" + path_ + "': the file is closed");
+  if (fd_ < 0) throw OutputError(path_, "the file is closed");
   if (::lseek(fd_, off_t(position), SEEK_SET) < 0) fail("seek failed", errno);
   position_ = position;
 }
 
 void OutputFile::commit() {
-  if (fd_ < 0) throw OutputError("cannot write '" + path_ + "': the file is closed");
+  if (fd_ < 0) throw OutputError(path_, "the file is closed");
   if (::fchmod(fd_, defaultMode()) != 0) fail("cannot set its permissions", errno);
   // On disk before the rename, so that after a crash the name holds the old or the new file.
   if (::fsync(fd_) != 0) fail("fsync failed", errno);
@@ -115,7 +115,13 @@ void checkOutputs(const std::vector<OutputTarget>& outputs, const std::vector<st
     if (fs::is_directory(o.path, ec)) fail("is a directory");
     const std::string dir = directoryOf(o.path);
     if (!fs::is_directory(dir, ec)) fail("directory '" + dir + "' does not exist");
-    if (::access(dir.c_str(), W_OK) != 0) fail("directory '" + dir + "' is not writable");
+    // access(W_OK) is not proof: root passes it everywhere, and /proc, sysfs or a read-only mount
+    // refuse new files anyway. Creating (and removing) the temporary file the write will create is.
+    try {
+      OutputFile probe(o.path);
+    } catch (const OutputError& e) {
+      fail("directory '" + dir + "' is not writable: " + e.reason());
+    }
     if (fs::exists(o.path, ec) && !fs::is_regular_file(o.path, ec)) fail("exists and is not a regular file");
     const auto same = [&](const std::string& p) { return !p.empty() && fs::exists(p, ec) && fs::equivalent(p, o.path, ec); };
     bool input = wasReadAsInput(o.path);

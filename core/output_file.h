@@ -17,7 +17,12 @@ namespace kasha {
 // A failure to write an output: "cannot write 'path': reason".
 class OutputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  OutputError(const std::string& path, const std::string& reason)
+      : std::runtime_error("cannot write '" + path + "': " + reason), reason_(reason) {}
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string reason_;
 };
 
 class OutputFile {
@@ -55,8 +60,8 @@ struct OutputTarget {
   std::string path, option, extension, mayReplace;
 };
 
-// Checks, before any work, that every output can be written: its directory exists and is
-// writable, the path is not a directory, has its extension, is not an input (a file this process
+// Checks, before any work, that every output can be written: its directory exists and takes a
+// new file (one is created and removed, as OutputFile would), the path is not a directory, has its extension, is not an input (a file this process
 // has read, input_file.h — the scene and the CSV, OBJ, texture and material files it names — or
 // one of `laterInputs`, still to be read), and no two outputs name the same file. Throws
 // UsageError naming the option and the path.

@@ -1,6 +1,7 @@
 #include "core/spectral_film.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "core/bispectral_data.h"
@@ -22,16 +23,20 @@ SpectralBins SpectralBins::fromCount(const WavelengthRange& range, int count) {
   return {range.min, range.width() / float(count), count};
 }
 
-SpectralBins SpectralBins::fromStep(const WavelengthRange& range, float step) {
-  if (!(step > 0.0f) || !std::isfinite(step))
+SpectralBins SpectralBins::fromStep(const WavelengthRange& range, double step) {
+  if (!(step > 0.0) || !std::isfinite(step))
     throw std::invalid_argument("spectral step: must be a positive number of nm");
-  const double n = double(range.width()) / double(step);
+  const std::string where = " the scene's wavelength range (" + formatNm(range.min) + "-" + formatNm(range.max) + " nm)";
+  const double n = double(range.width()) / step;
+  if (n > double(kMaxBins) + 0.5) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", step);
+    throw std::invalid_argument("spectral step: " + std::string(text) + " nm makes more than " + std::to_string(kMaxBins) +
+                                " bins of" + where);
+  }
   const double rounded = std::round(n);
-  if (rounded < 1.0 || std::abs(n - rounded) * double(step) > 1e-3)
-    throw std::invalid_argument("spectral step: " + formatNm(step) + " nm does not divide the scene's wavelength range (" +
-                                formatNm(range.min) + "-" + formatNm(range.max) + " nm)");
-  if (rounded > double(kMaxBins))
-    throw std::invalid_argument("spectral step: more than " + std::to_string(kMaxBins) + " bins");
+  if (rounded < 1.0 || std::abs(n - rounded) * step > 1e-3)
+    throw std::invalid_argument("spectral step: " + formatNm(float(step)) + " nm does not divide" + where);
   return fromCount(range, int(rounded));
 }
 

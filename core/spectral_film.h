@@ -25,9 +25,10 @@ struct SpectralBins {
 
   // `count` bins over `range`. Throws std::invalid_argument if count < 1 or over kMaxBins.
   static SpectralBins fromCount(const WavelengthRange& range, int count);
-  // Bins `step` nm wide over `range`; the step must divide the range's width (within 1e-3 nm) so
-  // that no bin reaches past it. Throws std::invalid_argument with the reason.
-  static SpectralBins fromStep(const WavelengthRange& range, float step);
+  // Bins `step` nm wide over `range`; the step must make at most kMaxBins bins and divide the
+  // range's width (within 1e-3 nm) so that no bin reaches past it. Throws std::invalid_argument
+  // with the reason. A double, so that a tiny step is refused rather than rounded to 0.
+  static SpectralBins fromStep(const WavelengthRange& range, double step);
   static constexpr int kMaxBins = 4096;
 };
 

@@ -23,13 +23,6 @@ std::vector<std::string> splitCsv(const std::string& line) {
   return out;
 }
 
-// A cell as it can be shown in a message: a NUL byte written as \0.
-std::string printable(const std::string& cell) {
-  std::string out;
-  for (const char c : cell) out += c == '\0' ? std::string("\\0") : std::string(1, c);
-  return out;
-}
-
 }  // namespace
 
 SpectralTable parseSpectralCsv(const std::string& text, const std::string& source) {
@@ -68,7 +61,7 @@ SpectralTable parseSpectralCsv(const std::string& text, const std::string& sourc
       char* end = nullptr;
       const double v = std::strtod(cells[c].c_str(), &end);
       if (cells[c].empty() || end != cells[c].c_str() + cells[c].size())  // a NUL inside ends c_str() early
-        throw InputError(where, t.columns[c], "'" + printable(cells[c]) + "' is not a number");
+        throw InputError(where, t.columns[c], "'" + cells[c] + "' is not a number");  // a NUL shown as \x00 (error.h)
       if (!std::isfinite(v)) throw InputError(where, t.columns[c], "value is not finite");
       if (!std::isfinite(float(v)))
         throw InputError(where, t.columns[c], "value " + cells[c] + " is out of range of a 32-bit float");

@@ -54,13 +54,13 @@ void requirePassMemory(const Integrator& integrator, int width, int height, int 
                 "the samples of one pass (" + std::to_string(perPass) + " per pixel)", limit);
 }
 
-SpectralBins binsFor(const Scene& scene, int count, float step) {
-  if (count < 0 || !(step >= 0.0f))
+SpectralBins binsFor(const Scene& scene, int count, double step) {
+  if (count < 0 || !(step >= 0.0))
     throw RenderJobError(count < 0 ? "spectral_bins" : "spectral_step", "must be positive (0: no spectral bins)");
-  if (count > 0 && step > 0.0f) throw RenderJobError("spectral_step", "give spectral bins or their step, not both");
+  if (count > 0 && step > 0.0) throw RenderJobError("spectral_step", "give spectral bins or their step, not both");
   try {
     if (count > 0) return SpectralBins::fromCount(scene.range, count);
-    if (step > 0.0f) return SpectralBins::fromStep(scene.range, step);
+    if (step > 0.0) return SpectralBins::fromStep(scene.range, step);
   } catch (const std::invalid_argument& e) {
     throw RenderJobError(count > 0 ? "spectral_bins" : "spectral_step", e.what());
   }

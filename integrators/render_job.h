@@ -44,7 +44,7 @@ struct RenderJobOptions {
   int threads = 0;  // 0: all cores
   // Spectral bins: N equal bins of the scene's range, or bins `spectralStep` nm wide; 0: none.
   int spectralBins = 0;
-  float spectralStep = 0.0f;
+  double spectralStep = 0.0;
   // >= 0: keep one image per (s, t) strategy, paths longer than this in one (strategy_images.h).
   int strategyDepth = -1;
   // Checkpoints (core/checkpoint.h, docs/reliability.md): written to `checkpoint` every

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/json_parse.h"
 
 namespace kasha {
 namespace {
@@ -28,8 +29,17 @@ RenderSetting parseRenderSetting(const std::string& text) {
   RenderSetting s{text.substr(0, eq), nullptr, text};
   levels(s.key);
   const std::string value = text.substr(eq + 1);
-  s.value = nlohmann::json::parse(value, nullptr, false);
-  if (s.value.is_discarded()) s.value = value;
+  // accept() builds nothing, so any text is safe to try; JSON is then read as strictly as a scene
+  // file (core/json_parse.h: no duplicate keys, no nesting that recursive code could not take).
+  if (!nlohmann::json::accept(value)) {
+    s.value = value;
+    return s;
+  }
+  try {
+    s.value = parseJsonStrict(value, "");
+  } catch (const InputError& e) {
+    throw std::invalid_argument(e.what());
+  }
   return s;
 }
 

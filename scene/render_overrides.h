@@ -17,7 +17,8 @@ struct RenderSetting {
 };
 
 // "KEY=VALUE": VALUE is JSON if it parses as JSON, else a string ("ppm.direct=photons").
-// Throws std::invalid_argument without '=' or with an empty level in KEY.
+// Throws std::invalid_argument without '=', with an empty level in KEY, or for JSON a scene file
+// may not hold (a key twice in an object, nesting deeper than kMaxJsonDepth).
 RenderSetting parseRenderSetting(const std::string& text);
 
 // The JSON pointer of a key in the scene: "ppm.alpha" → "/render/ppm/alpha".

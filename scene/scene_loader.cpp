@@ -531,7 +531,7 @@ struct Loader {
 // silently become infinite.
 void checkFloatRange(const json& v, const std::string& file, const std::string& ptr, int depth = 0) {
   if (depth > kMaxJsonDepth)
-    throw InputError(file, ptr, "nested more than " + std::to_string(kMaxJsonDepth) + " levels deep");
+    throw InputError(file, ptr, nestedDeeperThan(kMaxJsonDepth));
   if (v.is_number_float() && !std::isfinite(float(v.get<double>())))
     throw InputError(file, ptr, "number " + v.dump() + " is out of range of a 32-bit float");
   if (v.is_object())

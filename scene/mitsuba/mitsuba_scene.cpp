@@ -11,9 +11,21 @@ namespace {
 
 using nlohmann::json;
 
+// A file's <default>s, read before its other elements (a parameter may be used anywhere in the
+// file). As in Mitsuba 3, a <default> sets a parameter only if it is not set yet, so an including
+// file's defaults win over an included file's, and an included file's apply after it too.
+void readDefaults(XmlImport& xml, pugi::xml_node scene) {
+  for (pugi::xml_node d : scene.children("default")) {
+    for (pugi::xml_attribute a : d.attributes())
+      if (std::string(a.name()) != "name" && std::string(a.name()) != "value")
+        xml.fail(d, std::string("unexpected attribute '") + a.name() + "'");
+    xml.setDefault(xml.attribute(d, "name"), xml.attribute(d, "value"));
+  }
+}
+
 // A scene's children in order, descending into <include>d files.
 void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
-  if (depth > 16) xml.fail(scene, "<include>s nested more than 16 deep");
+  if (depth > kMaxIncludeDepth) xml.fail(scene, "<include>s " + nestedDeeperThan(kMaxIncludeDepth));
   for (pugi::xml_node c : scene.children()) {
     if (c.type() != pugi::node_element) continue;
     const std::string tag = c.name();
@@ -21,6 +33,7 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
       continue;  // read before (parameters may be used anywhere)
     } else if (tag == "include") {
       const pugi::xml_document& doc = xml.include(xml.resolve(c, xml.attribute(c, "filename")), c);
+      readDefaults(xml, doc.document_element());
       visit(xml, doc.document_element(), out, depth + 1);
       xml.endInclude();
     } else if (tag == "integrator") {
@@ -37,15 +50,6 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
     } else {
       xml.fail(c, "unsupported element <" + tag + "> (kasha reads default, include, integrator, sensor, bsdf, shape, emitter)");
     }
-  }
-}
-
-void readDefaults(XmlImport& xml, pugi::xml_node scene) {
-  for (pugi::xml_node d : scene.children("default")) {
-    for (pugi::xml_attribute a : d.attributes())
-      if (std::string(a.name()) != "name" && std::string(a.name()) != "value")
-        xml.fail(d, std::string("unexpected attribute '") + a.name() + "'");
-    xml.setDefault(xml.attribute(d, "name"), xml.attribute(d, "value"));
   }
 }
 
@@ -68,10 +72,12 @@ void readDefaults(XmlImport& xml, pugi::xml_node scene) {
 }  // namespace
 
 std::string SceneJson::addMaterial(const XmlImport& xml, pugi::xml_node bsdf, json material) {
+  // Ids are unique per kind (XmlImport::claimId), but a shape's default material is named after the
+  // shape's id, which a <bsdf> may share, and an unnamed BSDF's label may repeat: later ones get #2, #3.
   const std::string id = bsdf.attribute("id") ? xml.attribute(bsdf, "id") : "";
-  std::string name = id.empty() ? xml.label(bsdf) : id;
-  for (int k = 2; id.empty() && root["materials"].contains(name); ++k) name = xml.label(bsdf) + "#" + std::to_string(k);
-  if (root["materials"].contains(name)) xml.fail(bsdf, "a second <bsdf> with id '" + id + "'");
+  const std::string base = id.empty() ? xml.label(bsdf) : id;
+  std::string name = base;
+  for (int k = 2; root["materials"].contains(name); ++k) name = base + "#" + std::to_string(k);
   root["materials"][name] = std::move(material);
   origin("/materials/" + name, xml, bsdf);
   if (!id.empty()) bsdfIds[id] = name;

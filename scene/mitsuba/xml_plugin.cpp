@@ -20,16 +20,64 @@ const pugi::xml_document& XmlImport::load(std::string text, const std::string& p
   f.lineStarts.push_back(0);
   for (size_t i = 0; i < f.text.size(); ++i)
     if (f.text[i] == '\n') f.lineStarts.push_back(i + 1);
-  const pugi::xml_parse_result r = f.doc.load_buffer(f.text.data(), f.text.size(), pugi::parse_default | pugi::parse_comments);
+  // parse_fragment keeps text outside the root element (pugixml drops it otherwise), to refuse it.
+  const pugi::xml_parse_result r =
+      f.doc.load_buffer(f.text.data(), f.text.size(), pugi::parse_default | pugi::parse_comments | pugi::parse_fragment);
   if (!r) {
     const size_t off = size_t(std::max<ptrdiff_t>(0, r.offset));
     const size_t line = size_t(std::upper_bound(f.lineStarts.begin(), f.lineStarts.end(), off) - f.lineStarts.begin());
     throw InputError(path + ":" + std::to_string(line), "", std::string("malformed XML: ") + r.description());
   }
   const pugi::xml_node root = f.doc.document_element();
+  if (!root) throw InputError(path + ":1", "", "malformed XML: no root element");
   if (std::string(root.name()) != "scene")
     throw InputError(path + ":1", "", "the root element is <" + std::string(root.name()) + ">, expected <scene>");
+  checkStructure(f);
   return f.doc;
+}
+
+namespace {
+
+// Elements that hold no elements: Mitsuba's properties (a <spectrum> without a type is one) and
+// the operations of a <transform>. Anything inside them would be ignored.
+bool holdsNoElements(pugi::xml_node n) {
+  static const std::set<std::string> tags = {"float", "integer", "boolean", "string", "point", "vector", "rgb",
+                                             "blackbody", "ref", "default", "include", "translate", "rotate",
+                                             "scale", "matrix", "lookat"};
+  const std::string tag = n.name();
+  return tags.count(tag) || (tag == "spectrum" && !n.attribute("type"));
+}
+
+// pugixml's tree walk is a loop (no recursion), so any depth of input is safe to check.
+struct StructureWalker : pugi::xml_tree_walker {
+  pugi::xml_node tooDeep, inside;  // the first offence found
+  bool for_each(pugi::xml_node& n) override {
+    if (n.type() != pugi::node_element) return true;
+    if (depth() > kMaxXmlDepth) tooDeep = n;
+    else if (holdsNoElements(n.parent())) inside = n;
+    return !tooDeep && !inside;
+  }
+};
+
+}  // namespace
+
+void XmlImport::checkStructure(const File& f) const {
+  // pugixml accepts several top-level elements and text around the root; XML has one root element.
+  const pugi::xml_node root = f.doc.document_element();
+  for (pugi::xml_node n = f.doc.first_child(); n; n = n.next_sibling()) {
+    if (n == root || (n.type() != pugi::node_element && n.type() != pugi::node_pcdata && n.type() != pugi::node_cdata))
+      continue;
+    const bool after = root.offset_debug() < n.offset_debug();
+    throw InputError(where(n), "", n.type() == pugi::node_element ? "a second root element <" + std::string(n.name()) +
+                                                                        "> after </scene> (a file holds one scene)"
+                                                                  : std::string("text ") + (after ? "after </scene>" : "before <scene>"));
+  }
+  StructureWalker w;
+  pugi::xml_node(f.doc).traverse(w);  // a handle: traverse() is not const
+  if (w.tooDeep) fail(w.tooDeep, nestedDeeperThan(kMaxXmlDepth));
+  if (w.inside)
+    throw InputError(where(w.inside), describe(w.inside.parent()),
+                     "<" + std::string(w.inside.name()) + "> inside it (a property or transform operation holds no elements)");
 }
 
 const pugi::xml_document& XmlImport::parse(const std::string& text, const std::string& path) {
@@ -118,10 +166,17 @@ std::string XmlImport::describe(pugi::xml_node n) {
   return s;
 }
 
+void XmlImport::claimId(pugi::xml_node n) {
+  const std::string id = attribute(n, "id");
+  const auto [it, added] = ids_.emplace(std::pair<std::string, std::string>(n.name(), id), n);
+  if (!added && it->second != n)
+    fail(n, "duplicate id '" + id + "' (the <" + it->second.name() + "> at " + where(it->second) + " has it)");
+}
+
 void XmlImport::fail(pugi::xml_node n, const std::string& reason) const { throw InputError(where(n), describe(n), reason); }
 
 void XmlImport::note(pugi::xml_node n, const std::string& what) {
-  notes_.push_back(where(n) + ": " + describe(n) + ": " + what);
+  notes_.push_back(printable(where(n) + ": " + describe(n) + ": " + what));
 }
 
 std::optional<std::vector<float>> parseNumbers(const std::string& text) {
@@ -132,7 +187,7 @@ std::optional<std::vector<float>> parseNumbers(const std::string& text) {
     while (p < end && (std::isspace(static_cast<unsigned char>(*p)) || *p == ',')) ++p;
     if (p == end) break;
     float v = 0.0f;
-    if (*p == '+') ++p;  // from_chars does not take a leading '+'
+    if (*p == '+' && ++p < end && (*p == '-' || *p == '+')) return std::nullopt;  // from_chars takes no '+'
     const auto [q, ec] = std::from_chars(p, end, v);
     if (ec != std::errc() || !std::isfinite(v)) return std::nullopt;
     if (q < end && !std::isspace(static_cast<unsigned char>(*q)) && *q != ',') return std::nullopt;
@@ -146,6 +201,7 @@ std::optional<std::vector<float>> parseNumbers(const std::string& text) {
 
 Plugin::Plugin(XmlImport& xml, pugi::xml_node node) : xml_(xml), node_(node) {
   if (node.attribute("type")) type_ = xml.attribute(node, "type");
+  if (node.attribute("id")) xml.claimId(node);
 }
 
 bool Plugin::has(const std::string& name) const {

@@ -17,11 +17,20 @@
 
 namespace kasha::mitsuba {
 
+// The deepest element a scene file may hold, <scene> being level 0. Real scenes nest a handful of
+// levels (scene, shape, bsdf, the bsdf of a twosided, a spectrum, its properties); the readers
+// recurse over nested elements (a twosided's bsdf), so the limit, checked when a file is parsed,
+// bounds their stack on any input.
+constexpr int kMaxXmlDepth = 64;
+// The longest chain of <include>s (a file including a file ...).
+constexpr int kMaxIncludeDepth = 16;
+
 // Everything one import shares: the parsed files, the parameters and the approximation notes.
 class XmlImport {
  public:
-  // Parses `text` as the file `path` (the top-level scene); malformed XML is an InputError
-  // naming the file and line.
+  // Parses `text` as the file `path` (the top-level scene); malformed XML, content outside the
+  // root element, elements nested deeper than kMaxXmlDepth and elements inside a property or a
+  // transform operation are InputErrors naming the file and line.
   const pugi::xml_document& parse(const std::string& text, const std::string& path);
   // Parses the file `path` for an <include> at `from`; a cycle of includes is an error. Call
   // endInclude() when its elements have been read (the same file may be included again later).
@@ -42,6 +51,10 @@ class XmlImport {
   std::optional<std::string> optionalAttribute(pugi::xml_node n, const char* name) const;
   // <default name=".." value=".."/>: sets a parameter unless it is set already.
   void setDefault(const std::string& name, const std::string& value) { params_.emplace(name, value); }
+  // Records the id of an object element: a second element of the same kind (<shape>, <bsdf>, ...)
+  // with the same id, in the scene or its <include>s, is an error naming both. (Mitsuba wants ids
+  // unique across kinds too; kasha lets a shape and its bsdf share one, as its example scene does.)
+  void claimId(pugi::xml_node n);
 
   // Records an approximation (printed to stderr by the loader).
   void note(pugi::xml_node n, const std::string& what);
@@ -59,14 +72,16 @@ class XmlImport {
   };
   const File& fileOf(pugi::xml_node n) const;
   const pugi::xml_document& load(std::string text, const std::string& path);
+  void checkStructure(const File& f) const;
   std::deque<File> files_;
   std::vector<std::string> including_;  // the include chain, to detect cycles
   std::map<std::string, std::string> params_;
+  std::map<std::pair<std::string, std::string>, pugi::xml_node> ids_;  // (tag, id) → element
   std::vector<std::string> notes_;
 };
 
 // Parses a list of numbers separated by commas and/or white space ("1, 2 3"); nullopt if any
-// entry is not a finite number.
+// entry is not a finite number written out to its end ("6500K" is not one).
 std::optional<std::vector<float>> parseNumbers(const std::string& text);
 
 // One plugin element (<bsdf type="diffuse">, <shape>, ...): its named properties (<float

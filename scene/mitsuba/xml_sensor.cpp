@@ -56,6 +56,11 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     sampler.finish();
   }
   const float fov = s.number("fov");
+  // tan(fov/2) below: beyond (0, 180) degrees it would wrap round to another angle.
+  if (!(fov > 0.0f && fov < 180.0f)) {
+    const pugi::xml_node p = s.property("fov");
+    s.fail(p, "fov must be in (0, 180) degrees, got " + xml.attribute(p, "value"));
+  }
   const std::string axis = s.string("fov_axis", "x");
   const std::optional<float> fovY = verticalFov(fov, axis, width, height);
   if (!fovY) s.fail("unknown fov_axis '" + axis + "' (x, y, diagonal, smaller, larger)");

@@ -128,9 +128,12 @@ json spectrumElement(XmlImport& xml, pugi::xml_node p, SpectrumUse use) {
     return v->front();
   }
   if (tag == "blackbody") {
+    // A number of kelvin, optionally followed by its unit ("6500", "6500K"), and nothing else.
     const std::string t = xml.attribute(p, "temperature");
-    const auto v = parseNumbers(t.substr(0, t.find_first_of("kK")));
-    if (!v || v->size() != 1) xml.fail(p, "temperature '" + t + "' is not a number of kelvin");
+    const size_t unit = t.find_last_not_of(" \t\n\r");
+    const bool hasUnit = unit != std::string::npos && (t[unit] == 'K' || t[unit] == 'k');
+    const auto v = parseNumbers(hasUnit ? t.substr(0, unit) : t);
+    if (!v || v->size() != 1) xml.fail(p, "temperature '" + t + "' is not a number of kelvin (e.g. 6500 or 6500K)");
     json out = blackbody(xml, p, v->front());
     if (const auto s = xml.optionalAttribute(p, "scale")) {
       const auto sv = parseNumbers(*s);

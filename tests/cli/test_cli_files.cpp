@@ -185,6 +185,55 @@ TEST_F(CliFiles, CommandLineMistakesExitWith2) {
   expectRefused({"matrix", scene, "--material", "none"}, 2, "--material: none: no material of that name");
 }
 
+// Hostile scenes (issue 36): nesting deep enough to overflow the stack, control characters meant
+// for the terminal; one line and exit code 1 each.
+TEST_F(CliFiles, HostileScenesGetOneLine) {
+  const auto nested = [](const std::string& open, const std::string& inner, const std::string& close, int levels) {
+    std::string s;
+    for (int i = 0; i < levels; ++i) s += open;
+    s += inner;
+    for (int i = 0; i < levels; ++i) s += close;
+    return s;
+  };
+  const std::string sensor = R"(<sensor type="perspective"><float name="fov" value="45"/>
+    <transform name="to_world"><lookat origin="0, 0, -5" target="0, 0, 0"/></transform></sensor>)";
+  const std::string xml = write("deep.xml", "<scene version=\"3.0.0\">" + sensor + "\n<shape type=\"rectangle\">" +
+                                                nested("<bsdf type=\"twosided\">", "<bsdf type=\"diffuse\"/>", "</bsdf>", 100000) +
+                                                "</shape></scene>");
+  expectRefused({"render", xml, "-q"}, 1, xml + ":3: bsdf 'twosided': nested deeper than 64 levels");
+  const std::string json = write("deep.json", "{\"camera\": " + nested("[", "0", "]", 100000) + "}");
+  expectRefused({"render", json, "-q"}, 1, json + ": /camera/0/0/0/");
+  expectRefused({"render", json, "-q"}, 1, ": nested deeper than 64 levels");
+  // --set's value is JSON read as strictly as a scene file's (50 000 levels: one argument holds
+  // at most 128 KiB).
+  expectRefused({"render", scene, "-q", "--set", "ppm.alpha=" + nested("[", "", "]", 50000)}, 2,
+                "nested deeper than 64 levels");
+  expectRefused({"render", scene, "-q", "--set", "ppm={\"alpha\": 0.5, \"alpha\": 0.6}"}, 2, "duplicate key 'alpha'");
+  // ESC [2J clears the screen, BEL rings; the message shows them as \x1b and \x07.
+  const std::string esc = write("esc.xml", "<scene version=\"3.0.0\">" + sensor +
+                                               "<shape type=\"rectangle\"><ref id=\"\x1b[2J\x07\"/></shape></scene>");
+  const test::Finished r = run({"render", esc, "-q"});
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_CONTAINS(r.err, "kasha: error: " + esc + ":2: shape 'rectangle': no <bsdf id=\"\\x1b[2J\\x07\"> before this reference\n");
+  EXPECT_EQ(r.err.find_first_of("\x1b\x07"), std::string::npos);
+}
+
+// An output the system refuses although access(2) allows it (root may "write" to /proc), and a
+// spectral step too small to be one: refused before the first sample.
+TEST_F(CliFiles, OutputsAndStepsThatCannotWorkAreRefusedBeforeRendering) {
+  expectRefused({"render", scene, "-q", "-o", "/proc/kasha_test.exr"}, 2,
+                "/proc/kasha_test.exr: -o: directory '/proc' is not writable: cannot create a temporary file beside it");
+  expectRefused({"render", scene, "-q", "-o", dir + "/x.exr", "--checkpoint", "/proc/self/x.ckpt"}, 2,
+                "/proc/self/x.ckpt: --checkpoint: directory '/proc/self' is not writable");
+  // 1e-300 used to become 0 (a float), taken as no spectral bins at all.
+  expectRefused({"render", scene, "-q", "-o", dir + "/x.exr", "--spectral-step", "1e-300"}, 2,
+                "--spectral-step: spectral step: 1e-300 nm makes more than 4096 bins of the scene's wavelength range");
+  expectRefused({"render", scene, "-q", "-o", dir + "/x.exr", "--spectral-step", "0.01"}, 2, "makes more than 4096 bins");
+  for (const char* bad : {"nan", "inf", "-10", "0"})
+    expectRefused({"render", scene, "-q", "-o", dir + "/x.exr", "--spectral-step", bad}, 2, "--spectral-step: ");
+  EXPECT_FALSE(fs::exists(dir + "/x.exr"));
+}
+
 TEST_F(CliFiles, ExtractNeverOverwritesItsOwnInput) {
   const std::string sample = write("m_spectra.csv", "wavelength,ex_400,ex_450\n400,0.5,0\n450,0.1,0.5\n500,0.05,0.1\n");
   const std::string before = test::readTextFile(sample);

@@ -196,7 +196,7 @@ TEST_F(FileInput, MessagesNameWhatTheUserWrote) {
   EXPECT_EQ(readSpectralCsv(bom).lambdas.size(), 2u);
   // Bytes after a NUL inside a field are not silently dropped.
   const std::string nul = write("nul.csv", std::string("wavelength,v\n400,0.5\n700,0.5\0garbage\n", 38));
-  EXPECT_EQ(errorOf([&] { readSpectralCsv(nul); }), nul + ":3: v: '0.5\\0garbage' is not a number");
+  EXPECT_EQ(errorOf([&] { readSpectralCsv(nul); }), nul + ":3: v: '0.5\\x00garbage' is not a number");
 }
 
 // A PNG of a few dozen bytes that declares 30000 × 30000 pixels.

@@ -69,16 +69,18 @@ class MitsubaImport : public ::testing::Test {
     return mitsuba::translateMitsubaScene(std::string(std::istreambuf_iterator<char>(in), {}), path);
   }
   std::unique_ptr<Scene> load(const std::string& body) const { return loadScene(scene(body)); }
-  // The message of the InputError loading `body` throws ("" and a test failure if none).
-  std::string error(const std::string& body) const {
+  // The message of the InputError loading the file `path` throws ("" and a test failure if none).
+  static std::string fileError(const std::string& path) {
     try {
-      load(body);
+      loadScene(path);
     } catch (const InputError& e) {
       return e.what();
     }
-    ADD_FAILURE() << "loaded, expected an InputError";
+    ADD_FAILURE() << "loaded " << path << ", expected an InputError";
     return "";
   }
+  // The same for a scene file holding kSensor and `body`.
+  std::string error(const std::string& body) const { return fileError(scene(body)); }
   std::string file() const { return (dir / "scene.xml").string(); }
 
   fs::path dir;
@@ -425,15 +427,24 @@ TEST_F(MitsubaImport, DefaultsRefsAndIncludes) {
   EXPECT_EQ(t.scene["shapes"][0]["name"], "floor");
   EXPECT_EQ(t.scene["shapes"][0]["corners"][2], json({2.0f, 2.0f, 0.0f}));
   // The same file may be included twice (not a cycle); here it defines the same id again.
-  write("plain.xml", "<scene version=\"3.0.0\"><bsdf type=\"diffuse\" id=\"grey\"/></scene>");
+  const std::string plain = write("plain.xml", "<scene version=\"3.0.0\"><bsdf type=\"diffuse\" id=\"grey\"/></scene>");
   const std::string twice = write("twice.xml", "<scene version=\"3.0.0\"><include filename=\"plain.xml\"/>"
                                                "<include filename=\"plain.xml\"/></scene>");
-  try {
-    loadScene(twice);
-    FAIL() << "loaded two bsdfs with one id";
-  } catch (const InputError& e) {
-    EXPECT_TRUE(contains(e.what(), "a second <bsdf> with id 'grey'"));
-  }
+  EXPECT_TRUE(contains(fileError(twice), "bsdf 'diffuse': duplicate id 'grey' (the <bsdf> at " + plain + ":1 has it)"));
+}
+
+TEST_F(MitsubaImport, DefaultsOfAnIncludedFileApplyUnlessSetBefore) {
+  // As in Mitsuba 3: an included file's <default> sets its parameter if nothing set it yet, and
+  // it stays set for the rest of the import.
+  write("grey.xml", R"(<scene version="3.0.0"><default name="refl" value="0.3"/><default name="w" value="3"/>
+    <bsdf type="diffuse" id="grey"><float name="reflectance" value="$refl"/></bsdf></scene>)");
+  const std::string floor = R"(<shape type="rectangle"><transform name="to_world"><scale x="$w"/></transform><ref id="grey"/></shape>)";
+  const auto own = translate(std::string(kLight) + R"(<include filename="grey.xml"/>)" + floor);
+  EXPECT_EQ(own.scene["materials"]["grey"]["reflectance"], 0.3f);
+  EXPECT_EQ(own.scene["shapes"][0]["corners"][2][0], 3.0f);  // the includer uses the included default
+  const auto includer = translate(std::string(R"(<default name="refl" value="0.7"/>)") + kLight +
+                                  R"(<include filename="grey.xml"/>)" + floor);
+  EXPECT_EQ(includer.scene["materials"]["grey"]["reflectance"], 0.7f);
 }
 
 TEST_F(MitsubaImport, ExampleSceneLoads) {
@@ -492,6 +503,127 @@ TEST_F(MitsubaImport, MalformedXmlNamesTheLine) {
   } catch (const InputError& e) {
     EXPECT_TRUE(contains(e.what(), "includes itself"));
   }
+}
+
+// ---- hostile input (issue 36) ---------------------------------------------------------------
+
+// A shape whose BSDF is `levels` twosided BSDFs, each inside the last, around a diffuse one; the
+// BSDFs start on the second line of the text.
+std::string nestedTwosided(int levels) {
+  std::string s = "<shape type=\"rectangle\">\n";
+  for (int i = 0; i < levels; ++i) s += "<bsdf type=\"twosided\">";
+  s += "<bsdf type=\"diffuse\"/>";
+  for (int i = 0; i < levels; ++i) s += "</bsdf>";
+  return s + "</shape>";
+}
+
+// `tag` nested `levels` deep, written as <tag><tag>...</tag></tag>.
+std::string nested(const std::string& open, const std::string& close, int levels) {
+  std::string s;
+  for (int i = 0; i < levels; ++i) s += open;
+  for (int i = 0; i < levels; ++i) s += close;
+  return s;
+}
+
+TEST_F(MitsubaImport, DeepNestingIsRefusedNotRecursedInto) {
+  // <scene> is level 0, the shape 1, the BSDFs 2, 3, ...: 62 twosided BSDFs put the diffuse one at
+  // level 64, the deepest allowed; the recursion through them works.
+  EXPECT_EQ(load("\n" + std::string(kLight) + nestedTwosided(62))->materials.size(), 1u);
+  // 100 000 levels used to overflow the stack (a crash, and through Python the interpreter's).
+  const std::string deep = "\n" + std::string(kLight) + nestedTwosided(100000);
+  EXPECT_TRUE(contains(error(deep), file() + ":8: bsdf 'twosided': nested deeper than 64 levels"));
+  try {
+    translate(deep);
+    ADD_FAILURE() << "translated";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), "nested deeper than 64 levels"));
+  }
+  // Any element: nested spectra, textures, unknown elements at the top.
+  EXPECT_TRUE(contains(error(std::string(kLight) + "<shape type=\"rectangle\"><bsdf type=\"diffuse\">" +
+                             nested("<spectrum type=\"uniform\" name=\"reflectance\">", "</spectrum>", 100000) + "</bsdf></shape>"),
+                       "spectrum 'uniform': nested deeper than 64 levels"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + "<shape type=\"rectangle\"><bsdf type=\"diffuse\">" +
+                             nested("<texture type=\"bitmap\" name=\"reflectance\">", "</texture>", 100000) + "</bsdf></shape>"),
+                       "texture 'bitmap': nested deeper than 64 levels"));
+  EXPECT_TRUE(contains(error(nested("<x>", "</x>", 100000)), "x: nested deeper than 64 levels"));
+  // A chain of included files: each one is parsed and checked before the next is read.
+  for (int i = 0; i < 20; ++i)
+    write("chain" + std::to_string(i) + ".xml",
+          "<scene version=\"3.0.0\"><include filename=\"chain" + std::to_string(i + 1) + ".xml\"/></scene>");
+  EXPECT_TRUE(contains(error("<include filename=\"chain0.xml\"/>"), "<include>s nested deeper than 16 levels"));
+}
+
+TEST_F(MitsubaImport, NothingInTheFileIsIgnored) {
+  // A second root element, or text, after </scene>: pugixml keeps them, XML allows one root.
+  const std::string body = std::string(kSensor) + kLight + kFloor;
+  const std::string second = write("second.xml", "<scene version=\"3.0.0\">" + body + "</scene>\n<scene version=\"3.0.0\"/>\n");
+  EXPECT_TRUE(contains(fileError(second), second + ":7: a second root element <scene> after </scene>"));
+  const std::string text = write("text.xml", "<scene version=\"3.0.0\">" + body + "</scene>\nand more\n");
+  EXPECT_TRUE(contains(fileError(text), text + ":6: text after </scene>"));  // the text starts on the line of </scene>
+  const std::string before = write("before.xml", "a scene:\n<scene version=\"3.0.0\">" + body + "</scene>\n");
+  EXPECT_TRUE(contains(fileError(before), before + ":1: text before <scene>"));
+  // Elements inside a transform operation or a property.
+  EXPECT_TRUE(contains(error("\n<shape type=\"sphere\"><transform name=\"to_world\"><translate x=\"1\">\n"
+                             "<rotate y=\"1\" angle=\"90\"/></translate></transform></shape>"),
+                       file() + ":8: translate: <rotate> inside it (a property or transform operation holds no elements)"));
+  EXPECT_TRUE(contains(error("\n<shape type=\"sphere\"><float name=\"radius\" value=\"1\">\n<float name=\"radius\" value=\"2\"/></float></shape>"),
+                       file() + ":8: float 'radius': <float> inside it"));
+  EXPECT_TRUE(contains(error("\n<shape type=\"rectangle\"><bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"0.5\">\n"
+                             "<rgb name=\"x\" value=\"1\"/></spectrum></bsdf></shape>"),
+                       file() + ":8: spectrum 'reflectance': <rgb> inside it"));
+}
+
+TEST_F(MitsubaImport, NumbersAreReadToTheirEnd) {
+  const auto kelvin = [&](const std::string& t) {
+    const auto tr = translate(std::string(kFloor) + "<emitter type=\"point\"><blackbody name=\"intensity\" temperature=\"" + t + "\"/></emitter>");
+    return tr.scene["lights"][0]["intensity"]["kelvin"].get<float>();
+  };
+  EXPECT_EQ(kelvin("6500"), 6500.0f);
+  EXPECT_EQ(kelvin("6500K"), 6500.0f);
+  EXPECT_EQ(kelvin(" 5000 k "), 5000.0f);
+  // Used to be read as 6500 K.
+  EXPECT_TRUE(contains(error(std::string(kFloor) + "\n<emitter type=\"point\"><blackbody name=\"intensity\" temperature=\"6500Kelvin, please\"/></emitter>"),
+                       file() + ":7: blackbody 'intensity': temperature '6500Kelvin, please' is not a number of kelvin"));
+  EXPECT_TRUE(contains(error(std::string(kFloor) + "<emitter type=\"point\"><blackbody name=\"intensity\" temperature=\"K\"/></emitter>"),
+                       "temperature 'K' is not a number of kelvin"));
+  // "+-1" used to be read as -1 (a '+' skipped before from_chars).
+  EXPECT_TRUE(contains(error(std::string(kFloor) + "\n<shape type=\"sphere\"><float name=\"radius\" value=\"+-1\"/></shape>"),
+                       file() + ":7: shape 'sphere': value '+-1' is not a finite number"));
+  EXPECT_TRUE(contains(error(std::string(kFloor) + "<shape type=\"sphere\"><float name=\"radius\" value=\"2m\"/></shape>"),
+                       "value '2m' is not a finite number"));
+}
+
+TEST_F(MitsubaImport, FovOutsideZeroTo180IsAnError) {
+  // tan(fov/2) wraps round beyond 180 degrees: 405 used to render as 45.
+  for (const std::string fov : {"180", "200", "405", "0", "-45"}) {
+    std::string sensor = kSensor;
+    sensor.replace(sensor.find("\"45\""), 4, "\"" + fov + "\"");
+    const std::string path = write("fov.xml", "<scene version=\"3.0.0\">" + sensor + kLight + kFloor + "</scene>");
+    EXPECT_TRUE(contains(fileError(path), path + ":3: sensor 'perspective': fov must be in (0, 180) degrees, got " + fov));
+  }
+}
+
+TEST_F(MitsubaImport, DuplicateIdsNameBothElements) {
+  // Two shapes with one id used to be reported as a second <bsdf> (their default materials').
+  const std::string two = "\n" + std::string(kLight) + "<shape type=\"rectangle\" id=\"a\"/>\n<shape type=\"sphere\" id=\"a\"/>";
+  EXPECT_TRUE(contains(error(two), file() + ":8: shape 'sphere': duplicate id 'a' (the <shape> at " + file() + ":7 has it)"));
+  const std::string bsdfs = "\n" + std::string(kLight) + "<bsdf type=\"diffuse\" id=\"a\"/>\n<bsdf type=\"conductor\" id=\"a\"/>";
+  EXPECT_TRUE(contains(error(bsdfs), file() + ":8: bsdf 'conductor': duplicate id 'a' (the <bsdf> at " + file() + ":7 has it)"));
+  // A shape and a BSDF may share an id; a shape without a BSDF names its default material after
+  // itself, and the BSDF's material takes another name.
+  const auto t = translate(std::string(kLight) + "<shape type=\"rectangle\" id=\"a\"/><bsdf type=\"conductor\" id=\"a\"/>"
+                           "<shape type=\"sphere\" id=\"b\"><ref id=\"a\"/></shape>");
+  EXPECT_EQ(t.scene["shapes"][0]["material"], "a");
+  EXPECT_EQ(t.scene["materials"]["a"]["type"], "lambertian");
+  EXPECT_EQ(t.scene["materials"][t.scene["shapes"][1]["material"].get<std::string>()]["type"], "mirror");
+}
+
+TEST_F(MitsubaImport, ControlCharactersFromTheFileAreEscaped) {
+  // An ESC sequence that would clear the terminal and a BEL, in an id quoted by the message.
+  const std::string msg = error(std::string(kLight) + "<shape type=\"rectangle\"><ref id=\"\x1b[2Jx\x07\"/></shape>");
+  EXPECT_TRUE(contains(msg, "no <bsdf id=\"\\x1b[2Jx\\x07\"> before this reference"));
+  EXPECT_EQ(msg.find('\x1b'), std::string::npos);
+  EXPECT_EQ(msg.find('\x07'), std::string::npos);
 }
 
 }  // namespace

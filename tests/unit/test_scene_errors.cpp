@@ -618,6 +618,8 @@ TEST_F(SceneLoader, BadCamera) {
               "/camera/look_at", "is too far from /camera/position");
   expectError([](json& j) { j["camera"]["fov"] = 0; }, "/camera/fov", "(0, 180) degrees");
   expectError([](json& j) { j["camera"]["fov"] = 180; }, "/camera/fov", "(0, 180) degrees");
+  expectError([](json& j) { j["camera"]["fov"] = 405; }, "/camera/fov", "(0, 180) degrees");  // tan would wrap round to 45
+  expectError([](json& j) { j["camera"]["fov"] = -45; }, "/camera/fov", "(0, 180) degrees");
 }
 
 TEST_F(SceneLoader, BadRenderSettings) {
@@ -733,13 +735,18 @@ TEST_F(SceneLoader, NamedSpectraMayReferToEachOtherButNotInACycle) {
 }
 
 TEST_F(SceneLoader, DeeplyNestedJson) {
-  std::string text = "{\"camera\": ";
-  for (int i = 0; i < 100; ++i) text += "[";
-  for (int i = 0; i < 100; ++i) text += "]";
-  text += "}";
-  const std::string msg = errorOfText(text);
-  EXPECT_EQ(msg.rfind(path + ": /camera/0/0/", 0), 0u) << msg;
-  EXPECT_CONTAINS(msg, "nested more than 64 levels deep");
+  // 100 000 levels: refused while parsing, before anything recursive (a copy, a dump, the
+  // destructor) meets the tree; arrays and objects alike.
+  for (const auto& [open, close] : {std::pair{"[", "]"}, std::pair{"{\"a\": ", "}"}}) {
+    std::string text = "{\"camera\": ";
+    for (int i = 0; i < 100000; ++i) text += open;
+    text += "1";
+    for (int i = 0; i < 100000; ++i) text += close;
+    text += "}";
+    const std::string msg = errorOfText(text);
+    EXPECT_EQ(msg.rfind(path + ": /camera/", 0), 0u) << msg.substr(0, 200);
+    EXPECT_CONTAINS(msg, ": nested deeper than 64 levels");
+  }
 }
 
 TEST_F(SceneLoader, UnphysicalParametersNeedAnExplicitOptIn) {
