@@ -180,10 +180,12 @@ PYBIND11_MODULE(kasha, m) {
       py::arg("seed") = py::none(), py::arg("threads") = 0, py::arg("spectral_bins") = 0,
       py::arg("spectral_step") = 0.0f, py::arg("strategy_images") = false, py::arg("strategy_depth") = 4,
       py::arg("memory_limit") = "8G", py::arg("progress") = py::none(), py::arg("output") = "",
-      "Renders `scene` with an integrator (pt, lt, bdpt, bdpt-shared, bdpt-independent, bdpt-mollified, ppm, vcm, vc, bpm) "
-      "for `spp` samples per pixel and/or `time` seconds (whole passes). Further keyword arguments are keys of "
-      "the scene's render object: max_depth, sensor_sampling, fluorescence_sampling, nee_sampling, "
-      "light_sampling, hero_wavelengths, mollify, ppm, ... (docs/scene-format.md).\n\n"
+      "Renders `scene` with an integrator (pt, lt, bdpt, ppm, vcm, vc, bpm; bdpt-shared, bdpt-independent and "
+      "bdpt-mollified stand for bdpt with render/bdpt settings) for `spp` samples per pixel and/or `time` seconds "
+      "(whole passes). Further keyword arguments are keys of the scene's render object: max_depth, "
+      "sensor_sampling, fluorescence_sampling, nee_sampling, light_sampling, hero_wavelengths, and the "
+      "integrators' own objects bdpt, vcm, ppm as dicts merged key by key, e.g. ppm={'alpha': 0.7} "
+      "(docs/scene-format.md).\n\n"
       "Returns a dict: 'xyz' and 'rgb' (linear sRGB), float32 arrays of shape (height, width, 3); 'stats' (the "
       "statistics of `kasha render`); with spectral_bins=N or spectral_step=NM, 'spectral' (height, width, N): "
       "radiance per nm averaged over each bin, 'wavelengths' (bin centres, nm) and 'bin_width'; with "

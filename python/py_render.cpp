@@ -52,6 +52,17 @@ std::unique_ptr<RenderJob> makeJob(const Scene& scene, RenderJobOptions o) {
   }
 }
 
+// A keyword argument as settings of the render object, a dict flattened to its leaves
+// (bdpt={"families": "own"} is bdpt.families), so that it merges with the scene's own object as
+// `--set bdpt.families=own` does.
+void addSettings(const std::string& key, const py::handle& value, std::vector<RenderSetting>& set) {
+  if (py::isinstance<py::dict>(value)) {
+    for (const auto& [k, v] : value.cast<py::dict>()) addSettings(key + "." + py::str(k).cast<std::string>(), v, set);
+    return;
+  }
+  set.push_back({key, toJson(value, "kasha.render", key), key});
+}
+
 py::array_t<float> binCentres(const SpectralBins& b) {
   py::array_t<float> a(b.count);
   for (int i = 0; i < b.count; ++i) a.mutable_at(i) = b.centre(i);
@@ -62,10 +73,7 @@ py::array_t<float> binCentres(const SpectralBins& b) {
 
 py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& interrupted) {
   std::vector<RenderSetting> set;  // the keyword arguments, keys of the render object
-  for (const auto& [key, value] : req.settings) {
-    const std::string k = py::str(key).cast<std::string>();
-    set.push_back({k, toJson(value, "kasha.render", k), k});
-  }
+  for (const auto& [key, value] : req.settings) addSettings(py::str(key).cast<std::string>(), value, set);
   // Held until the render ends: edits and other renders of pyScene meanwhile load scenes of their
   // own and never free this one (py_scene.h).
   const std::shared_ptr<const Scene> scene = pyScene.load(withSettings(pyScene, set, req), req.memoryLimit);

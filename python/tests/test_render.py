@@ -90,13 +90,13 @@ def test_bdpt_strategy_images_sum_to_the_render():
     assert len(weighted) > 3
     total = np.sum(weighted, axis=0)
     np.testing.assert_allclose(total, result["xyz"], rtol=1e-4, atol=1e-5)
-    with pytest.raises(kasha.InputError, match="only the BDPT"):
+    with pytest.raises(kasha.InputError, match="has no \\(s, t\\) strategies"):
         kasha.render(scene, integrator="pt", strategy_images=True)
 
 
 def test_vcm_strategy_images_as_on_the_command_line():
     # Capabilities, not types, decide (integrators/render_job.h): vcm's strategies too, with
-    # vcm_paths "auto" run bidirectional as `kasha render --strategy-images` does (docs/cli.md).
+    # vcm.paths "auto" run bidirectional as `kasha render --strategy-images` does (docs/cli.md).
     scene = kasha.Scene.from_dict(furnace_dict(resolution=8, spp=2))
     result = kasha.render(scene, integrator="vcm", strategy_images=True, max_depth=3)
     assert "choices" not in result["stats"]  # no pilot: bidirectional
@@ -107,27 +107,28 @@ def test_vcm_strategy_images_as_on_the_command_line():
 def test_settings_other_integrators_read_are_refused():
     # The same rule as `kasha render --set` (integrators/integrator_factory.h, settingNotRead).
     scene = kasha.Scene.from_dict(furnace_dict(resolution=8, spp=1))
-    with pytest.raises(kasha.InputError, match="vcm_paths: only for --integrator vcm"):
-        kasha.render(scene, integrator="bdpt", vcm_paths="camera")
-    with pytest.raises(kasha.InputError, match="mollify: only for --integrator bdpt-mollified"):
-        kasha.render(scene, integrator="pt", mollify={"alpha": 0.5})
+    with pytest.raises(kasha.InputError, match="vcm.paths: only for --integrator vcm"):
+        kasha.render(scene, integrator="bdpt", vcm={"paths": "camera"})
+    with pytest.raises(kasha.InputError, match="bdpt.mollify_alpha: only for --integrator bdpt"):
+        kasha.render(scene, integrator="pt", bdpt={"mollify_alpha": 0.5})
 
 
 def test_bdpt_families_from_python():
-    # The fluorescent furnace: `bdpt` runs a pilot and reports its choice; each family alone is
-    # bdpt-shared's or bdpt-independent's estimator, image for image; a bad choice names the field.
+    # The fluorescent furnace: `bdpt` runs a pilot and reports its choice; the aliases bdpt-shared
+    # and bdpt-independent are bdpt with one family (render/bdpt/families, a dict merged key by key
+    # into the scene's own), image for image; a bad choice names the field.
     scene = kasha.Scene.from_dict(furnace_dict(resolution=8, spp=4))
     auto = kasha.render(scene, integrator="bdpt")
     assert auto["stats"]["choices"].startswith("families: ")
-    alone = kasha.render(scene, integrator="bdpt", bdpt_families="shared")
+    alone = kasha.render(scene, integrator="bdpt", bdpt={"families": "shared"})
     shared = kasha.render(scene, integrator="bdpt-shared")
     np.testing.assert_array_equal(alone["xyz"], shared["xyz"])
-    own = kasha.render(scene, integrator="bdpt", bdpt_families="own")
+    own = kasha.render(scene, integrator="bdpt", bdpt={"families": "own"})
     independent = kasha.render(scene, integrator="bdpt-independent")
     np.testing.assert_array_equal(own["xyz"], independent["xyz"])
-    assert "choices" not in kasha.render(scene, integrator="bdpt", bdpt_families="both")["stats"]
-    with pytest.raises(kasha.InputError, match="bdpt_families"):
-        kasha.render(scene, integrator="bdpt", bdpt_families="neither")
+    assert "choices" not in kasha.render(scene, integrator="bdpt", bdpt={"families": "both"})["stats"]
+    with pytest.raises(kasha.InputError, match="/render/bdpt/families"):
+        kasha.render(scene, integrator="bdpt", bdpt={"families": "neither"})
 
 
 def test_vcm_paths_from_python():
@@ -136,9 +137,9 @@ def test_vcm_paths_from_python():
     scene = kasha.Scene.from_dict(furnace_dict(resolution=8, spp=4))
     auto = kasha.render(scene, integrator="vcm")
     assert auto["stats"]["choices"].startswith("paths: ")
-    camera = kasha.render(scene, integrator="vcm", vcm_paths="camera")
+    camera = kasha.render(scene, integrator="vcm", vcm={"paths": "camera"})
     np.testing.assert_array_equal(camera["xyz"], kasha.render(scene, integrator="pt")["xyz"])
     for fixed in ("bidirectional", "gather"):
-        assert "choices" not in kasha.render(scene, integrator="vcm", vcm_paths=fixed)["stats"]
-    with pytest.raises(kasha.InputError, match="vcm_paths"):
-        kasha.render(scene, integrator="vcm", vcm_paths="light")
+        assert "choices" not in kasha.render(scene, integrator="vcm", vcm={"paths": fixed})["stats"]
+    with pytest.raises(kasha.InputError, match="/render/vcm/paths"):
+        kasha.render(scene, integrator="vcm", vcm={"paths": "light"})

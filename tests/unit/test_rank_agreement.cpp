@@ -44,8 +44,8 @@ TEST(RankAgreement, NamesTheFieldAndBothValues) {
   other["ppm"]["direct"] = "photons";
   EXPECT_EQ(differenceFrom(other), "ppm.direct (rank 0: \"nee-elastic\", rank 1: \"photons\")");
   other = kRecord;
-  other["mollify"] = {{"alpha", 0.5}};
-  EXPECT_EQ(differenceFrom(other), "mollify.alpha (rank 0: none, rank 1: 0.5)");
+  other["bdpt"] = {{"mollify_alpha", 0.5}};
+  EXPECT_EQ(differenceFrom(other), "bdpt.mollify_alpha (rank 0: none, rank 1: 0.5)");
   other = kRecord;
   other.erase("seed");
   EXPECT_EQ(differenceFrom(other), "seed (rank 0: 1, rank 1: none)");
