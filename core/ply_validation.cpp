@@ -109,10 +109,13 @@ class HeaderParser {
       pos = end + 1;
       ++header_.lines;
       where_ = "header line " + std::to_string(header_.lines);
+      const std::vector<std::string_view> t = spaceSeparatedTokens(text);
+      // Names reach messages: outside comments, printable ASCII only.
+      const bool comment = !t.empty() && (t[0] == "comment" || t[0] == "obj_info");
       for (const char c : text)
-        if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
-          fail("holds the control character " + shown(std::string_view(&c, 1)));
-      if (line(spaceSeparatedTokens(text))) break;
+        if (const unsigned char b = static_cast<unsigned char>(c); (b < 0x20 && c != '\t') || b == 0x7f || (!comment && b >= 0x80))
+          fail("holds the byte " + shown(std::string_view(&c, 1)) + (comment ? "" : " (names and numbers are ASCII)"));
+      if (line(t)) break;
     }
     header_.dataStart = pos;
     finish();
@@ -134,7 +137,7 @@ class HeaderParser {
       if (t[2] != "1.0") fail("unknown version " + shown(t[2]) + " (1.0)");
       return false;
     }
-    if (t.empty() || t[0] == "comment" || t[0] == "obj_info") return false;
+    if (t.empty() || t[0] == "comment" || t[0] == "obj_info") return false;  // dropped
     if (t[0] == "end_header") {
       if (t.size() != 1) fail("'end_header' is followed by " + shown(t[1]));
       return true;
@@ -152,6 +155,8 @@ class HeaderParser {
     for (const Element& other : header_.elements)
       if (other.name == e.name) fail("a second element " + shown(t[1]));
     if (e.name == "tristrips") fail("element 'tristrips' (triangle strips) is not supported: write faces");
+    // assimp 5.2 takes this element for a texture's name and reads neither its count nor its data.
+    if (e.name == "TextureFile") fail("element 'TextureFile' is not supported");
     const std::string_view c = t[2];
     const auto r = std::from_chars(c.data(), c.data() + c.size(), e.count);
     if (c.empty() || c[0] == '-' || c[0] == '+' || r.ec != std::errc() || r.ptr != c.data() + c.size() || e.count > UINT32_MAX)
@@ -190,7 +195,8 @@ class HeaderParser {
         const Property& prop = e.properties[p];
         if (e.name == "vertex" && prop.list && (prop.name == "x" || prop.name == "y" || prop.name == "z"))
           fail("property " + prop.name + " is a list, not a number");
-        if (e.name == "material" && prop.list) fail("property " + shown(prop.name) + " is a list (assimp reads materials' numbers only)");
+        if (e.name == "material" && prop.list)
+          fail("property " + shown(prop.name) + " is a list (assimp reads materials' numbers only)");
         if (!e.isFace()) continue;
         if (prop.name == "vertex_indices" || prop.name == "vertex_index") {
           if (!prop.list || !prop.type->integer) fail("property " + prop.name + " must be a list of integers");
@@ -261,7 +267,8 @@ class ListChecks {
   std::string count(size_t p, int64_t n) {
     if (n < 0) return "list " + e_.properties[p].name + " has a negative count " + std::to_string(n);
     if (int(p) == e_.indexList) {
-      if (n < 3) return "has " + std::to_string(n) + (n == 1 ? " vertex index" : " vertex indices") + "; a face needs at least 3";
+      if (n < 3)
+        return "has " + std::to_string(n) + (n == 1 ? " vertex index" : " vertex indices") + "; a face needs at least 3";
       corners_ = n;
     }
     if (int(p) == e_.texcoordList) texcoords_ = n;
@@ -476,7 +483,9 @@ std::string validatePly(const std::string& bytes, const std::string& path, uint6
   checkCounts(h, data.size(), path, memoryLimit);
 
   std::string out = "ply\nformat ";
-  out += h.format == Format::Ascii ? "ascii" : h.format == Format::BinaryLittleEndian ? "binary_little_endian" : "binary_big_endian";
+  out += h.format == Format::Ascii                ? "ascii"
+         : h.format == Format::BinaryLittleEndian ? "binary_little_endian"
+                                                  : "binary_big_endian";
   out += " 1.0\n";
   uint64_t vertices = 0;
   for (const Element& e : h.elements) {

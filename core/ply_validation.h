@@ -6,11 +6,13 @@
 // a header without "end_header". This pass refuses all of that from the bytes alone, allocating
 // nothing that depends on the declared counts, and checks:
 // - the header: "ply", "format ascii|binary_little_endian|binary_big_endian 1.0", then "element
-//   NAME COUNT" (COUNT < 2³²; each name once; no "tristrips", which assimp reads wrongly) each with
-//   at least one "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME" (each name once
-//   per element), "comment" and "obj_info" lines, and "end_header", within 64 KiB;
+//   NAME COUNT" (COUNT < 2³²; each name once; no "tristrips" or "TextureFile", which assimp reads
+//   wrongly) each with at least one "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE
+//   NAME" (each name once per element), "comment" and "obj_info" lines, and "end_header", all
+//   within 64 KiB;
 //   TYPE one of char uchar short ushort int uint float double (or int8 … float64), list counts of
-//   an integer type; lines end in "\n" or "\r\n" and hold no other control characters;
+//   an integer type; lines end in "\n" or "\r\n" and hold no other control characters, and no
+//   bytes beyond ASCII outside comments;
 // - what kasha reads: an element "vertex" with scalar x, y and z, and after it an element "face"
 //   with one list "vertex_indices" (or "vertex_index") of integers; a face "texcoord" list holds
 //   two numbers per corner; an element "material" holds no lists (assimp reads their first items);

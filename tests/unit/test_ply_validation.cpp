@@ -94,10 +94,14 @@ TEST(PlyValidation, HeaderMustBeCompleteAndWellFormed) {
        "m.ply: header line 3: element 'vertex': count '4294967296' is not an integer from 0 to 4294967295"},
       {"element tristrips 1\n",
        "m.ply: header line 3: element 'tristrips' (triangle strips) is not supported: write faces"},
+      {"element TextureFile 1\n",
+       "m.ply: header line 3: element 'TextureFile' is not supported"},
       {"elements vertex 1\n",
        "m.ply: header line 3: unknown keyword 'elements' (element, property, comment, obj_info, end_header)"},
       {"comment a\x1b[2Jb\n",
-       "m.ply: header line 3: holds the control character '\\x1b'"},
+       "m.ply: header line 3: holds the byte '\\x1b'"},
+      {"comment caf\xc3\xa9\nelement caf\xc3\xa9 1\n",
+       "m.ply: header line 4: holds the byte '\\xc3' (names and numbers are ASCII)"},
       {"end_header x\n",
        "m.ply: header line 3: 'end_header' is followed by 'x'"},
   };
@@ -196,7 +200,8 @@ TEST(PlyValidation, AsciiElementsAreOneLineOfNumbersEach) {
   // Blank lines pass the size bound (bytes) but do not count as elements.
   EXPECT_EQ(problem(plyHeader("ascii", 5, 0) + kPlyAsciiVertices + "\n\n\n\n\n\n"),
             "m.ply: element vertex: the file ends after 4 of its 5 lines");
-  EXPECT_EQ(problem(plyHeader("ascii", 4, 5) + kPlyAsciiVertices + kPlyAsciiFaces), "m.ply: element face: the file ends after 4 of its 5 lines");
+  EXPECT_EQ(problem(plyHeader("ascii", 4, 5) + kPlyAsciiVertices + kPlyAsciiFaces),
+            "m.ply: element face: the file ends after 4 of its 5 lines");
   EXPECT_EQ(problem(plyHeader("ascii", 4, 4) + kPlyAsciiVertices + kPlyAsciiFaces + "3 0 1 2\n"),
             "m.ply:18: data: a line after the last element the header declares");
   const std::string h = plyHeader("ascii", 1, 0);
