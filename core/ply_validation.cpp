@@ -22,12 +22,9 @@ constexpr size_t kMaxHeaderBytes = size_t(64) << 10;
 // memory limit. A vertex: assimp's position, normal, colour and texture coordinate (52 bytes) and
 // kasha's position (12). A face of the least size, a triangle: assimp's face and its indices with
 // their allocation (44), its triangulated copy (44), kasha's indices and corner texture
-// coordinates (36) and Embree's share of the BVH (about 80). Another element: assimp keeps every
-// instance, 24 bytes and, per property, a vector of one value (40).
+// coordinates (36) and Embree's share of the BVH (about 80). Other elements are not passed on.
 constexpr uint64_t kBytesPerVertex = 64;
 constexpr uint64_t kBytesPerFace = 204;
-constexpr uint64_t kBytesPerInstance = 24;
-constexpr uint64_t kBytesPerProperty = 40;
 
 // PLY's scalar types; the first name is the one written for assimp.
 struct ScalarType {
@@ -56,6 +53,10 @@ struct Element {
   std::vector<Property> properties;
   int indexList = -1, texcoordList = -1;  // a face's lists, by position
   bool isFace() const { return name == "face"; }
+  // Whether it is passed on to assimp. assimp 5.2 reads the count of an element of another name
+  // from its name (as 0), so it reads that element's data as the next element's (a fuzzing
+  // finding: faces of garbage indices); such elements are checked and left out.
+  bool passedOn() const { return name == "vertex" || isFace(); }
 };
 
 struct Header {
@@ -195,8 +196,6 @@ class HeaderParser {
         const Property& prop = e.properties[p];
         if (e.name == "vertex" && prop.list && (prop.name == "x" || prop.name == "y" || prop.name == "z"))
           fail("property " + prop.name + " is a list, not a number");
-        if (e.name == "material" && prop.list)
-          fail("property " + shown(prop.name) + " is a list (assimp reads materials' numbers only)");
         if (!e.isFace()) continue;
         if (prop.name == "vertex_indices" || prop.name == "vertex_index") {
           if (!prop.list || !prop.type->integer) fail("property " + prop.name + " must be a list of integers");
@@ -218,6 +217,8 @@ class HeaderParser {
     if (face < vertex) throw InputError(path_, "element face", "comes before element vertex");
     if (header_.elements[size_t(face)].indexList < 0)
       throw InputError(path_, "element face", "has no list property vertex_indices");
+    // No faces would make assimp read the vertices as a point cloud, which kasha cannot render.
+    if (header_.elements[size_t(face)].count == 0) throw InputError(path_, "element face", "declares no faces");
   }
 
   const std::string& bytes_;
@@ -235,11 +236,7 @@ uint64_t minimumBytes(const Element& e, Format format) {
   return n;
 }
 
-uint64_t memoryBytes(const Element& e) {
-  if (e.name == "vertex") return kBytesPerVertex;
-  if (e.isFace()) return kBytesPerFace;
-  return kBytesPerInstance + kBytesPerProperty * e.properties.size();
-}
+uint64_t memoryBytes(const Element& e) { return e.name == "vertex" ? kBytesPerVertex : e.isFace() ? kBytesPerFace : 0; }
 
 // The counts against the file's size and the memory limit, before the data is read.
 void checkCounts(const Header& h, uint64_t dataBytes, const std::string& path, uint64_t memoryLimit) {
@@ -252,6 +249,7 @@ void checkCounts(const Header& h, uint64_t dataBytes, const std::string& path, u
                        std::to_string(e.count) + " declared need at least " + formatBytes(needed) +
                            " of data with the elements before them, but the file holds " + formatBytes(dataBytes) +
                            " after its header (it is truncated, or the count is wrong)");
+    if (!e.passedOn()) continue;
     memory += saturatingMul(e.count, memoryBytes(e));
     counts += (counts.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
   }
@@ -300,7 +298,9 @@ class BinaryData {
   BinaryData(std::string_view data, bool bigEndian, const std::string& path)
       : data_(data), bigEndian_(bigEndian), path_(path) {}
 
-  void element(const Element& e, uint64_t vertices) {
+  // Checks the element's instances; returns their bytes.
+  std::string_view element(const Element& e, uint64_t vertices) {
+    const size_t start = pos_;
     bool fixed = true;
     uint64_t size = 0;
     for (const Property& p : e.properties) fixed = fixed && !p.list, size += p.type->bytes;
@@ -308,7 +308,7 @@ class BinaryData {
       if (saturatingMul(e.count, size) > data_.size() - pos_)
         fail(Instance{e.name, (data_.size() - pos_) / size}, "the file ends inside it (it is truncated)");
       pos_ += e.count * size;
-      return;
+      return data_.substr(start, pos_ - start);
     }
     for (uint64_t i = 0; i < e.count; ++i) {
       const Instance field{e.name, i};
@@ -332,6 +332,7 @@ class BinaryData {
       }
       if (const std::string why = lists.end(); !why.empty()) fail(field, why);
     }
+    return data_.substr(start, pos_ - start);
   }
 
   void end() const {
@@ -382,7 +383,9 @@ class AsciiData {
   AsciiData(std::string_view data, int headerLines, const std::string& path, std::string& out)
       : data_(data), line_(headerLines), path_(path), out_(out) {}
 
+  // Checks the element's instances, and writes them if it is passed on.
   void element(const Element& e, uint64_t vertices) {
+    write_ = e.passedOn();
     for (uint64_t i = 0; i < e.count; ++i) {
       if (!nextLine())
         throw InputError(path_, "element " + e.name,
@@ -405,7 +408,7 @@ class AsciiData {
       if (t != tokens_.size())
         fail("has " + plural(tokens_.size(), "number") + ", more than its properties take (" + std::to_string(t) + ")");
       if (const std::string why = lists.end(); !why.empty()) fail(why);
-      out_.back() = '\n';
+      if (write_) out_.back() = '\n';
     }
   }
 
@@ -450,8 +453,7 @@ class AsciiData {
       if (s.empty() || r.ec != std::errc() || r.ptr != end || v < low || v > high)
         fail(shown(text) + " is not an integer from " + std::to_string(low) + " to " + std::to_string(high) + " (" +
              type.name + ")");
-      out_ += std::to_string(v);
-      out_ += ' ';
+      if (write_) out_ += std::to_string(v) + ' ';
       return v;
     }
     double v = 0.0;
@@ -459,6 +461,7 @@ class AsciiData {
     const bool single = type.bytes == 4;
     if (s.empty() || r.ec != std::errc() || r.ptr != end || !std::isfinite(v) || (single && !std::isfinite(float(v))))
       fail(shown(text) + " is not a finite number (" + type.name + ")");
+    if (!write_) return 0;
     const auto w = single ? std::to_chars(buf, buf + sizeof buf, float(v)) : std::to_chars(buf, buf + sizeof buf, v);
     out_.append(buf, w.ptr);
     out_ += ' ';
@@ -469,6 +472,7 @@ class AsciiData {
   int line_;
   const std::string& path_;
   std::string& out_;
+  bool write_ = false;  // whether the element being read is passed on
   const std::string* element_ = nullptr;  // the instance being read
   uint64_t index_ = 0;
   size_t pos_ = 0;
@@ -489,6 +493,7 @@ std::string validatePly(const std::string& bytes, const std::string& path, uint6
   out += " 1.0\n";
   uint64_t vertices = 0;
   for (const Element& e : h.elements) {
+    if (!e.passedOn()) continue;
     out += "element " + e.name + " " + std::to_string(e.count) + "\n";
     for (const Property& p : e.properties)
       out += p.list ? "property list " + std::string(p.count->name) + " " + p.type->name + " " + p.name + "\n"
@@ -506,9 +511,11 @@ std::string validatePly(const std::string& bytes, const std::string& path, uint6
     reader.end();
   } else {
     BinaryData reader(data, h.format == Format::BinaryBigEndian, path);
-    for (const Element& e : h.elements) reader.element(e, vertices);
+    std::vector<std::string_view> passed;
+    for (const Element& e : h.elements)
+      if (const std::string_view d = reader.element(e, vertices); e.passedOn()) passed.push_back(d);
     reader.end();
-    out.append(data);
+    for (const std::string_view d : passed) out.append(d);
   }
   return out;
 }

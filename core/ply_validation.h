@@ -14,8 +14,8 @@
 //   an integer type; lines end in "\n" or "\r\n" and hold no other control characters, and no
 //   bytes beyond ASCII outside comments;
 // - what kasha reads: an element "vertex" with scalar x, y and z, and after it an element "face"
-//   with one list "vertex_indices" (or "vertex_index") of integers; a face "texcoord" list holds
-//   two numbers per corner; an element "material" holds no lists (assimp reads their first items);
+//   of at least one face with one list "vertex_indices" (or "vertex_index") of integers; a face
+//   "texcoord" list holds two numbers per corner;
 // - the counts against the file's size before anything else: every element needs at least a
 //   number of bytes (binary: its scalars and list counts; ASCII: two bytes a scalar or list count),
 //   and against the memory limit (about what assimp, kasha and Embree hold per element);
@@ -31,11 +31,12 @@
 
 namespace kasha {
 
-// The file as assimp must read it: a canonical header (single spaces, "\n", no comments, whose
-// last line assimp 5.2 reads correctly however the binary data begins) and the data, binary as it
-// is, ASCII rewritten as one line of single-spaced numbers per element (integers in decimal,
-// other numbers as the shortest decimal text of their value in the declared type), so what assimp
-// parses is what was checked.
+// The file as assimp must read it: its elements "vertex" and "face" alone (assimp 5.2 misreads
+// any other), under a canonical header (single spaces, "\n", no comments, whose last line assimp
+// reads correctly however the binary data begins), their data binary as it is or ASCII rewritten
+// as one line of single-spaced numbers per element (integers in decimal, other numbers as the
+// shortest decimal text of their value in the declared type), so what assimp parses is what was
+// checked.
 std::string validatePly(const std::string& bytes, const std::string& path, uint64_t memoryLimit);
 
 }  // namespace kasha
