@@ -1,5 +1,5 @@
 #pragma once
-// Opening the files a user names — scene, material file, spectrum or matrix CSV, OBJ mesh,
+// Opening the files a user names — scene, material file, spectrum or matrix CSV, OBJ or PLY mesh,
 // texture or measured OpenEXR, checkpoint, the images of `kasha metrics` — by one rule:
 // - regular files only: a FIFO, a device (/dev/zero), a socket or a directory is refused at once.
 //   The file is opened with O_NONBLOCK (opening a FIFO cannot block) and checked with fstat on

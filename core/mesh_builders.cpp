@@ -7,12 +7,17 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/ply_validation.h"
+
 namespace kasha {
 
-void readPlyMesh(const std::string& path, Shape& s) {
+void readPlyMesh(const std::string& bytes, const std::string& path, uint64_t memoryLimit, Shape& s) {
+  const std::string checked = validatePly(bytes, path, memoryLimit);
   Assimp::Importer importer;
-  // Only triangulation: no vertex joining, no normal generation (kasha uses face normals).
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
+  // Only triangulation: no vertex joining, no normal generation (kasha uses face normals). The
+  // hint "ply" picks the PLY reader, whatever the bytes look like to the others.
+  const aiScene* scene = importer.ReadFileFromMemory(checked.data(), checked.size(),
+                                                     aiProcess_Triangulate | aiProcess_SortByPType, "ply");
   if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || scene->mNumMeshes == 0)
     throw std::runtime_error("'" + path + "': " + (scene ? "holds no mesh" : importer.GetErrorString()));
   for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {

@@ -3,15 +3,18 @@
 // assimp), a tessellated unit disk, affine transforms and flipped normals.
 #include <glm/mat4x4.hpp>
 
+#include <cstdint>
 #include <string>
 
 #include "core/shape.h"
 
 namespace kasha {
 
-// Appends the triangles of a PLY file (ASCII or binary; polygons triangulated) to s. Throws
-// std::runtime_error with the reason (unreadable, not a mesh, a non-finite vertex).
-void readPlyMesh(const std::string& path, Shape& s);
+// Appends the triangles of a PLY file's bytes (ASCII or binary; polygons triangulated) to s:
+// validatePly (core/ply_validation.h) checks them and assimp parses what it returns, from memory.
+// `path` names the file in messages. Throws InputError or MemoryLimitError (the validation) or
+// std::runtime_error with the reason (not a mesh, a non-finite vertex).
+void readPlyMesh(const std::string& bytes, const std::string& path, uint64_t memoryLimit, Shape& s);
 
 // The unit disk in the plane z = 0, facing +z, as a fan of `segments` triangles inscribed in the
 // circle (its area is segments/(2π)·sin(2π/segments) of π); texture coordinates u = angle/2π,

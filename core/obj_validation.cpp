@@ -7,23 +7,10 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/text_tokens.h"
 
 namespace kasha {
 namespace {
-
-// Tokens separated by spaces and tabs, tinyobjloader's whitespace (any other byte is part of a
-// token, so "v\v1 2 3" is no vertex for either).
-std::vector<std::string_view> tokens(std::string_view line) {
-  std::vector<std::string_view> out;
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    const size_t start = i;
-    while (i < line.size() && !(line[i] == ' ' || line[i] == '\t')) ++i;
-    if (i > start) out.push_back(line.substr(start, i - start));
-  }
-  return out;
-}
 
 // Whether the whole token is a number finite as a 32-bit float.
 bool finiteFloat(std::string_view t) {
@@ -45,7 +32,7 @@ class Checker {
   // Checks one line (without its comment).
   void line(std::string_view text, int64_t number) {
     where_ = path_ + ":" + std::to_string(number);
-    const std::vector<std::string_view> t = tokens(text);
+    const std::vector<std::string_view> t = spaceSeparatedTokens(text);
     if (t.empty()) return;
     const std::string_view key = t[0];
     if (key == "v") numbers(t, {3, 4, 6, 7}, counts_.v);

@@ -29,7 +29,8 @@ using nlohmann::json;
 
 // Reading an OBJ file takes about this many times its size in memory (tinyobjloader's arrays,
 // kasha's positions, indices and normals, Embree's BVH): measured on meshes of 10⁴–10⁶ triangles;
-// one more for the file's text, read whole before parsing.
+// one more for the file's text, read whole before parsing. A PLY file is held to it too, and its
+// declared elements are checked against the limit on their own (core/ply_validation.h).
 constexpr uint64_t kMeshBytesPerFileByte = 7;
 // Named spectra may refer to each other; no sensible chain of names is longer than this, and a
 // limit keeps the recursion through the references bounded.
@@ -268,14 +269,10 @@ struct Loader {
     cfg.triangulate = true;
     cfg.vertex_color = false;
     tinyobj::ObjReader reader;
-    std::string text;
+    std::string text = readMeshFile(f, path);
     try {
-      InputFile in(path, "mesh file", UINT64_MAX);
-      requireMemory(saturatingMul(in.size(), kMeshBytesPerFileByte),
-                    "'" + path + "' (" + formatBytes(in.size()) + "): reading it", options.memoryLimit);
-      text = in.readRest();
       text = validateObjText(text, path);
-    } catch (const std::runtime_error& e) {  // InputError, MemoryLimitError
+    } catch (const InputError& e) {
       f.fail("file", e.what());
     }
     if (!reader.ParseFromString(text, "", cfg)) f.fail("file", "'" + path + "': " + reader.Error());
@@ -308,16 +305,15 @@ struct Loader {
     scaleAndTranslate(f, s);
   }
 
-  // A mesh file that exists and fits the memory limit when read.
-  void requireMeshFile(JsonFields& f, const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) f.fail("file", "cannot open '" + path + "'");
-    const uint64_t size = std::filesystem::file_size(path, ec);
-    if (ec) f.fail("file", "cannot open '" + path + "': " + ec.message());
+  // The bytes of a mesh file (OBJ or PLY), opened as every input is (core/input_file.h) and read
+  // only if reading it fits the memory limit.
+  std::string readMeshFile(JsonFields& f, const std::string& path) {
     try {
-      requireMemory(saturatingMul(size, kMeshBytesPerFileByte),
-                    "'" + path + "' (" + formatBytes(size) + "): reading it", options.memoryLimit);
-    } catch (const MemoryLimitError& e) {
+      InputFile in(path, "mesh file", UINT64_MAX);
+      requireMemory(saturatingMul(in.size(), kMeshBytesPerFileByte),
+                    "'" + path + "' (" + formatBytes(in.size()) + "): reading it", options.memoryLimit);
+      return in.readRest();
+    } catch (const std::runtime_error& e) {  // InputError, MemoryLimitError
       f.fail("file", e.what());
     }
   }
@@ -331,9 +327,9 @@ struct Loader {
 
   void loadPly(JsonFields& f, Shape& s) {
     const std::string path = resolve(f.string("file"));
-    requireMeshFile(f, path);
+    const std::string bytes = readMeshFile(f, path);
     try {
-      readPlyMesh(path, s);
+      readPlyMesh(bytes, path, options.memoryLimit, s);
     } catch (const std::runtime_error& e) {
       f.fail("file", e.what());
     }

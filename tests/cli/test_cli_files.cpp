@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -15,6 +16,7 @@
 
 #include "tests/process.h"
 #include "tests/expect_contains.h"
+#include "tests/ply_files.h"
 
 namespace kasha {
 namespace {
@@ -61,6 +63,24 @@ class CliFiles : public ::testing::Test {
     ASSERT_EQ(lines.size(), 1u) << r.err;
     EXPECT_EQ(lines[0].rfind("kasha: error: ", 0), 0u) << lines[0];
     EXPECT_CONTAINS(lines[0], message);
+  }
+  // The scene as JSON and as Mitsuba XML, each with the PLY file `ply` as a mesh: {json, xml}.
+  std::vector<std::string> plyScenes(const std::string& ply) const {
+    std::string json = kScene;
+    json.insert(json.find("\"shapes\": [") + 11,
+                "{\"type\": \"mesh\", \"file\": \"" + ply + "\", \"translate\": [0, 0.5, 0], \"material\": \"white\"},");
+    const std::string xml = R"(<scene version="3.0.0">
+  <sensor type="perspective">
+    <float name="fov" value="50"/>
+    <transform name="to_world"><lookat origin="0, 1, -4" target="0, 0.5, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+  </sensor>
+  <emitter type="point"><point name="position" x="0" y="3" z="0"/><spectrum name="intensity" value="1"/></emitter>
+  <shape type="ply"><string name="filename" value=")" + ply + R"("/><boolean name="face_normals" value="true"/>
+    <bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>
+</scene>
+)";
+    return {write("ply_scene.json", json), write("ply_scene.xml", xml)};
   }
   std::vector<std::string> entries() const {
     std::vector<std::string> v;
@@ -255,6 +275,56 @@ TEST_F(CliFiles, BadInputFilesExitWith1) {
   expectRefused({"extract", "--sample", dir + "/none.csv", "-o", dir + "/m.json"}, 1,
                 dir + "/none.csv: cannot open spectrum file (No such file or directory)");
 }
+
+// Issue 36: hostile PLY files through a JSON "mesh" shape and a Mitsuba <shape type="ply">: each
+// is exit code 1, one line naming the file, the field and the reason, within seconds, and nothing
+// written. Before the check, assimp crashed (truncated binary, a face of no vertices), looped
+// forever (a header cut short), took 4 GB (a count far beyond the file) or rendered (ASCII with
+// fewer vertex lines than declared).
+TEST_F(CliFiles, HostilePlyMeshesAreRefusedWithOneLine) {
+  const std::string binary = test::binaryPlyTetrahedron(false);
+  const struct {
+    std::string bytes, message;
+  } cases[] = {
+      {binary.substr(0, binary.size() - 7), "m.ply: face 3: the file ends inside it (it is truncated)"},
+      {test::plyHeader("ascii", 4, 2) + test::kPlyAsciiVertices + "3 0 1 2\n0\n",
+       "m.ply:15: face 1: has 0 vertex indices; a face needs at least 3"},
+      {test::plyHeader("binary_little_endian", 4, 2) + test::PlyBinary().vertices().face({0, 1, 2}).face({0, 1}).bytes,
+       "m.ply: face 1: has 2 vertex indices; a face needs at least 3"},
+      {test::plyHeader("ascii", 4, 1) + test::kPlyAsciiVertices + "3 0 1 4\n",
+       "m.ply:14: face 0: vertex index 4 is not below the number of vertices, 4"},
+      {"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n",
+       "m.ply: header: the file ends before an 'end_header' line"},
+      {test::plyHeader("ascii", 5, 4) + test::kPlyAsciiVertices + test::kPlyAsciiFaces,
+       "m.ply:14: vertex 4: has 4 numbers, more than its properties take (3)"},
+      {test::plyHeader("binary_little_endian", 300000000, 1) + std::string(40, '\0'),
+       "m.ply: element vertex: 300000000 declared need at least 3.35 GiB of data"},
+  };
+  for (const auto& c : cases) {
+    write("m.ply", c.bytes);
+    for (const std::string& scene : plyScenes(dir + "/m.ply")) {
+      const std::vector<std::string> before = entries();
+      const auto start = std::chrono::steady_clock::now();
+      expectRefused({"render", scene, "-q", "--spp", "1", "--memory-limit", "1G", "-o", dir + "/out.exr"}, 1, dir + "/" + c.message);
+      EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0) << c.message;
+      EXPECT_EQ(entries(), before) << c.message;  // nothing written
+    }
+  }
+}
+
+TEST_F(CliFiles, ValidPlyMeshesRender) {
+  for (const std::string& ply :
+       {test::asciiPlyTetrahedron(), test::binaryPlyTetrahedron(false), test::binaryPlyTetrahedron(true)}) {
+    write("m.ply", ply);
+    for (const std::string& scene : plyScenes(dir + "/m.ply")) {
+      const test::Finished r = run({"render", scene, "-q", "--spp", "1", "-o", dir + "/out.exr"});
+      EXPECT_EQ(r.code, 0) << scene << ": " << r.err;
+      EXPECT_TRUE(fs::exists(dir + "/out.exr")) << scene;
+      fs::remove(dir + "/out.exr");
+    }
+  }
+}
+
 
 }  // namespace
 }  // namespace kasha
