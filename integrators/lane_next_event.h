@@ -68,19 +68,26 @@ T laneNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3
   if (!ls || !(ls->pdf > 0.0f)) return sum;
   const Vec3 wi = bsdf.toLocal(ls->wi);
   const float lightPdf = pSelect * ls->pdf;
+  // Each lane's weight and radiance first: the shadow ray only where they can change the estimate,
+  // the MIS weight (a direction density) only where the light is seen.
+  T weight[kMaxLanes];
+  float Li[kMaxLanes];
+  bool any = false;
+  for (int k = 0; k < e.n; ++k) {
+    // The light's geometry does not depend on λ: the same point at every lane's wavelength.
+    Li[k] = k == 0 ? ls->Li : scene.lights[li]->Li(*ls, e.lambda[k]);
+    if (!(Li[k] > 0.0f)) continue;
+    weight[k] = laneWeight(bsdf, TransportMode::Radiance, known, before, e, k, wi, wo);
+    any = any || !(weight[k] == sum);
+  }
+  if (!any || wi.z == 0.0f || !lightVisible(scene, hit, *ls, counter)) return sum;
   const float w = ls->delta || weighting == NeeWeight::Alone
                       ? 1.0f
                       : powerHeuristic(lightPdf * spectral.nee,
                                        bsdf.directionPdf(TransportMode::Radiance, wo, wi, e.lobe, e.lambda[0], lambdaOut0) *
                                            spectral.event);
-  for (int k = 0; k < e.n; ++k) {
-    // The light's geometry does not depend on λ: the same point at every lane's wavelength.
-    const float Li = k == 0 ? ls->Li : scene.lights[li]->Li(*ls, e.lambda[k]);
-    if (Li > 0.0f)
-      sum += laneWeight(bsdf, TransportMode::Radiance, known, before, e, k, wi, wo) * (std::abs(wi.z) * Li * w / lightPdf);
-  }
-  // The shadow ray only where it can change the estimate.
-  if (sum == before[0] * 0.0f || !lightVisible(scene, hit, *ls, counter)) return before[0] * 0.0f;
+  for (int k = 0; k < e.n; ++k)
+    if (Li[k] > 0.0f) sum += weight[k] * (std::abs(wi.z) * Li[k] * w / lightPdf);
   return sum;
 }
 

@@ -165,7 +165,7 @@ PYBIND11_MODULE(kasha, m) {
         if (!seed.is_none()) r.seed = integer(seed, arg("seed"), rn::kSeed);
         r.threads = integer(threads, arg("threads"), rn::kThreads);
         r.spectralBins = integer(spectralBins, arg("spectral_bins"), kSpectralBins);
-        r.spectralStep = float(number(spectralStep, arg("spectral_step"), kSpectralStep));
+        r.spectralStep = number(spectralStep, arg("spectral_step"), kSpectralStep);
         r.strategyImages = kasha::python::flag(strategyImages, arg("strategy_images"));
         r.strategyDepth = integer(strategyDepth, arg("strategy_depth"), rn::kStrategyDepth);
         r.memoryLimit = kasha::python::byteSize(memoryLimit, arg("memory_limit"));

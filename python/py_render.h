@@ -21,7 +21,7 @@ struct RenderRequest {
   std::optional<double> time;
   int threads = 0;
   int spectralBins = 0;
-  float spectralStep = 0.0f;
+  double spectralStep = 0.0;
   bool strategyImages = false;
   int strategyDepth = 4;
   uint64_t memoryLimit = kDefaultMemoryLimit;

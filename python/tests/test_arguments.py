@@ -55,6 +55,7 @@ def refused(call, *fragments):
     ("spectral_bins", 4097, "must be at most 4096"),
     ("spectral_step", NAN, "expected a finite number"),
     ("spectral_step", -10.0, "must not be negative"),
+    ("spectral_step", 1e-300, "makes more than 4096 bins"),  # not rounded to 0 (no bins) on the way
     ("strategy_images", "yes", "expected True or False, got str 'yes'"),
     ("memory_limit", "lots", "memory_limit"),
     ("memory_limit", 8, "expected a string, got int 8"),
