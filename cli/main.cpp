@@ -16,6 +16,7 @@
 // (cli/mpi_group.h); rank 0 writes the outputs, an error on any rank ends all with its exit code.
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -142,6 +143,10 @@ int main(int argc, char** argv) {
   } catch (const RanksDisagree& e) {  // every rank knows: rank 0 says why, and no rank is aborted
     if (e.print()) std::fprintf(stderr, "kasha: error: %s\n", e.what());
     std::fflush(stderr);
+    // The first rank to exit has mpirun signal the others: they end anyway, without the stop
+    // handler's line (render_command.cpp).
+    std::signal(SIGTERM, SIG_IGN);
+    std::signal(SIGINT, SIG_IGN);
 #if KASHA_WITH_MPI
     mpi->barrier();  // no rank ends (and has mpirun end the job) before rank 0 has said why
 #endif

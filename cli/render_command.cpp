@@ -15,6 +15,7 @@
 #include "core/checkpoint.h"
 #include "core/error.h"
 #include "core/image_output.h"
+#include "core/input_file.h"
 #include "core/memory_budget.h"
 #include "core/output_file.h"
 #include "integrators/integrator_factory.h"
@@ -210,8 +211,10 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   load.renderSettings = set;  // checked by the loader as the scene file's own
   // Read once: the text is both loaded and hashed for checkpoints.
   const std::string sceneText = readSceneFile(a.scene);
+  InputDigest inputs;  // the files the scene names
   std::unique_ptr<Scene> scene;
   try {
+    const RecordInputs recording(inputs);
     scene = loadSceneFromString(sceneText, a.scene, load);
   } catch (const InputError& e) {
     if (const RenderSetting* s = settingAt(set, e.field())) throw UsageError("--set " + s->text, "", e.reason());
@@ -243,9 +246,11 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   o.checkpoint = a.checkpoint;
   o.resume = a.resume;
   o.checkpointIntervalSeconds = a.checkpointInterval;
-  // The --set options are part of the scene a checkpoint continues (the text alone without them).
+  // The --set options and the content of the files the scene names are part of the scene a
+  // checkpoint continues, and that MPI ranks must agree on (the text alone without them).
   std::string hashed = sceneText;
   for (const RenderSetting& s : set) hashed += "\n--set " + s.text;
+  hashed += "\ninputs " + hex(inputs.value());
   o.sceneHash = hex(hashBytes(hashed.data(), hashed.size()));
   o.stop = &gStopSignal;
   o.group = group;

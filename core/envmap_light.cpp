@@ -1,6 +1,7 @@
 #include "core/envmap_light.h"
 
-#include "core/input_file.h"
+#include "core/exr_input.h"
+
 
 #include "core/memory_budget.h"
 
@@ -57,11 +58,13 @@ std::vector<float> weights(const RgbImage& image) {
 RgbImage loadEnvironmentImage(const std::string& path, uint64_t memoryLimit) {
   RgbImage img;
   try {
-    InputFile(path, "environment map", kMaxImageFileBytes);  // refuses FIFOs, devices and directories at once
-    Imf::RgbaInputFile file(path.c_str());
+    // Read whole through core/input_file.h (its rules, and the digest of a scene's inputs) and
+    // decoded from memory: OpenEXR never opens the path itself.
+    ExrInput in(path, "environment map");
+    const std::unique_ptr<Imf::IStream> stream = in.stream();
+    Imf::RgbaInputFile file(*stream);
     const Imath::Box2i dw = file.dataWindow();
-    const int64_t w = int64_t(dw.max.x) - dw.min.x + 1, h = int64_t(dw.max.y) - dw.min.y + 1;
-    if (w < 1 || h < 1) throw std::runtime_error("'" + path + "': empty image");
+    const int64_t w = int64_t(in.width()), h = int64_t(in.height());
     requireMemory(saturatingMul(uint64_t(w) * uint64_t(h), kEnvMapBytesPerPixel),
                   "'" + path + "' (" + std::to_string(w) + " x " + std::to_string(h) + "): the environment light",
                   memoryLimit);

@@ -11,6 +11,7 @@
 #include <set>
 #include <utility>
 
+#include "core/checkpoint.h"
 #include "core/error.h"
 #include "core/memory_budget.h"
 
@@ -20,6 +21,8 @@ namespace {
 // (device, inode) of every file opened as an input.
 std::mutex gInputsMutex;
 std::set<std::pair<dev_t, ino_t>> gInputs;
+
+thread_local InputDigest* tRecording = nullptr;  // RecordInputs
 
 const char* fileKind(mode_t mode) {
   if (S_ISDIR(mode)) return "a directory";
@@ -66,7 +69,13 @@ void InputFile::read(void* data, size_t n) {
     if (got == 0) throw InputError(path_, "", what_ + " is truncated");
     p += got, n -= size_t(got), position_ += uint64_t(got);
   }
+  // Chained per read call, so the digest depends on the bytes and the reader's calls alone.
+  if (tRecording) tRecording->value_ = hashBytes(data, size_t(p - static_cast<char*>(data)), tRecording->value_);
 }
+
+RecordInputs::RecordInputs(InputDigest& digest) : previous_(tRecording) { tRecording = &digest; }
+
+RecordInputs::~RecordInputs() { tRecording = previous_; }
 
 std::string InputFile::readRest() {
   // The size was capped at opening; a file that grows meanwhile is read up to that size.

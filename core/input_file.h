@@ -45,6 +45,30 @@ class InputFile {
   uint64_t size_ = 0, position_ = 0;
 };
 
+// The content of the input files read on one thread while a RecordInputs for it lives, as one
+// digest: what a scene was loaded from besides its own text (meshes, spectra, textures, material
+// and included files), so that checkpoints and MPI ranks tell apart scenes whose files differ.
+class InputDigest {
+ public:
+  uint64_t value() const { return value_; }
+
+ private:
+  friend class InputFile;
+  uint64_t value_ = 0;
+};
+
+// Every InputFile read on this thread while it lives goes into `digest` (nested: the innermost).
+class RecordInputs {
+ public:
+  explicit RecordInputs(InputDigest& digest);
+  ~RecordInputs();
+  RecordInputs(const RecordInputs&) = delete;
+  RecordInputs& operator=(const RecordInputs&) = delete;
+
+ private:
+  InputDigest* previous_;
+};
+
 // The whole file as bytes (InputFile's rules).
 std::string readInputFile(const std::string& path, const std::string& what, uint64_t maxBytes);
 

@@ -163,6 +163,20 @@ TEST_F(CliFiles, ConcurrentRendersToOneNameLeaveOneWholeFile) {
   EXPECT_EQ(entries(), (std::vector<std::string>{"grey.csv", "same.exr", "same.png", "same.stats.json", "scene.json"}));
 }
 
+// The files a scene names are part of what a checkpoint continues (and what MPI ranks must agree
+// on, tests/mpi): the same scene text with another reflectance file is another scene.
+TEST_F(CliFiles, ACheckpointIsOfTheSceneFilesContentNotOnlyItsText) {
+  const std::string ckpt = dir + "/render.ckpt";
+  const test::Finished first = run({"render", scene, "-q", "--no-png", "-o", dir + "/a.exr", "--checkpoint", ckpt});
+  ASSERT_EQ(first.code, 0) << first.err;
+  const test::Finished same = run({"render", scene, "-q", "--no-png", "--spp", "2", "-o", dir + "/b.exr", "--resume", ckpt});
+  EXPECT_EQ(same.code, 0) << same.err;
+  write("grey.csv", "wavelength,r\n380,0.6\n780,0.6\n");
+  expectRefused({"render", scene, "-q", "--no-png", "--spp", "3", "-o", dir + "/c.exr", "--resume", ckpt}, 1,
+                "checkpoint was made with scene_hash");
+  EXPECT_FALSE(fs::exists(dir + "/c.exr"));
+}
+
 TEST_F(CliFiles, CommandLineMistakesExitWith2) {
   expectRefused({"render", scene, "-q", "--integrator", "foo"}, 2, "unknown integrator 'foo'");
   expectRefused({"render", scene, "-q", "--light-sampling", "uniform"}, 2, "--light-sampling: ");

@@ -17,7 +17,7 @@
 #     hang, nothing written.
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR disagree WHAT
 #     two ranks (mpirun's MPMD form, `-np 1 kasha ... : -np 1 kasha ...`) given another scene,
-#     seed, spp, integrator or depth (WHAT): within seconds, exit code 2 and one line from kasha,
+#     the same scene text naming a file whose content differs, seed, spp, integrator or depth (WHAT): within seconds, exit code 2 and one line from kasha,
 #     `kasha: error: --mpi: rank 1 disagrees with rank 0 on FIELD (...)`, nothing written.
 #   mpi_render_test.sh KASHA SOURCE_DIR WORK_DIR time
 #     `--time 1` with `-np 2` ends every rank after the same pass; the image equals a one-process
@@ -113,6 +113,10 @@ disagree)
   python3 -c 'import json; s = json.load(open("scene.json")); s["camera"]["fov"] += 1; json.dump(s, open("other.json", "w"))'
   case $what in
   scene) a=(scene.json) b=(other.json) field=scene_hash ;;
+  # The same scene text beside another copy of a file it names (one more comment line).
+  files) mkdir -p files && cp scene.json files/ && cp -rL spectra files/spectra &&
+    echo "# another copy" >>files/spectra/cornell_box_light_emission.csv
+    a=(scene.json) b=(files/scene.json) field=scene_hash ;;
   seed) a=(scene.json --seed 1) b=(scene.json --seed 2) field=seed ;;
   spp) a=(scene.json --spp 4) b=(scene.json --spp 1000000) field=spp ;;
   integrator) a=(scene.json) b=(scene.json --integrator lt) field=integrator ;;
