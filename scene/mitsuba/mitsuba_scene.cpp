@@ -36,6 +36,10 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
       readDefaults(xml, doc.document_element());
       visit(xml, doc.document_element(), out, depth + 1);
       xml.endInclude();
+    } else if (tag == "path") {
+      for (const pugi::xml_attribute a : c.attributes())
+        if (std::string(a.name()) != "value") xml.fail(c, std::string("unexpected attribute '") + a.name() + "'");
+      xml.addSearchPath(c, xml.attribute(c, "value"));
     } else if (tag == "integrator") {
       addIntegrator(xml, c, out);
     } else if (tag == "sensor") {
@@ -48,7 +52,7 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
     } else if (tag == "emitter") {
       addEmitter(xml, c, out);
     } else {
-      xml.fail(c, "unsupported element <" + tag + "> (kasha reads default, include, integrator, sensor, bsdf, shape, emitter)");
+      xml.fail(c, "unsupported element <" + tag + "> (kasha reads default, include, path, integrator, sensor, bsdf, shape, emitter)");
     }
   }
 }

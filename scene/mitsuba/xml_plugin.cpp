@@ -42,7 +42,7 @@ namespace {
 // the operations of a <transform>. Anything inside them would be ignored.
 bool holdsNoElements(pugi::xml_node n) {
   static const std::set<std::string> tags = {"float", "integer", "boolean", "string", "point", "vector", "rgb",
-                                             "blackbody", "ref", "default", "include", "translate", "rotate",
+                                             "blackbody", "ref", "default", "include", "path", "translate", "rotate",
                                              "scale", "matrix", "lookat"};
   const std::string tag = n.name();
   return tags.count(tag) || (tag == "spectrum" && !n.attribute("type"));
@@ -120,7 +120,20 @@ std::string XmlImport::baseDir(pugi::xml_node n) const {
 
 std::string XmlImport::resolve(pugi::xml_node n, const std::string& rel) const {
   // Absolute, so that the JSON loader (which resolves against the top-level file) keeps it.
-  return (!rel.empty() && rel[0] == '/') ? rel : std::filesystem::absolute(baseDir(n) + "/" + rel).lexically_normal().string();
+  if (!rel.empty() && rel[0] == '/') return rel;
+  for (auto dir = searchPaths_.rbegin(); dir != searchPaths_.rend(); ++dir) {
+    const std::filesystem::path candidate = std::filesystem::path(*dir) / rel;
+    std::error_code error;
+    if (std::filesystem::exists(candidate, error)) return candidate.lexically_normal().string();
+  }
+  return std::filesystem::absolute(baseDir(n) + "/" + rel).lexically_normal().string();
+}
+
+void XmlImport::addSearchPath(pugi::xml_node n, const std::string& dir) {
+  const std::string path = resolve(n, dir);
+  std::error_code error;
+  if (!std::filesystem::is_directory(path, error)) fail(n, "path '" + dir + "' is not a directory (" + path + ")");
+  searchPaths_.push_back(path);
 }
 
 std::string XmlImport::label(pugi::xml_node n) const {

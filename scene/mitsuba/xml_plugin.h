@@ -43,8 +43,11 @@ class XmlImport {
   std::string label(pugi::xml_node n) const;
   // The directory relative file names in `n`'s file start from.
   std::string baseDir(pugi::xml_node n) const;
-  // `rel` resolved against n's file's directory, as an absolute path.
+  // `rel` as an absolute path: in the first of the search paths (the latest <path> first) that
+  // holds it, else in n's file's directory (Mitsuba's file resolver).
   std::string resolve(pugi::xml_node n, const std::string& rel) const;
+  // <path value="dir"/>: `dir` (relative to n's file) is searched before the others.
+  void addSearchPath(pugi::xml_node n, const std::string& dir);
 
   // An attribute with `$name` parameters substituted; a missing attribute is an error.
   std::string attribute(pugi::xml_node n, const char* name) const;
@@ -75,6 +78,7 @@ class XmlImport {
   void checkStructure(const File& f) const;
   std::deque<File> files_;
   std::vector<std::string> including_;  // the include chain, to detect cycles
+  std::vector<std::string> searchPaths_;  // <path>s, absolute, the latest last
   std::map<std::string, std::string> params_;
   std::map<std::pair<std::string, std::string>, pugi::xml_node> ids_;  // (tag, id) → element
   std::vector<std::string> notes_;

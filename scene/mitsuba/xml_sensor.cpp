@@ -55,15 +55,33 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     sampler.integer("seed", 0);
     sampler.finish();
   }
-  const float fov = s.number("fov");
+  // A field of view, or (Mitsuba 3's parse_fov) a focal length "<x>mm" on a 36 × 24 mm film,
+  // 50 mm by default, whose angle is the diagonal's.
+  if (s.has("fov") && s.has("focal_length")) s.fail("give fov or focal_length, not both");
+  float fov = 0.0f;
+  std::string axis = "diagonal";
+  if (s.has("fov")) {
+    fov = s.number("fov");
+    axis = s.string("fov_axis", "x");
+  } else {
+    const std::string text = s.string("focal_length", "50mm");
+    const std::string mm = text.size() > 2 && text.compare(text.size() - 2, 2, "mm") == 0 ? text.substr(0, text.size() - 2) : text;
+    const std::optional<std::vector<float>> f = parseNumbers(mm);
+    if (!f || f->size() != 1 || !((*f)[0] > 0.0f))
+      s.fail(s.property("focal_length"), "focal_length must be a positive length in mm (\"50mm\"), got '" + text + "'");
+    fov = glm::degrees(2.0f * std::atan(std::sqrt(36.0f * 36.0f + 24.0f * 24.0f) / (2.0f * (*f)[0])));
+    if (s.has("fov_axis")) s.note("fov_axis ignored: a focal length gives the diagonal's angle (as in Mitsuba)");
+    s.string("fov_axis", "");
+  }
   // tan(fov/2) below: beyond (0, 180) degrees it would wrap round to another angle.
   if (!(fov > 0.0f && fov < 180.0f)) {
     const pugi::xml_node p = s.property("fov");
     s.fail(p, "fov must be in (0, 180) degrees, got " + xml.attribute(p, "value"));
   }
-  const std::string axis = s.string("fov_axis", "x");
   const std::optional<float> fovY = verticalFov(fov, axis, width, height);
   if (!fovY) s.fail("unknown fov_axis '" + axis + "' (x, y, diagonal, smaller, larger)");
+  // A pinhole has no focus: Mitsuba's perspective camera ignores it too.
+  s.number("focus_distance", 0.0f);
   if (s.has("near_clip") || s.has("far_clip")) s.note("near_clip and far_clip ignored (kasha does not clip)");
   s.number("near_clip", 0.0f);
   s.number("far_clip", 0.0f);

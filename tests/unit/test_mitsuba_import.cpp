@@ -192,6 +192,50 @@ TEST_F(MitsubaImport, PerspectiveSensorFilmSamplerAndIntegrator) {
   EXPECT_NEAR(s->camera.fovYDegrees(), 2.0f * std::atan(std::tan(glm::radians(15.0f)) * 0.5f) * 180.0f / kPi, 1e-3f);
 }
 
+// Without fov, Mitsuba's perspective camera has a focal length (default 50 mm) on a 36 × 24 mm film,
+// whose angle is the diagonal's: 2·atan(√(36² + 24²)/(2·f)); on a 300 × 200 film (the 36 × 24
+// aspect) the vertical angle is then 2·atan(24/(2·f)) exactly. focus_distance has no effect there.
+TEST_F(MitsubaImport, PerspectiveFocalLengthAndFocusDistance) {
+  const auto sensor = [&](const std::string& properties) {
+    return write("focal.xml", std::string("<scene version=\"3.0.0\">") + R"(
+  <sensor type="perspective">)" + properties + R"(
+    <film type="hdrfilm"><integer name="width" value="300"/><integer name="height" value="200"/></film>
+  </sensor>)" + kLight + kFloor + "</scene>");
+  };
+  const auto degrees = [](double radians) { return float(radians * 180.0 / 3.14159265358979323846); };
+  EXPECT_NEAR(loadScene(sensor(""))->camera.fovYDegrees(), degrees(2.0 * std::atan(12.0 / 50.0)), 1e-3f);
+  EXPECT_NEAR(loadScene(sensor(R"(<string name="focal_length" value="28mm"/><float name="focus_distance" value="3"/>)"))
+                  ->camera.fovYDegrees(),
+              degrees(2.0 * std::atan(12.0 / 28.0)), 1e-3f);
+  EXPECT_TRUE(contains(fileError(sensor(R"(<string name="focal_length" value="wide"/>)")),
+                       "focal_length must be a positive length in mm (\"50mm\"), got 'wide'"));
+  EXPECT_TRUE(contains(fileError(sensor(R"(<float name="fov" value="40"/><string name="focal_length" value="28mm"/>)")),
+                       "give fov or focal_length, not both"));
+}
+
+// <path value="dir"/> (Mitsuba's documentation scenes: <path value="../../common"/>): files are
+// looked up in it, relative to the scene file, before the scene's own directory; includes too.
+TEST_F(MitsubaImport, SearchPathsFindFilesBeforeTheScenesDirectory) {
+  fs::create_directories(dir / "common" / "meshes");
+  fs::create_directories(dir / "scenes");
+  write("common/meshes/quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  write("common/light.xml", std::string("<scene version=\"3.0.0\">") + kLight + "</scene>");
+  const std::string body = std::string(kSensor) + R"(<path value="../common"/><include filename="light.xml"/>
+    <shape type="obj"><string name="filename" value="meshes/quad.obj"/><bsdf type="diffuse"/></shape>)";
+  const std::string path = write("scenes/paths.xml", "<scene version=\"3.0.0\">" + body + "</scene>");
+  const auto s = loadScene(path);
+  ASSERT_EQ(s->shapes.size(), 1u);
+  EXPECT_EQ(s->lights.size(), 1u);
+  // A file in neither is reported where the scene's own directory would hold it.
+  const std::string missing = write("scenes/missing.xml", std::string("<scene version=\"3.0.0\">") + kSensor +
+                                                              R"(<path value="../common"/>
+    <shape type="obj"><string name="filename" value="meshes/none.obj"/><bsdf type="diffuse"/></shape>)" + kLight + "</scene>");
+  EXPECT_TRUE(contains(fileError(missing), (dir / "scenes" / "meshes" / "none.obj").string()));
+  const std::string notDir = write("scenes/notdir.xml", std::string("<scene version=\"3.0.0\">") + kSensor +
+                                                            R"(<path value="../nowhere"/>)" + kLight + kFloor + "</scene>");
+  EXPECT_TRUE(contains(fileError(notDir), "path '../nowhere' is not a directory"));
+}
+
 TEST_F(MitsubaImport, ShapesObjPlyRectangleCubeSphereDisk) {
   write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   write("tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
