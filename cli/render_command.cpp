@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -22,6 +23,7 @@
 #include "integrators/photon_mapping/direct_light_wavelengths.h"
 #include "integrators/render_job.h"
 #include "integrators/render_numbers.h"
+#include "scene/mitsuba/mitsuba_scene.h"
 #include "scene/scene_loader.h"
 #include "scene/wavelength_strategy.h"
 
@@ -169,8 +171,11 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
       ->check(CLI::IsMember({"sobol", "independent"}));
   cmd->add_option("--set", a.set,
                   "KEY=VALUE, repeatable: a setting of the scene's render object (docs/scene-format.md), KEY its path, "
-                  "e.g. ppm.alpha=0.7, ppm.direct=photons, ppm.nee_wavelengths=camera, mollify.bandwidth=5, "
-                  "bdpt_families=own, vcm_paths=camera, fluorescent_lanes=end; VALUE is JSON if it parses, else a string")
+                  "e.g. ppm.alpha=0.7, ppm.direct=photons, bdpt.families=own, vcm.paths=camera, "
+                  "fluorescent_lanes=end; VALUE is JSON if it parses, else a string")
+      ->allow_extra_args(false);
+  cmd->add_option("-D", a.parameters,
+                  "NAME=VALUE, repeatable: a Mitsuba XML scene's parameter $NAME (before its <default>s)")
       ->allow_extra_args(false);
   cmd->add_option("--max-depth", a.maxDepth, "Maximum number of scattering events")->check(numberCheck(Sign::NonNegative, true));
   cmd->add_option("--exposure", a.exposure, "PNG exposure in stops")
@@ -199,6 +204,19 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
       throw UsageError("--set " + text, "", e.what());
     }
   }
+  SceneLoadOptions load;
+  for (const std::string& text : a.parameters) {
+    const size_t eq = text.find('=');
+    const std::string name = text.substr(0, eq);
+    const bool named = !name.empty() && std::all_of(name.begin(), name.end(), [](unsigned char c) {
+      return std::isalnum(c) || c == '_';
+    });
+    if (eq == std::string::npos || !named)
+      throw UsageError("-D " + text, "", "expected NAME=VALUE, NAME of letters, digits and '_'");
+    if (!mitsuba::isMitsubaScenePath(a.scene))
+      throw UsageError("-D " + text, "", "sets a parameter of a Mitsuba XML scene, not of " + a.scene);
+    load.parameters[name] = text.substr(eq + 1);  // the last of one name wins
+  }
   for (const IntegratorAlias& alias : integratorAliases()) {
     if (alias.name != a.integrator || (group && group->rank() != 0)) continue;
     std::string sets;
@@ -206,7 +224,6 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     std::fprintf(stderr, "kasha: note: --integrator %s stands for --integrator %s%s\n", alias.name.c_str(),
                  alias.integrator.c_str(), sets.c_str());
   }
-  SceneLoadOptions load;
   load.memoryLimit = memoryLimit;
   load.renderSettings = set;  // checked by the loader as the scene file's own
   // Read once: the text is both loaded and hashed for checkpoints.
@@ -250,6 +267,7 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   // checkpoint continues, and that MPI ranks must agree on (the text alone without them).
   std::string hashed = sceneText;
   for (const RenderSetting& s : set) hashed += "\n--set " + s.text;
+  for (const auto& [name, value] : load.parameters) hashed += "\n-D " + name + "=" + value;
   hashed += "\ninputs " + hex(inputs.value());
   o.sceneHash = hex(hashBytes(hashed.data(), hashed.size()));
   o.stop = &gStopSignal;

@@ -22,6 +22,7 @@ struct RenderArgs {
   int hero = 0;
   std::string sampler;
   std::vector<std::string> set;  // --set KEY=VALUE: settings of the scene's render object
+  std::vector<std::string> parameters;  // -D NAME=VALUE: a Mitsuba scene's $NAME
   float exposure = 0.0f;
   std::string checkpoint, resume;
   double checkpointInterval = 60.0;

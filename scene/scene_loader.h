@@ -4,6 +4,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -21,6 +22,9 @@ struct SceneLoadOptions {
   // Written into the render object before it is read (scene/render_overrides.h), so the loader
   // checks them as the file's own; a Mitsuba scene gets them in its JSON translation.
   std::vector<RenderSetting> renderSettings;
+  // A Mitsuba scene's `$name` parameters (`kasha render -D name=value`): they win over its
+  // <default>s. A JSON scene takes none.
+  std::map<std::string, std::string> parameters;
 };
 
 // The text of a scene file (core/input_file.h: a regular file of at most kMaxJsonFileBytes).

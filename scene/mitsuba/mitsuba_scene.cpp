@@ -91,7 +91,9 @@ std::string SceneJson::addMaterial(const XmlImport& xml, pugi::xml_node bsdf, js
 bool isMitsubaScenePath(const std::string& path) { return path.size() >= 4 && path.ends_with(".xml"); }
 
 // Reads the scene into `out`; the notes stay in `xml`.
-static void build(XmlImport& xml, SceneJson& out, const std::string& text, const std::string& path) {
+static void build(XmlImport& xml, SceneJson& out, const std::string& text, const std::string& path,
+                  const std::map<std::string, std::string>& parameters) {
+  for (const auto& [name, value] : parameters) xml.setDefault(name, value);  // first set wins
   const pugi::xml_node scene = xml.parse(text, path).document_element();
   readDefaults(xml, scene);
   visit(xml, scene, out, 0);
@@ -99,17 +101,18 @@ static void build(XmlImport& xml, SceneJson& out, const std::string& text, const
   if (!out.root.contains("shapes")) throw InputError(path, "", "the scene has no <shape>");
 }
 
-Translation translateMitsubaScene(const std::string& text, const std::string& path) {
+Translation translateMitsubaScene(const std::string& text, const std::string& path,
+                                  const std::map<std::string, std::string>& parameters) {
   XmlImport xml;
   SceneJson out;
-  build(xml, out, text, path);
+  build(xml, out, text, path, parameters);
   return {std::move(out.root), xml.notes()};
 }
 
 std::unique_ptr<Scene> loadMitsubaScene(const std::string& text, const std::string& path, const SceneLoadOptions& options) {
   XmlImport xml;
   SceneJson out;
-  build(xml, out, text, path);
+  build(xml, out, text, path, options.parameters);
   if (options.notes)
     for (const std::string& n : xml.notes()) *options.notes << "kasha: note: " << n << "\n";
   try {

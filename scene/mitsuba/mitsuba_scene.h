@@ -16,9 +16,11 @@ struct Translation {
   std::vector<std::string> notes;  // "file:line: plugin: what was approximated"
 };
 
-// Translates the Mitsuba XML `text` of the file `path`. Malformed XML and unsupported plugins
-// or properties are InputErrors naming the file, the line and the plugin.
-Translation translateMitsubaScene(const std::string& text, const std::string& path);
+// Translates the Mitsuba XML `text` of the file `path`, with `parameters` given for its `$name`s
+// (before its <default>s). Malformed XML and unsupported plugins or properties are InputErrors
+// naming the file, the line and the plugin.
+Translation translateMitsubaScene(const std::string& text, const std::string& path,
+                                  const std::map<std::string, std::string>& parameters = {});
 
 // Translates and loads; prints each approximation to options.notes as "kasha: note: ...". Errors the
 // JSON loader finds in the translation are reported at the XML element they came from.

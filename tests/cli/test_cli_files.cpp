@@ -177,6 +177,32 @@ TEST_F(CliFiles, ACheckpointIsOfTheSceneFilesContentNotOnlyItsText) {
   EXPECT_FALSE(fs::exists(dir + "/c.exr"));
 }
 
+// -D NAME=VALUE gives a Mitsuba scene's $NAME (the documentation scenes' $spp, $integrator): it
+// wins over a <default>, and a parameter with neither is the importer's error.
+TEST_F(CliFiles, MitsubaParametersFromTheCommandLine) {
+  const std::string xml = write("params.xml", R"(<scene version="3.0.0">
+  <default name="res" value="8"/>
+  <sensor type="perspective"><float name="fov" value="$fov"/>
+    <film type="hdrfilm"><integer name="width" value="$res"/><integer name="height" value="$res"/></film>
+    <sampler type="independent"><integer name="sample_count" value="$spp"/></sampler>
+  </sensor>
+  <emitter type="point"><point name="position" x="0" y="3" z="0"/><spectrum name="intensity" value="1"/></emitter>
+  <shape type="rectangle"><bsdf type="diffuse"/></shape>
+</scene>
+)");
+  const test::Finished r = run({"render", xml, "-q", "--no-png", "-o", dir + "/p.exr", "-D", "fov=40", "-D", "spp=2", "-D", "res=4"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto stats = nlohmann::json::parse(test::readTextFile(dir + "/p.stats.json"));
+  EXPECT_EQ(stats["spp"], 2);
+  EXPECT_EQ(stats["resolution"], nlohmann::json({4, 4}));
+  expectRefused({"render", xml, "-q", "--no-png", "-o", dir + "/q.exr", "-D", "fov=40"}, 1,
+                "parameter '$spp' has no <default> value");
+  expectRefused({"render", xml, "-q", "-D", "fov"}, 2, "-D fov: expected NAME=VALUE");
+  expectRefused({"render", xml, "-q", "-D", "f-v=1"}, 2, "-D f-v=1: expected NAME=VALUE");
+  expectRefused({"render", scene, "-q", "-D", "fov=40"}, 2, "-D fov=40: sets a parameter of a Mitsuba XML scene, not of");
+  EXPECT_FALSE(fs::exists(dir + "/q.exr"));
+}
+
 TEST_F(CliFiles, CommandLineMistakesExitWith2) {
   expectRefused({"render", scene, "-q", "--integrator", "foo"}, 2, "unknown integrator 'foo'");
   expectRefused({"render", scene, "-q", "--light-sampling", "uniform"}, 2, "--light-sampling: ");
