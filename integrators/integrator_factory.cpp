@@ -28,19 +28,21 @@ std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "ppm", 
 
 const std::vector<IntegratorAlias>& integratorAliases() {
   static const std::vector<IntegratorAlias> aliases = {
-      {"bdpt-shared", "bdpt", {"bdpt.families=shared"}},
-      {"bdpt-independent", "bdpt", {"bdpt.families=own"}},
-      {"bdpt-mollified", "bdpt", {"bdpt.families=own", "bdpt.mollify=true"}},
+      {"bdpt-shared", "bdpt", {"bdpt.families=shared"}, [](RenderSettings& s) { s.bdpt.families = BdptFamilies::Shared; }},
+      {"bdpt-independent", "bdpt", {"bdpt.families=own"}, [](RenderSettings& s) { s.bdpt.families = BdptFamilies::Own; }},
+      {"bdpt-mollified", "bdpt", {"bdpt.families=own", "bdpt.mollify=true"},
+       [](RenderSettings& s) { s.bdpt.families = BdptFamilies::Own, s.bdpt.mollify = true; }},
   };
   return aliases;
 }
 
 std::string resolveIntegrator(const std::string& name, RenderSettings& s) {
-  if (name == "bdpt-shared") s.bdpt.families = BdptFamilies::Shared;
-  else if (name == "bdpt-independent") s.bdpt.families = BdptFamilies::Own;
-  else if (name == "bdpt-mollified") s.bdpt.families = BdptFamilies::Own, s.bdpt.mollify = true;
-  else return name;
-  return "bdpt";
+  for (const IntegratorAlias& alias : integratorAliases()) {
+    if (alias.name != name) continue;
+    alias.apply(s);
+    return alias.integrator;
+  }
+  return name;
 }
 
 std::string settingNotRead(const std::string& alias, const std::string& key) {

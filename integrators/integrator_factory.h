@@ -26,6 +26,7 @@ std::vector<std::string> integratorNames();
 struct IntegratorAlias {
   std::string name, integrator;
   std::vector<std::string> settings;  // as `--set` takes them: "bdpt.families=shared"
+  void (*apply)(RenderSettings&);     // the same settings, written into a RenderSettings
 };
 const std::vector<IntegratorAlias>& integratorAliases();
 // The integrator `name` stands for, with an alias's settings written into `settings` (the alias
