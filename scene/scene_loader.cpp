@@ -123,6 +123,7 @@ struct Loader {
     if (!root.has("render")) return;
     JsonFields f(root.get("render"), file, "/render");
     RenderSettings& r = scene.render;
+    r.integrator = f.string("integrator", r.integrator);
     r.spp = f.integer("spp", r.spp);
     if (r.spp < 1) f.fail("spp", "must be at least 1");
     r.timeBudgetSeconds = f.number("time", 0.0f);
@@ -130,6 +131,7 @@ struct Loader {
     r.maxDepth = f.integer("max_depth", r.maxDepth);
     if (r.maxDepth < 0) f.fail("max_depth", "must not be negative");
     r.rrDepth = f.integer("rr_depth", r.rrDepth);
+    r.hideEmitters = f.boolean("hide_emitters", r.hideEmitters);
     if (r.rrDepth < 0) f.fail("rr_depth", "must not be negative");
     const int seed = f.integer("seed", int(r.seed));
     if (seed < 0) f.fail("seed", "must not be negative");

@@ -1,9 +1,11 @@
 #include "scene/mitsuba/xml_bsdf.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <vector>
 
+#include "core/conductor_index.h"
 #include "core/math.h"
 #include "core/spectrum_json.h"
 #include "scene/mitsuba/xml_spectrum.h"
@@ -63,32 +65,39 @@ json roughness(Plugin& b) {
   return b.number("alpha", 0.1f);
 }
 
-// Normal-incidence Fresnel reflectance of a conductor, F0 = ((η−1)² + k²)/((η+1)² + k²), times
-// specular_reflectance, tabulated every nm over 360–830 nm.
-json conductorF0(Plugin& b) {
+// A conductor's Fresnel terms in kasha's JSON (mirror, rough_conductor): a named metal
+// ("material", Mitsuba's default "none" being a perfect mirror), or η and k spectra, with
+// specular_reflectance as the factor on the exact Fresnel reflectance (materials/conductor_fresnel.h).
+void setConductor(Plugin& b, json& m) {
   const std::string material = b.string("material", b.has("eta") ? "" : "none");
-  if (!material.empty() && material != "none")
-    b.fail("named conductor '" + material + "' is not available in kasha (no η/k tables); give <spectrum name=\"eta\"> "
-           "and <spectrum name=\"k\">");
-  const SpectrumContext ctx(b.xml().where(b.node()), b.xml().baseDir(b.node()));
-  const json specular = spectrumProperty(b, "specular_reflectance", 1.0);
-  const Spectrum s = parseSpectrum(specular, ctx, "specular_reflectance");
-  if (material == "none") return specular;  // η = 0, k = 1: a perfect mirror
-  const Spectrum eta = parseSpectrum(spectrumProperty(b, "eta"), ctx, "eta");
-  const Spectrum k = parseSpectrum(spectrumProperty(b, "k"), ctx, "k");
-  std::vector<float> wl, v;
-  for (int nm = 360; nm <= 830; ++nm) {
-    const float n = eta(float(nm)), kk = k(float(nm));
-    wl.push_back(float(nm));
-    v.push_back(s(float(nm)) * (kasha::sqr(n - 1.0f) + kk * kk) / (kasha::sqr(n + 1.0f) + kk * kk));
+  m["reflectance"] = spectrumProperty(b, "specular_reflectance", 1.0);
+  if (material == "none") return;  // η = 0, k = 1: R = 1 at every angle, times specular_reflectance
+  if (!material.empty()) {
+    // Mitsuba's tables are Palik's where a name ends in _palik; kasha has one table per metal.
+    std::string symbol = material;
+    if (symbol.size() > 6 && symbol.ends_with("_palik")) {
+      symbol.resize(symbol.size() - 6);
+      b.note("'" + material + "' is kasha's measured '" + symbol + "' (scenes/spectra/conductors/" + symbol + ".csv)");
+    }
+    if (!namedConductor(symbol)) {
+      std::string list;
+      for (const std::string& n : conductorNames()) list += (list.empty() ? "" : ", ") + n;
+      b.fail(b.property("material"), "no measured index for the conductor '" + material + "' in kasha (" + list +
+                                         "); give <spectrum name=\"eta\"> and <spectrum name=\"k\">");
+    }
+    m["eta"] = symbol;
+    return;
   }
-  b.note("conductor reflectance from η, k at normal incidence (F0), with Schlick's angular dependence in kasha");
-  return {{"type", "tabulated"}, {"wavelengths", wl}, {"values", v}};
+  m["eta"] = spectrumProperty(b, "eta");
+  m["k"] = spectrumProperty(b, "k");
 }
 
 void requireUnitSpecular(Plugin& b, const char* key) {
   const json s = spectrumProperty(b, key, 1.0);
-  if (!(s.is_number() && s.get<float>() == 1.0f)) b.fail(std::string("'") + key + "' other than 1 is not supported");
+  const auto one = [](const json& v) { return v.is_number() && v.get<float>() == 1.0f; };
+  const bool rgbOne = s.is_object() && s.value("type", "") == "rgb" && s["value"].is_array() &&
+                      std::all_of(s["value"].begin(), s["value"].end(), one);  // <rgb value="1"/>
+  if (!one(s) && !rgbOne) b.fail(std::string("'") + key + "' other than 1 is not supported");
 }
 
 // Sets m["reflectance"] from the reflectance property `key`: a spectrum, or a <texture
@@ -143,10 +152,12 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
     setReflectance(b, "reflectance", m);
   } else if (t == "conductor") {
     oneSided();
-    m = {{"type", "mirror"}, {"reflectance", conductorF0(b)}};
+    m = {{"type", "mirror"}};
+    setConductor(b, m);
   } else if (t == "roughconductor") {
     oneSided();
-    m = {{"type", "rough_conductor"}, {"reflectance", conductorF0(b)}};
+    m = {{"type", "rough_conductor"}};
+    setConductor(b, m);
     m["alpha"] = roughness(b);
   } else if (t == "dielectric" || t == "roughdielectric") {
     requireUnitSpecular(b, "specular_reflectance");

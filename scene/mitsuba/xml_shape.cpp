@@ -27,23 +27,35 @@ json faceCorners(const Mat4& m, std::array<Vec3, 4> local, Vec3 localNormal, boo
   return c;
 }
 
-std::string material(Plugin& s, SceneJson& out) {
-  const std::vector<pugi::xml_node> bsdfs = s.nested("bsdf"), refs = s.nested("ref");
-  if (bsdfs.size() + refs.size() > 1) s.fail("more than one BSDF");
-  if (!bsdfs.empty()) return out.addMaterial(s.xml(), bsdfs[0], bsdfMaterial(s.xml(), bsdfs[0]));
-  if (!refs.empty()) {
-    const std::string id = s.xml().attribute(refs[0], "id");
-    const auto it = out.bsdfIds.find(id);
-    if (it == out.bsdfIds.end()) s.fail(refs[0], "no <bsdf id=\"" + id + "\"> before this reference");
-    return it->second;
+// A shape's <ref>s split by what they name: a <bsdf> or a top-level area <emitter>.
+struct ShapeRefs {
+  std::vector<pugi::xml_node> bsdfs, emitters;  // the <ref>s, and the <emitter>s they name
+};
+
+ShapeRefs shapeRefs(Plugin& s, const SceneJson& out) {
+  ShapeRefs refs;
+  for (pugi::xml_node r : s.nested("ref")) {
+    const std::string id = s.xml().attribute(r, "id");
+    if (out.bsdfIds.count(id)) refs.bsdfs.push_back(r);
+    else if (pugi::xml_node e = out.declaredAs(id, "emitter")) refs.emitters.push_back(e);
+    else s.fail(r, "no <bsdf id=\"" + id + "\"> or area <emitter id=\"" + id + "\"> before this reference");
   }
+  return refs;
+}
+
+std::string material(Plugin& s, SceneJson& out, const ShapeRefs& refs) {
+  const std::vector<pugi::xml_node> bsdfs = s.nested("bsdf");
+  if (bsdfs.size() + refs.bsdfs.size() > 1) s.fail("more than one BSDF");
+  if (!bsdfs.empty()) return out.addMaterial(s.xml(), bsdfs[0], bsdfMaterial(s.xml(), bsdfs[0]));
+  if (!refs.bsdfs.empty()) return out.bsdfIds.at(s.xml().attribute(refs.bsdfs[0], "id"));
   // Mitsuba's default BSDF: diffuse with reflectance 0.5 (one-sided).
   s.note("no BSDF: Mitsuba's default diffuse 0.5, reflecting on both sides in kasha");
   return out.addMaterial(s.xml(), s.node(), {{"type", "lambertian"}, {"reflectance", 0.5}});
 }
 
-json emission(Plugin& s) {
-  const std::vector<pugi::xml_node> emitters = s.nested("emitter");
+json emission(Plugin& s, const ShapeRefs& refs) {
+  std::vector<pugi::xml_node> emitters = s.nested("emitter");
+  emitters.insert(emitters.end(), refs.emitters.begin(), refs.emitters.end());
   if (emitters.empty()) return nullptr;
   if (emitters.size() > 1) s.fail(emitters[1], "more than one emitter in a shape");
   Plugin e(s.xml(), emitters[0]);
@@ -108,8 +120,9 @@ void addShape(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   const Mat4 m = toWorld(s);
   const bool flip = s.boolean("flip_normals", false);
   std::vector<json> parts = geometry(s, m, flip);
-  const std::string mat = material(s, out);
-  const json em = emission(s);
+  const ShapeRefs refs = shapeRefs(s, out);
+  const std::string mat = material(s, out, refs);
+  const json em = emission(s, refs);
   const std::string base = node.attribute("id") ? xml.attribute(node, "id") : xml.label(node);
   json& shapes = out.root["shapes"];
   for (size_t i = 0; i < parts.size(); ++i) {
