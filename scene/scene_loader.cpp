@@ -16,6 +16,7 @@
 #include "core/mesh_builders.h"
 #include "core/memory_budget.h"
 #include "core/obj_validation.h"
+#include "core/serialized_mesh.h"
 #include "core/spectrum_json.h"
 #include "core/spectrum_presets.h"
 #include "core/texture.h"
@@ -336,6 +337,20 @@ struct Loader {
     scaleAndTranslate(f, s);
   }
 
+  // A Mitsuba serialized file's mesh "shape_index" (core/serialized_mesh.h).
+  void loadSerialized(JsonFields& f, Shape& s) {
+    const std::string path = resolve(f.string("file"));
+    const int index = f.integer("shape_index", 0);
+    if (index < 0) f.fail("shape_index", "must not be negative");
+    const std::string bytes = readMeshFile(f, path);
+    try {
+      readSerializedMesh(bytes, path, uint64_t(index), options.memoryLimit, s);
+    } catch (const std::runtime_error& e) {  // InputError, MemoryLimitError
+      f.fail("file", e.what());
+    }
+    scaleAndTranslate(f, s);
+  }
+
   // "transform": four rows of four finite numbers, an invertible affine map (last row 0 0 0 1).
   glm::mat4 matrixField(JsonFields& f, const std::string& key) {
     const json& rows = f.get(key);
@@ -398,8 +413,11 @@ struct Loader {
         s.radius = f.number("radius");
         if (!(s.radius > 0.0f)) f.fail("radius", "must be positive");
       } else if (type == "mesh") {
-        if (std::filesystem::path(f.string("file")).extension() == ".ply") loadPly(f, s);
+        const std::filesystem::path extension = std::filesystem::path(f.string("file")).extension();
+        if (extension == ".ply") loadPly(f, s);
+        else if (extension == ".serialized") loadSerialized(f, s);
         else loadObj(f, s);
+        if (f.boolean("face_normals", false)) s.cornerNormals.clear();
         meshPlacement(f, s);
       } else if (type == "rectangle") {
         rectangle(f, s);

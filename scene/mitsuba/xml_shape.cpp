@@ -64,6 +64,13 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     s.boolean("flip_tex_coords", true);  // kasha reads OBJ's vt as Mitsuba's flipped default does
     return {mesh};
   }
+  if (t == "serialized") {
+    if (!s.has("filename")) s.fail("missing property 'filename'");
+    const int index = s.integer("shape_index", 0);
+    if (index < 0) s.fail("shape_index must not be negative");
+    return {{{"type", "mesh"}, {"file", s.xml().resolve(s.node(), s.string("filename", ""))}, {"shape_index", index},
+             {"face_normals", s.boolean("face_normals", false)}, {"transform", matrixJson(m)}, {"flip_normals", flip}}};
+  }
   if (t == "rectangle")
     return {{{"type", "rectangle"},
              {"corners", faceCorners(m, {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}, Vec3(0, 0, 1), flip)}}};
@@ -98,7 +105,7 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     s.note("disk tessellated into a polygon of 256 triangles (area 0.01% below the disk's)");
     return {{{"type", "disk"}, {"transform", matrixJson(m)}, {"flip_normals", flip}}};
   }
-  s.fail("unsupported shape plugin (obj, ply, rectangle, cube, sphere, disk)");
+  s.fail("unsupported shape plugin (obj, ply, serialized, rectangle, cube, sphere, disk, cylinder)");
 }
 
 }  // namespace
