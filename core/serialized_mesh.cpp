@@ -21,9 +21,10 @@ constexpr uint32_t kHasNormals = 0x0001, kHasTexcoords = 0x0002, kHasColors = 0x
 constexpr uint64_t kMaxInflateRatio = 1032;
 // A version 4 mesh name longer than this is not a name.
 constexpr size_t kMaxNameBytes = 65536;
-// What kasha holds beyond the inflated data: per vertex its position and Embree's copy; per
-// triangle its indices, corner normals and uvs, face normal, area sum, Embree's copy and BVH.
-constexpr uint64_t kBytesPerVertex = 24, kBytesPerTriangle = 160;
+// What kasha holds beyond the inflated data: per vertex the decoded floats (up to 8), its position
+// and Embree's copy; per triangle its indices, corner normals and uvs, twice while Shape::finalize
+// drops degenerate ones, face normal, area sum, Embree's copy and BVH.
+constexpr uint64_t kBytesPerVertex = 56, kBytesPerTriangle = 256;
 
 uint64_t loadU64(const unsigned char* p) {
   uint64_t v = 0;
@@ -90,6 +91,7 @@ uint64_t meshOffset(const std::string& bytes, const std::string& path, uint16_t 
   if (index == 0) return 0;
   const auto* b = reinterpret_cast<const unsigned char*>(bytes.data());
   const uint64_t size = bytes.size();
+  if (size < 8) throw InputError(path, "dictionary", "missing: the file ends after its header");
   const uint64_t entry = version == 3 ? 4 : 8;
   const uint64_t count = loadU32(b + size - 4);
   if (saturatingMul(count, entry) > size - 8)
