@@ -398,6 +398,27 @@ struct Loader {
     s.cornerUvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 0), Vec2(1, 1), Vec2(0, 1)};
   }
 
+  // The open cylinder from p0 to p1 (core/cylinder.h), placed by "transform" if given.
+  void cylinder(JsonFields& f, Shape& s) {
+    const Vec3 p0 = f.vec3("p0"), p1 = f.vec3("p1");
+    const float radius = f.number("radius");
+    if (!(radius > 0.0f)) f.fail("radius", "must be positive");
+    if (!(glm::length(p1 - p0) > 0.0f) || !std::isfinite(glm::length(p1 - p0)))
+      f.fail("p1", "must differ from p0 by a finite, non-zero length");
+    glm::mat4 m = Cylinder::endsMatrix(p0, p1, radius);
+    if (f.has("transform")) m = matrixField(f, "transform") * m;
+    const std::optional<Cylinder> c = Cylinder::fromMatrix(m);
+    if (!c)
+      f.fail(f.has("transform") ? "transform" : "radius",
+             "does not keep the cylinder circular and unmirrored (it may rotate, translate, scale uniformly "
+             "and stretch along the cylinder's axis)");
+    if (!std::isfinite(glm::length(c->base) + c->length))
+      f.fail("p0", "the cylinder is placed beyond the range of a 32-bit float");
+    s.kind = Shape::Kind::Cylinder;
+    s.cylinder = *c;
+    s.cylinder.inward = f.boolean("flip_normals", false);
+  }
+
   void shapes(JsonFields& root) {
     const json& arr = root.get("shapes");
     if (!arr.is_array() || arr.empty()) root.fail("shapes", "expected a non-empty array of shapes");
@@ -412,6 +433,8 @@ struct Loader {
         s.center = f.vec3("center");
         s.radius = f.number("radius");
         if (!(s.radius > 0.0f)) f.fail("radius", "must be positive");
+      } else if (type == "cylinder") {
+        cylinder(f, s);
       } else if (type == "mesh") {
         const std::filesystem::path extension = std::filesystem::path(f.string("file")).extension();
         if (extension == ".ply") loadPly(f, s);
@@ -426,7 +449,7 @@ struct Loader {
         tessellateUnitDisk(s, kDiskSegments);
         meshPlacement(f, s);
       } else {
-        f.fail("type", "unknown shape type '" + type + "' (sphere, rectangle, mesh, disk)");
+        f.fail("type", "unknown shape type '" + type + "' (sphere, cylinder, rectangle, mesh, disk)");
       }
       const std::string mat = f.string("material");
       auto it = materialIndex.find(mat);

@@ -101,6 +101,13 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     if (!(scale > 0.0f)) s.fail("a sphere's to_world may only rotate, translate and scale uniformly");
     return {{{"type", "sphere"}, {"center", {center.x, center.y, center.z}}, {"radius", s.number("radius", 1.0f) * scale}}};
   }
+  if (t == "cylinder") {
+    // Mitsuba's defaults: p0 = (0, 0, 0), p1 = (0, 0, 1), radius 1; to_world after them.
+    const pugi::xml_node p0 = s.property("p0"), p1 = s.property("p1");
+    const Vec3 a = p0 ? parsePointProperty(s.xml(), p0) : Vec3(0.0f), b = p1 ? parsePointProperty(s.xml(), p1) : Vec3(0, 0, 1);
+    return {{{"type", "cylinder"}, {"p0", {a.x, a.y, a.z}}, {"p1", {b.x, b.y, b.z}}, {"radius", s.number("radius", 1.0f)},
+             {"transform", matrixJson(m)}, {"flip_normals", flip}}};
+  }
   if (t == "disk") {
     s.note("disk tessellated into a polygon of 256 triangles (area 0.01% below the disk's)");
     return {{{"type", "disk"}, {"transform", matrixJson(m)}, {"flip_normals", flip}}};
