@@ -337,18 +337,21 @@ struct Loader {
     scaleAndTranslate(f, s);
   }
 
-  // A Mitsuba serialized file's mesh "shape_index" (core/serialized_mesh.h).
-  void loadSerialized(JsonFields& f, Shape& s) {
+  // A Mitsuba serialized file's mesh "shape_index" (core/serialized_mesh.h); returns whether the
+  // file asks for face normals.
+  bool loadSerialized(JsonFields& f, Shape& s) {
     const std::string path = resolve(f.string("file"));
     const int index = f.integer("shape_index", 0);
     if (index < 0) f.fail("shape_index", "must not be negative");
     const std::string bytes = readMeshFile(f, path);
+    bool faceNormals = false;
     try {
-      readSerializedMesh(bytes, path, uint64_t(index), options.memoryLimit, s);
+      faceNormals = readSerializedMesh(bytes, path, uint64_t(index), options.memoryLimit, s);
     } catch (const std::runtime_error& e) {  // InputError, MemoryLimitError
       f.fail("file", e.what());
     }
     scaleAndTranslate(f, s);
+    return faceNormals;
   }
 
   // "transform": four rows of four finite numbers, an invertible affine map (last row 0 0 0 1).
@@ -437,10 +440,11 @@ struct Loader {
         cylinder(f, s);
       } else if (type == "mesh") {
         const std::filesystem::path extension = std::filesystem::path(f.string("file")).extension();
+        bool fileAsksForFaceNormals = false;
         if (extension == ".ply") loadPly(f, s);
-        else if (extension == ".serialized") loadSerialized(f, s);
+        else if (extension == ".serialized") fileAsksForFaceNormals = loadSerialized(f, s);
         else loadObj(f, s);
-        if (f.boolean("face_normals", false)) s.cornerNormals.clear();
+        if (f.boolean("face_normals", fileAsksForFaceNormals)) s.cornerNormals.clear();
         meshPlacement(f, s);
       } else if (type == "rectangle") {
         rectangle(f, s);

@@ -68,8 +68,10 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     if (!s.has("filename")) s.fail("missing property 'filename'");
     const int index = s.integer("shape_index", 0);
     if (index < 0) s.fail("shape_index must not be negative");
-    return {{{"type", "mesh"}, {"file", s.xml().resolve(s.node(), s.string("filename", ""))}, {"shape_index", index},
-             {"face_normals", s.boolean("face_normals", false)}, {"transform", matrixJson(m)}, {"flip_normals", flip}}};
+    json mesh = {{"type", "mesh"}, {"file", s.xml().resolve(s.node(), s.string("filename", ""))}, {"shape_index", index},
+                 {"transform", matrixJson(m)}, {"flip_normals", flip}};
+    if (s.has("face_normals")) mesh["face_normals"] = s.boolean("face_normals", false);  // else the file's flag
+    return {mesh};
   }
   if (t == "rectangle")
     return {{{"type", "rectangle"},

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the seed corpus of fuzz_serialized (tests/fuzz/corpus/fuzz_serialized/): small Mitsuba
-serialized files (the layout of core/serialized_mesh.h) made here, valid ones of versions 3 and 4
-and a few broken ones. Run from anywhere; it overwrites the seeds."""
+serialized files (the layout of core/serialized_mesh.h) made here, valid ones of versions 3, 4 and
+5 and a few broken ones. Run from anywhere; it overwrites the seeds."""
 import os
 import struct
 import zlib
@@ -20,6 +20,27 @@ def mesh(version, positions, indices, normals=(), uvs=(), colors=(), double=Fals
     for array in (positions, normals, uvs, colors):
         body += struct.pack("<%d%s" % (len(array), scalar), *array)
     body += struct.pack("<%dI" % len(indices), *indices)
+    return body
+
+
+def mesh_v5(positions, indices, normals=(), uvs=(), maps=False, attributes=False, flags=None):
+    n = len(positions) // 3
+    f = len(indices) // 3
+    if flags is None:
+        flags = 0x1000 | (1 if normals else 0) | (4 if uvs else 0)
+    body = struct.pack("<II", flags, 1) + b"m" + struct.pack("<QQQQ", n, f, n if maps else 0, n if maps else 0)
+    for v in range(n):
+        record = list(positions[3 * v:3 * v + 3]) + (list(normals[3 * v:3 * v + 3]) or [0, 0, 0]) + \
+            (list(uvs[2 * v:2 * v + 2]) or [0, 0])
+        body += struct.pack("<8f", *record)
+    for t in range(f):
+        body += struct.pack("<4I", *indices[3 * t:3 * t + 3], 0)
+    if maps:
+        body += struct.pack("<%dI" % (2 * n), *(list(range(n)) * 2))
+    body += struct.pack("<I", 2 if attributes else 0)
+    if attributes:
+        body += struct.pack("<I", 12) + b"vertex_color" + struct.pack("<BI", 0, 3) + struct.pack("<%df" % (3 * n), *([0.5] * 3 * n))
+        body += struct.pack("<I", 7) + b"face_id" + struct.pack("<BI", 0, 1) + struct.pack("<%df" % f, *([1.0] * f))
     return body
 
 
@@ -45,6 +66,10 @@ SEEDS = {
     "v4_huge_counts.serialized": serialized(4, [mesh(4, *TRIANGLE, counts=(1 << 31, 1 << 30))]),
     "v4_more_data_than_counts.serialized": serialized(4, [mesh(4, **QUAD, counts=(4, 1))]),
     "v3_truncated.serialized": serialized(3, [mesh(3, **QUAD)])[:40],
+    "v5_two_meshes_maps_attributes.serialized": serialized(5, [mesh_v5(*TRIANGLE),
+                                                               mesh_v5(**QUAD, maps=True, attributes=True)]),
+    "v5_frames.serialized": serialized(5, [mesh_v5(TRIANGLE[0], TRIANGLE[1], normals=[0, 0, 0, 0.15, 0, 0, 0, 0.1, 0.2],
+                                                   flags=0x1013)]),
 }
 
 if __name__ == "__main__":

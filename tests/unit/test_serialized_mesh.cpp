@@ -1,6 +1,7 @@
 // Mitsuba serialized meshes (core/serialized_mesh.h): files written here by an independent writer
-// (zlib's compress2, the layout of Mitsuba 3's documentation) read back exactly, versions 3 and 4,
-// single and double precision, the mesh shape_index names; truncated files, forged headers and
+// (zlib's compress2, the layout of Mitsuba 3's documentation) read back exactly, versions 3, 4 and
+// 5 (packed records, maps, attributes, encoded frames, the face-normal flag), single and double
+// precision, the mesh shape_index names; truncated files, forged headers and
 // dictionaries, counts beyond the data or the memory limit, indices beyond the vertices and more
 // data than declared are one-line errors naming the file and the field; the scene loader and the
 // Mitsuba importer place the mesh (normals by the inverse transpose, face_normals).
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/error.h"
@@ -55,11 +57,56 @@ std::string content(const TestMesh& m, int version, uint64_t vertices, uint64_t 
   return out;
 }
 
+// Version 5's content: packed records, optional maps, custom attributes ("vertex_color" with 3
+// channels, "face_id" with 1); `frames` replaces the normals by encoded frames (flag 0x0002).
+struct V5Options {
+  bool identityMaps = false, attributes = false, frames = false, faceNormals = false;
+  uint32_t flagsOverride = 0;
+  uint64_t surfacePoints = 0;  // forged P when set
+};
+std::string contentV5(const TestMesh& m, const V5Options& o = {}) {
+  std::string out;
+  uint32_t flags = 0x1000 | (m.normals.empty() ? 0 : 0x1) | (o.frames ? 0x2 : 0) | (m.uvs.empty() ? 0 : 0x4) | (o.faceNormals ? 0x10 : 0);
+  if (o.flagsOverride) flags = o.flagsOverride;
+  put(out, flags);
+  put(out, uint32_t(m.name.size()));
+  out += m.name;
+  const uint64_t v = m.vertices(), f = m.indices.size() / 3;
+  put(out, v);
+  put(out, f);
+  put(out, o.surfacePoints ? o.surfacePoints : o.identityMaps ? v : 0);
+  put(out, uint64_t(o.identityMaps ? v : 0));
+  for (uint64_t i = 0; i < v; ++i) {
+    for (int k = 0; k < 3; ++k) put(out, m.positions[3 * i + k]);
+    for (int k = 0; k < 3; ++k) put(out, m.normals.empty() ? 0.0f : m.normals[3 * i + k]);
+    for (int k = 0; k < 2; ++k) put(out, m.uvs.empty() ? 0.0f : m.uvs[2 * i + k]);
+  }
+  for (uint64_t t = 0; t < f; ++t) {
+    for (int k = 0; k < 3; ++k) put(out, m.indices[3 * t + k]);
+    put(out, uint32_t(0));  // BSDF index
+  }
+  if (o.identityMaps || o.surfacePoints)
+    for (int map = 0; map < 2; ++map)
+      for (uint64_t i = 0; i < v; ++i) put(out, uint32_t(i));
+  put(out, uint32_t(o.attributes ? 2 : 0));
+  if (o.attributes) {
+    for (const auto& [name, channels, rows] : {std::tuple<std::string, uint32_t, uint64_t>{"vertex_color", 3, v},
+                                               std::tuple<std::string, uint32_t, uint64_t>{"face_id", 1, f}}) {
+      put(out, uint32_t(name.size()));
+      out += name;
+      put(out, uint8_t(0));
+      put(out, channels);
+      for (uint64_t i = 0; i < rows * channels; ++i) put(out, 0.25f);
+    }
+  }
+  return out;
+}
+
 std::string compress(const std::string& raw) {
   uLongf size = compressBound(uLong(raw.size()));
   std::string out(size, '\0');
   EXPECT_EQ(compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
-                      uLong(raw.size()), 9),
+                      uLong(raw.size()), Z_DEFAULT_COMPRESSION),
             Z_OK);
   out.resize(size);
   return out;
@@ -159,10 +206,9 @@ TEST(SerializedMesh, ForgedHeadersAndDictionariesAreRefused) {
   const std::string good = file({triangle(), square()}, 4);
   EXPECT_CONTAINS(problem("PK\3\4 not a mesh"), "m.serialized: header: not a Mitsuba serialized mesh");
   EXPECT_CONTAINS(problem(std::string("\x1c\x04\x09\x00", 4)), "m.serialized: header: unknown version");
-  std::string v7 = good, v5 = good;
-  v7[2] = 7, v5[2] = 5;
+  std::string v7 = good;
+  v7[2] = 7;
   EXPECT_CONTAINS(problem(v7), "unknown version 7");
-  EXPECT_CONTAINS(problem(v5), "version 5");
   EXPECT_CONTAINS(problem(good, 2), "m.serialized: shape_index: 2 is out of range: the file holds 2 meshes");
   std::string manyMeshes = good;
   std::memset(&manyMeshes[manyMeshes.size() - 4], 0xff, 4);
@@ -224,6 +270,61 @@ TEST(SerializedMesh, IndicesAndNumbersAreChecked) {
   EXPECT_CONTAINS(problem(file({m}, 3)), "vertex 3: texture coordinate is not finite");
 }
 
+TEST(SerializedMesh, ReadsVersion5PackedRecords) {
+  V5Options full;
+  full.identityMaps = full.attributes = true;
+  const std::string bytes = file({contentV5(triangle()), contentV5(square(), full)}, 5);
+  Shape first;
+  EXPECT_FALSE(readSerializedMesh(bytes, "m.serialized", 0, kLimit, first));
+  EXPECT_EQ(first.positions.size(), 3u);
+  EXPECT_TRUE(first.cornerNormals.empty() && first.cornerUvs.empty());
+  expectSquare(read(bytes, 1));
+
+  // The face-normal flag is reported to the caller.
+  V5Options flat;
+  flat.faceNormals = true;
+  Shape s;
+  EXPECT_TRUE(readSerializedMesh(file({contentV5(square(), flat)}, 5), "m.serialized", 0, kLimit, s));
+  EXPECT_EQ(s.cornerNormals.size(), 6u);  // kept: the caller decides
+
+  // Encoded frames: a rotation by θ about x is the quaternion (cos θ/2, sin θ/2, 0, 0), modified
+  // Rodrigues parameters (tan θ/4, 0, 0); it turns the normal e_z to (0, −sin θ, cos θ).
+  TestMesh framed = triangle();
+  const float theta = 0.6f;
+  framed.normals = {0, 0, 0, std::tan(theta / 4), 0, 0, 0, 0, 0};
+  V5Options frames;
+  frames.frames = true;
+  const Shape f = read(file({contentV5(framed, frames)}, 5), 0);
+  ASSERT_EQ(f.cornerNormals.size(), 3u);
+  EXPECT_NEAR(glm::length(f.cornerNormals[0] - Vec3(0, 0, 1)), 0.0f, 1e-6f);
+  // Corner 2 of the triangle (0, 2, 1) is vertex 1.
+  EXPECT_NEAR(glm::length(f.cornerNormals[2] - Vec3(0, -std::sin(theta), std::cos(theta))), 0.0f, 1e-6f);
+}
+
+TEST(SerializedMesh, Version5HeadersMapsAndAttributesAreChecked) {
+  V5Options o;
+  o.flagsOverride = 0x0001;  // no single-precision flag
+  EXPECT_CONTAINS(problem(file({contentV5(square(), o)}, 5)), "m.serialized: mesh 0: flags: version 5 data must be single precision");
+  o.flagsOverride = 0x1002;
+  EXPECT_CONTAINS(problem(file({contentV5(square(), o)}, 5)), "mesh 0: flags: tangents without normals");
+  V5Options forged;
+  forged.surfacePoints = 9;
+  EXPECT_CONTAINS(problem(file({contentV5(square(), forged)}, 5)), "mesh 0: counts: more surface points or normal groups than vertices");
+  forged.surfacePoints = 3;  // the identity map then reaches index 3
+  EXPECT_CONTAINS(problem(file({contentV5(square(), forged)}, 5)), "mesh 0: vertex 3: map index beyond its 3 entries");
+  // An attribute of 5 channels.
+  V5Options attributes;
+  attributes.attributes = true;
+  std::string raw = contentV5(square(), attributes);
+  const size_t channels = raw.find("vertex_color") + 12 + 1;
+  raw[channels] = 5;
+  EXPECT_CONTAINS(problem(file({raw}, 5)), "mesh 0: attribute 0: 5 channels (1 to 4)");
+  // A name longer than any.
+  std::string named = contentV5(square());
+  std::memset(&named[4], 0xff, 4);
+  EXPECT_CONTAINS(problem(file({named}, 5)), "mesh 0: name: a name longer than 65536 bytes");
+}
+
 class SerializedScene : public test::TempDirTest {
  protected:
   SerializedScene() : TempDirTest("serialized") {}
@@ -258,6 +359,16 @@ TEST_F(SerializedScene, MitsubaShapePlacesTheMeshAndItsNormals) {
   EXPECT_NEAR(n.z, 0.8f / std::sqrt(0.73f), 1e-6f);
   EXPECT_TRUE(s->shapes[1].cornerNormals.empty());
   EXPECT_EQ(s->shapes[2].indices.size(), 3u);  // shape_index 0 by default
+
+  // Version 5's face-normal flag applies where the shape leaves face_normals unset.
+  V5Options flat;
+  flat.faceNormals = true;
+  write("flat.serialized", file({contentV5(square(), flat)}, 5));
+  const auto v5 = loadScene(write("v5.xml", R"(<scene version="3.0.0">)" + sensor + R"(
+    <shape type="serialized"><string name="filename" value="flat.serialized"/></shape>
+    <shape type="serialized"><string name="filename" value="flat.serialized"/><boolean name="face_normals" value="false"/></shape></scene>)"));
+  EXPECT_TRUE(v5->shapes[0].cornerNormals.empty());
+  EXPECT_EQ(v5->shapes[1].cornerNormals.size(), 6u);
 
   const std::string wrong = write("w.xml", R"(<scene version="3.0.0">)" + sensor + R"(
     <shape type="serialized"><string name="filename" value="m.serialized"/><integer name="shape_index" value="5"/></shape></scene>)");
