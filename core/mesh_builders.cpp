@@ -66,6 +66,9 @@ void tessellateUnitDisk(Shape& s, int segments) {
 
 void transformMesh(Shape& s, const glm::mat4& m) {
   for (Vec3& p : s.positions) p = Vec3(m * glm::vec4(p, 1.0f));
+  // Normals by the inverse transpose (PBR4 §3.10.3), so they stay perpendicular to the surface.
+  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
+  for (Vec3& n : s.cornerNormals) n = normalMatrix * n;
 }
 
 void flipMeshNormals(Shape& s) {

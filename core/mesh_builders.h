@@ -21,7 +21,7 @@ void readPlyMesh(const std::string& bytes, const std::string& path, uint64_t mem
 // v = radius, as Mitsuba's disk.
 void tessellateUnitDisk(Shape& s, int segments);
 
-// p ← M·p for every vertex (M affine, column-major glm).
+// p ← M·p for every vertex (M affine, column-major glm); vertex normals by M's inverse transpose.
 void transformMesh(Shape& s, const glm::mat4& m);
 
 // Reverses every triangle's winding, so its geometric normal (b − a) × (c − a) flips.

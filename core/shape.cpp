@@ -12,6 +12,10 @@ size_t Shape::finalize() {
     area = 4.0f * kPi * radius * radius;
     return 0;
   }
+  if (kind == Kind::Cylinder) {
+    area = cylinder.area();
+    return 0;
+  }
   std::vector<uint32_t> kept;
   std::vector<Vec2> keptUvs;
   std::vector<Vec3> keptNormals;
@@ -47,13 +51,14 @@ Vec2 Shape::surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const {
     if (u >= 1.0f) u -= 1.0f;
     return Vec2(u, std::acos(std::clamp(-n.y, -1.0f, 1.0f)) / kPi);
   }
+  if (kind == Kind::Cylinder) return Vec2(bary.x, 1.0f - bary.y);
   if (cornerUvs.empty()) return Vec2(0.0f);
   const size_t t = 3 * size_t(prim);
   return (1.0f - bary.x - bary.y) * cornerUvs[t] + bary.x * cornerUvs[t + 1] + bary.y * cornerUvs[t + 2];
 }
 
 Vec3 Shape::shadingNormal(uint32_t prim, Vec2 bary, const Vec3& ng) const {
-  if (kind == Kind::Sphere || cornerNormals.empty()) return ng;
+  if (kind != Kind::Mesh || cornerNormals.empty()) return ng;
   const size_t t = 3 * size_t(prim);
   const Vec3 n = (1.0f - bary.x - bary.y) * cornerNormals[t] + bary.x * cornerNormals[t + 1] + bary.y * cornerNormals[t + 2];
   const float len = glm::length(n);
@@ -65,6 +70,10 @@ SurfaceSample Shape::sampleUniform(Vec2 u) const {
   if (kind == Kind::Sphere) {
     const Vec3 n = sampleUniformSphere(u);
     return {center + radius * n, n, 1.0f / area};
+  }
+  if (kind == Kind::Cylinder) {
+    const Vec2 param = cylinder.sampleParam(u);
+    return {cylinder.point(param), cylinder.normal(param), 1.0f / area};
   }
   // Pick a triangle by area, reuse u.x within it.
   const float target = u.x * area;

@@ -16,6 +16,7 @@
 #include "core/mesh_builders.h"
 #include "core/memory_budget.h"
 #include "core/obj_validation.h"
+#include "core/serialized_mesh.h"
 #include "core/spectrum_json.h"
 #include "core/spectrum_presets.h"
 #include "core/texture.h"
@@ -338,6 +339,23 @@ struct Loader {
     scaleAndTranslate(f, s);
   }
 
+  // A Mitsuba serialized file's mesh "shape_index" (core/serialized_mesh.h); returns whether the
+  // file asks for face normals.
+  bool loadSerialized(JsonFields& f, Shape& s) {
+    const std::string path = resolve(f.string("file"));
+    const int index = f.integer("shape_index", 0);
+    if (index < 0) f.fail("shape_index", "must not be negative");
+    const std::string bytes = readMeshFile(f, path);
+    bool faceNormals = false;
+    try {
+      faceNormals = readSerializedMesh(bytes, path, uint64_t(index), options.memoryLimit, s);
+    } catch (const std::runtime_error& e) {  // InputError, MemoryLimitError
+      f.fail("file", e.what());
+    }
+    scaleAndTranslate(f, s);
+    return faceNormals;
+  }
+
   // "transform": four rows of four finite numbers, an invertible affine map (last row 0 0 0 1).
   glm::mat4 matrixField(JsonFields& f, const std::string& key) {
     const json& rows = f.get(key);
@@ -385,6 +403,27 @@ struct Loader {
     s.cornerUvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 0), Vec2(1, 1), Vec2(0, 1)};
   }
 
+  // The open cylinder from p0 to p1 (core/cylinder.h), placed by "transform" if given.
+  void cylinder(JsonFields& f, Shape& s) {
+    const Vec3 p0 = f.vec3("p0"), p1 = f.vec3("p1");
+    const float radius = f.number("radius");
+    if (!(radius > 0.0f)) f.fail("radius", "must be positive");
+    if (!(glm::length(p1 - p0) > 0.0f) || !std::isfinite(glm::length(p1 - p0)))
+      f.fail("p1", "must differ from p0 by a finite, non-zero length");
+    glm::mat4 m = Cylinder::endsMatrix(p0, p1, radius);
+    if (f.has("transform")) m = matrixField(f, "transform") * m;
+    const std::optional<Cylinder> c = Cylinder::fromMatrix(m);
+    if (!c)
+      f.fail(f.has("transform") ? "transform" : "radius",
+             "does not keep the cylinder circular and unmirrored (it may rotate, translate, scale uniformly "
+             "and stretch along the cylinder's axis)");
+    if (!std::isfinite(glm::length(c->base) + c->length))
+      f.fail("p0", "the cylinder is placed beyond the range of a 32-bit float");
+    s.kind = Shape::Kind::Cylinder;
+    s.cylinder = *c;
+    s.cylinder.inward = f.boolean("flip_normals", false);
+  }
+
   void shapes(JsonFields& root) {
     const json& arr = root.get("shapes");
     if (!arr.is_array() || arr.empty()) root.fail("shapes", "expected a non-empty array of shapes");
@@ -399,9 +438,15 @@ struct Loader {
         s.center = f.vec3("center");
         s.radius = f.number("radius");
         if (!(s.radius > 0.0f)) f.fail("radius", "must be positive");
+      } else if (type == "cylinder") {
+        cylinder(f, s);
       } else if (type == "mesh") {
-        if (std::filesystem::path(f.string("file")).extension() == ".ply") loadPly(f, s);
+        const std::filesystem::path extension = std::filesystem::path(f.string("file")).extension();
+        bool fileAsksForFaceNormals = false;
+        if (extension == ".ply") loadPly(f, s);
+        else if (extension == ".serialized") fileAsksForFaceNormals = loadSerialized(f, s);
         else loadObj(f, s);
+        if (f.boolean("face_normals", fileAsksForFaceNormals)) s.cornerNormals.clear();
         meshPlacement(f, s);
       } else if (type == "rectangle") {
         rectangle(f, s);
@@ -410,7 +455,7 @@ struct Loader {
         tessellateUnitDisk(s, kDiskSegments);
         meshPlacement(f, s);
       } else {
-        f.fail("type", "unknown shape type '" + type + "' (sphere, rectangle, mesh, disk)");
+        f.fail("type", "unknown shape type '" + type + "' (sphere, cylinder, rectangle, mesh, disk)");
       }
       const std::string mat = f.string("material");
       auto it = materialIndex.find(mat);

@@ -76,6 +76,15 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     s.boolean("flip_tex_coords", true);  // kasha reads OBJ's vt as Mitsuba's flipped default does
     return {mesh};
   }
+  if (t == "serialized") {
+    if (!s.has("filename")) s.fail("missing property 'filename'");
+    const int index = s.integer("shape_index", 0);
+    if (index < 0) s.fail("shape_index must not be negative");
+    json mesh = {{"type", "mesh"}, {"file", s.xml().resolve(s.node(), s.string("filename", ""))}, {"shape_index", index},
+                 {"transform", matrixJson(m)}, {"flip_normals", flip}};
+    if (s.has("face_normals")) mesh["face_normals"] = s.boolean("face_normals", false);  // else the file's flag
+    return {mesh};
+  }
   if (t == "rectangle")
     return {{{"type", "rectangle"},
              {"corners", faceCorners(m, {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}, Vec3(0, 0, 1), flip)}}};
@@ -106,11 +115,18 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     if (!(scale > 0.0f)) s.fail("a sphere's to_world may only rotate, translate and scale uniformly");
     return {{{"type", "sphere"}, {"center", {center.x, center.y, center.z}}, {"radius", s.number("radius", 1.0f) * scale}}};
   }
+  if (t == "cylinder") {
+    // Mitsuba's defaults: p0 = (0, 0, 0), p1 = (0, 0, 1), radius 1; to_world after them.
+    const pugi::xml_node p0 = s.property("p0"), p1 = s.property("p1");
+    const Vec3 a = p0 ? parsePointProperty(s.xml(), p0) : Vec3(0.0f), b = p1 ? parsePointProperty(s.xml(), p1) : Vec3(0, 0, 1);
+    return {{{"type", "cylinder"}, {"p0", {a.x, a.y, a.z}}, {"p1", {b.x, b.y, b.z}}, {"radius", s.number("radius", 1.0f)},
+             {"transform", matrixJson(m)}, {"flip_normals", flip}}};
+  }
   if (t == "disk") {
     s.note("disk tessellated into a polygon of 256 triangles (area 0.01% below the disk's)");
     return {{{"type", "disk"}, {"transform", matrixJson(m)}, {"flip_normals", flip}}};
   }
-  s.fail("unsupported shape plugin (obj, ply, rectangle, cube, sphere, disk)");
+  s.fail("unsupported shape plugin (obj, ply, serialized, rectangle, cube, sphere, disk, cylinder)");
 }
 
 }  // namespace
