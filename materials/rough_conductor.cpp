@@ -10,8 +10,8 @@ RoughConductor::RoughConductor(Spectrum f0, float alphaX, float alphaY, RoughCon
       spectrum_(std::move(f0)),
       textures_(std::move(textures)) {}
 
-RoughConductorModel RoughConductor::modelAt(Vec2 uv) const {
-  return RoughConductorModel(textures_.f0.at(spectrum_, uv), texturedGgx(ggx(), textures_.alpha, uv));
+RoughConductorModel RoughConductor::modelAt(const TexturePoint& p) const {
+  return RoughConductorModel(textures_.f0.at(spectrum_, p), texturedGgx(ggx(), textures_.alpha, p));
 }
 
 float RoughConductorModel::fresnel(float c, float lambda) const {
