@@ -88,7 +88,8 @@ std::shared_ptr<const Texture> parseTexture(JsonFields& parent, const std::strin
                                             const SpectrumContext& ctx, bool rgb) {
   if (v.is_string()) return imageTexture(parent, key, v.get<std::string>(), nullptr, ctx, rgb);
   if (!v.is_object())
-    parent.fail(key, "expected an image file name or {\"file\": ...} or {\"type\": ...}, got " + jsonTypeName(v));
+    parent.fail(key, "expected an image file name or a texture object ({\"file\": ...} or {\"type\": ...}), got " +
+                         jsonTypeName(v));
   JsonFields f(v, ctx.file, parent.path(key));
   const std::string type = f.string("type", "image");
   std::shared_ptr<const Texture> t;

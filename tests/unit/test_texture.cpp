@@ -207,7 +207,7 @@ TEST_F(TextureFiles, ClearErrors) {
   EXPECT_EQ(error({{"c_texture", {{"file", "two.png"}, {"channel", "x"}}}}),
             at + "c_texture/channel: unknown channel 'x' (mean, r, g, b, a)");
   EXPECT_EQ(error({{"c_texture", 3}}),
-            at + "c_texture: expected an image file name or {\"file\": ..., \"channel\": ...}, got number");
+            at + "c_texture: expected an image file name or a texture object ({\"file\": ...} or {\"type\": ...}), got number");
   // An RGB colour is a reflectance's texture only.
   EXPECT_EQ(error({{"c_texture", {{"file", "two.png"}, {"channel", "rgb"}}}}),
             at + "c_texture/channel: unknown channel 'rgb' (mean, r, g, b, a)");
