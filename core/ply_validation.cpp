@@ -279,7 +279,8 @@ std::vector<MeshAttribute> resolveAttributes(Header& h, const std::vector<std::s
                            schemes.front()[1] + ", " + schemes.front()[2] + " or one of the other namings)");
     for (int c = 0; c < a.channels; ++c) {
       int& slot = element->attributeSlot[size_t(props[size_t(c)])];
-      if (slot >= 0) throw InputError(path, "mesh attribute '" + name + "'", "its properties are read for another attribute too");
+      if (slot >= 0)
+        throw InputError(path, "mesh attribute '" + name + "'", "its properties are read for another attribute too");
       slot = int(3 * out.size()) + c;
     }
     if (face) element->trianglesOnly = true;
@@ -292,7 +293,7 @@ std::vector<MeshAttribute> resolveAttributes(Header& h, const std::vector<std::s
 // sRGB (Mitsuba's normalised, gamma-flagged integers), floats as they are; each in [0, 1].
 class AttributeSink {
  public:
-  AttributeSink(std::vector<MeshAttribute>& attributes) : attributes_(attributes) {}
+  explicit AttributeSink(std::vector<MeshAttribute>& attributes) : attributes_(attributes) {}
   // "" if accepted, else the reason.
   std::string set(int slot, uint64_t instance, double raw, const Property& p) {
     MeshAttribute& a = attributes_[size_t(slot / 3)];
@@ -338,7 +339,9 @@ void checkCounts(const Header& h, uint64_t dataBytes, const std::string& path, u
                            " of data with the elements before them, but the file holds " + formatBytes(dataBytes) +
                            " after its header (it is truncated, or the count is wrong)");
     if (!e.passedOn()) continue;
-    const uint64_t attributes = uint64_t(std::count_if(e.attributeSlot.begin(), e.attributeSlot.end(), [](int a) { return a >= 0 && a % 3 == 0; }));
+    // A mesh attribute's first channel marks it; its values are a Vec3 each.
+    const auto attributes = uint64_t(
+        std::count_if(e.attributeSlot.begin(), e.attributeSlot.end(), [](int a) { return a >= 0 && a % 3 == 0; }));
     memory += saturatingMul(e.count, memoryBytes(e) + attributes * sizeof(Vec3));
     counts += (counts.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
   }
