@@ -72,8 +72,8 @@ void tessellateUnitDisk(Shape& s, int segments) {
   for (int i = 0; i < segments; ++i) {
     const uint32_t a = uint32_t(1 + i), b = uint32_t(1 + (i + 1) % segments);
     s.indices.insert(s.indices.end(), {0u, a, b});  // counter-clockwise seen from +z: normal +z
-    const float u0 = float(i) / float(segments), u1 = float(i + 1) / float(segments);
-    s.cornerUvs.insert(s.cornerUvs.end(), {Vec2(0.5f * (u0 + u1), 0.0f), Vec2(u0, 1.0f), Vec2(u1, 1.0f)});
+    const float v0 = float(i) / float(segments), v1 = float(i + 1) / float(segments);
+    s.cornerUvs.insert(s.cornerUvs.end(), {Vec2(0.0f, 0.5f * (v0 + v1)), Vec2(1.0f, v0), Vec2(1.0f, v1)});
   }
 }
 

@@ -21,8 +21,8 @@ void readPlyMesh(const std::string& bytes, const std::string& path, uint64_t mem
                  const std::vector<std::string>& attributes = {});
 
 // The unit disk in the plane z = 0, facing +z, as a fan of `segments` triangles inscribed in the
-// circle (its area is segments/(2π)·sin(2π/segments) of π); texture coordinates u = angle/2π,
-// v = radius, as Mitsuba's disk.
+// circle (its area is segments/(2π)·sin(2π/segments) of π); texture coordinates u = radius,
+// v = angle/2π, as Mitsuba's disk (Mitsuba 3 docs: disk; src/shapes/disk.cpp).
 void tessellateUnitDisk(Shape& s, int segments);
 
 // p ← M·p for every vertex (M affine, column-major glm).
