@@ -19,6 +19,7 @@ size_t Shape::finalize() {
   std::vector<uint32_t> kept;
   std::vector<Vec2> keptUvs;
   std::vector<Vec3> keptNormals;
+  std::vector<std::vector<Vec3>> keptFaceValues(attributes.size());
   size_t removed = 0;
   triangleCdf.clear();
   normals.clear();
@@ -34,6 +35,8 @@ size_t Shape::finalize() {
     if (!cornerUvs.empty()) keptUvs.insert(keptUvs.end(), {cornerUvs[t], cornerUvs[t + 1], cornerUvs[t + 2]});
     if (!cornerNormals.empty())
       keptNormals.insert(keptNormals.end(), {cornerNormals[t], cornerNormals[t + 1], cornerNormals[t + 2]});
+    for (size_t a = 0; a < attributes.size(); ++a)
+      if (attributes[a].perFace()) keptFaceValues[a].push_back(attributes[a].values[t / 3]);
     normals.push_back(glm::normalize(glm::cross(b - a, c - a)));
     acc += triArea;
     triangleCdf.push_back(float(acc));
@@ -41,6 +44,8 @@ size_t Shape::finalize() {
   indices = std::move(kept);
   cornerUvs = std::move(keptUvs);
   cornerNormals = std::move(keptNormals);
+  for (size_t a = 0; a < attributes.size(); ++a)
+    if (attributes[a].perFace()) attributes[a].values = std::move(keptFaceValues[a]);
   area = float(acc);
   return removed;
 }
@@ -64,6 +69,19 @@ Vec3 Shape::shadingNormal(uint32_t prim, Vec2 bary, const Vec3& ng) const {
   const float len = glm::length(n);
   if (!(len > 1e-12f) || !std::isfinite(len)) return ng;
   return glm::dot(n, ng) < 0.0f ? -n / len : n / len;
+}
+
+const MeshAttribute* Shape::attribute(const std::string& name) const {
+  for (const MeshAttribute& a : attributes)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+Vec3 Shape::attributeAt(const MeshAttribute& a, uint32_t prim, Vec2 bary) const {
+  if (a.perFace()) return a.values[prim];
+  const size_t t = 3 * size_t(prim);
+  return (1.0f - bary.x - bary.y) * a.values[indices[t]] + bary.x * a.values[indices[t + 1]] +
+         bary.y * a.values[indices[t + 2]];
 }
 
 SurfaceSample Shape::sampleUniform(Vec2 u) const {

@@ -4,6 +4,7 @@
 // sampling for emissive shapes.
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/cylinder.h"
@@ -27,6 +28,16 @@ struct SurfaceSample {
   float pdfArea = 0.0f;
 };
 
+// Values a mesh file gives per vertex or per triangle (PLY properties, named as Mitsuba 3 names
+// them: "vertex_color", "face_color", ...; core/ply_validation.h), read by mesh_attribute textures
+// (core/mesh_attribute_texture.h). Values lie in [0, 1].
+struct MeshAttribute {
+  std::string name;          // "vertex_…": one value per vertex; "face_…": one per triangle
+  int channels = 3;          // 1 (stored in all three components) or 3
+  std::vector<Vec3> values;  // parallel to positions (vertex) or to the triangles (face)
+  bool perFace() const { return name.starts_with("face_"); }
+};
+
 struct Shape {
   enum class Kind { Mesh, Sphere, Cylinder } kind = Kind::Mesh;
   std::string name;
@@ -39,6 +50,7 @@ struct Shape {
   std::vector<Vec3> normals;       // unit geometric normal per triangle
   std::vector<Vec2> cornerUvs;     // texture coordinates, three per triangle (parallel to indices); empty: none
   std::vector<Vec3> cornerNormals; // vertex normals (OBJ vn), three per triangle (parallel to indices); empty: none
+  std::vector<MeshAttribute> attributes;  // those its material's textures read
   // Sphere
   Vec3 center{0.0f};
   float radius = 0.0f;
@@ -64,6 +76,11 @@ struct Shape {
   // surface if it points away from it, so that both normals name the same side. ng itself for
   // spheres, meshes without normals, and where the interpolation is zero or not finite.
   Vec3 shadingNormal(uint32_t prim, Vec2 bary, const Vec3& ng) const;
+  // The attribute of that name, or nullptr.
+  const MeshAttribute* attribute(const std::string& name) const;
+  // An attribute at a point: a vertex attribute's corner values interpolated with the
+  // barycentrics (b1, b2) of corners 1 and 2, as surfaceUv; a face attribute's triangle value.
+  Vec3 attributeAt(const MeshAttribute& a, uint32_t prim, Vec2 bary) const;
   SurfaceSample sampleUniform(Vec2 u) const;
 };
 

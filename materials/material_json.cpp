@@ -211,14 +211,14 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     Spectrum r = conductorReflectance(f, ctx, range, unphysical, index != nullptr);
     const Vec2 a = parseAlpha(f, "alpha");
     RoughConductorTextures tex{parseReflectanceTexture(f, "reflectance_texture", ctx),
-                               parseScalarTexture(f, "alpha_texture", ctx)};
+                               parseAlphaTexture(f, "alpha_texture", ctx)};
     m = std::make_unique<RoughConductor>(std::move(r), a.x, a.y, std::move(tex), std::move(index));
   } else if (type == "rough_dielectric") {
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
     const Vec2 a = parseAlpha(f, "alpha");
     try {
-      m = std::make_unique<RoughDielectric>(std::move(ior), a.x, a.y, range, parseScalarTexture(f, "alpha_texture", ctx));
+      m = std::make_unique<RoughDielectric>(std::move(ior), a.x, a.y, range, parseAlphaTexture(f, "alpha_texture", ctx));
     } catch (const std::invalid_argument& e) {
       f.fail("ior", std::string(e.what()).substr(5));  // only the index can still be rejected
     }
@@ -227,7 +227,7 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     Ior ior = parseIor(f, "coat_ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("coat_ior", problem);
     const Vec2 a = parseAlpha(f, "coat_alpha");
-    CoatedTextures tex{parseJungTextures(f, ctx), parseScalarTexture(f, "coat_alpha_texture", ctx)};
+    CoatedTextures tex{parseJungTextures(f, ctx), parseAlphaTexture(f, "coat_alpha_texture", ctx)};
     m = std::make_unique<CoatedFluorescent>(std::move(p), std::move(ior), a.x, a.y, range, std::move(tex));
   } else {
     f.fail("type", "unknown material type '" + type +

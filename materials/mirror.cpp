@@ -17,7 +17,7 @@ Mirror::Mirror(Spectrum reflectance, ReflectanceTexture texture, std::shared_ptr
       texture_(std::move(texture)),
       index_(std::move(index)) {}
 
-MirrorModel Mirror::modelAt(Vec2 uv) const { return MirrorModel(mirrorFresnel(texture_.at(spectrum_, uv), index_.get())); }
+MirrorModel Mirror::modelAt(const TexturePoint& p) const { return MirrorModel(mirrorFresnel(texture_.at(spectrum_, p), index_.get())); }
 
 float MirrorModel::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float, SpectralLobe lobe) const {
   const bool radiance = mode == TransportMode::Radiance;

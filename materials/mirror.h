@@ -44,11 +44,12 @@ class Mirror final : public TexturedMaterial<MirrorModel> {
   explicit Mirror(Spectrum reflectance, ReflectanceTexture texture = {}, std::shared_ptr<const ComplexIndex> index = nullptr);
   std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
   std::string describe() const override { return "mirror"; }
-  bool textured() const override { return texture_.image != nullptr; }
+  bool textured() const override { return texture_.texture != nullptr; }
+  std::vector<const Texture*> textures() const override { return setTextures(texture_); }
   const Spectrum& reflectance() const { return spectrum_; }
 
  private:
-  MirrorModel modelAt(Vec2 uv) const override;
+  MirrorModel modelAt(const TexturePoint& p) const override;
   Spectrum spectrum_;
   ReflectanceTexture texture_;
   std::shared_ptr<const ComplexIndex> index_;

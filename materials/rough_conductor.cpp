@@ -20,9 +20,9 @@ RoughConductor::RoughConductor(Spectrum f0, float alphaX, float alphaY, RoughCon
       textures_(std::move(textures)),
       index_(std::move(index)) {}
 
-RoughConductorModel RoughConductor::modelAt(Vec2 uv) const {
-  return RoughConductorModel(conductorFresnel(textures_.f0.at(spectrum_, uv), index_.get()),
-                             texturedGgx(ggx(), textures_.alpha, uv));
+RoughConductorModel RoughConductor::modelAt(const TexturePoint& p) const {
+  return RoughConductorModel(conductorFresnel(textures_.f0.at(spectrum_, p), index_.get()),
+                             texturedGgx(ggx(), textures_.alpha, p));
 }
 
 float RoughConductorModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float,

@@ -18,7 +18,7 @@
 // a mirrored direction that ends up below the surface is a failed sample (energy lost to the
 // single-scattering model, as in Walter07).
 //
-// Textures (materials/surface_texture.h): "reflectance_texture" on F0, "alpha_texture" on both α
+// Textures (materials/surface_texture.h): "reflectance_texture" on F0, "alpha_texture" on both α (or one each)
 // (clamped to kMinAlpha).
 #include <memory>
 
@@ -54,7 +54,7 @@ class RoughConductorModel : public ElasticModel {
 
 struct RoughConductorTextures {
   ReflectanceTexture f0;
-  ScalarTexture alpha;
+  AlphaTexture alpha;
 };
 
 class RoughConductor final : public TexturedMaterial<RoughConductorModel> {
@@ -65,10 +65,11 @@ class RoughConductor final : public TexturedMaterial<RoughConductorModel> {
                  std::shared_ptr<const ComplexIndex> index = nullptr);
   std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
   std::string describe() const override { return "rough_conductor"; }
-  bool textured() const override { return textures_.f0.image || textures_.alpha.image; }
+  bool textured() const override { return textures_.f0.texture || textures_.alpha.any(); }
+  std::vector<const Texture*> textures() const override { return setTextures(textures_.f0, textures_.alpha.x, textures_.alpha.y); }
 
  private:
-  RoughConductorModel modelAt(Vec2 uv) const override;
+  RoughConductorModel modelAt(const TexturePoint& p) const override;
   Spectrum spectrum_;
   RoughConductorTextures textures_;
   std::shared_ptr<const ComplexIndex> index_;

@@ -32,14 +32,14 @@ struct Scene {
 
   // Texture coordinates of a hit (Shape::surfaceUv).
   Vec2 uv(const Hit& h) const { return shapes[h.shape].surfaceUv(h.prim, h.bary, h.ng); }
-  // The scattering function at a hit for a path carrying `wavelengths` there (Material::bsdf), in
-  // the shading frame of the mesh's vertex normals if it has them (Shape::shadingNormal).
+  // The scattering function at a hit for a path carrying `wavelengths` there (Material::bsdf; its
+  // textures read the hit's texture coordinates and mesh attributes), in the shading frame of the mesh's vertex normals if it has them (Shape::shadingNormal).
   Bsdf bsdf(const Hit& h, std::span<const float> wavelengths) const {
     const Shape& s = shapes[h.shape];
     const Material& m = *materials[s.material];
     const Frame geometric = Frame::fromNormal(h.ng);
     const Frame shading = s.cornerNormals.empty() ? geometric : Frame::fromNormal(s.shadingNormal(h.prim, h.bary, h.ng));
-    return m.bsdf(HitContext{m.textured() ? uv(h) : Vec2(0.0f), geometric, shading, wavelengths});
+    return m.bsdf(HitContext{m.textured() ? uv(h) : Vec2(0.0f), geometric, shading, wavelengths, MeshPoint{&s, h.prim, h.bary}});
   }
   const EnvironmentLight* environment() const {
     return environmentLight < 0 ? nullptr : static_cast<const EnvironmentLight*>(lights[size_t(environmentLight)].get());

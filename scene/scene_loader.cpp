@@ -328,11 +328,11 @@ struct Loader {
     for (Vec3& p : s.positions) p = p * scale + translate;
   }
 
-  void loadPly(JsonFields& f, Shape& s) {
+  void loadPly(JsonFields& f, Shape& s, const std::vector<std::string>& attributes) {
     const std::string path = resolve(f.string("file"));
     const std::string bytes = readMeshFile(f, path);
     try {
-      readPlyMesh(bytes, path, options.memoryLimit, s);
+      readPlyMesh(bytes, path, options.memoryLimit, s, attributes);
     } catch (const std::runtime_error& e) {
       f.fail("file", e.what());
     }
@@ -433,6 +433,22 @@ struct Loader {
       Shape s;
       s.name = f.string("name", "shape" + std::to_string(i));
       const std::string type = f.string("type");
+      const std::string mat = f.string("material");
+      auto it = materialIndex.find(mat);
+      if (it == materialIndex.end()) f.fail("material", "no material named '" + mat + "' in /materials");
+      s.material = it->second;
+      // What its material's textures read: texture coordinates, mesh attributes (from PLY files).
+      bool readsUv = false;
+      std::vector<std::string> attributes;
+      for (const Texture* t : scene.materials[s.material]->textures()) {
+        readsUv = readsUv || t->readsUv();
+        const std::string a = t->meshAttribute();
+        if (!a.empty() && std::find(attributes.begin(), attributes.end(), a) == attributes.end()) attributes.push_back(a);
+      }
+      const bool ply = type == "mesh" && std::filesystem::path(f.string("file")).extension() == ".ply";
+      if (!attributes.empty() && !ply)
+        f.fail("material", "material '" + mat + "' reads the mesh attribute '" + attributes.front() +
+                               "', which only PLY meshes carry");
       if (type == "sphere") {
         s.kind = Shape::Kind::Sphere;
         s.center = f.vec3("center");
@@ -443,7 +459,7 @@ struct Loader {
       } else if (type == "mesh") {
         const std::filesystem::path extension = std::filesystem::path(f.string("file")).extension();
         bool fileAsksForFaceNormals = false;
-        if (extension == ".ply") loadPly(f, s);
+        if (ply) loadPly(f, s, attributes);
         else if (extension == ".serialized") fileAsksForFaceNormals = loadSerialized(f, s);
         else loadObj(f, s);
         if (f.boolean("face_normals", fileAsksForFaceNormals)) s.cornerNormals.clear();
@@ -457,12 +473,12 @@ struct Loader {
       } else {
         f.fail("type", "unknown shape type '" + type + "' (sphere, cylinder, rectangle, mesh, disk)");
       }
-      const std::string mat = f.string("material");
-      auto it = materialIndex.find(mat);
-      if (it == materialIndex.end()) f.fail("material", "no material named '" + mat + "' in /materials");
-      s.material = it->second;
-      if (scene.materials[s.material]->textured() && !s.hasUv())
+      if (readsUv && !s.hasUv())
         f.fail("material", "material '" + mat + "' is textured, but this mesh has no texture coordinates (vt)");
+      for (const Texture* t : scene.materials[s.material]->textures())
+        if (const MeshAttribute* a = s.attribute(t->meshAttribute()); a && a->channels != t->channels() && t->channels() == 1)
+          f.fail("material", "material '" + mat + "' reads the mesh attribute '" + a->name +
+                                 "' as a scalar, but it has 3 channels in this mesh");
       if (f.has("emission")) {
         JsonFields e(f.get("emission"), file, ptr + "/emission");
         AreaEmission em;

@@ -69,6 +69,10 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
     } else if (tag == "bsdf") {
       if (!c.attribute("id")) xml.fail(c, "a top-level <bsdf> needs an id to be referred to");
       out.addMaterial(xml, c, bsdfMaterial(xml, c));
+    } else if (tag == "texture") {
+      // Translated where a <ref> uses it (xml_texture.h): as a colour or as a scalar.
+      if (!c.attribute("id")) xml.fail(c, "a top-level <texture> needs an id to be referred to");
+      xml.claimId(c);
     } else if (tag == "shape") {
       addShape(xml, c, out);
     } else if (isDeclaration(c)) {
@@ -76,7 +80,7 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
     } else if (tag == "emitter") {
       addEmitter(xml, c, out);
     } else {
-      xml.fail(c, "unsupported element <" + tag + "> (kasha reads default, include, path, integrator, sensor, sampler, bsdf, shape, emitter)");
+      xml.fail(c, "unsupported element <" + tag + "> (kasha reads default, include, path, integrator, sensor, sampler, bsdf, texture, shape, emitter)");
     }
   }
 }

@@ -56,13 +56,31 @@ json relativeIor(Plugin& b, const std::string& intKey, const std::string& intDef
   return in;
 }
 
-json roughness(Plugin& b) {
+// One roughness property: a number, or (a texture) 1 with the texture as the factor.
+json roughnessValue(Plugin& b, const std::string& key, json& texture) {
+  const pugi::xml_node p = b.property(key);
+  if (p && isTexture(p)) {
+    texture = textureField(b.xml(), p, TextureUse::Scalar);
+    return 1.0;
+  }
+  return p ? b.number(key, 0.1f) : 0.1f;
+}
+
+// m[key] (GGX α: alpha, or alpha_u and alpha_v) and, where they are textures, m[key + "_texture"].
+void roughness(Plugin& b, json& m, const std::string& key) {
   const std::string dist = b.string("distribution", "beckmann");
   if (dist != "ggx" && dist != "beckmann") b.fail("unknown microfacet distribution '" + dist + "'");
   if (dist == "beckmann") b.note("Beckmann roughness taken as GGX alpha of the same value (kasha has GGX only)");
   b.boolean("sample_visible", true);  // kasha samples visible normals always
-  if (b.has("alpha_u") || b.has("alpha_v")) return json::array({b.number("alpha_u", 0.1f), b.number("alpha_v", 0.1f)});
-  return b.number("alpha", 0.1f);
+  if (b.has("alpha_u") || b.has("alpha_v")) {
+    json tu, tv;
+    m[key] = json::array({roughnessValue(b, "alpha_u", tu), roughnessValue(b, "alpha_v", tv)});
+    if (!tu.is_null() || !tv.is_null()) m[key + "_texture"] = json::array({tu, tv});  // null: untextured
+    return;
+  }
+  json t;
+  m[key] = roughnessValue(b, "alpha", t);
+  if (!t.is_null()) m[key + "_texture"] = t;
 }
 
 // A conductor's Fresnel terms in kasha's JSON (mirror, rough_conductor): a named metal
@@ -100,13 +118,13 @@ void requireUnitSpecular(Plugin& b, const char* key) {
   if (!one(s) && !rgbOne) b.fail(std::string("'") + key + "' other than 1 is not supported");
 }
 
-// Sets m["reflectance"] from the reflectance property `key`: a spectrum, or a <texture
-// type="bitmap"> (reflectance 1 times the image's colours, xml_texture.h).
+// Sets m["reflectance"] from the reflectance property `key`: a spectrum, or a texture
+// (reflectance 1 times the texture's colours, xml_texture.h).
 void setReflectance(Plugin& b, const std::string& key, json& m) {
   const pugi::xml_node p = b.property(key);
-  if (p && std::string(p.name()) == "texture") {
+  if (p && isTexture(p)) {
     m["reflectance"] = 1.0;
-    m["reflectance_texture"] = bitmapTexture(b.xml(), p);
+    m["reflectance_texture"] = textureField(b.xml(), p, TextureUse::Reflectance);
   } else {
     m["reflectance"] = spectrumProperty(b, key, 0.5);
   }
@@ -158,12 +176,12 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
     oneSided();
     m = {{"type", "rough_conductor"}};
     setConductor(b, m);
-    m["alpha"] = roughness(b);
+    roughness(b, m, "alpha");
   } else if (t == "dielectric" || t == "roughdielectric") {
     requireUnitSpecular(b, "specular_reflectance");
     requireUnitSpecular(b, "specular_transmittance");
     m = {{"type", t == "dielectric" ? "dielectric" : "rough_dielectric"}, {"ior", relativeIor(b, "int_ior", "bk7")}};
-    if (t == "roughdielectric") m["alpha"] = roughness(b);
+    if (t == "roughdielectric") roughness(b, m, "alpha");
   } else if (t == "plastic" || t == "roughplastic") {
     oneSided();
     requireUnitSpecular(b, "specular_reflectance");
@@ -172,7 +190,7 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
          {"coat_ior", relativeIor(b, "int_ior", "polypropylene")}};
     setReflectance(b, "diffuse_reflectance", m);
     if (t == "roughplastic") {
-      m["coat_alpha"] = roughness(b);
+      roughness(b, m, "coat_alpha");
     } else {
       m["coat_alpha"] = 0.001;
       b.note("smooth coat as GGX alpha 0.001");

@@ -197,6 +197,11 @@ void XmlImport::claimId(pugi::xml_node n) {
     fail(n, "duplicate id '" + id + "' (the <" + it->second.name() + "> at " + where(it->second) + " has it)");
 }
 
+pugi::xml_node XmlImport::declared(const std::string& tag, const std::string& id) const {
+  const auto it = ids_.find({tag, id});
+  return it == ids_.end() ? pugi::xml_node() : it->second;
+}
+
 void XmlImport::fail(pugi::xml_node n, const std::string& reason) const { throw InputError(where(n), describe(n), reason); }
 
 void XmlImport::note(pugi::xml_node n, const std::string& what) {

@@ -514,7 +514,71 @@ TEST_F(MitsubaImport, BitmapTextures) {
       <texture type="bitmap" name="reflectance"><string name="filename" value="wood.exr"/>
       <string name="wrap_mode" value="zero"/></texture></bsdf></shape>)"), "texture 'bitmap': wrap_mode 'zero' is not repeat, mirror or clamp"));
   EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="rectangle"><bsdf type="diffuse">
-      <texture type="checkerboard" name="reflectance"/></bsdf></shape>)"), "texture 'checkerboard': unsupported texture plugin (bitmap)"));
+      <texture type="noise" name="reflectance"/></bsdf></shape>)"), "texture 'noise': unsupported texture plugin (bitmap, checkerboard, mesh_attribute)"));
+}
+
+// <texture type="checkerboard"> declared at the top level and referred to by <ref>, nested on a
+// roughness (Mitsuba's eval_1 reads the colours the other way round), on one axis, and
+// mesh_attribute; errors in one line naming the element.
+TEST_F(MitsubaImport, CheckerboardAndMeshAttributeTextures) {
+  const std::string textures = std::string(kLight) + R"(
+    <texture type="checkerboard" id="tex">
+      <rgb name="color0" value="0.2"/><rgb name="color1" value="0.1, 0.2, 0.3"/>
+      <transform name="to_uv"><scale x="8" y="4"/><translate x="0.5" y="0.25"/></transform>
+    </texture>
+    <bsdf type="diffuse" id="floor"><ref name="reflectance" id="tex"/></bsdf>
+    <bsdf type="roughdielectric" id="glass"><texture name="alpha" type="checkerboard">
+      <float name="color0" value="0.0"/><float name="color1" value="0.4"/></texture></bsdf>
+    <bsdf type="roughconductor" id="metal"><texture name="alpha_u" type="checkerboard"/><float name="alpha_v" value="0.3"/></bsdf>
+    <bsdf type="diffuse" id="painted"><texture type="mesh_attribute" name="reflectance">
+      <string name="name" value="face_color"/></texture></bsdf>
+    <shape type="rectangle"><ref id="floor"/></shape>)";
+  const auto t = translate(textures);
+  const json& m = t.scene["materials"];
+  EXPECT_EQ(m["floor"]["reflectance"], 1.0);
+  const json& floor = m["floor"]["reflectance_texture"];
+  EXPECT_EQ(floor["type"], "checkerboard");
+  EXPECT_FLOAT_EQ(floor["color0"].get<float>(), 0.2f);
+  ASSERT_EQ(floor["color1"].size(), 3u);
+  EXPECT_FLOAT_EQ(floor["color1"][2].get<float>(), 0.3f);
+  // to_uv = translate · scale: u' = 8u + 0.5, v' = 4v + 0.25.
+  const std::vector<std::vector<float>> toUv = {{8, 0, 0.5f}, {0, 4, 0.25f}};
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(floor["to_uv"][r][c].get<float>(), toUv[r][c]) << r << c;
+  EXPECT_EQ(m["glass"]["alpha"], 1.0);
+  EXPECT_FLOAT_EQ(m["glass"]["alpha_texture"]["color0"].get<float>(), 0.4f);  // swapped: eval_1
+  EXPECT_FLOAT_EQ(m["glass"]["alpha_texture"]["color1"].get<float>(), 0.0f);
+  EXPECT_FLOAT_EQ(m["metal"]["alpha"][1].get<float>(), 0.3f);
+  EXPECT_FLOAT_EQ(m["metal"]["alpha_texture"][0]["color0"].get<float>(), 0.2f);  // the defaults, swapped
+  EXPECT_FLOAT_EQ(m["metal"]["alpha_texture"][0]["color1"].get<float>(), 0.4f);
+  EXPECT_TRUE(m["metal"]["alpha_texture"][1].is_null());
+  EXPECT_EQ(m["painted"]["reflectance_texture"], json({{"type", "mesh_attribute"}, {"name", "face_color"}}));
+  // It loads (the mesh attribute is not on a shape), and the floor reads the checkerboard.
+  const auto s = load(textures);
+  const float lambda = 550.0f;
+  const Frame world{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  const Vec3 n(0, 0, 1);
+  const auto at = [&](Vec2 uv) {
+    return s->materials[0]->bsdf(HitContext{uv, world, world, {&lambda, 1}}).eval(TransportMode::Radiance, n, n, lambda,
+                                                                                 lambda, SpectralLobe::Elastic) * kPi;
+  };
+  ASSERT_EQ(s->materialNames[0], "floor");
+  EXPECT_NEAR(at(Vec2(0.01f, 0.1f)), rgbToSigmoid(Vec3(0.2f))(lambda), 1e-6f);  // (0.58, 0.65): color0
+  EXPECT_NEAR(at(Vec2(0.01f, 0.01f)), rgbToSigmoid(Vec3(0.1f, 0.2f, 0.3f))(lambda), 1e-6f);  // (0.58, 0.29): color1
+  // Errors.
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<bsdf type="diffuse" id="d"><ref name="reflectance" id="nope"/></bsdf>)" + kFloor),
+                       "no <texture id=\"nope\"> before this reference"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<texture type="checkerboard"/>)" + kFloor),
+                       "a top-level <texture> needs an id to be referred to"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<bsdf type="roughconductor" id="d"><texture name="alpha" type="bitmap">
+      <string name="filename" value="x.exr"/></texture></bsdf>)" + kFloor), "bitmap textures are supported on reflectances only"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<bsdf type="diffuse" id="d"><texture name="reflectance" type="checkerboard">
+      <texture name="color0" type="checkerboard"/></texture></bsdf>)" + kFloor),
+                       "a checkerboard colour must be a <float>, an <rgb> or a constant <spectrum>, not <texture>"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<bsdf type="diffuse" id="d"><texture name="reflectance" type="mesh_attribute">
+      <string name="name" value="color"/></texture></bsdf>)" + kFloor), "name 'color' is not a mesh attribute's"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="rectangle"><bsdf type="diffuse"><texture name="reflectance" type="mesh_attribute">
+      <string name="name" value="vertex_color"/></texture></bsdf></shape>)"), "which only PLY meshes carry"));
 }
 
 TEST_F(MitsubaImport, DefaultsRefsAndIncludes) {
