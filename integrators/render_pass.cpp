@@ -101,10 +101,11 @@ void PassTracer::commit(const PassRecord& rec, Film& film, SpectralFilm* spectra
       film.addNonFinite(-1, -1);
       continue;
     }
-    // Clamped as floats: converting a huge float to int would be undefined behaviour.
-    const int x = int(std::clamp(sp.pixel.x, 0.0f, float(w_ - 1))), y = int(std::clamp(sp.pixel.y, 0.0f, float(h_ - 1)));
-    film.addSplat(x, y, sp.xyz);
-    if (spectral && isFinite(sp.xyz)) spectral->add(x, y, sp.lambda, sp.value);
+    // To every pixel whose reconstruction filter reaches the splat (core/pixel_filter.h).
+    scene_.pixelFilter.splat(sp.pixel, w_, h_, [&](int x, int y, float weight) {
+      film.addSplat(x, y, sp.xyz * weight);
+      if (spectral && isFinite(sp.xyz)) spectral->add(x, y, sp.lambda, sp.value * weight);
+    });
   }
   if (strategies)
     for (const StrategySample& r : rec.strategies) strategies(r);
