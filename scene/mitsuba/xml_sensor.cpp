@@ -37,14 +37,14 @@ json reconstructionFilter(XmlImport& xml, pugi::xml_node node) {
     if (type == "mitchell") variance = (2.0f + 3.0f * f.number("B", 1.0f / 3.0f) - 4.0f * f.number("C", 1.0f / 3.0f)) / 15.0f;
     if (type == "lanczos") f.integer("lobes", 3);
     const float stddev = std::min(std::sqrt(std::max(variance, 0.0f)), PixelFilter::kMaxRadius / 4.0f);
-    std::string used = "box";
+    std::string used = "box filter";
     out = "box";
     if (stddev >= PixelFilter::kMinRadius / 4.0f) {
       out = defaultFilter();
       out["stddev"] = stddev;
-      used = "gaussian with stddev " + std::to_string(stddev);
+      used = "gaussian filter (stddev " + std::to_string(stddev) + ")";
     }
-    f.note("rfilter '" + type + "' rendered with kasha's " + used + " filter (kasha has none with negative lobes)");
+    f.note("rfilter '" + type + "' rendered with kasha's " + used + ", the closest it has (none with negative lobes)");
   } else {
     f.fail("unsupported rfilter plugin (box, tent, gaussian; mitchell, catmullrom, lanczos approximated)");
   }
