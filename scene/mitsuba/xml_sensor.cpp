@@ -44,7 +44,7 @@ json reconstructionFilter(XmlImport& xml, pugi::xml_node node) {
       out["stddev"] = stddev;
       used = "gaussian filter (stddev " + std::to_string(stddev) + ")";
     }
-    f.note("rfilter '" + type + "' rendered with kasha's " + used + ", the closest it has (none with negative lobes)");
+    f.note("rendered with kasha's " + used + ", the closest it has (none with negative lobes)");
   } else {
     f.fail("unsupported rfilter plugin (box, tent, gaussian; mitchell, catmullrom, lanczos approximated)");
   }

@@ -228,12 +228,12 @@ TEST_F(MitsubaImport, ReconstructionFilters) {
   const mitsuba::Translation mitchell = translated(R"(<rfilter type="mitchell"/>)");
   EXPECT_NEAR(mitchell.scene["camera"]["filter"]["stddev"].get<float>(), 1.0f / 3.0f, 1e-6f);
   ASSERT_EQ(filterNotes(mitchell).size(), 1u);
-  EXPECT_TRUE(contains(filterNotes(mitchell)[0], "rfilter 'mitchell' rendered with kasha's gaussian filter (stddev 0.333333), the closest it has"));
+  EXPECT_TRUE(contains(filterNotes(mitchell)[0], "rfilter 'mitchell': rendered with kasha's gaussian filter (stddev 0.333333), the closest it has"));
   for (const char* sharp : {"catmullrom", "lanczos"}) {
     const mitsuba::Translation t = translated(std::string("<rfilter type=\"") + sharp + "\"/>");
     EXPECT_EQ(t.scene["camera"]["filter"], "box") << sharp;
     ASSERT_EQ(filterNotes(t).size(), 1u) << sharp;
-    EXPECT_TRUE(contains(filterNotes(t)[0], std::string("rfilter '") + sharp + "' rendered with kasha's box filter"));
+    EXPECT_TRUE(contains(filterNotes(t)[0], std::string("rfilter '") + sharp + "': rendered with kasha's box filter"));
   }
   EXPECT_EQ(translated(R"(<rfilter type="lanczos"><integer name="lobes" value="2"/></rfilter>)").scene["camera"]["filter"], "box");
   EXPECT_TRUE(contains(fileError(film(R"(<rfilter type="sinc"/>)")), "rfilter 'sinc': unsupported rfilter plugin"));
