@@ -67,7 +67,8 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
       lane.n = 1;
       lane.lambda[0] = d.lambda;
       lane.T[0] = d.weight;
-      const float L = radiance(scene, scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm)), lane, rng, ctx.counter);
+      const Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm));
+      const float L = radiance(scene, ray, lane, rng, ctx.counter);
       xyz += sensorResponse(ctx, d.lambda, L);
     }
     return xyz;
