@@ -28,7 +28,7 @@ Ray Camera::generateRay(Vec2 pixel) const {
 
 namespace kasha {
 
-std::optional<Camera::Connection> Camera::connect(const Vec3& p) const {
+std::optional<Camera::Connection> Camera::connect(const Vec3& p, float filmMargin) const {
   Vec3 d = pos_ - p;
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.0f)) return std::nullopt;
@@ -41,7 +41,9 @@ std::optional<Camera::Connection> Camera::connect(const Vec3& p) const {
   const Vec3 onPlane = toPoint / cosTheta;
   const float sx = glm::dot(onPlane, right_) / (tanHalfY_ * aspect_);
   const float sy = glm::dot(onPlane, up_) / tanHalfY_;
-  if (sx < -1.0f || sx >= 1.0f || sy <= -1.0f || sy > 1.0f) return std::nullopt;
+  // The margin in image-plane units: 2/width per pixel across, 2/height down.
+  const float mx = 2.0f * filmMargin / float(width_), my = 2.0f * filmMargin / float(height_);
+  if (sx < -1.0f - mx || sx >= 1.0f + mx || sy <= -1.0f - my || sy > 1.0f + my) return std::nullopt;
   const Vec2 pixel((sx + 1.0f) * 0.5f * float(width_), (1.0f - sy) * 0.5f * float(height_));
   const float planeArea = 4.0f * tanHalfY_ * tanHalfY_ * aspect_;
   const float pixelArea = planeArea / (float(width_) * float(height_));
@@ -50,13 +52,14 @@ std::optional<Camera::Connection> Camera::connect(const Vec3& p) const {
   return Connection{pixel, d, dist, 1.0f / (pixelArea * cos2 * cosTheta * dist2), directionDensity(planeArea, cosTheta)};
 }
 
-float Camera::directionPdf(const Vec3& d) const {
+float Camera::directionPdf(const Vec3& d, float filmMargin) const {
   const float cosTheta = glm::dot(d, forward_);
   if (cosTheta <= 0.0f) return 0.0f;
   const Vec3 onPlane = d / cosTheta;
   const float sx = glm::dot(onPlane, right_) / (tanHalfY_ * aspect_);
   const float sy = glm::dot(onPlane, up_) / tanHalfY_;
-  if (sx < -1.0f || sx > 1.0f || sy < -1.0f || sy > 1.0f) return 0.0f;
+  const float mx = 2.0f * filmMargin / float(width_), my = 2.0f * filmMargin / float(height_);
+  if (sx < -1.0f - mx || sx > 1.0f + mx || sy < -1.0f - my || sy > 1.0f + my) return 0.0f;
   return directionDensity(4.0f * tanHalfY_ * tanHalfY_ * aspect_, cosTheta);
 }
 

@@ -24,11 +24,13 @@ class Camera {
     float importance = 0.0f; // W_j·cosθ_cam / d²: the factor multiplying f·|cosθ_x| at the point
     float pdfDir = 0.0f;     // directionPdf(-wi): generateRay's density of the direction to the point
   };
-  // Connects a point to the pinhole; nothing if it is behind the camera or off the film.
-  std::optional<Connection> connect(const Vec3& p) const;
-  // Solid-angle density with which generateRay (uniform over the film) produces direction d:
-  // 1 / (A·cos³θ), A the whole image-plane area at distance 1.
-  float directionPdf(const Vec3& d) const;
+  // Connects a point to the pinhole; nothing if it is behind the camera or off the film, which
+  // extends `filmMargin` pixels beyond the image's edges (a reconstruction filter's reach,
+  // PixelFilter::filmMargin).
+  std::optional<Connection> connect(const Vec3& p, float filmMargin = 0.0f) const;
+  // Solid-angle density with which generateRay (uniform over the image) produces direction d:
+  // 1 / (A·cos³θ), A the whole image-plane area at distance 1; 0 off the film (as for connect).
+  float directionPdf(const Vec3& d, float filmMargin = 0.0f) const;
   const Vec3& forward() const { return forward_; }
   const Vec3& up() const { return up_; }  // orthonormal to forward()
   int width() const { return width_; }

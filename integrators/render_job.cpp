@@ -164,7 +164,7 @@ void RenderJob::run() {
   if (o.strategyDepth >= 0) {
     requireMemory(bidir::StrategyImages::bytesFor(width, height, o.strategyDepth),
                   "the strategy images (depth " + std::to_string(o.strategyDepth) + ")", limit);
-    strategies_ = std::make_unique<bidir::StrategyImages>(width, height, o.strategyDepth);
+    strategies_ = std::make_unique<bidir::StrategyImages>(width, height, o.strategyDepth, scene_.pixelFilter);
   }
   const nlohmann::json settings = checkpointSettings();
   requireFilmMemory(width, height, bins_, !o.resume.empty(), limit);

@@ -9,6 +9,7 @@
 #include "core/accel.h"
 #include "core/camera.h"
 #include "core/light.h"
+#include "core/pixel_filter.h"
 #include "core/shape.h"
 #include "materials/material.h"
 #include "scene/light_selector.h"
@@ -20,6 +21,7 @@ struct Scene {
   std::string path;  // the scene file
   WavelengthRange range;
   Camera camera;
+  PixelFilter pixelFilter;  // the film's reconstruction filter (/camera/filter)
   RenderSettings render;
   std::vector<std::string> materialNames;
   std::vector<std::unique_ptr<Material>> materials;

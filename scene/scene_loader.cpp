@@ -244,8 +244,40 @@ struct Loader {
     if (!std::isfinite(glm::length(up))) f.fail("up", "is too long (its length overflows a 32-bit float)");
     if (!(glm::length(glm::cross(fwd / glm::length(fwd), up / glm::length(up))) > 1e-6f))
       f.fail("up", "is parallel to the viewing direction");
+    if (f.has("filter")) scene.pixelFilter = pixelFilter(f);
     f.finish();
     scene.camera = Camera(pos, at, up, fov, int(w), int(h));
+  }
+
+  // /camera/filter: "box", "tent", "gaussian" or {"type": …, "radius" (tent) / "stddev" (gaussian)}.
+  PixelFilter pixelFilter(JsonFields& cam) {
+    const json& v = cam.get("filter");
+    if (!v.is_string()) return pixelFilter(v, cam.path("filter"));
+    const std::string type = v.get<std::string>();
+    if (type != "box" && type != "tent" && type != "gaussian")
+      cam.fail("filter", "unknown reconstruction filter '" + type + "' (box, tent, gaussian)");
+    return pixelFilter(json{{"type", type}}, cam.path("filter"));
+  }
+  PixelFilter pixelFilter(const json& v, const std::string& pointer) {
+    JsonFields f(v, file, pointer);
+    const std::string type = f.string("type");
+    // The supports PixelFilter accepts, kMinRadius = 1/64 to kMaxRadius = 16 pixels.
+    const float lo = PixelFilter::kMinRadius, hi = PixelFilter::kMaxRadius;
+    PixelFilter filter;
+    if (type == "tent") {
+      const float radius = f.number("radius", 1.0f);
+      if (!(radius >= lo && radius <= hi)) f.fail("radius", "must be in [1/64, 16] pixels");
+      filter = PixelFilter::tent(radius);
+    } else if (type == "gaussian") {
+      const float stddev = f.number("stddev", 0.5f);
+      if (!(stddev >= lo / 4.0f && stddev <= hi / 4.0f))
+        f.fail("stddev", "must be in [1/256, 4] pixels (the support reaches 4 standard deviations)");
+      filter = PixelFilter::gaussian(stddev);
+    } else if (type != "box") {
+      f.fail("type", "unknown reconstruction filter '" + type + "' (box, tent, gaussian)");
+    }
+    f.finish();
+    return filter;
   }
 
   void spectra(JsonFields& root) {

@@ -200,7 +200,7 @@ Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext&
                                   families.independent && !ws.lightFirst ? &light_.density() : nullptr, ws.lightFirst);
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
-  traceCameraSubpath(scene, pixel + rng.uniform2(), lanes, ws, rng, ctx.counter, C);
+  traceCameraSubpath(scene, scene.pixelFilter.filmPosition(pixel, rng.uniform2()), lanes, ws, rng, ctx.counter, C);
   LS.clear(), LO.clear();
   int sharedLightVertices = 0;
   if (ws.lightFirst) {

@@ -320,11 +320,16 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   cam.kind = Kind::Camera;
   cam.p = c.scene.camera.position();
   cam.deltaPosition = true;
-  // The camera's density of a: its direction over the whole film (the sensor's density of the
-  // wavelength arriving is a factor, mis_sums.h).
+  // The camera's density of a: its direction over the whole film, times the reconstruction
+  // filter's coverage there (the sensor's density of the wavelength arriving is a factor,
+  // mis_sums.h).
+  const Camera& camera = c.scene.camera;
+  const PixelFilter& filter = c.scene.pixelFilter;
   const auto makeLink = [&] {
-    CameraLink l{c.scene.camera.connect(a.p)};
-    if (l.connection) l.pdfCam = toAreaDensity(l.connection->pdfDir, cam, a);
+    CameraLink l{camera.connect(a.p, filter.filmMargin())};
+    if (l.connection)
+      l.pdfCam = toAreaDensity(l.connection->pdfDir * filter.coverage(l.connection->pixel, camera.width(), camera.height()),
+                               cam, a);
     return l;
   };
   const CameraLink link = memo ? memo->link(s, makeLink) : makeLink();

@@ -283,8 +283,11 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
   out.push_back(c);
   updateSums(out, TransportMode::Radiance, ws.strategies);
   const Ray ray = scene.camera.generateRay(filmPos);
-  // The sensor's density of the last wavelength group is a factor of the weights (mis_sums.h).
-  const float pdfDir = scene.camera.directionPdf(ray.d);
+  // The sensor's density of the last wavelength group is a factor of the weights (mis_sums.h); the
+  // reconstruction filter's coverage turns the camera's uniform density into the camera samples'.
+  const PixelFilter& filter = scene.pixelFilter;
+  const float pdfDir = scene.camera.directionPdf(ray.d, filter.filmMargin()) *
+                       filter.coverage(filmPos, scene.camera.width(), scene.camera.height());
   Track tr = startTrack(lanes, out, c.beta, pdfDir);
   randomWalk(scene, ray, &tr, 1, TransportMode::Radiance, ws, rng, counter);
 }

@@ -303,7 +303,7 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
   thread_local std::vector<PathVertex> C, LS, LO;  // the camera subpath, the light subpath's two views
-  const Vec2 film = pixel + rng.uniform2();
+  const Vec2 film = scene.pixelFilter.filmPosition(pixel, rng.uniform2());
   traceCameraSubpath(scene, film, lanes, pass.walk, rng, ctx.counter, C);
   Context c{scene, pass.walk, families_, lanes, sensor_.density(), ctx.counter};
   c.spectralSplats = ctx.recordSpectral;

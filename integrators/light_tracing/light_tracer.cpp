@@ -69,7 +69,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
 
   // The emitter seen directly (area lights; delta lights are not visible to a pinhole).
   if (!es.deltaPos && !es.deltaDir && glm::dot(es.n, es.n) > 0.0f && !hideEmitters_) {
-    if (const auto c = scene.camera.connect(es.p)) {
+    if (const auto c = scene.camera.connect(es.p, scene.pixelFilter.filmMargin())) {
       const auto& area = static_cast<const AreaLight&>(*st.light);
       float value[kMaxLanes];
       for (int j = 0; j < n; ++j) value[j] = area.shape().emission->eval(lanes.lambda[j], es.n, c->wi) * st.start[j];
@@ -97,7 +97,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     if (lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
 
     if (!bsdf.has(BsdfFlags::DeltaDirection)) {
-      if (const auto c = scene.camera.connect(hit->p)) {
+      if (const auto c = scene.camera.connect(hit->p, scene.pixelFilter.filmMargin())) {
         const Vec3 wo = bsdf.toLocal(c->wi);
         float value[kMaxLanes];
         for (int k = 0; k < e.n; ++k)

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 
+#include "core/pixel_filter.h"
 #include "scene/mitsuba/xml_transform.h"
 
 namespace kasha::mitsuba {
@@ -11,6 +12,46 @@ namespace {
 using nlohmann::json;
 
 json vec(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+// Mitsuba's film without an <rfilter> (Mitsuba 3 docs: hdrfilm): the Gaussian of stddev 0.5.
+json defaultFilter() { return {{"type", "gaussian"}, {"stddev", 0.5f}}; }
+
+// <rfilter> as kasha's /camera/filter (core/pixel_filter.h). Mitsuba's filters with negative lobes
+// get the closest kasha has, with a note: the Gaussian of the same standard deviation where the
+// kernel's second moment is positive, else the box. Mitchell–Netravali's kernel (B, C; 1/3 each
+// by default) integrates to 1 and has second moment ∫x²k = (2 + 3B − 4C)/15 (its cubic pieces
+// integrated), 1/9 by default; Catmull–Rom's (B = 0, C = 1/2) vanishes, and Lanczos's sinc
+// interpolates too: both get the box.
+json reconstructionFilter(XmlImport& xml, pugi::xml_node node) {
+  Plugin f(xml, node);
+  json out;
+  const std::string type = f.type();
+  if (type == "box") {
+    out = "box";
+  } else if (type == "tent") {
+    out = {{"type", "tent"}, {"radius", f.number("radius", 1.0f)}};
+  } else if (type == "gaussian") {
+    out = defaultFilter();
+    out["stddev"] = f.number("stddev", 0.5f);
+  } else if (type == "mitchell" || type == "catmullrom" || type == "lanczos") {
+    float variance = 0.0f;
+    if (type == "mitchell") variance = (2.0f + 3.0f * f.number("B", 1.0f / 3.0f) - 4.0f * f.number("C", 1.0f / 3.0f)) / 15.0f;
+    if (type == "lanczos") f.integer("lobes", 3);
+    const float stddev = std::min(std::sqrt(std::max(variance, 0.0f)), PixelFilter::kMaxRadius / 4.0f);
+    std::string used = "box filter";
+    out = "box";
+    if (stddev >= PixelFilter::kMinRadius / 4.0f) {
+      out = defaultFilter();
+      out["stddev"] = stddev;
+      used = "gaussian filter (stddev " + std::to_string(stddev) + ")";
+    }
+    f.note("rendered with kasha's " + used + ", the closest it has (none with negative lobes)");
+  } else {
+    f.fail("unsupported rfilter plugin (box, tent, gaussian; mitchell, catmullrom, lanczos approximated)");
+  }
+  f.finish();
+  return out;
+}
 
 }  // namespace
 
@@ -33,6 +74,7 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   if (s.type() != "perspective") s.fail("unsupported sensor plugin (perspective)");
   if (out.root.contains("camera")) s.fail("a second <sensor> (kasha renders one camera)");
   int width = 768, height = 576;
+  json filter = defaultFilter();
   for (pugi::xml_node f : s.nested("film")) {
     Plugin film(xml, f);
     if (film.type() != "hdrfilm") film.fail("unsupported film plugin (hdrfilm)");
@@ -43,10 +85,9 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     film.string("pixel_format", "");
     film.string("component_format", "");
     film.string("file_format", "");
-    for (pugi::xml_node r : film.nested("rfilter")) {
-      film.note("reconstruction filter ignored: kasha averages the samples of each pixel (box filter)");
-      (void)r;
-    }
+    const std::vector<pugi::xml_node> rfilters = film.nested("rfilter");
+    if (rfilters.size() > 1) film.fail(rfilters[1], "a second <rfilter> (a film has one reconstruction filter)");
+    if (!rfilters.empty()) filter = reconstructionFilter(xml, rfilters[0]);
     film.finish();
   }
   std::vector<pugi::xml_node> samplers = s.nested("sampler");
@@ -102,7 +143,8 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
                         {"look_at", vec(pos + glm::normalize(transformVector(m, Vec3(0, 0, 1))))},
                         {"up", vec(transformVector(m, Vec3(0, 1, 0)))},
                         {"fov", *fovY},
-                        {"resolution", {width, height}}};
+                        {"resolution", {width, height}},
+                        {"filter", filter}};
   out.origin("/camera", xml, node);
   s.finish();
 }

@@ -192,6 +192,58 @@ TEST_F(MitsubaImport, PerspectiveSensorFilmSamplerAndIntegrator) {
   EXPECT_NEAR(s->camera.fovYDegrees(), 2.0f * std::atan(std::tan(glm::radians(15.0f)) * 0.5f) * 180.0f / kPi, 1e-3f);
 }
 
+// <rfilter> inside <film>: box, tent and gaussian as kasha's filters with Mitsuba's parameters; none
+// is Mitsuba's default Gaussian (stddev 0.5); the filters kasha lacks become the Gaussian of the
+// same standard deviation or the box, with one note naming it; anything else is an error.
+TEST_F(MitsubaImport, ReconstructionFilters) {
+  const auto film = [&](const std::string& rfilter) {
+    return write("film.xml", std::string("<scene version=\"3.0.0\">") + R"(
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/>)" + rfilter + R"(</film>
+  </sensor>)" + kLight + kFloor + "</scene>");
+  };
+  const auto translated = [&](const std::string& rfilter) {
+    const std::string path = film(rfilter);
+    std::ifstream in(path);
+    return mitsuba::translateMitsubaScene(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  };
+  const auto filterOf = [&](const std::string& rfilter) { return loadScene(film(rfilter))->pixelFilter; };
+  // The notes about the filter (the floor's one-sided BSDF has its own).
+  const auto filterNotes = [](const mitsuba::Translation& t) {
+    std::vector<std::string> out;
+    for (const std::string& n : t.notes)
+      if (n.find("rfilter '") != std::string::npos) out.push_back(n);
+    return out;
+  };
+  const PixelFilter none = filterOf("");
+  EXPECT_EQ(none.type(), PixelFilterType::Gaussian);
+  EXPECT_EQ(none.stddev(), 0.5f);
+  EXPECT_EQ(filterOf(R"(<rfilter type="box"/>)").type(), PixelFilterType::Box);
+  EXPECT_EQ(filterOf(R"(<rfilter type="tent"/>)").radius(), 1.0f);
+  EXPECT_EQ(filterOf(R"(<rfilter type="tent"><float name="radius" value="1.25"/></rfilter>)").radius(), 1.25f);
+  EXPECT_EQ(filterOf(R"(<rfilter type="gaussian"><float name="stddev" value="0.25"/></rfilter>)").radius(), 1.0f);
+  for (const std::string& rfilter : {std::string(R"(<rfilter type="box"/>)"), std::string(R"(<rfilter type="gaussian"/>)")})
+    EXPECT_TRUE(filterNotes(translated(rfilter)).empty()) << rfilter;
+  // Mitchell–Netravali with B = C = 1/3: ∫x²k = 1/9 (its cubics integrated by hand).
+  const mitsuba::Translation mitchell = translated(R"(<rfilter type="mitchell"/>)");
+  EXPECT_NEAR(mitchell.scene["camera"]["filter"]["stddev"].get<float>(), 1.0f / 3.0f, 1e-6f);
+  ASSERT_EQ(filterNotes(mitchell).size(), 1u);
+  EXPECT_TRUE(contains(filterNotes(mitchell)[0], "rfilter 'mitchell': rendered with kasha's gaussian filter (stddev 0.333333), the closest it has"));
+  for (const char* sharp : {"catmullrom", "lanczos"}) {
+    const mitsuba::Translation t = translated(std::string("<rfilter type=\"") + sharp + "\"/>");
+    EXPECT_EQ(t.scene["camera"]["filter"], "box") << sharp;
+    ASSERT_EQ(filterNotes(t).size(), 1u) << sharp;
+    EXPECT_TRUE(contains(filterNotes(t)[0], std::string("rfilter '") + sharp + "': rendered with kasha's box filter"));
+  }
+  EXPECT_EQ(translated(R"(<rfilter type="lanczos"><integer name="lobes" value="2"/></rfilter>)").scene["camera"]["filter"], "box");
+  EXPECT_TRUE(contains(fileError(film(R"(<rfilter type="sinc"/>)")), "rfilter 'sinc': unsupported rfilter plugin"));
+  EXPECT_TRUE(contains(fileError(film(R"(<rfilter type="tent"><float name="radius" value="-1"/></rfilter>)")),
+                       "/camera/filter/radius: must be in [1/64, 16] pixels"));
+  EXPECT_TRUE(contains(fileError(film(R"(<rfilter type="box"/><rfilter type="tent"/>)")), "a second <rfilter>"));
+  EXPECT_TRUE(contains(fileError(film(R"(<rfilter type="gaussian"><float name="radius" value="2"/></rfilter>)")),
+                       "unsupported property 'radius'"));
+}
+
 // Without fov, Mitsuba's perspective camera has a focal length (default 50 mm) on a 36 × 24 mm film,
 // whose angle is the diagonal's: 2·atan(√(36² + 24²)/(2·f)); on a 300 × 200 film (the 36 × 24
 // aspect) the vertical angle is then 2·atan(24/(2·f)) exactly. focus_distance has no effect there.
