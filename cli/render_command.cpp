@@ -217,6 +217,18 @@ int runRender(const RenderArgs& given, RenderGroup* group) {
       throw UsageError("-D " + text, "", "sets a parameter of a Mitsuba XML scene, not of " + a.scene);
     load.parameters[name] = text.substr(eq + 1);  // the last of one name wins
   }
+  // What an alias stands for, once its name is known: from the command line before the scene loads
+  // (whose errors may concern the alias's settings), from the scene after.
+  const auto noteAlias = [&] {
+    for (const IntegratorAlias& alias : integratorAliases()) {
+      if (alias.name != a.integrator || (group && group->rank() != 0)) continue;
+      std::string sets;
+      for (const std::string& setting : alias.settings) sets += " --set " + setting;
+      std::fprintf(stderr, "kasha: note: %s %s stands for --integrator %s%s\n", a.integratorGiven ? "--integrator" : "render/integrator",
+                   alias.name.c_str(), alias.integrator.c_str(), sets.c_str());
+    }
+  };
+  if (a.integratorGiven) noteAlias();
   load.memoryLimit = memoryLimit;
   load.renderSettings = set;  // checked by the loader as the scene file's own
   // Read once: the text is both loaded and hashed for checkpoints.
@@ -237,13 +249,7 @@ int runRender(const RenderArgs& given, RenderGroup* group) {
       if (const RenderSetting* s = settingAt(set, "/render/integrator")) throw UsageError("--set " + s->text, "", why);
       throw InputError(a.scene, "/render/integrator", why);
     }
-  }
-  for (const IntegratorAlias& alias : integratorAliases()) {
-    if (alias.name != a.integrator || (group && group->rank() != 0)) continue;
-    std::string sets;
-    for (const std::string& setting : alias.settings) sets += " --set " + setting;
-    std::fprintf(stderr, "kasha: note: %s %s stands for --integrator %s%s\n", a.integratorGiven ? "--integrator" : "render/integrator",
-                 alias.name.c_str(), alias.integrator.c_str(), sets.c_str());
+    noteAlias();
   }
   if (a.spp > 0) r.spp = a.spp;
   if (a.time >= 0.0) r.timeBudgetSeconds = a.time;
