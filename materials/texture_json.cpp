@@ -17,6 +17,7 @@ std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::
   TextureChannel channel = TextureChannel::Mean;
   TextureWrap wrap = TextureWrap::Repeat;
   TextureFilter filter = TextureFilter::Bilinear;
+  TextureEncoding encoding = TextureEncoding::Linear;
   if (v.is_string()) {
     file = v.get<std::string>();
   } else if (v.is_object()) {
@@ -34,14 +35,18 @@ std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::
     const std::optional<TextureFilter> fl = parseTextureFilter(filterName);
     if (!fl) f.fail("filter", "unknown filter '" + filterName + "' (bilinear, nearest)");
     filter = *fl;
+    const std::string encodingName = f.string("encoding", "linear");
+    const std::optional<TextureEncoding> e = parseTextureEncoding(encodingName);
+    if (!e) f.fail("encoding", "unknown encoding '" + encodingName + "' (linear, srgb)");
+    encoding = *e;
     f.finish();
   } else {
     parent.fail(key, "expected an image file name or {\"file\": ..., \"channel\": ...}, got " + jsonTypeName(v));
   }
   const std::string path = (!file.empty() && file[0] == '/') ? file : ctx.baseDir + "/" + file;
   try {
-    if (ctx.textures) return ctx.textures->load(path, channel, wrap, filter);
-    return TextureLoader(ctx.memoryLimit).load(path, channel, wrap, filter);
+    if (ctx.textures) return ctx.textures->load(path, channel, wrap, filter, encoding);
+    return TextureLoader(ctx.memoryLimit).load(path, channel, wrap, filter, encoding);
   } catch (const InputError& e) {  // names the file already
     parent.fail(key, e.what());
   } catch (const std::runtime_error& e) {  // also MemoryLimitError

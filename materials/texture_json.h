@@ -1,7 +1,8 @@
 #pragma once
 // Texture fields of materials in scene files (docs/scene-format.md, "Textures"):
 //   "<parameter>_texture": "image.png" | {"file": "image.exr", "channel": "mean" | "r" | "g" | "b" | "a",
-//                                        "wrap": "repeat" | "clamp" | "mirror", "filter": "bilinear" | "nearest"}
+//                                        "wrap": "repeat" | "clamp" | "mirror", "filter": "bilinear" | "nearest",
+//                                        "encoding": "linear" | "srgb"}
 // A reflectance's texture also takes "channel": "rgb" (a linear sRGB colour, materials/surface_texture.h).
 // Images load through the scene's TextureLoader (memory limit before decoding); a bad file, value
 // or option is an InputError naming the field.

@@ -1,9 +1,5 @@
 #include "scene/mitsuba/xml_texture.h"
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
-
 namespace kasha::mitsuba {
 
 using nlohmann::json;
@@ -22,10 +18,7 @@ json bitmapTexture(XmlImport& xml, pugi::xml_node node) {
   if (wrap != "repeat" && wrap != "mirror" && wrap != "clamp")
     t.fail("wrap_mode '" + wrap + "' is not repeat, mirror or clamp");
   out["wrap"] = wrap;
-  std::string ext = std::filesystem::path(name).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (!t.boolean("raw", false) && ext != ".exr")
-    t.note("'" + name + "': values read as linear data (Mitsuba decodes sRGB unless raw = true; kasha does not)");
+  out["encoding"] = t.boolean("raw", false) ? "linear" : "srgb";
   t.finish();
   return out;
 }
