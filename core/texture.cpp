@@ -207,6 +207,16 @@ float ImageTexture::scalar(Vec2 uv) const {
   return lerp(lerp(v(0), v(1), t.x), lerp(v(2), v(3), t.x), t.y);
 }
 
+Vec2 ImageTexture::scalarGradient(Vec2 uv) const {
+  if (filter_ == TextureFilter::Nearest) return Vec2(0.0f);
+  size_t index[4];
+  const Vec2 t = footprint(uv, index);
+  const auto v = [&](int k) { return texels_[index[k] * size_t(channels_)]; };
+  // scalar = lerp(lerp(v0, v1, t.x), lerp(v2, v3, t.x), t.y) with t.x = u·w − ½ − x0, t.y = v·h − ½ − y0.
+  const float dx = lerp(v(1) - v(0), v(3) - v(2), t.y), dy = lerp(v(2) - v(0), v(3) - v(1), t.x);
+  return Vec2(float(w_) * dx, float(h_) * dy);
+}
+
 Vec3 ImageTexture::rgb(Vec2 uv) const {
   size_t index[4];
   const Vec2 t = footprint(uv, index);

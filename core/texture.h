@@ -64,6 +64,9 @@ class ImageTexture {
   float scalar(Vec2 uv) const;
   // The filtered colour at uv of a three-channel texture.
   Vec3 rgb(Vec2 uv) const;
+  // (∂/∂u, ∂/∂v) of scalar(uv): bilinear filtering's derivative within the four texels it blends
+  // (w·∂/∂x and h·∂/∂y in texel units); 0 for nearest filtering, which is piecewise constant.
+  Vec2 scalarGradient(Vec2 uv) const;
   // Row-major index of the texel containing uv (wrapped), and the first channel of texel i.
   size_t texelIndex(Vec2 uv) const;
   float texel(size_t i) const { return texels_[i * size_t(channels_)]; }

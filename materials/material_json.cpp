@@ -13,6 +13,7 @@
 #include "materials/lambertian.h"
 #include "materials/measured_material_json.h"
 #include "materials/mirror.h"
+#include "materials/normal_perturbation.h"
 #include "materials/rough_conductor.h"
 #include "materials/rough_dielectric.h"
 #include "materials/texture_json.h"
@@ -139,6 +140,17 @@ Vec2 parseAlpha(JsonFields& f, const std::string& key) {
   return a;
 }
 
+// {"type": "normal_map", "normals": <texture>, "material": {...}} and {"type": "bump_map",
+// "height": <texture>, "scale": s, "material": {...}} (normal_perturbation.h).
+std::unique_ptr<Material> parsePerturbedNormal(JsonFields& f, const std::string& type, const SpectrumContext& ctx,
+                                               WavelengthRange range) {
+  std::unique_ptr<Material> nested = parseMaterial(f.get("material"), ctx, f.path("material"), range);
+  if (type == "normal_map")
+    return std::make_unique<NormalMapMaterial>(std::move(nested), parseRequiredTexture(f, "normals", ctx, true));
+  const float scale = f.number("scale", 1.0f);
+  return std::make_unique<BumpMapMaterial>(std::move(nested), parseRequiredTexture(f, "height", ctx, false), scale);
+}
+
 }  // namespace
 
 std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr,
@@ -186,6 +198,8 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     } catch (const std::invalid_argument& e) {
       f.fail("ior", std::string(e.what()).substr(5));  // only the index can still be rejected
     }
+  } else if (type == "normal_map" || type == "bump_map") {
+    m = parsePerturbedNormal(f, type, ctx, range);
   } else if (type == "coated_fluorescent") {
     JungParams p = parseJungParams(f, ctx, range, unphysical);
     Ior ior = parseIor(f, "coat_ior", ctx);
@@ -196,7 +210,7 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
   } else {
     f.fail("type", "unknown material type '" + type +
                        "' (lambertian, jung_fluorescent, mirror, dielectric, thin_dielectric, rough_conductor, rough_dielectric, "
-                       "coated_fluorescent, zhdanov, measured_reradiation, file)");
+                       "coated_fluorescent, zhdanov, measured_reradiation, normal_map, bump_map, file)");
   }
   f.finish();
   return m;

@@ -8,13 +8,17 @@
 namespace kasha {
 namespace {
 
-// The image of "<key>" (texture_json.h); nullptr when absent. rgb: "channel": "rgb" is allowed.
+// What a texture field holds: one channel; one or three (a reflectance); three (normals).
+enum class TextureUse { Scalar, Reflectance, Normals };
+
+// The image of "<key>" (texture_json.h); nullptr when absent.
 std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::string& key, const SpectrumContext& ctx,
-                                                 bool rgb) {
+                                                 TextureUse use) {
   if (!parent.has(key)) return nullptr;
   const nlohmann::json& v = parent.get(key);
   std::string file;
-  TextureChannel channel = TextureChannel::Mean;
+  const bool rgb = use != TextureUse::Scalar;
+  TextureChannel channel = use == TextureUse::Normals ? TextureChannel::Rgb : TextureChannel::Mean;
   TextureWrap wrap = TextureWrap::Repeat;
   TextureFilter filter = TextureFilter::Bilinear;
   TextureEncoding encoding = TextureEncoding::Linear;
@@ -23,8 +27,9 @@ std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::
   } else if (v.is_object()) {
     JsonFields f(v, ctx.file, parent.path(key));
     file = f.string("file");
-    const std::string name = f.string("channel", "mean");
+    const std::string name = f.string("channel", use == TextureUse::Normals ? "rgb" : "mean");
     const std::optional<TextureChannel> c = rgb && name == "rgb" ? TextureChannel::Rgb : parseTextureChannel(name);
+    if (use == TextureUse::Normals && name != "rgb") f.fail("channel", "a normal map's channel is rgb");
     if (!c) f.fail("channel", "unknown channel '" + name + (rgb ? "' (mean, r, g, b, a, rgb)" : "' (mean, r, g, b, a)"));
     channel = *c;
     const std::string wrapName = f.string("wrap", "repeat");
@@ -57,11 +62,17 @@ std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::
 }  // namespace
 
 ScalarTexture parseScalarTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx) {
-  return ScalarTexture{parseTexture(f, key, ctx, false)};
+  return ScalarTexture{parseTexture(f, key, ctx, TextureUse::Scalar)};
 }
 
 ReflectanceTexture parseReflectanceTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx) {
-  return ReflectanceTexture{parseTexture(f, key, ctx, true)};
+  return ReflectanceTexture{parseTexture(f, key, ctx, TextureUse::Reflectance)};
+}
+
+std::shared_ptr<const ImageTexture> parseRequiredTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx,
+                                                         bool normals) {
+  if (!f.has(key)) f.fail(key, "missing required field");
+  return parseTexture(f, key, ctx, normals ? TextureUse::Normals : TextureUse::Scalar);
 }
 
 }  // namespace kasha

@@ -16,5 +16,9 @@ namespace kasha {
 ScalarTexture parseScalarTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx);
 // The texture of a reflectance spectrum (one channel or "rgb"); no image when the field is absent.
 ReflectanceTexture parseReflectanceTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx);
+// The image of a field that must be present: one channel, or (normals) the three of a normal map
+// ("channel" rgb, its default there).
+std::shared_ptr<const ImageTexture> parseRequiredTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx,
+                                                         bool normals);
 
 }  // namespace kasha

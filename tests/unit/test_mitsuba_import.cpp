@@ -464,6 +464,41 @@ TEST_F(MitsubaImport, BitmapTextures) {
       <texture type="checkerboard" name="reflectance"/></bsdf></shape>)"), "texture 'checkerboard': unsupported texture plugin (bitmap)"));
 }
 
+// normalmap and bumpmap (Mitsuba 3's documentation scenes bsdf_normalmap_with.xml,
+// bsdf_bumpmap_with.xml, on a rectangle): kasha's normal_map and bump_map around the nested
+// material; the bump map's texture may have any name and is read as one channel.
+TEST_F(MitsubaImport, NormalAndBumpMaps) {
+  std::vector<Imf::Rgba> px(4, Imf::Rgba(0.5f, 0.5f, 1.0f, 1.0f));
+  {
+    Imf::RgbaOutputFile out((dir / "n.exr").c_str(), 2, 2, Imf::WRITE_RGBA);
+    out.setFrameBuffer(px.data(), 1, 2);
+    out.writePixels(2);
+  }
+  const auto t = translate(std::string(kLight) + R"(
+    <bsdf type="normalmap" id="nm"><texture name="normalmap" type="bitmap"><boolean name="raw" value="true"/>
+      <string name="filename" value="n.exr"/></texture><bsdf type="diffuse"/></bsdf>
+    <bsdf type="bumpmap" id="bm"><float name="scale" value="0.02"/><texture name="tiles" type="bitmap">
+      <boolean name="raw" value="true"/><string name="filename" value="n.exr"/></texture>
+      <bsdf type="twosided"><bsdf type="diffuse"/></bsdf></bsdf>
+    <shape type="rectangle"><ref id="nm"/></shape><shape type="rectangle"><ref id="bm"/></shape>)");
+  const json& m = t.scene["materials"];
+  ASSERT_TRUE(m.contains("nm") && m.contains("bm")) << m.dump();
+  EXPECT_EQ(m["nm"]["type"], "normal_map");
+  EXPECT_EQ(m["nm"]["material"]["type"], "lambertian");
+  EXPECT_EQ(m["nm"]["normals"], json({{"file", (dir / "n.exr").string()}, {"channel", "rgb"}, {"filter", "bilinear"},
+                                      {"wrap", "repeat"}, {"encoding", "linear"}}));
+  EXPECT_EQ(m["bm"]["type"], "bump_map");
+  EXPECT_EQ(m["bm"]["material"]["type"], "lambertian");
+  EXPECT_EQ(m["bm"]["height"]["channel"], "mean");
+  EXPECT_FLOAT_EQ(m["bm"]["scale"].get<float>(), 0.02f);
+  const auto s = loadScene(file());
+  ASSERT_EQ(s->materials.size(), 2u);
+  for (const auto& mat : s->materials) EXPECT_TRUE(mat->textured());
+  EXPECT_NE(error(std::string(kLight) + R"(<shape type="rectangle"><bsdf type="bumpmap"><bsdf type="diffuse"/></bsdf>
+      </shape>)").find("expected exactly one <texture> (the height)"), std::string::npos);
+}
+
+
 TEST_F(MitsubaImport, DefaultsRefsAndIncludes) {
   write("materials.xml", R"(<scene version="3.0.0"><bsdf type="diffuse" id="grey"><float name="reflectance" value="$refl"/></bsdf></scene>)");
   const auto t = translate(std::string(R"(<default name="refl" value="0.7"/><default name="w" value="2"/>)") + kLight + R"(
