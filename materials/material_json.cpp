@@ -14,6 +14,7 @@
 #include "materials/measured_material_json.h"
 #include "materials/mirror.h"
 #include "materials/normal_perturbation.h"
+#include "materials/opacity_mask.h"
 #include "materials/rough_conductor.h"
 #include "materials/rough_dielectric.h"
 #include "materials/texture_json.h"
@@ -151,6 +152,15 @@ std::unique_ptr<Material> parsePerturbedNormal(JsonFields& f, const std::string&
   return std::make_unique<BumpMapMaterial>(std::move(nested), parseRequiredTexture(f, "height", ctx, false), scale);
 }
 
+// {"type": "mask", "opacity": α, "opacity_texture": <texture>, "material": {...}} (opacity_mask.h).
+std::unique_ptr<Material> parseMask(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range) {
+  std::unique_ptr<Material> nested = parseMaterial(f.get("material"), ctx, f.path("material"), range);
+  if (nested->textured()) f.fail("material", "a mask around a textured material is not supported");
+  const float opacity = f.number("opacity");
+  if (!(opacity >= 0.0f && opacity <= 1.0f)) f.fail("opacity", "must lie in [0, 1]");
+  return std::make_unique<OpacityMask>(std::move(nested), opacity, parseScalarTexture(f, "opacity_texture", ctx));
+}
+
 }  // namespace
 
 std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr,
@@ -198,6 +208,8 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     } catch (const std::invalid_argument& e) {
       f.fail("ior", std::string(e.what()).substr(5));  // only the index can still be rejected
     }
+  } else if (type == "mask") {
+    m = parseMask(f, ctx, range);
   } else if (type == "normal_map" || type == "bump_map") {
     m = parsePerturbedNormal(f, type, ctx, range);
   } else if (type == "coated_fluorescent") {
@@ -210,7 +222,7 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
   } else {
     f.fail("type", "unknown material type '" + type +
                        "' (lambertian, jung_fluorescent, mirror, dielectric, thin_dielectric, rough_conductor, rough_dielectric, "
-                       "coated_fluorescent, zhdanov, measured_reradiation, normal_map, bump_map, file)");
+                       "coated_fluorescent, zhdanov, measured_reradiation, normal_map, bump_map, mask, file)");
   }
   f.finish();
   return m;

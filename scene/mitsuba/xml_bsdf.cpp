@@ -155,6 +155,23 @@ json perturbedNormal(Plugin& b, bool insideTwosided) {
   return m;
 }
 
+// mask (opacity: a number, default 0.5, or a <texture> whose mean of R, G, B is the opacity)
+// around one nested <bsdf>: kasha's mask (materials/opacity_mask.h).
+json opacityMask(Plugin& b, bool insideTwosided) {
+  const std::vector<pugi::xml_node> inner = b.nested("bsdf");
+  if (inner.size() != 1) b.fail("expected exactly one nested <bsdf>");
+  json m = {{"type", "mask"}, {"material", translate(b.xml(), inner.front(), insideTwosided)}};
+  const pugi::xml_node opacity = b.property("opacity");
+  if (opacity && std::string(opacity.name()) == "texture") {
+    m["opacity"] = 1.0;
+    m["opacity_texture"] = bitmapTexture(b.xml(), opacity);
+    m["opacity_texture"]["channel"] = "mean";
+  } else {
+    m["opacity"] = b.number("opacity", 0.5f);
+  }
+  return m;
+}
+
 json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
   Plugin b(xml, node);
   const std::string& t = b.type();
@@ -199,6 +216,8 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
            "without the light the coat reflects back onto the base");
   } else if (t == "jung_fluorescent" || t == "zhdanov" || t == "coated_fluorescent" || t == "measured_reradiation") {
     m = kashaMaterial(b);
+  } else if (t == "mask") {
+    m = opacityMask(b, insideTwosided);
   } else if (t == "normalmap" || t == "bumpmap") {
     m = perturbedNormal(b, insideTwosided);
   } else if (t == "thindielectric") {
@@ -207,7 +226,7 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
     m = {{"type", "thin_dielectric"}, {"ior", relativeIor(b, "int_ior", "bk7")}};
   } else {
     b.fail("unsupported BSDF plugin (diffuse, conductor, roughconductor, dielectric, thindielectric, roughdielectric, plastic, "
-           "roughplastic, twosided, normalmap, bumpmap; kasha's jung_fluorescent, zhdanov, coated_fluorescent, measured_reradiation)");
+           "roughplastic, twosided, normalmap, bumpmap, mask; kasha's jung_fluorescent, zhdanov, coated_fluorescent, measured_reradiation)");
   }
   b.finish();
   return m;

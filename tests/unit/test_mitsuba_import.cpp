@@ -69,6 +69,12 @@ class MitsubaImport : public ::testing::Test {
     return mitsuba::translateMitsubaScene(std::string(std::istreambuf_iterator<char>(in), {}), path);
   }
   std::unique_ptr<Scene> load(const std::string& body) const { return loadScene(scene(body)); }
+  // A w×h OpenEXR image file of the pixels (row 0 at the top).
+  void writeExr(const std::string& rel, int w, int h, const std::vector<Imf::Rgba>& px) const {
+    Imf::RgbaOutputFile out((dir / rel).c_str(), w, h, Imf::WRITE_RGBA);
+    out.setFrameBuffer(px.data(), 1, size_t(w));
+    out.writePixels(h);
+  }
   // The message of the InputError loading the file `path` throws ("" and a test failure if none).
   static std::string fileError(const std::string& path) {
     try {
@@ -468,12 +474,7 @@ TEST_F(MitsubaImport, BitmapTextures) {
 // bsdf_bumpmap_with.xml, on a rectangle): kasha's normal_map and bump_map around the nested
 // material; the bump map's texture may have any name and is read as one channel.
 TEST_F(MitsubaImport, NormalAndBumpMaps) {
-  std::vector<Imf::Rgba> px(4, Imf::Rgba(0.5f, 0.5f, 1.0f, 1.0f));
-  {
-    Imf::RgbaOutputFile out((dir / "n.exr").c_str(), 2, 2, Imf::WRITE_RGBA);
-    out.setFrameBuffer(px.data(), 1, 2);
-    out.writePixels(2);
-  }
+  writeExr("n.exr", 2, 2, std::vector<Imf::Rgba>(4, Imf::Rgba(0.5f, 0.5f, 1.0f, 1.0f)));
   const auto t = translate(std::string(kLight) + R"(
     <bsdf type="normalmap" id="nm"><texture name="normalmap" type="bitmap"><boolean name="raw" value="true"/>
       <string name="filename" value="n.exr"/></texture><bsdf type="diffuse"/></bsdf>
@@ -496,6 +497,26 @@ TEST_F(MitsubaImport, NormalAndBumpMaps) {
   for (const auto& mat : s->materials) EXPECT_TRUE(mat->textured());
   EXPECT_NE(error(std::string(kLight) + R"(<shape type="rectangle"><bsdf type="bumpmap"><bsdf type="diffuse"/></bsdf>
       </shape>)").find("expected exactly one <texture> (the height)"), std::string::npos);
+}
+
+// mask (bsdf_mask_after.xml): kasha's mask, opacity a number (default 0.5) or a texture's mean.
+TEST_F(MitsubaImport, OpacityMask) {
+  writeExr("leaf.exr", 2, 2, std::vector<Imf::Rgba>(4, Imf::Rgba(1.0f, 1.0f, 1.0f, 1.0f)));
+  const auto t = translate(std::string(kLight) + R"(
+    <bsdf type="mask" id="leaf"><bsdf type="diffuse"/><texture name="opacity" type="bitmap">
+      <string name="filename" value="leaf.exr"/></texture></bsdf>
+    <bsdf type="mask" id="half"><bsdf type="diffuse"/></bsdf>
+    <shape type="rectangle"><ref id="leaf"/></shape><shape type="rectangle"><ref id="half"/></shape>)");
+  const json& m = t.scene["materials"];
+  ASSERT_TRUE(m.contains("leaf") && m.contains("half")) << m.dump();
+  EXPECT_EQ(m["leaf"]["type"], "mask");
+  EXPECT_EQ(m["leaf"]["opacity"], 1.0);
+  EXPECT_EQ(m["leaf"]["opacity_texture"]["channel"], "mean");
+  EXPECT_EQ(m["leaf"]["material"]["type"], "lambertian");
+  EXPECT_FLOAT_EQ(m["half"]["opacity"].get<float>(), 0.5f);
+  const auto s = loadScene(file());
+  ASSERT_EQ(s->materials.size(), 2u);
+  EXPECT_EQ(s->materials[0]->describe(), "mask(lambertian)");
 }
 
 
