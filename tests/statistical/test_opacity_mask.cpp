@@ -1,4 +1,4 @@
-// Opacity masks (materials/opacity_mask.h) in every integrator:
+// Opacity masks (materials/opacity_mask.h) in every integrator (docs/validation.md §2):
 // - a mask of opacity 1 is its nested material, rendered bit for bit;
 // - a sheet seen under a point light reflects α times what the unmasked sheet does (the nested
 //   f scaled by α; every integrator sees it through eval), within 4 standard errors;
