@@ -150,6 +150,7 @@ nlohmann::json RenderJob::checkpointSettings() const {
   settings.update({{"scene_hash", options_.sceneHash},
                    {"integrator", integrator_->name()},
                    {"rr_depth", r.rrDepth},
+                   {"hide_emitters", r.hideEmitters},
                    {"resolution", {scene_.camera.width(), scene_.camera.height()}},
                    {"spectral_bins", bins_.enabled() ? nlohmann::json{bins_.min, bins_.step, bins_.count}
                                                      : nlohmann::json(nullptr)}});

@@ -30,25 +30,32 @@ Bsdf PerturbedNormalMaterial::bsdf(const HitContext& ctx) const {
   return nested_->bsdf(tilted);
 }
 
-NormalMapMaterial::NormalMapMaterial(std::unique_ptr<Material> nested, std::shared_ptr<const ImageTexture> normals)
-    : PerturbedNormalMaterial(std::move(nested)), normals_(std::move(normals)) {
-  if (!normals_ || normals_->channels() != 3) throw std::invalid_argument("a normal map needs a three-channel image");
+std::vector<const Texture*> PerturbedNormalMaterial::textures() const {
+  std::vector<const Texture*> out = nested_->textures();
+  out.push_back(map_.get());
+  return out;
+}
+
+NormalMapMaterial::NormalMapMaterial(std::unique_ptr<Material> nested, std::shared_ptr<const Texture> normals)
+    : PerturbedNormalMaterial(std::move(nested), normals) {
+  if (!normals || normals->channels() != 3) throw std::invalid_argument("a normal map needs a three-channel texture");
 }
 
 // A tangent-space normal map stores (n + 1)/2 (Mitsuba 3 docs: normalmap).
 Vec3 NormalMapMaterial::tangentNormal(const HitContext& ctx, const Frame&) const {
-  return 2.0f * normals_->rgb(ctx.uv) - 1.0f;
+  return 2.0f * map().rgb(ctx.texturePoint()) - 1.0f;
 }
 
-BumpMapMaterial::BumpMapMaterial(std::unique_ptr<Material> nested, std::shared_ptr<const ImageTexture> height, float scale)
-    : PerturbedNormalMaterial(std::move(nested)), height_(std::move(height)), scale_(scale) {
-  if (!height_ || height_->channels() != 1) throw std::invalid_argument("a bump map needs a one-channel image");
+BumpMapMaterial::BumpMapMaterial(std::unique_ptr<Material> nested, std::shared_ptr<const Texture> height, float scale)
+    : PerturbedNormalMaterial(std::move(nested), height), scale_(scale) {
+  if (!height || height->channels() != 1 || !height->readsUv())
+    throw std::invalid_argument("a bump map needs a one-channel texture read at texture coordinates");
 }
 
 // The displaced surface's tangents, their components along n replaced by scale·∂h/∂u and
 // scale·∂h/∂v (Mitsuba 3 docs: bumpmap), and their cross product, on the geometric normal's side.
 Vec3 BumpMapMaterial::tangentNormal(const HitContext& ctx, const Frame& tangent) const {
-  const Vec2 slope = scale_ * height_->scalarGradient(ctx.uv);
+  const Vec2 slope = scale_ * map().scalarGradient(ctx.texturePoint());
   Vec3 dpdu = tangent.toLocal(ctx.dpdu), dpdv = tangent.toLocal(ctx.dpdv);
   dpdu.z = slope.x;
   dpdv.z = slope.y;

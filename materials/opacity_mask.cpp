@@ -82,7 +82,7 @@ OpacityMask::OpacityMask(std::unique_ptr<Material> nested, float opacity, Scalar
 Bsdf OpacityMask::bsdf(const HitContext& ctx) const {
   // An untextured material's Bsdf points at the material itself, which outlives every hit.
   const Bsdf nested = nested_->bsdf(ctx);
-  return Bsdf::inPlace(MaskModel(nested.model(), texture_.at(opacity_, ctx.uv)), ctx);
+  return Bsdf::inPlace(MaskModel(nested.model(), texture_.at(opacity_, ctx.texturePoint())), ctx);
 }
 
 }  // namespace kasha

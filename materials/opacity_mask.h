@@ -62,7 +62,8 @@ class OpacityMask final : public Material {
   Bsdf bsdf(const HitContext& ctx) const override;
   BsdfFlags flags() const override { return MaskModel::maskFlags(nested_->flags()); }
   std::optional<FluorophoreSpectra> fluorophore() const override { return nested_->fluorophore(); }
-  bool textured() const override { return texture_.image != nullptr; }
+  bool textured() const override { return texture_.texture != nullptr; }
+  std::vector<const Texture*> textures() const override { return setTextures(texture_); }
   std::string describe() const override { return "mask(" + nested_->describe() + ")"; }
 
  private:

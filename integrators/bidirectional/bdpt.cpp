@@ -52,7 +52,7 @@ bidir::WavelengthMode modeOf(BdptFamilies families) {
 Bdpt::Bdpt(const Scene& scene, const RenderSettings& s)
     : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
       light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
-      ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}}, mode_(modeOf(s.bdpt.families)),
+      ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}, s.hideEmitters}, mode_(modeOf(s.bdpt.families)),
       families_(bidir::familiesFor(scene, mode_)), directXyz_(directEmissionXyz(scene)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by bdpt (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by bdpt (its MIS weights need the light-start density)");

@@ -436,8 +436,10 @@ void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const s
   std::fill(out, out + c.lanes.n, 0.0f);
   xyz = Vec3(0.0f);
   // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelengths.
+  // Paths of one segment (t = 2 hitting an emitter, s = 1 seen by the camera) have no scattering vertex.
+  const int fewest = c.walk.hideEmitters ? 2 : 1;
   for (int t = 2; t <= int(C.size()); ++t) {
-    emitterHit(c, C, t, out, xyz);
+    if (t > fewest) emitterHit(c, C, t, out, xyz);
     if (C[size_t(t - 1)].kind != Kind::Surface) continue;
     if (t - 1 <= maxDepth) {
       nextEvent(c, C, t, rng, out);
@@ -449,8 +451,8 @@ void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const s
       connect(c, LO, LightFamily::Own, s, C, t, out, memo);
   }
   // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
-  for (int s = 1; s <= int(LS.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LS, LightFamily::Shared, s, splats, memo);
-  for (int s = 1; s <= int(LO.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LO, LightFamily::Own, s, splats, memo);
+  for (int s = fewest; s <= int(LS.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LS, LightFamily::Shared, s, splats, memo);
+  for (int s = fewest; s <= int(LO.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LO, LightFamily::Own, s, splats, memo);
 }
 
 }  // namespace kasha::bidir

@@ -49,7 +49,8 @@ LightTracer::LightTracer(const Scene& scene, const RenderSettings& s)
       lanes_(s.heroWavelengths),
       atFluorescence_(s.fluorescentLanes),
       maxDepth_(s.maxDepth),
-      rrDepth_(s.rrDepth) {
+      rrDepth_(s.rrDepth),
+      hideEmitters_(s.hideEmitters) {
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "for light subpaths");
   if (lanes_ < 1 || lanes_ > kMaxLanes)
     throw std::invalid_argument("wavelength lanes: " + std::to_string(lanes_) + " is outside [1, " +
@@ -67,7 +68,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
   LightLanes& lanes = st.lanes;
 
   // The emitter seen directly (area lights; delta lights are not visible to a pinhole).
-  if (!es.deltaPos && !es.deltaDir && glm::dot(es.n, es.n) > 0.0f) {
+  if (!es.deltaPos && !es.deltaDir && glm::dot(es.n, es.n) > 0.0f && !hideEmitters_) {
     if (const auto c = scene.camera.connect(es.p)) {
       const auto& area = static_cast<const AreaLight&>(*st.light);
       float value[kMaxLanes];

@@ -48,6 +48,7 @@ PathTracer::PathTracer(const Scene& scene, const RenderSettings& s)
       atFluorescence_(s.fluorescentLanes),
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth),
+      hideEmitters_(s.hideEmitters),
       directXyz_(directEmissionXyz(scene)) {
   if (n_ == 1) return;  // one wavelength: any sensor, fluorescence and nee strategy
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "with hero wavelengths (their strata need p)");
@@ -132,8 +133,9 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     rng.startVertex(firstDimension, depth);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++counter.closest;
+    const bool seesEmitters = depth > 0 || !hideEmitters_;
     if (!hit) {
-      if (const EnvironmentLight* env = scene.environment()) {
+      if (const EnvironmentLight* env = seesEmitters ? scene.environment() : nullptr) {
         float w = 1.0f;
         if (!prevSpecular)
           w = powerHeuristic(prevDirPdf * prevSpectralPdf, lastLightProbability(size_t(scene.environmentLight)) *
@@ -143,7 +145,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
       break;
     }
     const Shape& shape = scene.shapes[hit->shape];
-    if (shape.emission) {
+    if (shape.emission && seesEmitters) {
       float w = 1.0f;
       if (!prevSpecular) {
         const size_t li = size_t(scene.shapeLight[hit->shape]);

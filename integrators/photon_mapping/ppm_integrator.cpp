@@ -69,7 +69,7 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
       directLanes_(directLightWavelengths(sources_, s.ppm.neeWavelengths)),
       excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
       n_(s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths),
-      maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
+      maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), hideEmitters_(s.hideEmitters), alpha_(s.ppm.alpha),
       alwaysKernel_(s.ppm.alwaysKernel), direct_(s.ppm.direct), memoryLimit_(s.memoryLimit),
       sampler_(s.sampler), directXyz_(directEmissionXyz(scene)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by ppm");
@@ -155,15 +155,16 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     rng.startVertex(firstDimension, bounces);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++ctx.counter.closest;
+    const bool seesEmitters = bounces > 0 || !hideEmitters_;
     if (!hit) {
-      if (const EnvironmentLight* env = scene.environment())
+      if (const EnvironmentLight* env = seesEmitters ? scene.environment() : nullptr)
         for (int k = 0; k < lanes.n; ++k) L += lanes.T[k] * env->Le(lanes.lambda[k], ray.d);
       break;
     }
     const Shape& shape = scene.shapes[hit->shape];
     // Emission is hit only after the camera or specular vertices: next-event estimation and the
     // photons never count these paths (docs/photon-mapping.md §3).
-    if (shape.emission) {
+    if (shape.emission && seesEmitters) {
       if (bounces == 0 && !ctx.recordSpectral) {
         // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact (as
         // in the path tracer). Spectral bins need each lane's share, so they keep the lanes' estimate.

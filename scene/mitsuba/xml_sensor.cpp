@@ -1,6 +1,7 @@
 #include "scene/mitsuba/xml_sensor.h"
 
 #include <cmath>
+#include <map>
 
 #include "scene/mitsuba/xml_transform.h"
 
@@ -48,7 +49,15 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     }
     film.finish();
   }
-  for (pugi::xml_node smp : s.nested("sampler")) {
+  std::vector<pugi::xml_node> samplers = s.nested("sampler");
+  for (pugi::xml_node r : s.nested("ref")) {
+    const std::string id = xml.attribute(r, "id");
+    const pugi::xml_node declared = out.declaredAs(id, "sampler");
+    if (!declared) s.fail(r, "no <sampler id=\"" + id + "\"> before this reference");
+    samplers.push_back(declared);
+  }
+  if (samplers.size() > 1) s.fail(samplers[1], "more than one sampler");
+  for (pugi::xml_node smp : samplers) {
     Plugin sampler(xml, smp);
     out.root["render"]["spp"] = sampler.integer("sample_count", 4);
     sampler.note("sampler type ignored: kasha draws from its own per-sample random streams");
@@ -100,15 +109,40 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
 
 void addIntegrator(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   Plugin it(xml, node);
-  if (it.type() != "path") it.fail("unsupported integrator plugin (path; choose kasha's integrator with --integrator)");
+  // Mitsuba's integrators that estimate the image kasha renders, as kasha's integrator choice
+  // (render/integrator; --integrator still chooses another). Those that write something else
+  // (arbitrary output variables, Stokes vectors, moments, depth) are refused.
+  static const std::map<std::string, std::string> kEquivalent = {
+      {"path", "pt"}, {"volpath", "pt"}, {"volpathmis", "pt"}, {"direct", "pt"}, {"ptracer", "lt"}, {"bdpt", "bdpt"}};
+  const auto equivalent = kEquivalent.find(it.type());
+  if (equivalent == kEquivalent.end()) {
+    if (it.type() == "aov" || it.type() == "stokes" || it.type() == "moment" || it.type() == "depth")
+      it.fail("integrator '" + it.type() + "' writes other quantities than radiance; kasha renders radiance only");
+    it.fail("unsupported integrator plugin (path, volpath, direct, ptracer, bdpt; kasha's own with --integrator)");
+  }
+  out.root["render"]["integrator"] = equivalent->second;
   // Mitsuba counts path depth in vertices after the camera (1: emitters seen directly), kasha in
-  // scattering events: one less. Mitsuba's −1 (unbounded) keeps kasha's default.
-  const int maxDepth = it.integer("max_depth", -1), rrDepth = it.integer("rr_depth", 5);
+  // scattering events: one less. Mitsuba's −1 (unbounded) keeps kasha's default. `direct` is
+  // emitters seen directly plus one scattering event.
+  int maxDepth = -1;
+  if (it.type() == "direct") {
+    maxDepth = 2;
+    it.note("kasha's pt with max_depth 1 (emitters seen directly and lit once); emitter_samples and bsdf_samples "
+            "ignored (pt takes one light and one BSDF sample per vertex with MIS: the same image, other noise)");
+    it.integer("emitter_samples", 1);
+    it.integer("bsdf_samples", 1);
+  } else {
+    maxDepth = it.integer("max_depth", -1);
+    const int rrDepth = it.integer("rr_depth", 5);
+    if (rrDepth < 1) it.fail("rr_depth must be at least 1");
+    out.root["render"]["rr_depth"] = rrDepth - 1;
+    if (it.type() != "path")
+      it.note("rendered with kasha's " + equivalent->second + " (--integrator chooses another)");
+    if (it.type() == "ptracer") it.integer("samples_per_pass", 0);  // how work is split: no effect on the image
+  }
   if (maxDepth == 0 || maxDepth < -1) it.fail("max_depth must be -1 or at least 1");
-  if (rrDepth < 1) it.fail("rr_depth must be at least 1");
   if (maxDepth > 0) out.root["render"]["max_depth"] = maxDepth - 1;
-  out.root["render"]["rr_depth"] = rrDepth - 1;
-  if (it.boolean("hide_emitters", false)) it.fail("hide_emitters = true is not supported");
+  if (it.boolean("hide_emitters", false)) out.root["render"]["hide_emitters"] = true;
   out.origin("/render", xml, node);
   it.finish();
 }

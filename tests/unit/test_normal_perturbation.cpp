@@ -99,6 +99,28 @@ TEST_F(NormalPerturbation, UvTangentsOfTrianglesAndSpheres) {
   const Shape::UvDerivatives ds = sphere.uvDerivatives(0, n);
   EXPECT_NEAR(glm::length(ds.dpdu - (point(uv + Vec2(e, 0)) - point(uv - Vec2(e, 0))) / (2 * e)), 0.0f, 1e-2f);
   EXPECT_NEAR(glm::length(ds.dpdv - (point(uv + Vec2(0, e)) - point(uv - Vec2(0, e))) / (2 * e)), 0.0f, 1e-2f);
+  // A cylinder, tilted, flipped inward: central differences of Cylinder::point at (u, 1 − v).
+  Shape tube;
+  tube.kind = Shape::Kind::Cylinder;
+  tube.cylinder.frame = Frame::fromNormal(glm::normalize(Vec3(0.2f, 1.0f, -0.3f)));
+  tube.cylinder.radius = 0.7f;
+  tube.cylinder.length = 3.0f;
+  tube.cylinder.inward = true;
+  const Vec2 param(0.37f, 0.64f);
+  const Vec2 tubeUv = tube.surfaceUv(0, param, tube.cylinder.normal(param));
+  const auto tubePoint = [&](Vec2 q) { return tube.cylinder.point(Vec2(q.x, 1.0f - q.y)); };
+  const Shape::UvDerivatives dc = tube.uvDerivatives(0, tube.cylinder.normal(param));
+  EXPECT_NEAR(glm::length(dc.dpdu - (tubePoint(tubeUv + Vec2(e, 0)) - tubePoint(tubeUv - Vec2(e, 0))) / (2 * e)), 0.0f, 1e-2f);
+  EXPECT_NEAR(glm::length(dc.dpdv - (tubePoint(tubeUv + Vec2(0, e)) - tubePoint(tubeUv - Vec2(0, e))) / (2 * e)), 0.0f, 1e-2f);
+}
+
+// A checkerboard height is constant in pieces: no slope, so the nested material's Bsdf as it is.
+TEST_F(NormalPerturbation, CheckerboardHeightLeavesTheMaterialAsItIs) {
+  const auto plain = loadScene(scene("plain.json", kGlossy));
+  const auto bumped = loadScene(scene("checker_bump.json", R"({"type": "bump_map", "scale": 3,
+    "height": {"type": "checkerboard", "color0": 0.9, "color1": 0.1}, "material": )" + kGlossy + "}"));
+  const float lambda = 550.0f;
+  expectSameScattering(bsdfAt(*bumped, 0.7f, 0.2f, lambda), bsdfAt(*plain, 0.7f, 0.2f, lambda), lambda, 0.0);
 }
 
 // rgb (½, ½, 1) is the unperturbed normal: the nested material renders exactly as it does alone.
@@ -184,6 +206,11 @@ TEST_F(NormalPerturbation, ClearErrors) {
                  "thin_dielectric, rough_conductor, rough_dielectric, coated_fluorescent, zhdanov, measured_reradiation, "
                  "normal_map, bump_map, mask, file)");
   EXPECT_EQ(error(R"({"type": "bump_map", "height": "n.exr"})"), at + "material: missing required field");
+  EXPECT_EQ(error(R"({"type": "normal_map", "normals": {"type": "checkerboard"}, "material": )" + kGlossy + "}"),
+            at + "normals: a normal map needs three channels (a colour)");
+  EXPECT_EQ(error(R"({"type": "bump_map", "height": {"type": "mesh_attribute", "name": "vertex_h"}, "material": )" +
+                  kGlossy + "}"),
+            at + "height: a height is read at texture coordinates (a mesh attribute has no slope)");
 }
 
 }  // namespace

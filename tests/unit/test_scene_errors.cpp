@@ -370,7 +370,7 @@ TEST_F(SceneLoader, UnknownTypes) {
   expectError([](json& j) { j["materials"]["white"]["type"] = "glass"; }, "/materials/white/type",
               "unknown material type 'glass'");
   expectError([](json& j) { j["shapes"][0]["type"] = "cube"; }, "/shapes/0/type",
-              "unknown shape type 'cube' (sphere, rectangle, mesh, disk)");
+              "unknown shape type 'cube' (sphere, cylinder, rectangle, mesh, disk)");
   expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "area"}])"); }, "/lights/0/type",
               "unknown light type 'area' (point, spot, distant, environment, envmap)");
   expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "hsv"}}; },
