@@ -62,6 +62,36 @@ Vec2 Shape::surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const {
   return (1.0f - bary.x - bary.y) * cornerUvs[t] + bary.x * cornerUvs[t + 1] + bary.y * cornerUvs[t + 2];
 }
 
+Shape::UvDerivatives Shape::uvDerivatives(uint32_t prim, const Vec3& n) const {
+  if (kind == Kind::Sphere) {
+    const float rho = std::sqrt(n.x * n.x + n.z * n.z);
+    const Vec3 dpdu = 2.0f * kPi * radius * Vec3(-n.z, 0.0f, n.x);
+    if (!(rho > 1e-6f)) {  // a pole: u is undefined there
+      const Frame f = Frame::fromNormal(n);
+      return {f.s, f.t};
+    }
+    return {dpdu, kPi * radius * Vec3(-n.y * n.x / rho, rho, -n.y * n.z / rho)};
+  }
+  if (kind == Kind::Cylinder) {
+    // x = base + r·(cos φ·s + sin φ·t) + z·a with φ = 2πu, z = length·(1 − v) (surfaceUv).
+    const Cylinder& c = cylinder;
+    const Vec3 radial = c.inward ? -n : n;
+    const float cosPhi = glm::dot(radial, c.frame.s), sinPhi = glm::dot(radial, c.frame.t);
+    return {2.0f * kPi * c.radius * (cosPhi * c.frame.t - sinPhi * c.frame.s), -c.length * c.frame.n};
+  }
+  const size_t t = 3 * size_t(prim);
+  const Frame around = Frame::fromNormal(normals[prim]);
+  if (cornerUvs.empty()) return {around.s, around.t};
+  // p0 − p2 = (u0 − u2)·∂p/∂u + (v0 − v2)·∂p/∂v, and the same for p1 − p2 (PBR4 eq. 6.7).
+  const Vec3 dp02 = positions[indices[t]] - positions[indices[t + 2]], dp12 = positions[indices[t + 1]] - positions[indices[t + 2]];
+  const Vec2 duv02 = cornerUvs[t] - cornerUvs[t + 2], duv12 = cornerUvs[t + 1] - cornerUvs[t + 2];
+  const float det = duv02.x * duv12.y - duv02.y * duv12.x;
+  const Vec3 dpdu = (duv12.y * dp02 - duv02.y * dp12) / det, dpdv = (duv02.x * dp12 - duv12.x * dp02) / det;
+  const float cross = glm::length(glm::cross(dpdu, dpdv));
+  if (!(cross > 0.0f) || !std::isfinite(cross)) return {around.s, around.t};
+  return {dpdu, dpdv};
+}
+
 Vec3 Shape::shadingNormal(uint32_t prim, Vec2 bary, const Vec3& ng) const {
   if (kind != Kind::Mesh || cornerNormals.empty()) return ng;
   const size_t t = 3 * size_t(prim);

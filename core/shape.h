@@ -71,6 +71,16 @@ struct Shape {
   // Cylinders, from their surface parameters (φ/2π, z/length) in bary: u = φ/2π, v = 1 − z/length,
   // Mitsuba's (u, v) with v counted from the image's bottom as kasha's textures count it.
   Vec2 surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const;
+  // ∂p/∂u and ∂p/∂v of surfaceUv's parameterisation at a point with outward normal n (spheres) on
+  // triangle prim (meshes: constant over a triangle, PBR4 eq. 6.7's linear system in the corners'
+  // differences; where the corners' uv are degenerate, or a mesh has none, an orthonormal pair
+  // around the triangle's normal). Spheres: ∂p/∂u = 2πr·(−n_z, 0, n_x), ∂p/∂v = πr·(−n_y n_x/ρ, ρ,
+  // −n_y n_z/ρ) with ρ = √(n_x² + n_z²), the derivatives of surfaceUv's angles.
+  // Cylinders (frame s, t, axis a): ∂p/∂u = 2πr·(cos φ·t − sin φ·s), ∂p/∂v = −length·a.
+  struct UvDerivatives {
+    Vec3 dpdu, dpdv;
+  };
+  UvDerivatives uvDerivatives(uint32_t prim, const Vec3& n) const;
   // The shading normal at a point with geometric normal ng (Hit::ng): the corners' normals
   // interpolated with the barycentrics and normalised (Phong shading), turned to ng's side of the
   // surface if it points away from it, so that both normals name the same side. ng itself for

@@ -1,7 +1,6 @@
 #include "core/texture.h"
 
 #include <ImfRgbaFile.h>
-#include <png.h>
 
 #include <algorithm>
 #include <cctype>
@@ -9,10 +8,12 @@
 #include <functional>
 #include <stdexcept>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "core/exr_input.h"
 #include "core/input_file.h"
 #include "core/memory_budget.h"
+#include "core/stb_image_input.h"
 
 namespace kasha {
 namespace {
@@ -24,10 +25,29 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
-bool isPng(const std::string& path) {
+// The one choice of decoder: each format family has one reader.
+enum class ImageFamily { OpenExr, Stb };
+struct ImageFormat {
+  const char* extension;
+  ImageFamily family;
+  const char* name;       // in messages: "cannot read JPEG: ..."
+  const char* signature;  // the file's first bytes (stb_image would otherwise take any format it recognises)
+};
+constexpr ImageFormat kImageFormats[] = {
+    {"exr", ImageFamily::OpenExr, "OpenEXR", ""},  // OpenEXR checks its own magic number
+    {"png", ImageFamily::Stb, "PNG", "\x89PNG\r\n\x1a\n"},
+    {"jpg", ImageFamily::Stb, "JPEG", "\xFF\xD8"},
+    {"jpeg", ImageFamily::Stb, "JPEG", "\xFF\xD8"},
+    {"bmp", ImageFamily::Stb, "BMP", "BM"},
+    {"tga", ImageFamily::Stb, "TGA", ""},  // TGA has no signature
+    {"hdr", ImageFamily::Stb, "Radiance HDR", "#?"},
+};
+
+const ImageFormat& imageFormat(const std::string& path) {
   const std::string ext = lowerExtension(path);
-  if (ext != "png" && ext != "exr") throw std::runtime_error("unknown image format '." + ext + "' (expected .png or .exr)");
-  return ext == "png";
+  for (const ImageFormat& f : kImageFormats)
+    if (ext == f.extension) return f;
+  throw std::runtime_error("unknown image format '." + ext + "' (expected .png, .jpg, .jpeg, .bmp, .tga, .hdr or .exr)");
 }
 
 int channelCount(TextureChannel c) { return c == TextureChannel::Rgb ? 3 : 1; }
@@ -55,31 +75,22 @@ struct Decoded {
 using SizeCheck = std::function<void(uint64_t width, uint64_t height, uint64_t decodeBytes)>;
 
 // Reads the file through core/input_file.h (a regular file only, never blocking) and decodes it
-// from memory once `check` has accepted the header's size.
-Decoded decodePng(const std::string& path, TextureChannel channel, const SizeCheck& check) {
-  const std::string bytes = readInputFile(path, "texture", kMaxImageFileBytes);
-  png_image img{};
-  img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_memory(&img, bytes.data(), bytes.size()))
-    throw InputError(path, "", std::string("cannot read PNG: ") + img.message);
-  try {
-    check(img.width, img.height, saturatingMul(uint64_t(img.width) * img.height, 4));
-  } catch (...) {
-    png_image_free(&img);
-    throw;
-  }
-  img.format = PNG_FORMAT_RGBA;
-  std::vector<unsigned char> buf(PNG_IMAGE_SIZE(img));
-  if (!png_image_finish_read(&img, nullptr, buf.data(), 0, nullptr))
-    throw InputError(path, "", std::string("cannot read PNG: ") + img.message);
-  Decoded d{int(img.width), int(img.height), {}};
+// from memory once `check` has accepted the header's size. sRGB: integer codes are sRGB-encoded.
+Decoded decodeStb(const std::string& path, const ImageFormat& format, TextureChannel channel, TextureEncoding encoding,
+                  const SizeCheck& check) {
+  const StbImageInput in(path, "texture", format.name, format.signature);
+  check(in.width(), in.height(), in.decodeBytes());
+  const bool srgb = encoding == TextureEncoding::Srgb && !in.linear();
+  Decoded d{int(in.width()), int(in.height()), {}};
   d.texels.reserve(size_t(d.w) * size_t(d.h) * size_t(channelCount(channel)));
-  for (size_t i = 0; i < buf.size(); i += 4)
-    pick(channel, buf[i] / 255.0f, buf[i + 1] / 255.0f, buf[i + 2] / 255.0f, buf[i + 3] / 255.0f, d.texels);
+  in.decode([&](float r, float g, float b, float a) {
+    if (srgb) pick(channel, srgbDecode(r), srgbDecode(g), srgbDecode(b), a, d.texels);
+    else pick(channel, r, g, b, a, d.texels);
+  });
   return d;
 }
 
-// As decodePng, through core/exr_input.h.
+// As decodeStb, through core/exr_input.h.
 Decoded decodeExr(const std::string& path, TextureChannel channel, const SizeCheck& check) {
   ExrInput in(path, "texture");
   check(in.width(), in.height(), saturatingMul(saturatingMul(in.width(), in.height()), sizeof(Imf::Rgba)));
@@ -107,6 +118,12 @@ std::optional<TextureChannel> parseTextureChannel(const std::string& name) {
   if (name == "g") return TextureChannel::G;
   if (name == "b") return TextureChannel::B;
   if (name == "a") return TextureChannel::A;
+  return std::nullopt;
+}
+
+std::optional<TextureEncoding> parseTextureEncoding(const std::string& name) {
+  if (name == "linear") return TextureEncoding::Linear;
+  if (name == "srgb") return TextureEncoding::Srgb;
   return std::nullopt;
 }
 
@@ -190,6 +207,16 @@ float ImageTexture::scalar(Vec2 uv) const {
   return lerp(lerp(v(0), v(1), t.x), lerp(v(2), v(3), t.x), t.y);
 }
 
+Vec2 ImageTexture::scalarGradient(Vec2 uv) const {
+  if (filter_ == TextureFilter::Nearest) return Vec2(0.0f);
+  size_t index[4];
+  const Vec2 t = footprint(uv, index);
+  const auto v = [&](int k) { return texels_[index[k] * size_t(channels_)]; };
+  // scalar = lerp(lerp(v0, v1, t.x), lerp(v2, v3, t.x), t.y) with t.x = u·w − ½ − x0, t.y = v·h − ½ − y0.
+  const float dx = lerp(v(1) - v(0), v(3) - v(2), t.y), dy = lerp(v(2) - v(0), v(3) - v(1), t.x);
+  return Vec2(float(w_) * dx, float(h_) * dy);
+}
+
 Vec3 ImageTexture::rgb(Vec2 uv) const {
   size_t index[4];
   const Vec2 t = footprint(uv, index);
@@ -201,10 +228,11 @@ Vec3 ImageTexture::rgb(Vec2 uv) const {
 }
 
 std::shared_ptr<const ImageTexture> TextureLoader::load(const std::string& path, TextureChannel channel,
-                                                        TextureWrap wrap, TextureFilter filter) {
-  const auto key = std::make_tuple(path, channel, wrap, filter);
+                                                        TextureWrap wrap, TextureFilter filter,
+                                                        TextureEncoding encoding) {
+  const auto key = std::make_tuple(path, channel, wrap, filter, encoding);
   if (const auto it = loaded_.find(key); it != loaded_.end()) return it->second;
-  const bool png = isPng(path);
+  const ImageFormat& format = imageFormat(path);
   const int nc = channelCount(channel);
   // While decoding, the decoder's buffer and the texels exist at once, besides the textures so far.
   const SizeCheck check = [&](uint64_t w, uint64_t h, uint64_t decodeBytes) {
@@ -219,7 +247,8 @@ std::shared_ptr<const ImageTexture> TextureLoader::load(const std::string& path,
       throw InputError(path, "", e.what());
     }
   };
-  Decoded d = png ? decodePng(path, channel, check) : decodeExr(path, channel, check);
+  Decoded d = format.family == ImageFamily::OpenExr ? decodeExr(path, channel, check)
+                                                    : decodeStb(path, format, channel, encoding, check);
   for (size_t i = 0; i < d.texels.size(); ++i)
     if (!(d.texels[i] >= 0.0f && d.texels[i] <= 1.0f)) {
       const size_t px = i / size_t(nc);

@@ -4,19 +4,24 @@
 // are the others).
 //
 // Image textures: one channel (a scalar parameter: c, Q, roughness, …) or three (an RGB
-// reflectance, turned into a spectrum by core/rgb_spectrum.h) of a PNG or OpenEXR image, looked
-// up at a surface's texture coordinates (Hit::uv).
+// reflectance, turned into a spectrum by core/rgb_spectrum.h) of an image, looked up at a
+// surface's texture coordinates (Hit::uv).
 //
 // Conventions: u runs left to right, v bottom to top, so image row 0 (the top) is v ∈ [1 − 1/h, 1)
 // and texel (x, y) has its centre at ((x + ½)/w, 1 − (y + ½)/h). Bilinear filtering blends the
 // four texels whose centres surround (u, v); nearest takes the texel containing it. Outside the
 // texel grid the wrap mode applies to texel indices: repeat (period w), clamp (the edge texel) or
-// mirror (period 2w, reflected). PNG values are 8- or 16-bit data (0..max → 0..1, no sRGB
-// decoding: a texture holds parameters and linear colours); OpenEXR values are read as they are.
-// Every value must lie in [0, 1].
+// mirror (period 2w, reflected).
 //
-// Input: every image is opened by core/input_file.h's rule (OpenEXR through core/exr_input.h) and
-// decoded from memory, so a FIFO or a device is refused at once and never blocks.
+// Formats, chosen by the file's extension (any case) in one place (texture.cpp): OpenEXR (.exr,
+// core/exr_input.h); PNG with 8 or 16 bits per sample, JPEG, BMP, TGA and Radiance HDR (.png,
+// .jpg/.jpeg, .bmp, .tga, .hdr; core/stb_image_input.h). Integer codes are data (0..max → 0..1,
+// a texture holds parameters and linear colours) unless the texture's encoding is sRGB, when the
+// sRGB transfer function linearises R, G, B (not alpha); OpenEXR and HDR values are linear and read
+// as they are. Every value must lie in [0, 1].
+//
+// Input: every image is opened by core/input_file.h's rule and decoded from memory, so a FIFO or
+// a device is refused at once and never blocks.
 // Memory: TextureLoader reads each image's header first and counts the decoded size of every
 // texture of the scene against the memory limit before it decodes anything.
 #include <cstdint>
@@ -58,6 +63,10 @@ class Texture {
   virtual float scalar(const TexturePoint& p) const = 0;
   // The colour of a three-channel texture at p.
   virtual Vec3 rgb(const TexturePoint& p) const = 0;
+  // (∂/∂u, ∂/∂v) of a one-channel texture's value at p (a bump map's slope): 0 unless overridden,
+  // right for textures constant in pieces of the uv plane (a checkerboard). A texture that does
+  // not read texture coordinates (readsUv false) has no such gradient; bump maps refuse it.
+  virtual Vec2 scalarGradient(const TexturePoint&) const { return Vec2(0.0f); }
   // Whether it reads the texture coordinates (a shape using it must have them).
   virtual bool readsUv() const { return true; }
   // The mesh attribute it reads ("vertex_color", ...; core/mesh_attribute_texture.h), or "".
@@ -75,6 +84,9 @@ struct UvTransform {
 enum class TextureChannel { Mean, R, G, B, A, Rgb };
 enum class TextureWrap { Repeat, Clamp, Mirror };
 enum class TextureFilter { Bilinear, Nearest };
+// What an integer-coded image's R, G, B codes are: data (linear) or sRGB-encoded colours (IEC
+// 61966-2-1; Mitsuba's bitmap without raw = true). Float images are linear either way.
+enum class TextureEncoding { Linear, Srgb };
 
 // "mean", "r", "g", "b", "a"; nullopt otherwise (Rgb is chosen by the field, not by name).
 std::optional<TextureChannel> parseTextureChannel(const std::string& name);
@@ -82,6 +94,8 @@ std::optional<TextureChannel> parseTextureChannel(const std::string& name);
 std::optional<TextureWrap> parseTextureWrap(const std::string& name);
 // "bilinear", "nearest"; nullopt otherwise.
 std::optional<TextureFilter> parseTextureFilter(const std::string& name);
+// "linear", "srgb"; nullopt otherwise.
+std::optional<TextureEncoding> parseTextureEncoding(const std::string& name);
 
 class ImageTexture : public Texture {
  public:
@@ -99,6 +113,10 @@ class ImageTexture : public Texture {
   Vec3 rgb(Vec2 uv) const;
   float scalar(const TexturePoint& p) const override { return scalar(p.uv); }
   Vec3 rgb(const TexturePoint& p) const override { return rgb(p.uv); }
+  // (∂/∂u, ∂/∂v) of scalar(uv): bilinear filtering's derivative within the four texels it blends
+  // (w·∂/∂x and h·∂/∂y in texel units); 0 for nearest filtering, which is piecewise constant.
+  Vec2 scalarGradient(Vec2 uv) const;
+  Vec2 scalarGradient(const TexturePoint& p) const override { return scalarGradient(p.uv); }
   // Row-major index of the texel containing uv (wrapped), and the first channel of texel i.
   size_t texelIndex(Vec2 uv) const;
   float texel(size_t i) const { return texels_[i * size_t(channels_)]; }
@@ -128,19 +146,21 @@ class ImageTexture : public Texture {
 class TextureLoader {
  public:
   explicit TextureLoader(uint64_t memoryLimit) : limit_(memoryLimit) {}
-  // Opens the .png or .exr file (by extension, any case) through core/input_file.h (a regular
-  // file only: a FIFO or a device is refused at once) and decodes it from memory. Throws
+  // Opens the image file (its format by extension, any case: see above) through
+  // core/input_file.h (a regular file only: a FIFO or a device is refused at once) and decodes it
+  // from memory. Throws
   // InputError naming the file (unreadable, not a regular file, its header's pixels with the
   // textures so far over the memory limit) or std::runtime_error with the reason (unknown
   // format, a value outside [0, 1] with its pixel); the caller names the field.
   std::shared_ptr<const ImageTexture> load(const std::string& path, TextureChannel channel, TextureWrap wrap,
-                                           TextureFilter filter);
+                                           TextureFilter filter, TextureEncoding encoding = TextureEncoding::Linear);
   // Bytes held by the textures loaded so far.
   uint64_t bytes() const { return bytes_; }
 
  private:
   uint64_t limit_, bytes_ = 0;
-  std::map<std::tuple<std::string, TextureChannel, TextureWrap, TextureFilter>, std::shared_ptr<const ImageTexture>>
+  std::map<std::tuple<std::string, TextureChannel, TextureWrap, TextureFilter, TextureEncoding>,
+           std::shared_ptr<const ImageTexture>>
       loaded_;
 };
 

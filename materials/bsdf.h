@@ -29,6 +29,9 @@ struct HitContext {
   std::span<const float> wavelengths;  // the path's wavelengths here (hero: every lane; else one)
   MeshPoint mesh{};     // the shape, triangle and barycentrics, for mesh-attribute textures
   TexturePoint texturePoint() const { return {uv, mesh}; }
+  // ∂p/∂u and ∂p/∂v of the surface's texture parameterisation (Shape::uvDerivatives; textured
+  // materials only, else 0): the tangents of normal and bump maps (materials/normal_perturbation.h).
+  Vec3 dpdu{0.0f}, dpdv{0.0f};
 };
 
 class Bsdf {

@@ -14,6 +14,8 @@
 #include "materials/lambertian.h"
 #include "materials/measured_material_json.h"
 #include "materials/mirror.h"
+#include "materials/normal_perturbation.h"
+#include "materials/opacity_mask.h"
 #include "materials/rough_conductor.h"
 #include "materials/rough_dielectric.h"
 #include "materials/texture_json.h"
@@ -175,6 +177,26 @@ Vec2 parseAlpha(JsonFields& f, const std::string& key) {
   return a;
 }
 
+// {"type": "normal_map", "normals": <texture>, "material": {...}} and {"type": "bump_map",
+// "height": <texture>, "scale": s, "material": {...}} (normal_perturbation.h).
+std::unique_ptr<Material> parsePerturbedNormal(JsonFields& f, const std::string& type, const SpectrumContext& ctx,
+                                               WavelengthRange range) {
+  std::unique_ptr<Material> nested = parseMaterial(f.get("material"), ctx, f.path("material"), range);
+  if (type == "normal_map")
+    return std::make_unique<NormalMapMaterial>(std::move(nested), parseRequiredTexture(f, "normals", ctx, true));
+  const float scale = f.number("scale", 1.0f);
+  return std::make_unique<BumpMapMaterial>(std::move(nested), parseRequiredTexture(f, "height", ctx, false), scale);
+}
+
+// {"type": "mask", "opacity": α, "opacity_texture": <texture>, "material": {...}} (opacity_mask.h).
+std::unique_ptr<Material> parseMask(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range) {
+  std::unique_ptr<Material> nested = parseMaterial(f.get("material"), ctx, f.path("material"), range);
+  if (nested->textured()) f.fail("material", "a mask around a textured material is not supported");
+  const float opacity = f.number("opacity");
+  if (!(opacity >= 0.0f && opacity <= 1.0f)) f.fail("opacity", "must lie in [0, 1]");
+  return std::make_unique<OpacityMask>(std::move(nested), opacity, parseScalarTexture(f, "opacity_texture", ctx));
+}
+
 }  // namespace
 
 std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr,
@@ -222,6 +244,10 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     } catch (const std::invalid_argument& e) {
       f.fail("ior", std::string(e.what()).substr(5));  // only the index can still be rejected
     }
+  } else if (type == "mask") {
+    m = parseMask(f, ctx, range);
+  } else if (type == "normal_map" || type == "bump_map") {
+    m = parsePerturbedNormal(f, type, ctx, range);
   } else if (type == "coated_fluorescent") {
     JungParams p = parseJungParams(f, ctx, range, unphysical);
     Ior ior = parseIor(f, "coat_ior", ctx);
@@ -232,7 +258,7 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
   } else {
     f.fail("type", "unknown material type '" + type +
                        "' (lambertian, jung_fluorescent, mirror, dielectric, thin_dielectric, rough_conductor, rough_dielectric, "
-                       "coated_fluorescent, zhdanov, measured_reradiation, file)");
+                       "coated_fluorescent, zhdanov, measured_reradiation, normal_map, bump_map, mask, file)");
   }
   f.finish();
   return m;

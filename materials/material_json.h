@@ -13,6 +13,11 @@
 //   {"type": "rough_dielectric", "ior": <index>, "alpha": α | [α_x, α_y]}
 //   {"type": "coated_fluorescent", <the jung_fluorescent fields>, "coat_ior": <index>,
 //    "coat_alpha": α | [α_x, α_y]} (docs/layered.md)
+//   {"type": "normal_map", "normals": <texture>, "material": <material>} and {"type": "bump_map",
+//    "height": <texture>, "scale": s, "material": <material>}: the material in a shading frame
+//    tilted by a tangent-space normal map or a height map's gradient (normal_perturbation.h)
+//   {"type": "mask", "opacity": α, "opacity_texture": <texture>, "material": <untextured material>}:
+//    light passes straight on with probability 1 − α (opacity_mask.h)
 // Every parameter named above except the indices of refraction may be textured by a
 // "<parameter>_texture" field (texture_json.h, docs/scene-format.md "Textures").
 #include <memory>

@@ -11,16 +11,23 @@
 namespace kasha {
 namespace {
 
-// {"type": "image"} (f) or a file name (f null: `file`): an image (core/texture.h). rgb:
-// "channel": "rgb" is allowed. key: the field below `parent`, for messages.
+// What a texture field holds: one channel; one or three (a reflectance); three (normals).
+enum class TextureUse { Scalar, Reflectance, Normals };
+
+// {"type": "image"} (f) or a file name (f null: `file`): an image (core/texture.h). Reflectances
+// and normals allow "channel": "rgb" (the default and the only choice for normals). key: the field
+// below `parent`, for messages.
 std::shared_ptr<const Texture> imageTexture(JsonFields& parent, const std::string& key, std::string file, JsonFields* f,
-                                            const SpectrumContext& ctx, bool rgb) {
-  TextureChannel channel = TextureChannel::Mean;
+                                            const SpectrumContext& ctx, TextureUse use) {
+  const bool rgb = use != TextureUse::Scalar;
+  TextureChannel channel = use == TextureUse::Normals ? TextureChannel::Rgb : TextureChannel::Mean;
   TextureWrap wrap = TextureWrap::Repeat;
   TextureFilter filter = TextureFilter::Bilinear;
+  TextureEncoding encoding = TextureEncoding::Linear;
   if (f) {
-    const std::string name = f->string("channel", "mean");
+    const std::string name = f->string("channel", use == TextureUse::Normals ? "rgb" : "mean");
     const std::optional<TextureChannel> c = rgb && name == "rgb" ? TextureChannel::Rgb : parseTextureChannel(name);
+    if (use == TextureUse::Normals && name != "rgb") f->fail("channel", "a normal map's channel is rgb");
     if (!c) f->fail("channel", "unknown channel '" + name + (rgb ? "' (mean, r, g, b, a, rgb)" : "' (mean, r, g, b, a)"));
     channel = *c;
     const std::string wrapName = f->string("wrap", "repeat");
@@ -31,11 +38,15 @@ std::shared_ptr<const Texture> imageTexture(JsonFields& parent, const std::strin
     const std::optional<TextureFilter> fl = parseTextureFilter(filterName);
     if (!fl) f->fail("filter", "unknown filter '" + filterName + "' (bilinear, nearest)");
     filter = *fl;
+    const std::string encodingName = f->string("encoding", "linear");
+    const std::optional<TextureEncoding> e = parseTextureEncoding(encodingName);
+    if (!e) f->fail("encoding", "unknown encoding '" + encodingName + "' (linear, srgb)");
+    encoding = *e;
   }
   const std::string path = (!file.empty() && file[0] == '/') ? file : ctx.baseDir + "/" + file;
   try {
-    if (ctx.textures) return ctx.textures->load(path, channel, wrap, filter);
-    return TextureLoader(ctx.memoryLimit).load(path, channel, wrap, filter);
+    if (ctx.textures) return ctx.textures->load(path, channel, wrap, filter, encoding);
+    return TextureLoader(ctx.memoryLimit).load(path, channel, wrap, filter, encoding);
   } catch (const InputError& e) {  // names the file already
     parent.fail(key, e.what());
   } catch (const std::runtime_error& e) {  // also MemoryLimitError
@@ -83,10 +94,11 @@ UvTransform uvTransform(JsonFields& f) {
   return t;
 }
 
-// The texture `v` at "<key>" below `parent` (texture_json.h). rgb: a reflectance's (colours allowed).
+// The texture `v` at "<key>" below `parent` (texture_json.h), for `use` (colours allowed unless Scalar).
 std::shared_ptr<const Texture> parseTexture(JsonFields& parent, const std::string& key, const nlohmann::json& v,
-                                            const SpectrumContext& ctx, bool rgb) {
-  if (v.is_string()) return imageTexture(parent, key, v.get<std::string>(), nullptr, ctx, rgb);
+                                            const SpectrumContext& ctx, TextureUse use) {
+  if (v.is_string()) return imageTexture(parent, key, v.get<std::string>(), nullptr, ctx, use);
+  const bool rgb = use != TextureUse::Scalar;
   if (!v.is_object())
     parent.fail(key, "expected an image file name or a texture object ({\"file\": ...} or {\"type\": ...}), got " +
                          jsonTypeName(v));
@@ -94,7 +106,7 @@ std::shared_ptr<const Texture> parseTexture(JsonFields& parent, const std::strin
   const std::string type = f.string("type", "image");
   std::shared_ptr<const Texture> t;
   if (type == "image") {
-    t = imageTexture(parent, key, f.string("file"), &f, ctx, rgb);
+    t = imageTexture(parent, key, f.string("file"), &f, ctx, use);
   } else if (type == "checkerboard") {
     bool colour = false;
     const Vec3 c0 = checkerValue(f, "color0", 0.4f, rgb, &colour), c1 = checkerValue(f, "color1", 0.2f, rgb, &colour);
@@ -115,25 +127,34 @@ std::shared_ptr<const Texture> parseTexture(JsonFields& parent, const std::strin
 
 ScalarTexture parseScalarTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx) {
   if (!f.has(key)) return {};
-  return ScalarTexture{parseTexture(f, key, f.get(key), ctx, false)};
+  return ScalarTexture{parseTexture(f, key, f.get(key), ctx, TextureUse::Scalar)};
 }
 
 ReflectanceTexture parseReflectanceTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx) {
   if (!f.has(key)) return {};
-  return ReflectanceTexture{parseTexture(f, key, f.get(key), ctx, true)};
+  return ReflectanceTexture{parseTexture(f, key, f.get(key), ctx, TextureUse::Reflectance)};
 }
 
 AlphaTexture parseAlphaTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx) {
   if (!f.has(key)) return {};
   const nlohmann::json& v = f.get(key);
   if (!v.is_array()) {
-    const ScalarTexture both{parseTexture(f, key, v, ctx, false)};
+    const ScalarTexture both{parseTexture(f, key, v, ctx, TextureUse::Scalar)};
     return {both, both};
   }
   if (v.size() != 2) f.fail(key, "expected one texture (both axes) or two, [α_x's, α_y's] (null: none)");
   AlphaTexture t;
-  if (!v[0].is_null()) t.x.texture = parseTexture(f, key + "/0", v[0], ctx, false);
-  if (!v[1].is_null()) t.y.texture = parseTexture(f, key + "/1", v[1], ctx, false);
+  if (!v[0].is_null()) t.x.texture = parseTexture(f, key + "/0", v[0], ctx, TextureUse::Scalar);
+  if (!v[1].is_null()) t.y.texture = parseTexture(f, key + "/1", v[1], ctx, TextureUse::Scalar);
+  return t;
+}
+
+std::shared_ptr<const Texture> parseRequiredTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx,
+                                                    bool normals) {
+  if (!f.has(key)) f.fail(key, "missing required field");
+  std::shared_ptr<const Texture> t = parseTexture(f, key, f.get(key), ctx, normals ? TextureUse::Normals : TextureUse::Scalar);
+  if (normals && t->channels() != 3) f.fail(key, "a normal map needs three channels (a colour)");
+  if (!normals && !t->readsUv()) f.fail(key, "a height is read at texture coordinates (a mesh attribute has no slope)");
   return t;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Texture fields of materials in scene files (docs/scene-format.md, "Textures"):
 //   "<parameter>_texture": "image.png" | {"file": "image.exr", "channel": "mean" | "r" | "g" | "b" | "a",
-//                                        "wrap": "repeat" | "clamp" | "mirror", "filter": "bilinear" | "nearest"}
+//                                        "wrap": "repeat" | "clamp" | "mirror", "filter": "bilinear" | "nearest",
+//                                        "encoding": "linear" | "srgb"}
 //                        | {"type": "checkerboard", "color0": 0.4, "color1": 0.2, "to_uv": [[a, b, c], [d, e, f]]}
 //                        | {"type": "mesh_attribute", "name": "vertex_color" | "face_color" | ...}
 // A reflectance's texture also takes "channel": "rgb" (a linear sRGB colour, materials/surface_texture.h)
@@ -22,5 +23,9 @@ ReflectanceTexture parseReflectanceTexture(JsonFields& f, const std::string& key
 // The texture of a GGX roughness: one texture (a factor on both axes) or [α_x's, α_y's], where
 // null leaves an axis untextured.
 AlphaTexture parseAlphaTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx);
+// The texture of a field that must be present: one channel read at texture coordinates (a
+// height), or (normals) three, a normal map's ("channel" rgb, its default there).
+std::shared_ptr<const Texture> parseRequiredTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx,
+                                                    bool normals);
 
 }  // namespace kasha

@@ -35,13 +35,22 @@ struct Scene {
   // Texture coordinates of a hit (Shape::surfaceUv).
   Vec2 uv(const Hit& h) const { return shapes[h.shape].surfaceUv(h.prim, h.bary, h.ng); }
   // The scattering function at a hit for a path carrying `wavelengths` there (Material::bsdf; its
-  // textures read the hit's texture coordinates and mesh attributes), in the shading frame of the mesh's vertex normals if it has them (Shape::shadingNormal).
+  // textures read the hit's texture coordinates and mesh attributes), in the shading frame of the
+  // mesh's vertex normals if it has them (Shape::shadingNormal); a textured material also gets the
+  // texture coordinates' tangents (Shape::uvDerivatives).
   Bsdf bsdf(const Hit& h, std::span<const float> wavelengths) const {
     const Shape& s = shapes[h.shape];
     const Material& m = *materials[s.material];
     const Frame geometric = Frame::fromNormal(h.ng);
     const Frame shading = s.cornerNormals.empty() ? geometric : Frame::fromNormal(s.shadingNormal(h.prim, h.bary, h.ng));
-    return m.bsdf(HitContext{m.textured() ? uv(h) : Vec2(0.0f), geometric, shading, wavelengths, MeshPoint{&s, h.prim, h.bary}});
+    HitContext ctx{Vec2(0.0f), geometric, shading, wavelengths, MeshPoint{&s, h.prim, h.bary}};
+    if (m.textured()) {
+      ctx.uv = uv(h);
+      const Shape::UvDerivatives d = s.uvDerivatives(h.prim, h.ng);
+      ctx.dpdu = d.dpdu;
+      ctx.dpdv = d.dpdv;
+    }
+    return m.bsdf(ctx);
   }
   const EnvironmentLight* environment() const {
     return environmentLight < 0 ? nullptr : static_cast<const EnvironmentLight*>(lights[size_t(environmentLight)].get());

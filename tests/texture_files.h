@@ -35,8 +35,14 @@ class TextureFiles : public TempDirTest {
   }
   // One grey value per pixel (R = G = B, A = 1), row 0 at the top.
   std::string writeExr(const std::string& name, int w, int h, const std::vector<float>& grey) {
+    std::vector<Vec3> rgb;
+    for (const float g : grey) rgb.emplace_back(g);
+    return writeRgbExr(name, w, h, rgb);
+  }
+  // One colour per pixel (A = 1), row 0 at the top; values are stored as half floats.
+  std::string writeRgbExr(const std::string& name, int w, int h, const std::vector<Vec3>& rgb) {
     std::vector<Imf::Rgba> px;
-    for (const float g : grey) px.emplace_back(g, g, g, 1.0f);
+    for (const Vec3& c : rgb) px.emplace_back(c.x, c.y, c.z, 1.0f);
     const std::string path = dir + "/" + name;
     Imf::RgbaOutputFile out(path.c_str(), w, h, Imf::WRITE_RGBA);
     out.setFrameBuffer(px.data(), 1, size_t(w));

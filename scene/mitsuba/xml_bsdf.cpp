@@ -153,6 +153,50 @@ json kashaMaterial(Plugin& b) {
   return m;
 }
 
+json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided);
+
+// normalmap (<texture name="normalmap">, a tangent-space RGB image) and bumpmap (one <texture> of
+// any name, its mean of R, G, B as the height, times scale) around one nested <bsdf>: kasha's
+// normal_map and bump_map (materials/normal_perturbation.h). Mitsuba flips a normal facing away
+// from the incident direction (flip_invalid_normals) and dims grazing light by a shadowing
+// function (use_shadowing_function); kasha uses Veach's shading-normal correction for both, noted.
+json perturbedNormal(Plugin& b, bool insideTwosided) {
+  const std::vector<pugi::xml_node> inner = b.nested("bsdf");
+  if (inner.size() != 1) b.fail("expected exactly one nested <bsdf>");
+  json m = {{"type", b.type() == "normalmap" ? "normal_map" : "bump_map"},
+            {"material", translate(b.xml(), inner.front(), insideTwosided)}};
+  b.boolean("flip_invalid_normals", true);
+  b.boolean("use_shadowing_function", true);
+  b.note("shading normals corrected as Veach 1997 does (kasha), not by Mitsuba's normal flipping and shadowing function");
+  if (b.type() == "normalmap") {
+    const pugi::xml_node map = b.property("normalmap");
+    if (!map || !isTexture(map)) b.fail("missing <texture name=\"normalmap\">");
+    m["normals"] = textureField(b.xml(), map, TextureUse::Reflectance);
+    return m;
+  }
+  const std::vector<pugi::xml_node> height = b.nested("texture");
+  if (height.size() != 1) b.fail("expected exactly one <texture> (the height)");
+  m["height"] = textureField(b.xml(), height.front(), TextureUse::Scalar);
+  m["scale"] = b.number("scale", 1.0f);
+  return m;
+}
+
+// mask (opacity: a number, default 0.5, or a <texture> whose mean of R, G, B is the opacity)
+// around one nested <bsdf>: kasha's mask (materials/opacity_mask.h).
+json opacityMask(Plugin& b, bool insideTwosided) {
+  const std::vector<pugi::xml_node> inner = b.nested("bsdf");
+  if (inner.size() != 1) b.fail("expected exactly one nested <bsdf>");
+  json m = {{"type", "mask"}, {"material", translate(b.xml(), inner.front(), insideTwosided)}};
+  const pugi::xml_node opacity = b.property("opacity");
+  if (opacity && isTexture(opacity)) {
+    m["opacity"] = 1.0;
+    m["opacity_texture"] = textureField(b.xml(), opacity, TextureUse::Scalar);
+  } else {
+    m["opacity"] = b.number("opacity", 0.5f);
+  }
+  return m;
+}
+
 json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
   Plugin b(xml, node);
   const std::string& t = b.type();
@@ -199,13 +243,17 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
            "without the light the coat reflects back onto the base");
   } else if (t == "jung_fluorescent" || t == "zhdanov" || t == "coated_fluorescent" || t == "measured_reradiation") {
     m = kashaMaterial(b);
+  } else if (t == "mask") {
+    m = opacityMask(b, insideTwosided);
+  } else if (t == "normalmap" || t == "bumpmap") {
+    m = perturbedNormal(b, insideTwosided);
   } else if (t == "thindielectric") {
     requireUnitSpecular(b, "specular_reflectance");
     requireUnitSpecular(b, "specular_transmittance");
     m = {{"type", "thin_dielectric"}, {"ior", relativeIor(b, "int_ior", "bk7")}};
   } else {
     b.fail("unsupported BSDF plugin (diffuse, conductor, roughconductor, dielectric, thindielectric, roughdielectric, plastic, "
-           "roughplastic, twosided; kasha's jung_fluorescent, zhdanov, coated_fluorescent, measured_reradiation)");
+           "roughplastic, twosided, normalmap, bumpmap, mask; kasha's jung_fluorescent, zhdanov, coated_fluorescent, measured_reradiation)");
   }
   b.finish();
   return m;

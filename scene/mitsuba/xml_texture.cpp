@@ -1,9 +1,5 @@
 #include "scene/mitsuba/xml_texture.h"
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
-
 #include "scene/mitsuba/xml_transform.h"
 
 namespace kasha::mitsuba {
@@ -12,11 +8,11 @@ namespace {
 using nlohmann::json;
 
 json bitmap(Plugin& t, TextureUse use) {
-  if (use == TextureUse::Scalar) t.fail("bitmap textures are supported on reflectances only");
   const pugi::xml_node file = t.property("filename");
   if (!file) t.fail("missing property 'filename'");
   const std::string name = t.xml().attribute(file, "value");
-  json out = {{"file", t.xml().resolve(file, name)}, {"channel", "rgb"}};
+  // A scalar reads the mean of R, G, B.
+  json out = {{"file", t.xml().resolve(file, name)}, {"channel", use == TextureUse::Scalar ? "mean" : "rgb"}};
   const std::string filter = t.string("filter_type", "bilinear");
   if (filter != "bilinear" && filter != "nearest") t.fail("filter_type '" + filter + "' is not bilinear or nearest");
   out["filter"] = filter;
@@ -24,10 +20,7 @@ json bitmap(Plugin& t, TextureUse use) {
   if (wrap != "repeat" && wrap != "mirror" && wrap != "clamp")
     t.fail("wrap_mode '" + wrap + "' is not repeat, mirror or clamp");
   out["wrap"] = wrap;
-  std::string ext = std::filesystem::path(name).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (!t.boolean("raw", false) && ext != ".exr")
-    t.note("'" + name + "': values read as linear data (Mitsuba decodes sRGB unless raw = true; kasha does not)");
+  out["encoding"] = t.boolean("raw", false) ? "linear" : "srgb";
   return out;
 }
 

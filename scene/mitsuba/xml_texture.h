@@ -2,11 +2,12 @@
 // Mitsuba's <texture> elements as kasha texture fields (docs/scene-format.md "Textures";
 // docs/mitsuba-import.md), nested in a property or declared at the top level with an id and
 // referred to by <ref name="..." id="..."/> (translated where they are used):
-// - bitmap (reflectances only): filename → "file" (relative to the XML file), filter_type
-//   bilinear | nearest → "filter", wrap_mode repeat | mirror | clamp → "wrap", and the image's
-//   RGB as a colour ("channel": "rgb", Jakob–Hanika spectra like <rgb>). Mitsuba decodes 8-bit
-//   images from sRGB unless raw = true; kasha reads PNG values as linear data, so a PNG without
-//   raw = true is noted as an approximation (OpenEXR is linear in both).
+// - bitmap: filename → "file" (relative to the XML file), filter_type bilinear | nearest →
+//   "filter", wrap_mode repeat | mirror | clamp → "wrap"; a reflectance reads the image's RGB as a
+//   colour ("channel": "rgb", Jakob–Hanika spectra like <rgb>), a scalar the mean of R, G, B
+//   (Mitsuba's eval_1: the luminance; the same for grey images).
+//   Mitsuba decodes integer-coded images (PNG, JPEG, BMP, TGA) from sRGB unless raw = true:
+//   without raw the texture's "encoding" is "srgb" (OpenEXR and HDR are linear either way).
 // - checkerboard: color0, color1 (<float>, <rgb>, or a constant <spectrum>; defaults 0.4, 0.2)
 //   and to_uv (a <transform>, of which the 2D affine part is used, as Mitsuba extracts it).
 // - mesh_attribute: name (vertex_… or face_…; PLY meshes).
@@ -18,7 +19,7 @@
 namespace kasha::mitsuba {
 
 // How a property reads a texture: as a reflectance (colours allowed) or as a scalar (Mitsuba's
-// eval_1: roughness).
+// eval_1: a roughness, a bump map's height, a mask's opacity).
 enum class TextureUse { Reflectance, Scalar };
 
 // Whether the property element `p` is a texture (<texture> or <ref> to a top-level one).

@@ -42,6 +42,10 @@ const char* kAnalytic = R"({
                 "passive": {"type": "tabulated", "wavelengths": [400, 700], "values": [0.1, 0.5]},
                 "excitation": {"type": "gaussian", "center": 400, "fwhm": 50, "peak": 0.3},
                 "emission": {"type": "gaussian", "center": 560, "fwhm": 60}},
+    "masked_jung": {"type": "mask", "opacity": 0.6, "material": {"type": "jung_fluorescent",
+                    "absorption": {"type": "gaussian", "center": 420, "fwhm": 60, "peak": 0.9},
+                    "emission": {"type": "gaussian", "center": 520, "fwhm": 40}, "reflectance": 0.7, "c": 0.6, "Q": 0.8}},
+    "masked_metal": {"type": "mask", "opacity": 0.3, "material": {"type": "rough_conductor", "reflectance": 0.8, "alpha": 0.3}},
     "zhdanov_matte": {"type": "zhdanov", "gloss": 0, "passive": 0.4,
                       "excitation": {"type": "gaussian", "center": 400, "fwhm": 50, "peak": 0.3},
                       "emission": {"type": "gaussian", "center": 560, "fwhm": 60}}
@@ -51,7 +55,7 @@ const char* kAnalytic = R"({
 })";
 
 // Materials whose direction sampling depends on λ (the flag must be set and true).
-const std::set<std::string> kWavelengthDependent = {"rough_glass", "coated", "zhdanov"};
+const std::set<std::string> kWavelengthDependent = {"rough_glass", "coated", "zhdanov", "masked_jung"};
 
 struct Subject {
   std::string name;
@@ -89,7 +93,7 @@ TEST(BsdfInterface, EveryMaterialTypeIsCovered) {
   std::set<std::string> types;
   for (const Subject& s : subjects()) types.insert(s.material->describe().substr(0, s.material->describe().find(' ')));
   for (const char* t : {"lambertian", "mirror", "dielectric", "thin_dielectric", "rough_conductor", "rough_dielectric", "jung_fluorescent",
-                        "coated_fluorescent", "zhdanov", "measured_reradiation"})
+                        "coated_fluorescent", "zhdanov", "measured_reradiation", "mask(jung_fluorescent)"})
     EXPECT_TRUE(types.count(t)) << t;
   std::set<std::string> textured;
   for (const Subject& s : subjects())

@@ -199,7 +199,7 @@ TEST_F(FileInput, MessagesNameWhatTheUserWrote) {
   EXPECT_EQ(errorOf([&] { readSpectralCsv(nul); }), nul + ":3: v: '0.5\\x00garbage' is not a number");
 }
 
-// A PNG of a few dozen bytes that declares 30000 × 30000 pixels.
+// A PNG of a few dozen bytes that declares 16000 × 16000 pixels.
 std::string pngBomb() {
   const auto be32 = [](uint32_t v) {
     return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
@@ -215,7 +215,7 @@ std::string pngBomb() {
   const auto chunk = [&](const std::string& type, const std::string& data) {
     return be32(uint32_t(data.size())) + type + data + be32(crc(type + data));
   };
-  const std::string ihdr = be32(30000) + be32(30000) + std::string{8, 2, 0, 0, 0};  // 8-bit RGB
+  const std::string ihdr = be32(16000) + be32(16000) + std::string{8, 2, 0, 0, 0};  // 8-bit RGB
   return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) +
          chunk("IEND", "");
 }
@@ -227,8 +227,8 @@ TEST_F(FileInput, ImageHeadersAreCheckedAgainstTheMemoryLimitBeforeDecoding) {
     return TextureLoader(limit).load(path, TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Bilinear);
   };
   EXPECT_EQ(errorOf([&] { texture(bomb, uint64_t(512) << 20); }),
-            bomb + ": decoding this texture (30000×30000 pixels) besides the scene's textures before it (0 bytes) "
-                   "needs 6.71 GiB, more than the memory limit of 512 MiB (raise it with --memory-limit)");
+            bomb + ": decoding this texture (16000×16000 pixels) besides the scene's textures before it (0 bytes) "
+                   "needs 2.86 GiB, more than the memory limit of 512 MiB (raise it with --memory-limit)");
   // The same through a scene: the scene's memory limit applies.
   json s = baseScene();
   s["materials"]["white"] = {{"type", "jung_fluorescent"}, {"absorption", 0.5}, {"emission", 1.0}, {"reflectance", 0.5},
@@ -236,7 +236,7 @@ TEST_F(FileInput, ImageHeadersAreCheckedAgainstTheMemoryLimitBeforeDecoding) {
   SceneLoadOptions small;
   small.memoryLimit = uint64_t(1) << 30;
   EXPECT_CONTAINS(errorOf([&] { loadSceneFromString(s.dump(), dir + "/scene.json", small); }),
-                  "/materials/white/c_texture: " + bomb + ": decoding this texture (30000×30000 pixels)");
+                  "/materials/white/c_texture: " + bomb + ": decoding this texture (16000×16000 pixels)");
   // OpenEXR: the data window of the header decides.
   std::vector<Imf::Rgba> px(64 * 64, Imf::Rgba(0.5f, 0.5f, 0.5f, 1.0f));
   const std::string exr = dir + "/t.exr";

@@ -1,0 +1,132 @@
+// Opacity masks (materials/opacity_mask.h) in every integrator (docs/validation.md §2):
+// - a mask of opacity 1 is its nested material, rendered bit for bit;
+// - a sheet seen under a point light reflects α times what the unmasked sheet does (the nested
+//   f scaled by α; every integrator sees it through eval), within 4 standard errors;
+// - an emitter seen through a black sheet of opacity α shows (1 − α) of its radiance (the
+//   pass-through, sampled as a specular direction), within 4 standard errors. Light tracing has no
+//   camera-path strategy, so it cannot see through a delta pass-through (as through thin glass).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "integrators/render_loop.h"
+#include "materials/opacity_mask.h"
+#include "scene/scene_loader.h"
+#include "tests/integrator_names.h"
+
+namespace kasha {
+namespace {
+
+// The sheet z = 0 (|x|, |y| ≤ 1, facing +z) made of `sheet`, seen from z = 2; `rest`: the
+// remaining lights and shapes.
+std::string sheetScene(const std::string& sheet, const std::string& rest) {
+  return R"({
+  "camera": {"position": [0, 0, 2], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 30, "resolution": [12, 12]},
+  "render": {"max_depth": 4, "seed": 7},
+  "materials": {"sheet": )" + sheet + R"(, "black": {"type": "lambertian", "reflectance": 0}},
+  "shapes": [{"type": "rectangle", "corners": [[-1,-1,0], [1,-1,0], [1,1,0], [-1,1,0]], "material": "sheet"})" + rest + "}";
+}
+const std::string kPointLight = R"(], "lights": [{"type": "point", "position": [0.3, 0.2, 1.5], "intensity": 1, "scale": 3}])";
+// An emitter at z = −1 facing the camera, filling the view behind the sheet.
+const std::string kEmitterBehind =
+    R"(, {"type": "rectangle", "corners": [[-3,-3,-1], [3,-3,-1], [3,3,-1], [-3,3,-1]], "material": "black",
+          "emission": {"radiance": "D65", "scale": 1}}], "lights": [])";
+
+const std::string kGlossy = R"({"type": "rough_conductor", "reflectance": 0.8, "alpha": 0.3})";
+const std::string kWhite = R"({"type": "lambertian", "reflectance": 0.9})";
+std::string mask(float opacity, const std::string& nested) {
+  return R"({"type": "mask", "opacity": )" + std::to_string(opacity) + R"(, "material": )" + nested + "}";
+}
+
+// Y of every pixel of the scene rendered by `integrator` at `spp`.
+std::vector<double> renderY(const std::string& json, const std::string& integrator, int spp) {
+  const auto scene = loadSceneFromString(json, "mask.json");
+  const std::unique_ptr<Integrator> integ = test::makeTestIntegrator(integrator, *scene, scene->render);
+  Film film(scene->camera.width(), scene->camera.height());
+  RenderOptions opt;
+  opt.spp = spp;
+  opt.seed = 5;
+  render(*scene, *integ, film, opt);
+  std::vector<double> y;
+  for (int py = 0; py < film.height(); ++py)
+    for (int px = 0; px < film.width(); ++px) y.push_back(film.xyz(px, py).y);
+  return y;
+}
+
+double mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (const double x : v) s += x;
+  return s / double(v.size());
+}
+// The standard error of the mean of independent values.
+double standardError(const std::vector<double>& v) {
+  const double m = mean(v);
+  double s2 = 0.0;
+  for (const double x : v) s2 += (x - m) * (x - m);
+  return std::sqrt(s2 / double(v.size() - 1) / double(v.size()));
+}
+
+const char* kIntegrators[] = {"pt", "lt", "bdpt", "ppm", "vcm"};
+
+TEST(OpacityMask, OpaqueMaskIsTheNestedMaterial) {
+  for (const std::string& nested : {kGlossy, kWhite})
+    for (const char* integ : {"pt", "lt", "bdpt"}) {
+      const std::vector<double> plain = renderY(sheetScene(nested, kPointLight), integ, 2);
+      EXPECT_GT(mean(plain), 0.0) << integ << ": the scene is lit";
+      EXPECT_EQ(renderY(sheetScene(mask(1.0f, nested), kPointLight), integ, 2), plain) << integ << " " << nested;
+    }
+}
+
+// got ≈ ratio·reference pixel by pixel: the mean over pixels of d = got − ratio·reference is 0
+// within 4 standard errors (the spread of d is the two images' noise, the scene's structure
+// cancels), and the test can tell a wrong ratio: its error below `resolution` of the expectation.
+void expectRatio(const std::vector<double>& got, const std::vector<double>& reference, double ratio,
+                 const std::string& what, double resolution) {
+  std::vector<double> d;
+  for (size_t i = 0; i < got.size(); ++i) d.push_back(got[i] - ratio * reference[i]);
+  const double expect = ratio * mean(reference), se = standardError(d);
+  ASSERT_GT(expect, 0.0) << what;
+  EXPECT_NEAR(mean(d), 0.0, 4.0 * se) << what << ": " << mean(got) / mean(reference) << " of the reference (expected "
+                                      << ratio << ", ± " << se / mean(reference) << ")";
+  EXPECT_LT(se, resolution * expect) << what << ": the test resolves the ratio";
+}
+
+TEST(OpacityMask, MaskedSheetReflectsOpacityTimesTheNestedMaterial) {
+  const float alpha = 0.375f;
+  for (const std::string integ : kIntegrators) {
+    const int spp = integ == "lt" ? 512 : 64;  // light tracing splats each subpath into one pixel
+    expectRatio(renderY(sheetScene(mask(alpha, kWhite), kPointLight), integ, spp),
+                renderY(sheetScene(kWhite, kPointLight), integ, spp), alpha, integ, 0.05);
+  }
+}
+
+TEST(OpacityMask, EmitterSeenThroughTheMask) {
+  const float alpha = 0.3f;
+  for (const char* integ : {"pt", "bdpt", "ppm", "vcm"})
+    expectRatio(renderY(sheetScene(mask(alpha, R"({"type": "lambertian", "reflectance": 0})"), kEmitterBehind), integ, 32),
+                renderY(sheetScene(mask(0.0f, kWhite), kEmitterBehind), integ, 8), 1.0 - alpha, integ, 0.05);
+}
+
+TEST(OpacityMask, ClearErrors) {
+  const auto error = [](const std::string& sheet) -> std::string {
+    try {
+      loadSceneFromString(sheetScene(sheet, kPointLight), "mask.json");
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_EQ(error(R"({"type": "mask", "opacity": 1.5, "material": )" + kWhite + "}"),
+            "mask.json: /materials/sheet/opacity: must lie in [0, 1]");
+  EXPECT_EQ(error(R"({"type": "mask", "material": )" + kWhite + "}"),
+            "mask.json: /materials/sheet/opacity: missing required field");
+  EXPECT_EQ(error(R"({"type": "mask", "opacity": 0.5, "material": {"type": "normal_map", "normals": "n.png", "material": )" +
+                  kWhite + "}}")
+                .find("mask.json: /materials/sheet/material/normals:"),
+            0u)
+      << "the nested material's own errors first";
+}
+
+}  // namespace
+}  // namespace kasha
