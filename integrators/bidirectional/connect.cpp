@@ -312,24 +312,28 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
   }
 }
 
-void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s, Vec2 lensSample,
                      std::vector<Splat>& splats, VisibilityMemo* memo) {
   const PathVertex& a = L[size_t(s - 1)];
   if (a.kind == Kind::Infinite || !a.connectible()) return;
   PathVertex cam;
   cam.kind = Kind::Camera;
-  cam.p = c.scene.camera.position();
-  cam.deltaPosition = true;
-  // The camera's density of a: its direction over the whole film (the sensor's density of the
-  // wavelength arriving is a factor, mis_sums.h).
+  cam.deltaPosition = c.scene.camera.pinhole();
+  cam.parallelRays = c.scene.camera.parallelRays();
+  // The camera's density of a: its ray's over the whole film, from the lens point (the sensor's
+  // density of the wavelength arriving is a factor, mis_sums.h).
   const auto makeLink = [&] {
-    CameraLink l{c.scene.camera.connect(a.p)};
-    if (l.connection) l.pdfCam = toAreaDensity(l.connection->pdfDir, cam, a);
+    CameraLink l{c.scene.camera.connect(a.p, lensSample)};
+    if (l.connection) {
+      cam.p = l.connection->lensPoint;
+      l.pdfCam = toAreaDensity(l.connection->pdfRay, cam, a);
+    }
     return l;
   };
   const CameraLink link = memo ? memo->link(s, makeLink) : makeLink();
   const std::optional<Camera::Connection>& conn = link.connection;
   if (!conn) return;
+  cam.p = conn->lensPoint;  // also where the memo kept the other view's link
   // The wavelength arriving at the pinhole: the light itself for s = 1, else the one a's sampled
   // spectral event sends towards the camera; with several lanes at a, each lane's own.
   const float lambda = s == 1 ? a.lambda : a.lambdaNext;
@@ -448,9 +452,12 @@ void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const s
     for (int s = 2; s <= int(LO.size()) && (s - 1) + (t - 1) <= maxDepth; ++s)
       connect(c, LO, LightFamily::Own, s, C, t, out, memo);
   }
-  // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
-  for (int s = 1; s <= int(LS.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LS, LightFamily::Shared, s, splats, memo);
-  for (int s = 1; s <= int(LO.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LO, LightFamily::Own, s, splats, memo);
+  // t = 1: light subpath vertices seen by the camera, each through a lens point of its own, splatted
+  // to their pixels.
+  for (int s = 1; s <= int(LS.size()) && s - 1 <= maxDepth; ++s)
+    connectToCamera(c, LS, LightFamily::Shared, s, rng.uniform2(), splats, memo);
+  for (int s = 1; s <= int(LO.size()) && s - 1 <= maxDepth; ++s)
+    connectToCamera(c, LO, LightFamily::Own, s, rng.uniform2(), splats, memo);
 }
 
 }  // namespace kasha::bidir

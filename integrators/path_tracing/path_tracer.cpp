@@ -62,12 +62,13 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
     for (int i = 0; i < sensor_.samplesPerEstimate(); ++i) {
       const WavelengthStrategy::Draw d = sensor_.draw(i, rng.uniform());
       const Vec2 jitter = rng.uniform2();
+      const Vec2 lens = rng.uniform2();
       if (!(d.weight > 0.0f)) continue;
       CameraLanesOf<float> lane;
       lane.n = 1;
       lane.lambda[0] = d.lambda;
       lane.T[0] = d.weight;
-      const float L = radiance(scene, scene.camera.generateRay(pixel + jitter), lane, rng, ctx.counter);
+      const float L = radiance(scene, scene.camera.generateRay(pixel + jitter, lens), lane, rng, ctx.counter);
       xyz += sensorResponse(ctx, d.lambda, L);
     }
     return xyz;
@@ -75,6 +76,7 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
   const WavelengthDensity& p = sensor_.density();
   const float u = rng.uniform();
   const Vec2 jitter = rng.uniform2();
+  const Vec2 lens = rng.uniform2();
   // Lane j at the stratum (u + j/N) of p's inverse CDF: distributed as p, weighted by 1/(N·p(λ_j)).
   float lambda[kMaxLanes], pdf[kMaxLanes];
   for (int j = 0; j < n_; ++j) {
@@ -82,7 +84,7 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
     lambda[j] = s.lambda;
     pdf[j] = s.pdf;
   }
-  const Ray ray = scene.camera.generateRay(pixel + jitter);
+  const Ray ray = scene.camera.generateRay(pixel + jitter, lens);
   if (!ctx.recordSpectral) {
     // The lanes' XYZ throughput W(λ_j)/(N·p(λ_j)).
     CameraLanesOf<Vec3> lanes;
