@@ -13,6 +13,7 @@ Camera::Camera(Vec3 position, Vec3 lookAt, Vec3 up, Vec2 halfExtent, int width, 
 
 Camera::Camera(Vec3 position, Vec3 lookAt, Vec3 up, float fovYDegrees, int width, int height)
     : Camera(position, lookAt, up, Vec2(0.0f), width, height) {
+  fovY_ = fovYDegrees;
   const float tanHalfY = std::tan(0.5f * fovYDegrees * kPi / 180.0f);
   halfExtent_ = Vec2(tanHalfY * float(width) / float(height), tanHalfY);
 }
@@ -30,8 +31,6 @@ Camera Camera::orthographic(Vec3 position, Vec3 lookAt, Vec3 up, Vec2 filmExtent
   c.orthographic_ = true;
   return c;
 }
-
-float Camera::fovYDegrees() const { return 2.0f * std::atan(halfExtent_.y) * 180.0f / kPi; }
 
 Vec3 Camera::screenPoint(Vec2 filmPos) const {
   const float sx = 2.0f * filmPos.x / float(width_) - 1.0f;

@@ -65,7 +65,7 @@ class Camera {
   int width() const { return width_; }
   int height() const { return height_; }
   const Vec3& position() const { return pos_; }
-  float fovYDegrees() const;  // perspective cameras
+  float fovYDegrees() const { return fovY_; }  // perspective cameras
   float apertureRadius() const { return apertureRadius_; }
   float focusDistance() const { return focusDistance_; }
   Vec2 filmExtent() const { return 2.0f * halfExtent_; }  // orthographic: world units
@@ -80,6 +80,7 @@ class Camera {
 
   Vec3 pos_{0.0f}, forward_{0, 0, 1}, right_{1, 0, 0}, up_{0, 1, 0};
   Vec2 halfExtent_{0.36f, 0.36f};
+  float fovY_ = 40.0f;
   bool orthographic_ = false;
   float apertureRadius_ = 0.0f, focusDistance_ = 1.0f;
   int width_ = 1, height_ = 1;
