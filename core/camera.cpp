@@ -32,6 +32,14 @@ Camera Camera::orthographic(Vec3 position, Vec3 lookAt, Vec3 up, Vec2 filmExtent
   return c;
 }
 
+Camera Camera::resized(int width, int height) const {
+  Camera c = *this;
+  c.width_ = width;
+  c.height_ = height;
+  c.halfExtent_.x = halfExtent_.y * float(width) / float(height);
+  return c;
+}
+
 Vec3 Camera::screenPoint(Vec2 filmPos) const {
   const float sx = 2.0f * filmPos.x / float(width_) - 1.0f;
   const float sy = 1.0f - 2.0f * filmPos.y / float(height_);

@@ -25,6 +25,10 @@ class Camera {
   // filmExtent: the film's width and height in world units, centred on `position`.
   static Camera orthographic(Vec3 position, Vec3 lookAt, Vec3 up, Vec2 filmExtent, int width, int height);
 
+  // The same camera at another resolution: the vertical extent (field of view, or the orthographic
+  // film's height) kept, the horizontal one following the new aspect ratio.
+  Camera resized(int width, int height) const;
+
   // The ray through the continuous film position (pixels), from the lens point that lensSample
   // ([0,1)², concentric map to the disk) picks; the pinhole and the orthographic camera ignore it.
   Ray generateRay(Vec2 filmPos, Vec2 lensSample) const;

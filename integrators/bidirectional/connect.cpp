@@ -334,7 +334,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   const std::optional<Camera::Connection>& conn = link.connection;
   if (!conn) return;
   cam.p = conn->lensPoint;  // also where the memo kept the other view's link
-  // The wavelength arriving at the pinhole: the light itself for s = 1, else the one a's sampled
+  // The wavelength arriving at the camera: the light itself for s = 1, else the one a's sampled
   // spectral event sends towards the camera; with several lanes at a, each lane's own.
   const float lambda = s == 1 ? a.lambda : a.lambdaNext;
   const bool lanes = a.allLanes(c.lanes);

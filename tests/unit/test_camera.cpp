@@ -64,6 +64,23 @@ TEST(Camera, ConnectionInvertsTheRayAndCarriesItsDensity) {
   }
 }
 
+// At another resolution the camera keeps its projection and its vertical extent: the rays through
+// the middle of the top edge and of the film agree.
+TEST(Camera, ResizedKeepsTheProjectionAndTheVerticalExtent) {
+  for (const auto& [name, camera] : cameras()) {
+    const Camera small = camera.resized(40, 50);
+    EXPECT_EQ(small.width(), 40);
+    EXPECT_EQ(small.parallelRays(), camera.parallelRays());
+    EXPECT_EQ(small.apertureRadius(), camera.apertureRadius());
+    for (const float v : {0.0f, 0.5f}) {
+      const Vec2 lens(0.3f, 0.8f);
+      const Ray a = camera.generateRay(Vec2(0.5f * kW, v * kH), lens), b = small.generateRay(Vec2(20.0f, v * 50.0f), lens);
+      EXPECT_NEAR(glm::length(a.o - b.o), 0.0f, 1e-5f) << name;
+      EXPECT_NEAR(glm::dot(a.d, b.d), 1.0f, 1e-6f) << name;
+    }
+  }
+}
+
 TEST(Camera, ThinLensIsSharpOnItsPlaneOfFocus) {
   const Camera camera = cameras()[1].camera;
   Rng rng(3);
