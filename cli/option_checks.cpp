@@ -22,17 +22,7 @@ CLI::Validator numberCheck(const NumberRule& rule) {
 
 CLI::Validator numberCheck(Sign sign, bool integer, double max) { return numberCheck(NumberRule{sign, integer, max}); }
 
-const CLI::Validator kIntegratorName(
-    [](std::string& v) {
-      const std::vector<std::string> names = integratorNames();
-      if (std::find(names.begin(), names.end(), v) != names.end()) return std::string();
-      for (const IntegratorAlias& alias : integratorAliases())
-        if (alias.name == v) return std::string();
-      std::string list;
-      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-      return "unknown integrator '" + v + "' (" + list + ")";
-    },
-    "INTEGRATOR");
+const CLI::Validator kIntegratorName([](std::string& v) { return integratorNameError(v); }, "INTEGRATOR");
 
 CLI::Validator parseCheck(void (*parse)(const std::string&), const std::string& name) {
   return CLI::Validator(

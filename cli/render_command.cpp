@@ -103,12 +103,14 @@ std::unique_ptr<RenderJob> makeJob(const RenderArgs& a, const Scene& scene, cons
     if (settingAt(set, "/render/ppm/nee_wavelengths")) throw UsageError(optionFor(set, "ppm.nee_wavelengths"), "", e.what());
     throw InputError(a.scene, "/render/ppm/nee_wavelengths", e.what());
   } catch (const FluorescentLanesError& e) {
-    // Only --integrator can name one that refuses it (pt, the default, takes it).
     if (settingAt(set, "/render/fluorescent_lanes")) throw UsageError(optionFor(set, "fluorescent_lanes"), "", e.what());
+    if (!a.integratorGiven) throw InputError(a.scene, "/render/fluorescent_lanes", e.what());
     throw UsageError("--integrator " + a.integrator, "",
                      std::string(e.what()) + " (/render/fluorescent_lanes in " + a.scene + ")");
   } catch (const std::invalid_argument& e) {
-    throw UsageError(a.hero > 1 ? "--hero" : "--integrator " + a.integrator, "", e.what());
+    if (a.hero > 1) throw UsageError("--hero", "", e.what());
+    if (!a.integratorGiven) throw InputError(a.scene, "/render/integrator", e.what());
+    throw UsageError("--integrator " + a.integrator, "", e.what());
   }
 }
 
@@ -194,7 +196,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   return cmd;
 }
 
-int runRender(const RenderArgs& a, RenderGroup* group) {
+int runRender(const RenderArgs& given, RenderGroup* group) {
+  RenderArgs a = given;  // its integrator becomes the scene's when the command line names none
   const uint64_t memoryLimit = parseByteSize(a.memoryLimit);  // validated by the option's check
   std::vector<RenderSetting> set;
   for (const std::string& text : a.set) {
@@ -208,21 +211,11 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
   for (const std::string& text : a.parameters) {
     const size_t eq = text.find('=');
     const std::string name = text.substr(0, eq);
-    const bool named = !name.empty() && std::all_of(name.begin(), name.end(), [](unsigned char c) {
-      return std::isalnum(c) || c == '_';
-    });
-    if (eq == std::string::npos || !named)
+    if (eq == std::string::npos || !mitsuba::isParameterName(name))
       throw UsageError("-D " + text, "", "expected NAME=VALUE, NAME of letters, digits and '_'");
     if (!mitsuba::isMitsubaScenePath(a.scene))
       throw UsageError("-D " + text, "", "sets a parameter of a Mitsuba XML scene, not of " + a.scene);
     load.parameters[name] = text.substr(eq + 1);  // the last of one name wins
-  }
-  for (const IntegratorAlias& alias : integratorAliases()) {
-    if (alias.name != a.integrator || (group && group->rank() != 0)) continue;
-    std::string sets;
-    for (const std::string& setting : alias.settings) sets += " --set " + setting;
-    std::fprintf(stderr, "kasha: note: --integrator %s stands for --integrator %s%s\n", alias.name.c_str(),
-                 alias.integrator.c_str(), sets.c_str());
   }
   load.memoryLimit = memoryLimit;
   load.renderSettings = set;  // checked by the loader as the scene file's own
@@ -238,6 +231,20 @@ int runRender(const RenderArgs& a, RenderGroup* group) {
     throw;
   }
   RenderSettings& r = scene->render;
+  if (!a.integratorGiven) {
+    a.integrator = r.integrator;
+    if (const std::string why = integratorNameError(a.integrator); !why.empty()) {
+      if (const RenderSetting* s = settingAt(set, "/render/integrator")) throw UsageError("--set " + s->text, "", why);
+      throw InputError(a.scene, "/render/integrator", why);
+    }
+  }
+  for (const IntegratorAlias& alias : integratorAliases()) {
+    if (alias.name != a.integrator || (group && group->rank() != 0)) continue;
+    std::string sets;
+    for (const std::string& setting : alias.settings) sets += " --set " + setting;
+    std::fprintf(stderr, "kasha: note: %s %s stands for --integrator %s%s\n", a.integratorGiven ? "--integrator" : "render/integrator",
+                 alias.name.c_str(), alias.integrator.c_str(), sets.c_str());
+  }
   if (a.spp > 0) r.spp = a.spp;
   if (a.time >= 0.0) r.timeBudgetSeconds = a.time;
   if (a.time > 0.0 && a.spp <= 0) r.spp = 1 << 30;  // a time budget alone decides

@@ -1,7 +1,7 @@
 #pragma once
 // Ray queries against the scene's shapes through Embree 3: triangle meshes as
-// RTC_GEOMETRY_TYPE_TRIANGLE, spheres as RTC_GEOMETRY_TYPE_SPHERE_POINT. Geometry IDs equal
-// shape indices.
+// RTC_GEOMETRY_TYPE_TRIANGLE, spheres as RTC_GEOMETRY_TYPE_SPHERE_POINT, cylinders as
+// RTC_GEOMETRY_TYPE_USER calling Cylinder::intersect. Geometry IDs equal shape indices.
 #include <embree3/rtcore.h>
 
 #include <optional>

@@ -51,15 +51,25 @@ class Camera {
   };
   // Connects a point to the camera through the lens point lensSample picks (thin lens; the pinhole
   // and the orthographic camera have one lens point per point); nothing if the point is behind the
-  // view plane or the ray misses the film.
-  std::optional<Connection> connect(const Vec3& p, Vec2 lensSample) const;
-  // The density with which generateRay (uniform over the film) produces a ray it returned, given
+  // view plane or the ray misses the film, which extends `filmMargin` pixels beyond the image's
+  // edges (a reconstruction filter's reach, PixelFilter::filmMargin).
+  std::optional<Connection> connect(const Vec3& p, Vec2 lensSample, float filmMargin = 0.0f) const;
+  // The density with which generateRay (uniform over the image) produces a ray it returned, given
   // its origin: per steradian for a perspective camera, 1/(A·cos³θ) with A the screen's area at
   // distance 1 (the lens point's density, the same in every way of sampling it, left out); per unit
   // area across the rays for the orthographic camera, whose direction is fixed: 1/A, A the film's
-  // world area.
-  float rayPdf(const Ray& ray) const;
+  // world area. 0 off the film (as for connect).
+  float rayPdf(const Ray& ray, float filmMargin = 0.0f) const;
 
+  // Whether the camera has a lens to sample (a thin lens of aperture > 0): only then do ray
+  // generation and connections use lens numbers.
+  bool hasLens() const { return !orthographic_ && apertureRadius_ > 0.0f; }
+  // The lens numbers of one ray or connection: two from rng with a lens, none without (the
+  // sampler's dimensions then stay those of a camera without lens numbers).
+  template <class Rng>
+  Vec2 sampleLens(Rng& rng) const {
+    return hasLens() ? rng.uniform2() : Vec2(0.5f);
+  }
   // Whether every ray has the view axis as direction (orthographic): densities of the points the
   // rays reach are then per unit area across them (times |cosθ| there, no 1/d²).
   bool parallelRays() const { return orthographic_; }
@@ -72,18 +82,21 @@ class Camera {
   float fovYDegrees() const { return fovY_; }  // perspective cameras
   float apertureRadius() const { return apertureRadius_; }
   float focusDistance() const { return focusDistance_; }
-  Vec2 filmExtent() const { return 2.0f * halfExtent_; }  // orthographic: world units
+  Vec2 filmExtent() const { return 2.0f * Vec2(halfHeight_ * aspect_, halfHeight_); }  // orthographic: world units
 
  private:
-  Camera(Vec3 position, Vec3 lookAt, Vec3 up, Vec2 halfExtent, int width, int height);
-  // The film position's point on the screen, relative to the position: s.x·h.x·right + s.y·h.y·up.
-  Vec3 screenPoint(Vec2 filmPos) const;
-  // The film position of a screen point (relative to the position), if it lies on the film.
-  std::optional<Vec2> filmPosition(const Vec3& onScreen) const;
-  float screenArea() const { return 4.0f * halfExtent_.x * halfExtent_.y; }
+  Camera(Vec3 position, Vec3 lookAt, Vec3 up, float halfHeight, float aspect, int width, int height);
+  // The film position's screen coordinates s·h: along right and up, relative to the position.
+  Vec2 screenCoordinates(Vec2 filmPos) const;
+  // The film position of a screen point (relative to the position; its part along forward
+  // ignored), if it lies on the film widened by filmMargin pixels.
+  std::optional<Vec2> filmPosition(const Vec3& onScreen, float filmMargin) const;
+  float screenArea() const { return 4.0f * halfHeight_ * halfHeight_ * aspect_; }
 
   Vec3 pos_{0.0f}, forward_{0, 0, 1}, right_{1, 0, 0}, up_{0, 1, 0};
-  Vec2 halfExtent_{0.36f, 0.36f};
+  // The screen's half-height h.y (tan of the half field of view, or world units) and its width
+  // over its height, h.x = h.y·aspect.
+  float halfHeight_ = 0.36f, aspect_ = 1.0f;
   float fovY_ = 40.0f;
   bool orthographic_ = false;
   float apertureRadius_ = 0.0f, focusDistance_ = 1.0f;

@@ -24,5 +24,7 @@ struct Observer {
 Vec3 xyzToLinearSrgb(const Vec3& xyz);
 // The sRGB transfer function (gamma) for one channel in [0, 1].
 float srgbEncode(float linear);
+// Its inverse (IEC 61966-2-1): the linear value of an encoded one in [0, 1].
+float srgbDecode(float encoded);
 
 }  // namespace kasha

@@ -11,8 +11,12 @@
 
 namespace kasha {
 
-void readPlyMesh(const std::string& bytes, const std::string& path, uint64_t memoryLimit, Shape& s) {
-  const std::string checked = validatePly(bytes, path, memoryLimit);
+void readPlyMesh(const std::string& bytes, const std::string& path, uint64_t memoryLimit, Shape& s,
+                 const std::vector<std::string>& attributes) {
+  if (!attributes.empty() && !s.positions.empty())
+    throw std::logic_error("readPlyMesh: mesh attributes are read into an empty shape only");
+  std::vector<MeshAttribute> read;
+  const std::string checked = validatePly(bytes, path, memoryLimit, attributes, &read);
   Assimp::Importer importer;
   // Only triangulation: no vertex joining, no normal generation (kasha uses face normals). The
   // hint "ply" picks the PLY reader, whatever the bytes look like to the others.
@@ -44,6 +48,15 @@ void readPlyMesh(const std::string& bytes, const std::string& path, uint64_t mem
     }
   }
   if (s.indices.empty()) throw std::runtime_error("'" + path + "': has no triangles");
+  // Attribute values are in the file's order; assimp keeps it (no vertex joining; triangles are
+  // copied in order), which the counts confirm.
+  for (MeshAttribute& a : read) {
+    const size_t expected = a.perFace() ? s.indices.size() / 3 : s.positions.size();
+    if (scene->mNumMeshes != 1 || a.values.size() != expected)
+      throw std::runtime_error("'" + path + "': mesh attribute " + a.name + ": assimp read " + std::to_string(expected) +
+                               (a.perFace() ? " triangles" : " vertices") + " from " + std::to_string(a.values.size()));
+    s.attributes.push_back(std::move(a));
+  }
   if (!s.cornerUvs.empty() && s.cornerUvs.size() != s.indices.size())
     throw std::runtime_error("'" + path + "': some parts have texture coordinates and some do not");
 }
@@ -59,13 +72,16 @@ void tessellateUnitDisk(Shape& s, int segments) {
   for (int i = 0; i < segments; ++i) {
     const uint32_t a = uint32_t(1 + i), b = uint32_t(1 + (i + 1) % segments);
     s.indices.insert(s.indices.end(), {0u, a, b});  // counter-clockwise seen from +z: normal +z
-    const float u0 = float(i) / float(segments), u1 = float(i + 1) / float(segments);
-    s.cornerUvs.insert(s.cornerUvs.end(), {Vec2(0.5f * (u0 + u1), 0.0f), Vec2(u0, 1.0f), Vec2(u1, 1.0f)});
+    const float v0 = float(i) / float(segments), v1 = float(i + 1) / float(segments);
+    s.cornerUvs.insert(s.cornerUvs.end(), {Vec2(0.0f, 0.5f * (v0 + v1)), Vec2(1.0f, v0), Vec2(1.0f, v1)});
   }
 }
 
 void transformMesh(Shape& s, const glm::mat4& m) {
   for (Vec3& p : s.positions) p = Vec3(m * glm::vec4(p, 1.0f));
+  // Normals by the inverse transpose (PBR4 §3.10.3), so they stay perpendicular to the surface.
+  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
+  for (Vec3& n : s.cornerNormals) n = normalMatrix * n;
 }
 
 void flipMeshNormals(Shape& s) {

@@ -1,12 +1,15 @@
 #include "core/ply_validation.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string_view>
 #include <vector>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "core/memory_budget.h"
 #include "core/text_tokens.h"
@@ -52,6 +55,12 @@ struct Element {
   uint64_t count = 0;
   std::vector<Property> properties;
   int indexList = -1, texcoordList = -1;  // a face's lists, by position
+  // Per property: −1, or 3·(mesh attribute) + channel of the attribute it is read into.
+  std::vector<int> attributeSlot;
+  bool trianglesOnly = false;  // a face attribute is read: every face must be a triangle
+  bool readsAttributes() const {
+    return std::any_of(attributeSlot.begin(), attributeSlot.end(), [](int a) { return a >= 0; });
+  }
   bool isFace() const { return name == "face"; }
   // Whether it is passed on to assimp. assimp 5.2 reads the count of an element of another name
   // from its name (as 0), so it reads that element's data as the next element's (a fuzzing
@@ -227,6 +236,86 @@ class HeaderParser {
   Header header_;
 };
 
+// The properties each mesh attribute is read from (ply_validation.h): sets the elements' slots
+// and returns the attributes, named, with their channels and no values yet.
+std::vector<MeshAttribute> resolveAttributes(Header& h, const std::vector<std::string>& names, const std::string& path) {
+  std::vector<MeshAttribute> out;
+  for (Element& e : h.elements) e.attributeSlot.assign(e.properties.size(), -1);
+  for (const std::string& name : names) {
+    const bool face = name.starts_with("face_");
+    if (!face && !name.starts_with("vertex_"))
+      throw InputError(path, "mesh attribute '" + name + "'", "the name must start with vertex_ or face_");
+    const std::string elementName = face ? "face" : "vertex", rest = name.substr(elementName.size() + 1);
+    std::vector<std::array<std::string, 3>> schemes;
+    if (rest.ends_with("_color")) {
+      const std::string prefix = rest.substr(0, rest.size() - 6);
+      schemes.push_back({prefix + "_r", prefix + "_g", prefix + "_b"});
+    }
+    if (rest == "color") schemes.insert(schemes.end(), {{"r", "g", "b"}, {"red", "green", "blue"}});
+    schemes.insert(schemes.end(), {{rest + "_x", rest + "_y", rest + "_z"},
+                                   {rest + "_0", rest + "_1", rest + "_2"},
+                                   {rest + "_1", rest + "_2", rest + "_3"}});
+    Element* element = nullptr;
+    for (Element& e : h.elements)
+      if (e.name == elementName) element = &e;
+    const auto find = [&](const std::string& prop) -> int {
+      for (size_t p = 0; p < element->properties.size(); ++p)
+        if (element->properties[p].name == prop && !element->properties[p].list) return int(p);
+      return -1;
+    };
+    MeshAttribute a{name, 0, {}};
+    std::array<int, 3> props{-1, -1, -1};
+    for (const auto& scheme : schemes) {
+      const std::array<int, 3> found{find(scheme[0]), find(scheme[1]), find(scheme[2])};
+      if (found[0] < 0) continue;
+      if (found[1] >= 0 && found[2] >= 0) props = found, a.channels = 3;
+      else if (found[1] < 0) props = {found[0], -1, -1}, a.channels = 1;
+      else continue;
+      break;
+    }
+    if (a.channels == 0)
+      throw InputError(path, "element " + elementName,
+                       "has no properties for the mesh attribute '" + name + "' (" + schemes.front()[0] + ", " +
+                           schemes.front()[1] + ", " + schemes.front()[2] + " or one of the other namings)");
+    for (int c = 0; c < a.channels; ++c) {
+      int& slot = element->attributeSlot[size_t(props[size_t(c)])];
+      if (slot >= 0)
+        throw InputError(path, "mesh attribute '" + name + "'", "its properties are read for another attribute too");
+      slot = int(3 * out.size()) + c;
+    }
+    if (face) element->trianglesOnly = true;
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
+// Where attribute values go as the data is read: value/maximum of an integer type decoded from
+// sRGB (Mitsuba's normalised, gamma-flagged integers), floats as they are; each in [0, 1].
+class AttributeSink {
+ public:
+  explicit AttributeSink(std::vector<MeshAttribute>& attributes) : attributes_(attributes) {}
+  // "" if accepted, else the reason.
+  std::string set(int slot, uint64_t instance, double raw, const Property& p) {
+    MeshAttribute& a = attributes_[size_t(slot / 3)];
+    double v = raw;
+    if (p.type->integer) {
+      const double max = p.type->isSigned ? double((int64_t(1) << (8 * p.type->bytes - 1)) - 1)
+                                           : double((int64_t(1) << (8 * p.type->bytes)) - 1);
+      v = raw / max;
+      if (v >= 0.0 && v <= 1.0) v = srgbDecode(float(v));
+    }
+    if (!(v >= 0.0 && v <= 1.0))
+      return "property " + p.name + " is " + std::to_string(v) + ", outside [0, 1] (mesh attribute " + a.name + ")";
+    Vec3& value = a.values[instance];
+    if (a.channels == 1) value = Vec3(float(v));
+    else value[slot % 3] = float(v);
+    return "";
+  }
+
+ private:
+  std::vector<MeshAttribute>& attributes_;
+};
+
 // The least bytes an element's instance takes in the file: its scalars and its lists' counts (the
 // lists may be empty here; a face's short list is reported as such when the data is read).
 uint64_t minimumBytes(const Element& e, Format format) {
@@ -250,7 +339,10 @@ void checkCounts(const Header& h, uint64_t dataBytes, const std::string& path, u
                            " of data with the elements before them, but the file holds " + formatBytes(dataBytes) +
                            " after its header (it is truncated, or the count is wrong)");
     if (!e.passedOn()) continue;
-    memory += saturatingMul(e.count, memoryBytes(e));
+    // A mesh attribute's first channel marks it; its values are a Vec3 each.
+    const auto attributes = uint64_t(
+        std::count_if(e.attributeSlot.begin(), e.attributeSlot.end(), [](int a) { return a >= 0 && a % 3 == 0; }));
+    memory += saturatingMul(e.count, memoryBytes(e) + attributes * sizeof(Vec3));
     counts += (counts.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
   }
   requireMemory(memory, path + ": reading its elements (" + counts + ")", memoryLimit);
@@ -267,6 +359,8 @@ class ListChecks {
     if (int(p) == e_.indexList) {
       if (n < 3)
         return "has " + std::to_string(n) + (n == 1 ? " vertex index" : " vertex indices") + "; a face needs at least 3";
+      if (e_.trianglesOnly && n != 3)
+        return "has " + std::to_string(n) + " vertex indices; a mesh with face attributes needs triangles";
       corners_ = n;
     }
     if (int(p) == e_.texcoordList) texcoords_ = n;
@@ -295,8 +389,8 @@ class ListChecks {
 // Binary data: walked once, without copying.
 class BinaryData {
  public:
-  BinaryData(std::string_view data, bool bigEndian, const std::string& path)
-      : data_(data), bigEndian_(bigEndian), path_(path) {}
+  BinaryData(std::string_view data, bool bigEndian, const std::string& path, AttributeSink& sink)
+      : data_(data), bigEndian_(bigEndian), path_(path), sink_(sink) {}
 
   // Checks the element's instances; returns their bytes.
   std::string_view element(const Element& e, uint64_t vertices) {
@@ -304,7 +398,7 @@ class BinaryData {
     bool fixed = true;
     uint64_t size = 0;
     for (const Property& p : e.properties) fixed = fixed && !p.list, size += p.type->bytes;
-    if (fixed) {  // a block of equal instances
+    if (fixed && !e.readsAttributes()) {  // a block of equal instances
       if (saturatingMul(e.count, size) > data_.size() - pos_)
         fail(Instance{e.name, (data_.size() - pos_) / size}, "the file ends inside it (it is truncated)");
       pos_ += e.count * size;
@@ -316,7 +410,11 @@ class BinaryData {
       for (size_t p = 0; p < e.properties.size(); ++p) {
         const Property& prop = e.properties[p];
         if (!prop.list) {
-          skip(prop.type->bytes, field);
+          if (e.attributeSlot[p] < 0) {
+            skip(prop.type->bytes, field);
+          } else if (const std::string why = sink_.set(e.attributeSlot[p], i, scalar(*prop.type, field), prop); !why.empty()) {
+            fail(field, why);
+          }
           continue;
         }
         const int64_t n = integer(*prop.count, field);
@@ -357,8 +455,8 @@ class BinaryData {
     pos_ += n;
   }
 
-  // An integer of type t in the file's byte order.
-  int64_t integer(const ScalarType& t, const Instance& field) {
+  // The bits of a value of type t in the file's byte order.
+  uint64_t bits(const ScalarType& t, const Instance& field) {
     const size_t at = pos_;
     skip(t.bytes, field);
     uint64_t u = 0;
@@ -366,22 +464,44 @@ class BinaryData {
       const unsigned char b = static_cast<unsigned char>(data_[at + (bigEndian_ ? k : t.bytes - 1 - k)]);
       u = (u << 8) | b;
     }
-    const unsigned bits = 8u * t.bytes;
-    if (t.isSigned && (u >> (bits - 1)) != 0) return int64_t(u) - (int64_t(1) << bits);
+    return u;
+  }
+
+  // An integer of type t in the file's byte order.
+  int64_t integer(const ScalarType& t, const Instance& field) {
+    const uint64_t u = bits(t, field);
+    const unsigned n = 8u * t.bytes;
+    if (t.isSigned && (u >> (n - 1)) != 0) return int64_t(u) - (int64_t(1) << n);
     return int64_t(u);
+  }
+
+  // A number of type t (IEEE 754 floats of 4 or 8 bytes, or an integer).
+  double scalar(const ScalarType& t, const Instance& field) {
+    if (t.integer) return double(integer(t, field));
+    const uint64_t u = bits(t, field);
+    if (t.bytes == 4) {
+      const uint32_t u32 = uint32_t(u);
+      float f;
+      std::memcpy(&f, &u32, 4);
+      return f;
+    }
+    double d;
+    std::memcpy(&d, &u, 8);
+    return d;
   }
 
   std::string_view data_;
   bool bigEndian_;
   const std::string& path_;
+  AttributeSink& sink_;
   size_t pos_ = 0;
 };
 
 // ASCII data: one line an element, rewritten as it is checked.
 class AsciiData {
  public:
-  AsciiData(std::string_view data, int headerLines, const std::string& path, std::string& out)
-      : data_(data), line_(headerLines), path_(path), out_(out) {}
+  AsciiData(std::string_view data, int headerLines, const std::string& path, std::string& out, AttributeSink& sink)
+      : data_(data), line_(headerLines), path_(path), out_(out), sink_(sink) {}
 
   // Checks the element's instances, and writes them if it is passed on.
   void element(const Element& e, uint64_t vertices) {
@@ -397,13 +517,15 @@ class AsciiData {
       for (size_t p = 0; p < e.properties.size(); ++p) {
         const Property& prop = e.properties[p];
         if (!prop.list) {
-          number(*prop.type, t++, e);
+          const double v = number(*prop.type, t++, e);
+          if (e.attributeSlot[p] >= 0)
+            if (const std::string why = sink_.set(e.attributeSlot[p], i, v, prop); !why.empty()) fail(why);
           continue;
         }
-        const int64_t n = number(*prop.count, t++, e);
+        const int64_t n = int64_t(number(*prop.count, t++, e));
         if (const std::string why = lists.count(p, n); !why.empty()) fail(why);
         for (int64_t k = 0; k < n; ++k)
-          if (const std::string why = lists.item(p, number(*prop.type, t++, e)); !why.empty()) fail(why);
+          if (const std::string why = lists.item(p, int64_t(number(*prop.type, t++, e))); !why.empty()) fail(why);
       }
       if (t != tokens_.size())
         fail("has " + plural(tokens_.size(), "number") + ", more than its properties take (" + std::to_string(t) + ")");
@@ -436,8 +558,9 @@ class AsciiData {
     return false;
   }
 
-  // Token t of the line as a number of type `type`, appended to the output with a space.
-  int64_t number(const ScalarType& type, size_t t, const Element& e) {
+  // Token t of the line as a number of type `type` (integers exactly: they are below 2⁵³),
+  // appended to the output with a space.
+  double number(const ScalarType& type, size_t t, const Element& e) {
     if (t >= tokens_.size())
       fail("the line ends after " + plural(tokens_.size(), "number") + "; element " + e.name + " needs more");
     std::string_view s = tokens_[t];
@@ -454,24 +577,26 @@ class AsciiData {
         fail(shown(text) + " is not an integer from " + std::to_string(low) + " to " + std::to_string(high) + " (" +
              type.name + ")");
       if (write_) out_ += std::to_string(v) + ' ';
-      return v;
+      return double(v);
     }
     double v = 0.0;
     const auto r = std::from_chars(s.data(), end, v);
     const bool single = type.bytes == 4;
     if (s.empty() || r.ec != std::errc() || r.ptr != end || !std::isfinite(v) || (single && !std::isfinite(float(v))))
       fail(shown(text) + " is not a finite number (" + type.name + ")");
-    if (!write_) return 0;
+    if (single) v = float(v);
+    if (!write_) return v;
     const auto w = single ? std::to_chars(buf, buf + sizeof buf, float(v)) : std::to_chars(buf, buf + sizeof buf, v);
     out_.append(buf, w.ptr);
     out_ += ' ';
-    return 0;
+    return v;
   }
 
   std::string_view data_;
   int line_;
   const std::string& path_;
   std::string& out_;
+  AttributeSink& sink_;
   bool write_ = false;  // whether the element being read is passed on
   const std::string* element_ = nullptr;  // the instance being read
   uint64_t index_ = 0;
@@ -481,10 +606,16 @@ class AsciiData {
 
 }  // namespace
 
-std::string validatePly(const std::string& bytes, const std::string& path, uint64_t memoryLimit) {
-  const Header h = HeaderParser(bytes, path).parse();
+std::string validatePly(const std::string& bytes, const std::string& path, uint64_t memoryLimit,
+                        const std::vector<std::string>& attributes, std::vector<MeshAttribute>* read) {
+  Header h = HeaderParser(bytes, path).parse();
+  std::vector<MeshAttribute> found = resolveAttributes(h, attributes, path);
   const std::string_view data = std::string_view(bytes).substr(h.dataStart);
   checkCounts(h, data.size(), path, memoryLimit);
+  for (MeshAttribute& a : found)  // the counts are checked against the memory limit
+    for (const Element& e : h.elements)
+      if (e.name == (a.perFace() ? "face" : "vertex")) a.values.assign(e.count, Vec3(0.0f));
+  AttributeSink sink(found);
 
   std::string out = "ply\nformat ";
   out += h.format == Format::Ascii                ? "ascii"
@@ -506,17 +637,18 @@ std::string validatePly(const std::string& bytes, const std::string& path, uint6
 
   if (h.format == Format::Ascii) {
     out.reserve(out.size() + data.size() + data.size() / 4);
-    AsciiData reader(data, h.lines, path, out);
+    AsciiData reader(data, h.lines, path, out, sink);
     for (const Element& e : h.elements) reader.element(e, vertices);
     reader.end();
   } else {
-    BinaryData reader(data, h.format == Format::BinaryBigEndian, path);
+    BinaryData reader(data, h.format == Format::BinaryBigEndian, path, sink);
     std::vector<std::string_view> passed;
     for (const Element& e : h.elements)
       if (const std::string_view d = reader.element(e, vertices); e.passedOn()) passed.push_back(d);
     reader.end();
     for (const std::string_view d : passed) out.append(d);
   }
+  if (read) *read = std::move(found);
   return out;
 }
 

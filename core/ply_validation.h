@@ -23,11 +23,20 @@
 //   blank lines aside, with one number per scalar and a list's count followed by that many items,
 //   integers in their type's range and other numbers finite; every face has at least 3 indices,
 //   each below the number of vertices.
+// - mesh attributes, when asked for (Mitsuba 3's PLY naming; docs/scene-format.md): "vertex_NAME"
+//   or "face_NAME" is the scalar properties NAME_x, NAME_y, NAME_z (or NAME_0, NAME_1, NAME_2, or
+//   NAME_1, NAME_2, NAME_3) of the element vertex or face, or NAME_x (NAME_0, NAME_1) alone for one
+//   channel; "…_P_color" is P_r, P_g, P_b (or P_r alone), and "…_color" also r, g, b or red,
+//   green, blue. Float values are read as they are, integers as value/maximum of their type
+//   decoded from sRGB (as Mitsuba); each must lie in [0, 1]. Face attributes need triangles.
 // Errors are InputError "path: FIELD: reason" (ASCII data "path:LINE: FIELD: reason"), FIELD
 // naming what is wrong ("header line 3", "element vertex", "face 17", elements counted from 0 as
 // PLY's indices are), or MemoryLimitError.
 #include <cstdint>
 #include <string>
+#include <vector>
+
+#include "core/shape.h"
 
 namespace kasha {
 
@@ -37,6 +46,10 @@ namespace kasha {
 // as one line of single-spaced numbers per element (integers in decimal, other numbers as the
 // shortest decimal text of their value in the declared type), so what assimp parses is what was
 // checked.
-std::string validatePly(const std::string& bytes, const std::string& path, uint64_t memoryLimit);
+// attributes: the mesh attributes to read ("vertex_color", ...; an element without one is an
+// error), returned in `read` in that order (MeshAttribute, core/shape.h), their memory counted
+// with the mesh's.
+std::string validatePly(const std::string& bytes, const std::string& path, uint64_t memoryLimit,
+                        const std::vector<std::string>& attributes = {}, std::vector<MeshAttribute>* read = nullptr);
 
 }  // namespace kasha

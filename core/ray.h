@@ -12,10 +12,10 @@ struct Ray {
 struct Hit {
   float t = kInf;
   Vec3 p;
-  Vec3 ng;  // unit geometric normal (outward for spheres, right-handed winding for triangles)
+  Vec3 ng;  // unit geometric normal (outward for spheres, right-handed winding for triangles, Cylinder::normal)
   uint32_t shape = 0;
   uint32_t prim = 0;
-  Vec2 bary{0.0f};  // barycentrics of triangle corners 1 and 2 (for Shape::surfaceUv)
+  Vec2 bary{0.0f};  // barycentrics of triangle corners 1 and 2; a cylinder's (φ/2π, z/length) (for Shape::surfaceUv)
 };
 
 // Offset for rays leaving a surface: relative to the magnitude of the position.

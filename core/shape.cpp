@@ -12,9 +12,14 @@ size_t Shape::finalize() {
     area = 4.0f * kPi * radius * radius;
     return 0;
   }
+  if (kind == Kind::Cylinder) {
+    area = cylinder.area();
+    return 0;
+  }
   std::vector<uint32_t> kept;
   std::vector<Vec2> keptUvs;
   std::vector<Vec3> keptNormals;
+  std::vector<std::vector<Vec3>> keptFaceValues(attributes.size());
   size_t removed = 0;
   triangleCdf.clear();
   normals.clear();
@@ -30,6 +35,8 @@ size_t Shape::finalize() {
     if (!cornerUvs.empty()) keptUvs.insert(keptUvs.end(), {cornerUvs[t], cornerUvs[t + 1], cornerUvs[t + 2]});
     if (!cornerNormals.empty())
       keptNormals.insert(keptNormals.end(), {cornerNormals[t], cornerNormals[t + 1], cornerNormals[t + 2]});
+    for (size_t a = 0; a < attributes.size(); ++a)
+      if (attributes[a].perFace()) keptFaceValues[a].push_back(attributes[a].values[t / 3]);
     normals.push_back(glm::normalize(glm::cross(b - a, c - a)));
     acc += triArea;
     triangleCdf.push_back(float(acc));
@@ -37,6 +44,8 @@ size_t Shape::finalize() {
   indices = std::move(kept);
   cornerUvs = std::move(keptUvs);
   cornerNormals = std::move(keptNormals);
+  for (size_t a = 0; a < attributes.size(); ++a)
+    if (attributes[a].perFace()) attributes[a].values = std::move(keptFaceValues[a]);
   area = float(acc);
   return removed;
 }
@@ -47,13 +56,14 @@ Vec2 Shape::surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const {
     if (u >= 1.0f) u -= 1.0f;
     return Vec2(u, std::acos(std::clamp(-n.y, -1.0f, 1.0f)) / kPi);
   }
+  if (kind == Kind::Cylinder) return Vec2(bary.x, 1.0f - bary.y);
   if (cornerUvs.empty()) return Vec2(0.0f);
   const size_t t = 3 * size_t(prim);
   return (1.0f - bary.x - bary.y) * cornerUvs[t] + bary.x * cornerUvs[t + 1] + bary.y * cornerUvs[t + 2];
 }
 
 Vec3 Shape::shadingNormal(uint32_t prim, Vec2 bary, const Vec3& ng) const {
-  if (kind == Kind::Sphere || cornerNormals.empty()) return ng;
+  if (kind != Kind::Mesh || cornerNormals.empty()) return ng;
   const size_t t = 3 * size_t(prim);
   const Vec3 n = (1.0f - bary.x - bary.y) * cornerNormals[t] + bary.x * cornerNormals[t + 1] + bary.y * cornerNormals[t + 2];
   const float len = glm::length(n);
@@ -61,10 +71,27 @@ Vec3 Shape::shadingNormal(uint32_t prim, Vec2 bary, const Vec3& ng) const {
   return glm::dot(n, ng) < 0.0f ? -n / len : n / len;
 }
 
+const MeshAttribute* Shape::attribute(const std::string& name) const {
+  for (const MeshAttribute& a : attributes)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+Vec3 Shape::attributeAt(const MeshAttribute& a, uint32_t prim, Vec2 bary) const {
+  if (a.perFace()) return a.values[prim];
+  const size_t t = 3 * size_t(prim);
+  return (1.0f - bary.x - bary.y) * a.values[indices[t]] + bary.x * a.values[indices[t + 1]] +
+         bary.y * a.values[indices[t + 2]];
+}
+
 SurfaceSample Shape::sampleUniform(Vec2 u) const {
   if (kind == Kind::Sphere) {
     const Vec3 n = sampleUniformSphere(u);
     return {center + radius * n, n, 1.0f / area};
+  }
+  if (kind == Kind::Cylinder) {
+    const Vec2 param = cylinder.sampleParam(u);
+    return {cylinder.point(param), cylinder.normal(param), 1.0f / area};
   }
   // Pick a triangle by area, reuse u.x within it.
   const float target = u.x * area;

@@ -1,10 +1,13 @@
 #pragma once
-// Scene geometry: triangle meshes (OBJ files, rectangles) and spheres, each with a material and
-// optional area emission, and uniform-by-area point sampling for emissive shapes.
+// Scene geometry: triangle meshes (OBJ, PLY and serialized files, rectangles, disks), spheres and
+// open cylinders, each with a material and optional area emission, and uniform-by-area point
+// sampling for emissive shapes.
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "core/cylinder.h"
 #include "core/ray.h"
 #include "core/spectrum.h"
 
@@ -25,8 +28,18 @@ struct SurfaceSample {
   float pdfArea = 0.0f;
 };
 
+// Values a mesh file gives per vertex or per triangle (PLY properties, named as Mitsuba 3 names
+// them: "vertex_color", "face_color", ...; core/ply_validation.h), read by mesh_attribute textures
+// (core/mesh_attribute_texture.h). Values lie in [0, 1].
+struct MeshAttribute {
+  std::string name;          // "vertex_…": one value per vertex; "face_…": one per triangle
+  int channels = 3;          // 1 (stored in all three components) or 3
+  std::vector<Vec3> values;  // parallel to positions (vertex) or to the triangles (face)
+  bool perFace() const { return name.starts_with("face_"); }
+};
+
 struct Shape {
-  enum class Kind { Mesh, Sphere } kind = Kind::Mesh;
+  enum class Kind { Mesh, Sphere, Cylinder } kind = Kind::Mesh;
   std::string name;
   uint32_t material = 0;
   std::optional<AreaEmission> emission;
@@ -37,26 +50,37 @@ struct Shape {
   std::vector<Vec3> normals;       // unit geometric normal per triangle
   std::vector<Vec2> cornerUvs;     // texture coordinates, three per triangle (parallel to indices); empty: none
   std::vector<Vec3> cornerNormals; // vertex normals (OBJ vn), three per triangle (parallel to indices); empty: none
+  std::vector<MeshAttribute> attributes;  // those its material's textures read
   // Sphere
   Vec3 center{0.0f};
   float radius = 0.0f;
+  // Cylinder
+  Cylinder cylinder;
 
   float area = 0.0f;
 
   // Precomputes areas; returns the number of zero-area triangles removed.
   size_t finalize();
   const Vec3& triangleNormal(uint32_t prim) const { return normals[prim]; }
-  // Whether surfaceUv means anything: spheres always, meshes when they were given coordinates.
-  bool hasUv() const { return kind == Kind::Sphere || !cornerUvs.empty(); }
+  // Whether surfaceUv means anything: spheres and cylinders always, meshes when they were given
+  // coordinates.
+  bool hasUv() const { return kind != Kind::Mesh || !cornerUvs.empty(); }
   // Texture coordinates at a point. Triangles: the corners' coordinates interpolated with the
   // barycentrics (b1, b2) of corners 1 and 2. Spheres, from the outward normal n:
   // u = 1/2 + atan2(n_z, n_x)/(2π) (around +y), v = acos(−n_y)/π (0 at the bottom, 1 at the top).
+  // Cylinders, from their surface parameters (φ/2π, z/length) in bary: u = φ/2π, v = 1 − z/length,
+  // Mitsuba's (u, v) with v counted from the image's bottom as kasha's textures count it.
   Vec2 surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const;
   // The shading normal at a point with geometric normal ng (Hit::ng): the corners' normals
   // interpolated with the barycentrics and normalised (Phong shading), turned to ng's side of the
   // surface if it points away from it, so that both normals name the same side. ng itself for
   // spheres, meshes without normals, and where the interpolation is zero or not finite.
   Vec3 shadingNormal(uint32_t prim, Vec2 bary, const Vec3& ng) const;
+  // The attribute of that name, or nullptr.
+  const MeshAttribute* attribute(const std::string& name) const;
+  // An attribute at a point: a vertex attribute's corner values interpolated with the
+  // barycentrics (b1, b2) of corners 1 and 2, as surfaceUv; a face attribute's triangle value.
+  Vec3 attributeAt(const MeshAttribute& a, uint32_t prim, Vec2 bary) const;
   SurfaceSample sampleUniform(Vec2 u) const;
 };
 

@@ -1,4 +1,8 @@
 #pragma once
+// Textures: parameters that vary over a surface (the Texture interface, read at a TexturePoint),
+// and image textures, the first kind (core/checkerboard_texture.h and core/mesh_attribute_texture.h
+// are the others).
+//
 // Image textures: one channel (a scalar parameter: c, Q, roughness, …) or three (an RGB
 // reflectance, turned into a spectrum by core/rgb_spectrum.h) of a PNG or OpenEXR image, looked
 // up at a surface's texture coordinates (Hit::uv).
@@ -28,6 +32,45 @@
 
 namespace kasha {
 
+struct Shape;  // core/shape.h
+
+// Where a texture is read: the hit's texture coordinates (Shape::surfaceUv) and, on a mesh, the
+// shape, its triangle and the barycentrics (b1, b2) of corners 1 and 2 (Hit::prim, Hit::bary),
+// which mesh attributes need.
+struct MeshPoint {
+  const Shape* shape = nullptr;  // null where no mesh is at hand (tests of uv textures, tools)
+  uint32_t prim = 0;
+  Vec2 bary{0.0f};
+};
+struct TexturePoint {
+  Vec2 uv{0.0f};
+  MeshPoint mesh{};
+};
+
+// A parameter that varies over a surface, with values in [0, 1]: one channel (a scalar) or three
+// (a linear sRGB colour).
+class Texture {
+ public:
+  virtual ~Texture() = default;
+  // 1 or 3.
+  virtual int channels() const = 0;
+  // The value of a one-channel texture at p.
+  virtual float scalar(const TexturePoint& p) const = 0;
+  // The colour of a three-channel texture at p.
+  virtual Vec3 rgb(const TexturePoint& p) const = 0;
+  // Whether it reads the texture coordinates (a shape using it must have them).
+  virtual bool readsUv() const { return true; }
+  // The mesh attribute it reads ("vertex_color", ...; core/mesh_attribute_texture.h), or "".
+  virtual std::string meshAttribute() const { return {}; }
+};
+
+// An affine map of texture coordinates, uv' = A·uv + b (Mitsuba's to_uv; the identity by default).
+struct UvTransform {
+  glm::mat2 linear{1.0f};  // A (column-major, glm)
+  Vec2 offset{0.0f};       // b
+  Vec2 operator()(Vec2 uv) const { return linear * uv + offset; }
+};
+
 // Which channels of the image a texture holds: one of them (or the mean of R, G, B) or all of R, G, B.
 enum class TextureChannel { Mean, R, G, B, A, Rgb };
 enum class TextureWrap { Repeat, Clamp, Mirror };
@@ -40,7 +83,7 @@ std::optional<TextureWrap> parseTextureWrap(const std::string& name);
 // "bilinear", "nearest"; nullopt otherwise.
 std::optional<TextureFilter> parseTextureFilter(const std::string& name);
 
-class ImageTexture {
+class ImageTexture : public Texture {
  public:
   // Row-major texels, row 0 at the top, `channels` (1 or 3) floats per texel. Throws
   // std::invalid_argument if width·height·channels ≠ texels.size() or the size is 0.
@@ -49,11 +92,13 @@ class ImageTexture {
 
   int width() const { return w_; }
   int height() const { return h_; }
-  int channels() const { return channels_; }
+  int channels() const override { return channels_; }
   // The filtered value at uv of a one-channel texture. Non-finite uv reads (0, 0).
   float scalar(Vec2 uv) const;
   // The filtered colour at uv of a three-channel texture.
   Vec3 rgb(Vec2 uv) const;
+  float scalar(const TexturePoint& p) const override { return scalar(p.uv); }
+  Vec3 rgb(const TexturePoint& p) const override { return rgb(p.uv); }
   // Row-major index of the texel containing uv (wrapped), and the first channel of texel i.
   size_t texelIndex(Vec2 uv) const;
   float texel(size_t i) const { return texels_[i * size_t(channels_)]; }

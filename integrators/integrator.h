@@ -86,9 +86,10 @@ struct Capabilities {
 class Integrator {
  public:
   virtual ~Integrator() = default;
-  // One estimate of the pixel's XYZ (the film normalisation of core/color.h) through the
-  // continuous film position `pixel` (its integer corner; the integrator jitters). Contributions
-  // to other pixels go to ctx.splats, in units where the film divides by samples per pixel.
+  // One estimate of the pixel's XYZ (the film normalisation of core/color.h); `pixel` is its
+  // integer corner, and the integrator draws the film position from the scene's reconstruction
+  // filter (PixelFilter::filmPosition). Contributions to other pixels go to ctx.splats, in units
+  // where the film divides by samples per pixel.
   virtual Vec3 samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& ctx) const = 0;
   virtual std::string name() const = 0;
   // Wavelengths each path carries (wavelength lanes; 1 without them).

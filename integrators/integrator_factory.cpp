@@ -26,6 +26,16 @@ void requireUnused(const WavelengthSpec& spec, const WavelengthSpec& fallback, W
 
 std::vector<std::string> integratorNames() { return {"pt", "lt", "bdpt", "ppm", "vcm", "vc", "bpm"}; }
 
+std::string integratorNameError(const std::string& name) {
+  const std::vector<std::string> names = integratorNames();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return {};
+  for (const IntegratorAlias& alias : integratorAliases())
+    if (alias.name == name) return {};
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  return "unknown integrator '" + name + "' (" + list + ")";
+}
+
 const std::vector<IntegratorAlias>& integratorAliases() {
   static const std::vector<IntegratorAlias> aliases = {
       {"bdpt-shared", "bdpt", {"bdpt.families=shared"}, [](RenderSettings& s) { s.bdpt.families = BdptFamilies::Shared; }},
@@ -91,11 +101,7 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& alias, const Scene
     return std::make_unique<PathTracer>(scene, s);  // checks its strategies and lanes
   }
   if (name == "ppm") return std::make_unique<PpmIntegrator>(scene, s);  // checks its strategies and lanes
-  if (name != "lt" && !bdpt) {
-    std::string known;
-    for (const std::string& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;
-    throw std::invalid_argument("unknown integrator '" + name + "' (" + known + ")");
-  }
+  if (name != "lt" && !bdpt) throw std::invalid_argument(integratorNameError(name));
   // Only the camera paths of pt and ppm override the material's sampling at fluorescent events
   // (BDPT's reverse densities and the light paths use the material's own).
   requireUnused(w.fluorescence, defaults.fluorescence, WavelengthSite::Fluorescence, name);

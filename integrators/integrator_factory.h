@@ -19,6 +19,8 @@ namespace kasha {
 // Throws FluorescentLanesError for settings.fluorescentLanes = End with any but pt and lt.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Scene& scene, const RenderSettings& settings);
 std::vector<std::string> integratorNames();
+// Empty if `name` is an integrator or an alias, else why not: "unknown integrator 'x' (pt, lt, ...)".
+std::string integratorNameError(const std::string& name);
 
 // Names of earlier versions that stand for an integrator with settings: "bdpt-shared",
 // "bdpt-independent" (bdpt with one wavelength family) and "bdpt-mollified" (the own family with

@@ -150,6 +150,7 @@ nlohmann::json RenderJob::checkpointSettings() const {
   settings.update({{"scene_hash", options_.sceneHash},
                    {"integrator", integrator_->name()},
                    {"rr_depth", r.rrDepth},
+                   {"hide_emitters", r.hideEmitters},
                    {"resolution", {scene_.camera.width(), scene_.camera.height()}},
                    {"spectral_bins", bins_.enabled() ? nlohmann::json{bins_.min, bins_.step, bins_.count}
                                                      : nlohmann::json(nullptr)}});
@@ -163,7 +164,7 @@ void RenderJob::run() {
   if (o.strategyDepth >= 0) {
     requireMemory(bidir::StrategyImages::bytesFor(width, height, o.strategyDepth),
                   "the strategy images (depth " + std::to_string(o.strategyDepth) + ")", limit);
-    strategies_ = std::make_unique<bidir::StrategyImages>(width, height, o.strategyDepth);
+    strategies_ = std::make_unique<bidir::StrategyImages>(width, height, o.strategyDepth, scene_.pixelFilter);
   }
   const nlohmann::json settings = checkpointSettings();
   requireFilmMemory(width, height, bins_, !o.resume.empty(), limit);

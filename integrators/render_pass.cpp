@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/pixel_filter.h"
+
 namespace kasha {
 namespace {
 constexpr int kTile = 16;
@@ -96,15 +98,21 @@ void PassTracer::commit(const PassRecord& rec, Film& film, SpectralFilm* spectra
       }
     });
   for (const Splat& sp : rec.splats) {
-    // A splat at a non-finite position is counted like a non-finite sample (pixel -1, -1).
+    // A splat at a non-finite position is counted like a non-finite sample (pixel -1, -1), a
+    // non-finite value once, at the pixel holding it.
     if (!std::isfinite(sp.pixel.x) || !std::isfinite(sp.pixel.y)) {
       film.addNonFinite(-1, -1);
       continue;
     }
-    // Clamped as floats: converting a huge float to int would be undefined behaviour.
-    const int x = int(std::clamp(sp.pixel.x, 0.0f, float(w_ - 1))), y = int(std::clamp(sp.pixel.y, 0.0f, float(h_ - 1)));
-    film.addSplat(x, y, sp.xyz);
-    if (spectral && isFinite(sp.xyz)) spectral->add(x, y, sp.lambda, sp.value);
+    if (!isFinite(sp.xyz)) {
+      PixelFilter().splat(sp.pixel, w_, h_, [&](int x, int y, float) { film.addNonFinite(x, y); });
+      continue;
+    }
+    // To every pixel whose reconstruction filter reaches the splat (core/pixel_filter.h).
+    scene_.pixelFilter.splat(sp.pixel, w_, h_, [&](int x, int y, float weight) {
+      film.addSplat(x, y, sp.xyz * weight);
+      if (spectral) spectral->add(x, y, sp.lambda, sp.value * weight);
+    });
   }
   if (strategies)
     for (const StrategySample& r : rec.strategies) strategies(r);

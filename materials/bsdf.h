@@ -15,6 +15,7 @@
 #include <span>
 #include <type_traits>
 
+#include "core/texture.h"
 #include "materials/bsdf_model.h"
 #include "materials/shading_normal.h"
 
@@ -26,6 +27,8 @@ struct HitContext {
   Frame geometric{};    // world frame of the geometric normal (z = n_g)
   Frame shading{};      // world frame of the shading normal; the geometric one until shading normals exist
   std::span<const float> wavelengths;  // the path's wavelengths here (hero: every lane; else one)
+  MeshPoint mesh{};     // the shape, triangle and barycentrics, for mesh-attribute textures
+  TexturePoint texturePoint() const { return {uv, mesh}; }
 };
 
 class Bsdf {

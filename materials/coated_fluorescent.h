@@ -75,7 +75,7 @@ class CoatedModel : public BsdfModel {
 // Textures (materials/surface_texture.h): the base's r, c, Q (JungTextures) and "coat_alpha_texture".
 struct CoatedTextures {
   JungTextures base;
-  ScalarTexture coatAlpha;
+  AlphaTexture coatAlpha;
 };
 
 class CoatedFluorescent final : public TexturedMaterial<CoatedModel> {
@@ -87,11 +87,16 @@ class CoatedFluorescent final : public TexturedMaterial<CoatedModel> {
   // The base's (an upper bound of what crosses the coat, with the same support).
   std::optional<FluorophoreSpectra> fluorophore() const override { return base().fluorophoreSpectra(); }
   std::string describe() const override { return "coated_fluorescent (" + coatIor().describe() + ")"; }
-  bool textured() const override { return textures_.base.any() || textures_.coatAlpha.image; }
+  bool textured() const override { return textures_.base.any() || textures_.coatAlpha.any(); }
+  std::vector<const Texture*> textures() const override {
+    std::vector<const Texture*> t = textures_.base.list();
+    for (const Texture* a : setTextures(textures_.coatAlpha.x, textures_.coatAlpha.y)) t.push_back(a);
+    return t;
+  }
 
  private:
-  CoatedModel modelAt(Vec2 uv) const override {
-    return CoatedModel(textures_.base.at(spectra_, uv), coatIor_, texturedGgx(ggx(), textures_.coatAlpha, uv));
+  CoatedModel modelAt(const TexturePoint& p) const override {
+    return CoatedModel(textures_.base.at(spectra_, p), coatIor_, texturedGgx(ggx(), textures_.coatAlpha, p));
   }
   JungSpectra spectra_;
   Ior coatIor_;

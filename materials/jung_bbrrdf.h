@@ -104,11 +104,12 @@ class JungModel : public DiffuseModel<BsdfModel> {
 struct JungTextures {
   ReflectanceTexture reflectance;
   ScalarTexture c, q;
-  bool any() const { return reflectance.image || c.image || q.image; }
-  // The model of the surface's spectra at uv.
-  JungModel at(const JungSpectra& s, Vec2 uv) const {
-    return JungModel(s, reflectance.at(s.params.reflectance, uv), c.at(s.params.concentration, uv),
-                     q.at(s.params.energyRatio, uv));
+  bool any() const { return reflectance.texture || c.texture || q.texture; }
+  std::vector<const Texture*> list() const { return setTextures(reflectance, c, q); }
+  // The model of the surface's spectra at p.
+  JungModel at(const JungSpectra& s, const TexturePoint& p) const {
+    return JungModel(s, reflectance.at(s.params.reflectance, p), c.at(s.params.concentration, p),
+                     q.at(s.params.energyRatio, p));
   }
 };
 
@@ -121,9 +122,10 @@ class JungBbrrdf final : public TexturedMaterial<JungModel> {
   std::optional<FluorophoreSpectra> fluorophore() const override { return fluorophoreSpectra(); }
   std::string describe() const override { return textured() ? "jung_fluorescent (textured)" : "jung_fluorescent"; }
   bool textured() const override { return textures_.any(); }
+  std::vector<const Texture*> textures() const override { return textures_.list(); }
 
  private:
-  JungModel modelAt(Vec2 uv) const override { return textures_.at(spectra_, uv); }
+  JungModel modelAt(const TexturePoint& p) const override { return textures_.at(spectra_, p); }
   JungSpectra spectra_;
   JungTextures textures_;
 };

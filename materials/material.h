@@ -4,6 +4,7 @@
 // only Bsdfs (Scene::bsdf); wavelength strategies read what each material absorbs and re-emits.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/spectrum.h"
 #include "materials/bsdf.h"
@@ -30,8 +31,12 @@ class Material {
   // What it absorbs and re-emits: set for every material whose flags() are Fluorescent.
   virtual std::optional<FluorophoreSpectra> fluorophore() const = 0;
   virtual std::string describe() const = 0;
-  // True if its Bsdf depends on the texture coordinates (the shapes using it need them).
+  // True if its Bsdf depends on where it is hit (a texture; the hot path asks this, so it is not
+  // computed from textures()).
   virtual bool textured() const { return false; }
+  // Its parameters' textures, for the checks of the shapes it is on (texture coordinates, mesh
+  // attributes); empty exactly when textured() is false.
+  virtual std::vector<const Texture*> textures() const { return {}; }
 };
 
 // A material that scatters the same everywhere: it is its own per-hit model, a Model (BsdfModel or

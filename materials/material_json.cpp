@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/conductor_index.h"
 #include "core/input_file.h"
 #include "core/json_fields.h"
 #include "core/json_parse.h"
@@ -37,6 +38,41 @@ std::string presetList() {
   std::string s;
   for (const std::string& n : Ior::presetNames()) s += (s.empty() ? "" : ", ") + n;
   return s;
+}
+
+// A conductor's complex index: "eta": a metal's symbol ("Au", core/conductor_index.h), or "eta"
+// and "k" as spectra; nullptr without "eta".
+std::shared_ptr<const ComplexIndex> parseConductorIndex(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range) {
+  if (!f.has("eta")) {
+    if (f.has("k")) f.fail("k", "needs \"eta\" as well");
+    return nullptr;
+  }
+  const nlohmann::json& eta = f.get("eta");
+  if (eta.is_string() && !f.has("k")) {
+    const std::string symbol = eta.get<std::string>();
+    std::optional<ComplexIndex> named = namedConductor(symbol);
+    if (!named) {
+      std::string list;
+      for (const std::string& n : conductorNames()) list += (list.empty() ? "" : ", ") + n;
+      f.fail("eta", "no measured index for the metal '" + symbol + "' (" + list + "); or give \"eta\" and \"k\" as spectra");
+    }
+    return std::make_shared<const ComplexIndex>(std::move(*named));
+  }
+  if (!f.has("k")) f.fail("eta", "a spectrum for eta needs \"k\" as well (or name a metal: \"eta\": \"Au\")");
+  ComplexIndex index{spectrumField(f, "eta", ctx), spectrumField(f, "k", ctx)};
+  if (!(index.eta.minValue(range.min, range.max) > 0.0f)) f.fail("eta", "must be positive in the wavelength range");
+  if (!(index.k.minValue(range.min, range.max) >= 0.0f)) f.fail("k", "must not be negative in the wavelength range");
+  return std::make_shared<const ComplexIndex>(std::move(index));
+}
+
+// A conductor's "reflectance": required without an index; with one, a factor on its Fresnel
+// reflectance, 1 by default (Mitsuba's specular_reflectance).
+Spectrum conductorReflectance(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range, bool unphysical,
+                              bool indexed) {
+  if (indexed && !f.has("reflectance")) return Spectrum::constant(1.0f);
+  Spectrum r = spectrumField(f, "reflectance", ctx);
+  requireAlbedo(f, "reflectance", r, range, unphysical);
+  return r;
 }
 
 // "ior": 1.5 | "BK7" | {"type": "cauchy", "A": .., "B": .., "C": ..} | {"type": "sellmeier", "B": [3], "C": [3]}
@@ -156,9 +192,9 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     JungParams p = parseJungParams(f, ctx, range, unphysical);
     m = std::make_unique<JungBbrrdf>(std::move(p), range, parseJungTextures(f, ctx));
   } else if (type == "mirror") {
-    Spectrum r = spectrumField(f, "reflectance", ctx);
-    requireAlbedo(f, "reflectance", r, range, unphysical);
-    m = std::make_unique<Mirror>(std::move(r), parseReflectanceTexture(f, "reflectance_texture", ctx));
+    std::shared_ptr<const ComplexIndex> index = parseConductorIndex(f, ctx, range);
+    Spectrum r = conductorReflectance(f, ctx, range, unphysical, index != nullptr);
+    m = std::make_unique<Mirror>(std::move(r), parseReflectanceTexture(f, "reflectance_texture", ctx), std::move(index));
   } else if (type == "dielectric" || type == "thin_dielectric") {
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
@@ -171,18 +207,18 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
   } else if (type == "measured_reradiation") {
     m = parseMeasuredReradiation(f, ctx, range, unphysical);
   } else if (type == "rough_conductor") {
-    Spectrum r = spectrumField(f, "reflectance", ctx);
-    requireAlbedo(f, "reflectance", r, range, unphysical);
+    std::shared_ptr<const ComplexIndex> index = parseConductorIndex(f, ctx, range);
+    Spectrum r = conductorReflectance(f, ctx, range, unphysical, index != nullptr);
     const Vec2 a = parseAlpha(f, "alpha");
     RoughConductorTextures tex{parseReflectanceTexture(f, "reflectance_texture", ctx),
-                               parseScalarTexture(f, "alpha_texture", ctx)};
-    m = std::make_unique<RoughConductor>(std::move(r), a.x, a.y, std::move(tex));
+                               parseAlphaTexture(f, "alpha_texture", ctx)};
+    m = std::make_unique<RoughConductor>(std::move(r), a.x, a.y, std::move(tex), std::move(index));
   } else if (type == "rough_dielectric") {
     Ior ior = parseIor(f, "ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("ior", problem);
     const Vec2 a = parseAlpha(f, "alpha");
     try {
-      m = std::make_unique<RoughDielectric>(std::move(ior), a.x, a.y, range, parseScalarTexture(f, "alpha_texture", ctx));
+      m = std::make_unique<RoughDielectric>(std::move(ior), a.x, a.y, range, parseAlphaTexture(f, "alpha_texture", ctx));
     } catch (const std::invalid_argument& e) {
       f.fail("ior", std::string(e.what()).substr(5));  // only the index can still be rejected
     }
@@ -191,7 +227,7 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     Ior ior = parseIor(f, "coat_ior", ctx);
     if (const std::string problem = checkIor(ior, range); !problem.empty()) f.fail("coat_ior", problem);
     const Vec2 a = parseAlpha(f, "coat_alpha");
-    CoatedTextures tex{parseJungTextures(f, ctx), parseScalarTexture(f, "coat_alpha_texture", ctx)};
+    CoatedTextures tex{parseJungTextures(f, ctx), parseAlphaTexture(f, "coat_alpha_texture", ctx)};
     m = std::make_unique<CoatedFluorescent>(std::move(p), std::move(ior), a.x, a.y, range, std::move(tex));
   } else {
     f.fail("type", "unknown material type '" + type +

@@ -114,11 +114,12 @@ class MeasuredReradiation final : public TexturedMaterial<MeasuredModel> {
     return matrix_.spectra();
   }
   std::string describe() const override { return "measured_reradiation"; }
-  bool textured() const override { return textures_.diagonal.image || textures_.reradiation.image; }
+  bool textured() const override { return textures_.diagonal.texture || textures_.reradiation.texture; }
+  std::vector<const Texture*> textures() const override { return setTextures(textures_.diagonal, textures_.reradiation); }
 
  private:
-  MeasuredModel modelAt(Vec2 uv) const override {
-    return MeasuredModel(matrix_, textures_.diagonal.at(1.0f, uv), textures_.reradiation.at(1.0f, uv));
+  MeasuredModel modelAt(const TexturePoint& p) const override {
+    return MeasuredModel(matrix_, textures_.diagonal.at(1.0f, p), textures_.reradiation.at(1.0f, p));
   }
   MeasuredMatrix matrix_;
   MeasuredTextures textures_;

@@ -3,6 +3,21 @@
 #include "materials/specular_lobe.h"
 
 namespace kasha {
+namespace {
+
+ConductorFresnel mirrorFresnel(HitReflectance r, const ComplexIndex* index) {
+  return index ? ConductorFresnel{ConductorFresnel::Law::ComplexIndex, r, index} : ConductorFresnel{ConductorFresnel::Law::Constant, r};
+}
+
+}  // namespace
+
+Mirror::Mirror(Spectrum reflectance, ReflectanceTexture texture, std::shared_ptr<const ComplexIndex> index)
+    : TexturedMaterial(mirrorFresnel(HitReflectance{&spectrum_}, index.get())),
+      spectrum_(std::move(reflectance)),
+      texture_(std::move(texture)),
+      index_(std::move(index)) {}
+
+MirrorModel Mirror::modelAt(const TexturePoint& p) const { return MirrorModel(mirrorFresnel(texture_.at(spectrum_, p), index_.get())); }
 
 float MirrorModel::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float, SpectralLobe lobe) const {
   const bool radiance = mode == TransportMode::Radiance;
@@ -10,7 +25,7 @@ float MirrorModel::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, floa
   const Vec3& wSampled = radiance ? wi : wo;
   if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f || !specular::matches(wSampled, specular::reflect(wKnown)))
     return 0.0f;
-  return r_(lambdaIn) / std::abs(wSampled.z);
+  return f_(std::abs(wSampled.z), lambdaIn) / std::abs(wSampled.z);
 }
 
 std::optional<DirectionSample> MirrorModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe, float,

@@ -1,5 +1,6 @@
 #pragma once
-// Smooth mirror (a polished conductor) with spectral reflectance R(λ): elastic, specular, both
+// Smooth mirror (a polished conductor) with spectral reflectance R(λ), or the Fresnel reflectance
+// of a complex index η(λ) + i·k(λ) times R(λ) (conductor_fresnel.h): elastic, specular, both
 // sides of the surface.
 //
 // Convention for the Dirac delta (material.h, specular_lobe.h): the only direction scattered
@@ -7,10 +8,13 @@
 // probability 1, and there f is the delta's coefficient R(λ)/|cos θ|, so the path weight
 // f·|cos θ|/pdf is R(λ) (pbrt-v4's convention for specular BxDFs). Reflection maps solid angle
 // onto itself, so the value is the same in both transport modes and reciprocal. Every other
-// direction gets f = 0 and density 0.
+// direction gets f = 0 and density 0. With an index, R(λ) becomes F(cos θ, λ)·R(λ).
 //
 // R may be textured ("reflectance_texture", materials/surface_texture.h).
+#include <memory>
+
 #include "core/spectrum.h"
+#include "materials/conductor_fresnel.h"
 #include "materials/elastic_model.h"
 #include "materials/textured_material.h"
 
@@ -19,7 +23,7 @@ namespace kasha {
 // The model at one hit.
 class MirrorModel : public ElasticModel {
  public:
-  explicit MirrorModel(HitReflectance r) : r_(r) {}
+  explicit MirrorModel(ConductorFresnel f) : f_(f) {}
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
@@ -30,14 +34,25 @@ class MirrorModel : public ElasticModel {
   BsdfFlags flags() const override { return BsdfFlags::DeltaDirection; }
 
  private:
-  bool scatters(float lambda) const override { return r_.reflects(lambda); }
-  HitReflectance r_;
+  bool scatters(float lambda) const override { return f_.reflects(lambda); }
+  ConductorFresnel f_;
 };
 
-class Mirror final : public ReflectanceMaterial<MirrorModel> {
+class Mirror final : public TexturedMaterial<MirrorModel> {
  public:
-  using ReflectanceMaterial::ReflectanceMaterial;
+  // R(λ) at every angle, or with an index the Fresnel reflectance of η + i·k times R(λ).
+  explicit Mirror(Spectrum reflectance, ReflectanceTexture texture = {}, std::shared_ptr<const ComplexIndex> index = nullptr);
+  std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
   std::string describe() const override { return "mirror"; }
+  bool textured() const override { return texture_.texture != nullptr; }
+  std::vector<const Texture*> textures() const override { return setTextures(texture_); }
+  const Spectrum& reflectance() const { return spectrum_; }
+
+ private:
+  MirrorModel modelAt(const TexturePoint& p) const override;
+  Spectrum spectrum_;
+  ReflectanceTexture texture_;
+  std::shared_ptr<const ComplexIndex> index_;
 };
 
 }  // namespace kasha

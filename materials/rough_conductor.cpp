@@ -5,19 +5,24 @@
 
 namespace kasha {
 
-RoughConductor::RoughConductor(Spectrum f0, float alphaX, float alphaY, RoughConductorTextures textures)
-    : TexturedMaterial(HitReflectance{&spectrum_}, checkedGgx(alphaX, alphaY)),
-      spectrum_(std::move(f0)),
-      textures_(std::move(textures)) {}
+namespace {
 
-RoughConductorModel RoughConductor::modelAt(Vec2 uv) const {
-  return RoughConductorModel(textures_.f0.at(spectrum_, uv), texturedGgx(ggx(), textures_.alpha, uv));
+ConductorFresnel conductorFresnel(HitReflectance r, const ComplexIndex* index) {
+  return index ? ConductorFresnel{ConductorFresnel::Law::ComplexIndex, r, index} : ConductorFresnel{ConductorFresnel::Law::Schlick, r};
 }
 
-float RoughConductorModel::fresnel(float c, float lambda) const {
-  const float F0 = f0_(lambda);
-  const float k = 1.0f - std::clamp(c, 0.0f, 1.0f);
-  return F0 + (1.0f - F0) * sqr(sqr(k)) * k;  // Schlick 1994 eq. 15
+}  // namespace
+
+RoughConductor::RoughConductor(Spectrum f0, float alphaX, float alphaY, RoughConductorTextures textures,
+                               std::shared_ptr<const ComplexIndex> index)
+    : TexturedMaterial(conductorFresnel(HitReflectance{&spectrum_}, index.get()), checkedGgx(alphaX, alphaY)),
+      spectrum_(std::move(f0)),
+      textures_(std::move(textures)),
+      index_(std::move(index)) {}
+
+RoughConductorModel RoughConductor::modelAt(const TexturePoint& p) const {
+  return RoughConductorModel(conductorFresnel(textures_.f0.at(spectrum_, p), index_.get()),
+                             texturedGgx(ggx(), textures_.alpha, p));
 }
 
 float RoughConductorModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float,
@@ -26,7 +31,7 @@ float RoughConductorModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, f
   const float r = ggx_.reflection(wi, wo);
   if (r <= 0.0f) return 0.0f;
   const Vec3 h = reflectionHalfVector(wi, wo);
-  return fresnel(std::abs(glm::dot(wi, h)), lambdaIn) * r;  // Walter07 eq. 20
+  return f_(std::abs(glm::dot(wi, h)), lambdaIn) * r;  // Walter07 eq. 20
 }
 
 std::optional<DirectionSample> RoughConductorModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,

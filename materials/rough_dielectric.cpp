@@ -28,7 +28,7 @@ bool facetSides(const Vec3& a, const Vec3& b, const Vec3& h) {
 
 }  // namespace
 
-RoughDielectric::RoughDielectric(Ior ior, float alphaX, float alphaY, WavelengthRange range, ScalarTexture alphaTexture)
+RoughDielectric::RoughDielectric(Ior ior, float alphaX, float alphaY, WavelengthRange range, AlphaTexture alphaTexture)
     : TexturedMaterial(checkedIor(std::move(ior), range), checkedGgx(alphaX, alphaY)),
       alphaTexture_(std::move(alphaTexture)) {}
 

@@ -30,7 +30,7 @@
 // with ω_s the sampled direction. A refraction blocked by total internal reflection at m, or a
 // direction that ends on the wrong side of the macro surface, is a failed sample (f = 0 there).
 //
-// Texture (materials/surface_texture.h): "alpha_texture" on both α (clamped to kMinAlpha).
+// Texture (materials/surface_texture.h): "alpha_texture" on both α or one each (clamped to kMinAlpha).
 #include "materials/elastic_model.h"
 #include "materials/ggx.h"
 #include "materials/ior.h"
@@ -73,16 +73,17 @@ class RoughDielectric final : public TexturedMaterial<RoughDielectricModel> {
   // Throws std::invalid_argument "ior: ..." if n(λ) is invalid (checkIor) or closer to 1 than
   // 1.001 anywhere in the range (index-matched refraction is a Dirac delta straight through, which
   // the generalised half vector cannot describe), or "alpha: ..." (checkedGgx).
-  RoughDielectric(Ior ior, float alphaX, float alphaY, WavelengthRange range, ScalarTexture alphaTexture = {});
+  RoughDielectric(Ior ior, float alphaX, float alphaY, WavelengthRange range, AlphaTexture alphaTexture = {});
   std::optional<FluorophoreSpectra> fluorophore() const override { return std::nullopt; }
   std::string describe() const override { return "rough_dielectric (" + ior().describe() + ")"; }
-  bool textured() const override { return alphaTexture_.image != nullptr; }
+  bool textured() const override { return alphaTexture_.any(); }
+  std::vector<const Texture*> textures() const override { return setTextures(alphaTexture_.x, alphaTexture_.y); }
 
  private:
-  RoughDielectricModel modelAt(Vec2 uv) const override {
-    return RoughDielectricModel(ior(), texturedGgx(ggx(), alphaTexture_, uv));
+  RoughDielectricModel modelAt(const TexturePoint& p) const override {
+    return RoughDielectricModel(ior(), texturedGgx(ggx(), alphaTexture_, p));
   }
-  ScalarTexture alphaTexture_;
+  AlphaTexture alphaTexture_;
 };
 
 }  // namespace kasha

@@ -1,11 +1,12 @@
 #pragma once
-// Material parameters that vary over a surface: an image texture (core/texture.h) read at the
-// hit's texture coordinates, multiplying the material's value there. A reflectance texture has
-// one channel (a factor on the spectrum) or three (a linear sRGB colour whose Jakob–Hanika
+// Material parameters that vary over a surface: a texture (core/texture.h: an image, a
+// checkerboard, a mesh attribute) read at the hit, multiplying the material's value there. A
+// reflectance texture has one channel (a factor on the spectrum) or three (a linear sRGB colour whose Jakob–Hanika
 // spectrum, core/rgb_spectrum.h, multiplies the spectrum: with the spectrum 1, the colour).
 // Without a texture the value is the material's own, unchanged bit for bit (×1).
 #include <algorithm>
 #include <memory>
+#include <vector>
 
 #include "core/rgb_spectrum.h"
 #include "core/spectrum.h"
@@ -33,31 +34,44 @@ struct HitReflectance {
 
 // A scalar parameter's texture: value × texel (no texture: the value).
 struct ScalarTexture {
-  std::shared_ptr<const ImageTexture> image;  // one channel, values in [0, 1]
-  float at(float value, Vec2 uv) const { return image ? value * image->scalar(uv) : value; }
+  std::shared_ptr<const Texture> texture;  // one channel, values in [0, 1]
+  float at(float value, const TexturePoint& p) const { return texture ? value * texture->scalar(p) : value; }
 };
 
 // A reflectance's texture: one channel scales the spectrum, three give it a colour (JH19).
 struct ReflectanceTexture {
-  std::shared_ptr<const ImageTexture> image;  // one or three channels, values in [0, 1]
-  HitReflectance at(const Spectrum& spectrum, Vec2 uv) const {
+  std::shared_ptr<const Texture> texture;  // one or three channels, values in [0, 1]
+  HitReflectance at(const Spectrum& spectrum, const TexturePoint& p) const {
     HitReflectance r{&spectrum};
-    if (!image) return r;
-    if (image->channels() == 3) {
+    if (!texture) return r;
+    if (texture->channels() == 3) {
       r.colour = true;
-      r.sigmoid = rgbToSigmoid(image->rgb(uv));
+      r.sigmoid = rgbToSigmoid(texture->rgb(p));
     } else {
-      r.scale = image->scalar(uv);
+      r.scale = texture->scalar(p);
     }
     return r;
   }
 };
 
-// A GGX distribution with both α multiplied by the texture at uv, at least kMinAlpha (ggx.h).
-inline Ggx texturedGgx(const Ggx& ggx, const ScalarTexture& alpha, Vec2 uv) {
-  if (!alpha.image) return ggx;
-  const float s = alpha.image->scalar(uv);
-  return Ggx(std::max(ggx.alphaX() * s, kMinAlpha), std::max(ggx.alphaY() * s, kMinAlpha));
+// The set textures among `fields` (ScalarTexture, ReflectanceTexture), for Material::textures().
+template <class... Fields>
+std::vector<const Texture*> setTextures(const Fields&... fields) {
+  std::vector<const Texture*> out;
+  ((fields.texture ? out.push_back(fields.texture.get()) : void()), ...);
+  return out;
+}
+
+// The textures of a GGX roughness: factors on α_x and α_y (one texture for both: the same twice).
+struct AlphaTexture {
+  ScalarTexture x, y;
+  bool any() const { return x.texture || y.texture; }
+};
+
+// A GGX distribution with its α multiplied by the textures at p, at least kMinAlpha (ggx.h).
+inline Ggx texturedGgx(const Ggx& ggx, const AlphaTexture& alpha, const TexturePoint& p) {
+  if (!alpha.any()) return ggx;
+  return Ggx(std::max(alpha.x.at(ggx.alphaX(), p), kMinAlpha), std::max(alpha.y.at(ggx.alphaY(), p), kMinAlpha));
 }
 
 }  // namespace kasha

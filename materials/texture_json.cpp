@@ -1,42 +1,36 @@
 #include "materials/texture_json.h"
 
+#include <cmath>
 #include <stdexcept>
 
+#include "core/checkerboard_texture.h"
 #include "core/error.h"
 #include "core/json_parse.h"
+#include "core/mesh_attribute_texture.h"
 
 namespace kasha {
 namespace {
 
-// The image of "<key>" (texture_json.h); nullptr when absent. rgb: "channel": "rgb" is allowed.
-std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::string& key, const SpectrumContext& ctx,
-                                                 bool rgb) {
-  if (!parent.has(key)) return nullptr;
-  const nlohmann::json& v = parent.get(key);
-  std::string file;
+// {"type": "image"} (f) or a file name (f null: `file`): an image (core/texture.h). rgb:
+// "channel": "rgb" is allowed. key: the field below `parent`, for messages.
+std::shared_ptr<const Texture> imageTexture(JsonFields& parent, const std::string& key, std::string file, JsonFields* f,
+                                            const SpectrumContext& ctx, bool rgb) {
   TextureChannel channel = TextureChannel::Mean;
   TextureWrap wrap = TextureWrap::Repeat;
   TextureFilter filter = TextureFilter::Bilinear;
-  if (v.is_string()) {
-    file = v.get<std::string>();
-  } else if (v.is_object()) {
-    JsonFields f(v, ctx.file, parent.path(key));
-    file = f.string("file");
-    const std::string name = f.string("channel", "mean");
+  if (f) {
+    const std::string name = f->string("channel", "mean");
     const std::optional<TextureChannel> c = rgb && name == "rgb" ? TextureChannel::Rgb : parseTextureChannel(name);
-    if (!c) f.fail("channel", "unknown channel '" + name + (rgb ? "' (mean, r, g, b, a, rgb)" : "' (mean, r, g, b, a)"));
+    if (!c) f->fail("channel", "unknown channel '" + name + (rgb ? "' (mean, r, g, b, a, rgb)" : "' (mean, r, g, b, a)"));
     channel = *c;
-    const std::string wrapName = f.string("wrap", "repeat");
+    const std::string wrapName = f->string("wrap", "repeat");
     const std::optional<TextureWrap> w = parseTextureWrap(wrapName);
-    if (!w) f.fail("wrap", "unknown wrap mode '" + wrapName + "' (repeat, clamp, mirror)");
+    if (!w) f->fail("wrap", "unknown wrap mode '" + wrapName + "' (repeat, clamp, mirror)");
     wrap = *w;
-    const std::string filterName = f.string("filter", "bilinear");
+    const std::string filterName = f->string("filter", "bilinear");
     const std::optional<TextureFilter> fl = parseTextureFilter(filterName);
-    if (!fl) f.fail("filter", "unknown filter '" + filterName + "' (bilinear, nearest)");
+    if (!fl) f->fail("filter", "unknown filter '" + filterName + "' (bilinear, nearest)");
     filter = *fl;
-    f.finish();
-  } else {
-    parent.fail(key, "expected an image file name or {\"file\": ..., \"channel\": ...}, got " + jsonTypeName(v));
   }
   const std::string path = (!file.empty() && file[0] == '/') ? file : ctx.baseDir + "/" + file;
   try {
@@ -49,14 +43,98 @@ std::shared_ptr<const ImageTexture> parseTexture(JsonFields& parent, const std::
   }
 }
 
+// A checkerboard's value: a number in [0, 1], or (rgb) [r, g, b] in [0, 1]; *colour is set if
+// it is a colour.
+Vec3 checkerValue(JsonFields& f, const std::string& key, float fallback, bool rgb, bool* colour) {
+  if (!f.has(key)) return Vec3(fallback);
+  const nlohmann::json& v = f.get(key);
+  Vec3 c;
+  if (v.is_number()) {
+    c = Vec3(v.get<float>());
+  } else if (rgb && v.is_array()) {
+    c = f.vec3(key);
+    *colour = true;
+  } else {
+    f.fail(key, rgb ? "expected a number or [r, g, b]" : "expected a number (a scalar parameter's texture)");
+  }
+  for (int k = 0; k < 3; ++k)
+    if (!(c[k] >= 0.0f && c[k] <= 1.0f)) f.fail(key, "values must lie in [0, 1]");
+  return c;
+}
+
+// "to_uv": [[a, b, c], [d, e, f]], u' = a·u + b·v + c, v' = d·u + e·v + f.
+UvTransform uvTransform(JsonFields& f) {
+  UvTransform t;
+  if (!f.has("to_uv")) return t;
+  const nlohmann::json& rows = f.get("to_uv");
+  const auto isRow = [](const nlohmann::json& r) {
+    if (!r.is_array() || r.size() != 3) return false;
+    for (const nlohmann::json& x : r)
+      if (!x.is_number() || !std::isfinite(x.get<double>())) return false;
+    return true;
+  };
+  if (!rows.is_array() || rows.size() != 2 || !isRow(rows[0]) || !isRow(rows[1]))
+    f.fail("to_uv", "expected two rows of three finite numbers, [[a, b, c], [d, e, f]]");
+  for (int r = 0; r < 2; ++r) {
+    t.linear[0][r] = rows[r][0].get<float>();
+    t.linear[1][r] = rows[r][1].get<float>();
+    t.offset[r] = rows[r][2].get<float>();
+  }
+  return t;
+}
+
+// The texture `v` at "<key>" below `parent` (texture_json.h). rgb: a reflectance's (colours allowed).
+std::shared_ptr<const Texture> parseTexture(JsonFields& parent, const std::string& key, const nlohmann::json& v,
+                                            const SpectrumContext& ctx, bool rgb) {
+  if (v.is_string()) return imageTexture(parent, key, v.get<std::string>(), nullptr, ctx, rgb);
+  if (!v.is_object())
+    parent.fail(key, "expected an image file name or a texture object ({\"file\": ...} or {\"type\": ...}), got " +
+                         jsonTypeName(v));
+  JsonFields f(v, ctx.file, parent.path(key));
+  const std::string type = f.string("type", "image");
+  std::shared_ptr<const Texture> t;
+  if (type == "image") {
+    t = imageTexture(parent, key, f.string("file"), &f, ctx, rgb);
+  } else if (type == "checkerboard") {
+    bool colour = false;
+    const Vec3 c0 = checkerValue(f, "color0", 0.4f, rgb, &colour), c1 = checkerValue(f, "color1", 0.2f, rgb, &colour);
+    t = std::make_shared<const CheckerboardTexture>(c0, c1, colour ? 3 : 1, uvTransform(f));
+  } else if (type == "mesh_attribute") {
+    const std::string name = f.string("name");
+    if (!name.starts_with("vertex_") && !name.starts_with("face_"))
+      f.fail("name", "'" + name + "' is not a mesh attribute's name (vertex_... or face_...)");
+    t = std::make_shared<const MeshAttributeTexture>(name, rgb ? 3 : 1);
+  } else {
+    f.fail("type", "unknown texture type '" + type + "' (image, checkerboard, mesh_attribute)");
+  }
+  f.finish();
+  return t;
+}
+
 }  // namespace
 
 ScalarTexture parseScalarTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx) {
-  return ScalarTexture{parseTexture(f, key, ctx, false)};
+  if (!f.has(key)) return {};
+  return ScalarTexture{parseTexture(f, key, f.get(key), ctx, false)};
 }
 
 ReflectanceTexture parseReflectanceTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx) {
-  return ReflectanceTexture{parseTexture(f, key, ctx, true)};
+  if (!f.has(key)) return {};
+  return ReflectanceTexture{parseTexture(f, key, f.get(key), ctx, true)};
+}
+
+AlphaTexture parseAlphaTexture(JsonFields& f, const std::string& key, const SpectrumContext& ctx) {
+  if (!f.has(key)) return {};
+  const nlohmann::json& v = f.get(key);
+  if (!v.is_array()) {
+    const ScalarTexture both{parseTexture(f, key, v, ctx, false)};
+    return {both, both};
+  }
+  if (v.size() != 2) f.fail(key, "expected one texture (both axes) or two, [α_x's, α_y's] (null: none)");
+  AlphaTexture t;
+  if (!v[0].is_null()) t.x.texture = parseTexture(f, key + "/0", v[0], ctx, false);
+  if (!v[1].is_null()) t.y.texture = parseTexture(f, key + "/1", v[1], ctx, false);
+  return t;
 }
 
 }  // namespace kasha

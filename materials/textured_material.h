@@ -16,15 +16,15 @@ class TexturedMaterial : public Material, public Model {
 
   Bsdf bsdf(const HitContext& ctx) const final {
     if (!textured()) return Bsdf(static_cast<const Model&>(*this), ctx);
-    return Bsdf::inPlace(modelAt(ctx.uv), ctx);
+    return Bsdf::inPlace(modelAt(ctx.texturePoint()), ctx);
   }
   // The material's own model's flags: textures only scale parameters down, so they are the union
   // over the surface.
   BsdfFlags flags() const final { return Model::flags(); }
 
  protected:
-  // The model at texture coordinates uv (called only when textured()).
-  virtual Model modelAt(Vec2 uv) const = 0;
+  // The model at point p (called only when textured()).
+  virtual Model modelAt(const TexturePoint& p) const = 0;
 };
 
 // A non-fluorescent material whose one parameter is a reflectance spectrum, optionally textured
@@ -37,11 +37,12 @@ class ReflectanceMaterial : public TexturedMaterial<Model> {
         spectrum_(std::move(reflectance)),
         texture_(std::move(texture)) {}
   std::optional<FluorophoreSpectra> fluorophore() const final { return std::nullopt; }
-  bool textured() const final { return texture_.image != nullptr; }
+  bool textured() const final { return texture_.texture != nullptr; }
+  std::vector<const Texture*> textures() const final { return setTextures(texture_); }
   const Spectrum& reflectance() const { return spectrum_; }
 
  private:
-  Model modelAt(Vec2 uv) const final { return Model(texture_.at(spectrum_, uv)); }
+  Model modelAt(const TexturePoint& p) const final { return Model(texture_.at(spectrum_, p)); }
   Spectrum spectrum_;
   ReflectanceTexture texture_;
 };

@@ -40,10 +40,10 @@ ZhdanovBdf::ZhdanovBdf(ZhdanovParams params, WavelengthRange range, ZhdanovTextu
       spectra_(std::move(params), range),
       textures_(std::move(textures)) {}
 
-ZhdanovModel ZhdanovBdf::modelAt(Vec2 uv) const {
+ZhdanovModel ZhdanovBdf::modelAt(const TexturePoint& at) const {
   const ZhdanovParams& p = spectra_.params;
-  return ZhdanovModel(spectra_, ZhdanovHit{textures_.gloss.at(p.gloss, uv), textures_.glossExponent.at(p.glossExponent, uv),
-                                           textures_.passive.at(p.passive, uv), textures_.excitation.at(1.0f, uv)});
+  return ZhdanovModel(spectra_, ZhdanovHit{textures_.gloss.at(p.gloss, at), textures_.glossExponent.at(p.glossExponent, at),
+                                           textures_.passive.at(p.passive, at), textures_.excitation.at(1.0f, at)});
 }
 
 float ZhdanovModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,

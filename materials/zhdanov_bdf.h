@@ -107,12 +107,15 @@ class ZhdanovBdf final : public TexturedMaterial<ZhdanovModel> {
   std::optional<FluorophoreSpectra> fluorophore() const override { return fluorophoreSpectra(); }
   std::string describe() const override { return "zhdanov"; }
   bool textured() const override {
-    return textures_.gloss.image || textures_.glossExponent.image || textures_.passive.image ||
-           textures_.excitation.image;
+    return textures_.gloss.texture || textures_.glossExponent.texture || textures_.passive.texture ||
+           textures_.excitation.texture;
+  }
+  std::vector<const Texture*> textures() const override {
+    return setTextures(textures_.gloss, textures_.glossExponent, textures_.passive, textures_.excitation);
   }
 
  private:
-  ZhdanovModel modelAt(Vec2 uv) const override;
+  ZhdanovModel modelAt(const TexturePoint& p) const override;
   ZhdanovSpectra spectra_;
   ZhdanovTextures textures_;
 };

@@ -79,10 +79,25 @@ PYBIND11_MODULE(kasha, m) {
       "`.result` is the partial result (every pixel has the same number of samples).";
 
   py::class_<PyScene>(m, "Scene", "A scene in kasha's JSON format (docs/scene-format.md), editable before each render.")
-      .def(py::init([](const py::object& path) { return PyScene::fromFile(kasha::python::filePath(path, {"kasha.Scene", "path"})); }),
-           py::arg("path"),
-           "Loads the scene file at `path` (JSON). Errors (a missing file, malformed JSON) raise kasha.InputError; "
-           "the scene's contents are checked when it is rendered.")
+      .def(py::init([](const py::object& path, const py::object& defaults) {
+             std::map<std::string, std::string> parameters;
+             if (!defaults.is_none()) {
+               if (!py::isinstance<py::dict>(defaults)) kasha::python::refuseType({"kasha.Scene", "defaults"}, "a dict or None", defaults);
+               for (const auto& [name, value] : defaults.cast<py::dict>()) {
+                 if (!py::isinstance<py::str>(name)) kasha::python::refuseType({"kasha.Scene", "defaults"}, "a dict with str keys", name);
+                 if (!py::isinstance<py::str>(value) && !py::isinstance<py::int_>(value) && !py::isinstance<py::float_>(value))
+                   kasha::python::refuseType({"kasha.Scene", "defaults"}, "str, int or float values", value);
+                 const bool isBool = py::isinstance<py::bool_>(value);
+                 parameters[name.cast<std::string>()] =
+                     isBool ? (value.cast<bool>() ? "true" : "false") : py::str(value).cast<std::string>();
+               }
+             }
+             return PyScene::fromFile(kasha::python::filePath(path, {"kasha.Scene", "path"}), parameters);
+           }),
+           py::arg("path"), py::arg("defaults") = py::none(),
+           "Loads the scene file at `path` (JSON, or Mitsuba 3 XML translated). `defaults` sets a Mitsuba scene's "
+           "$name parameters, e.g. defaults={'spp': 64} (as `kasha render -D spp=64`). Errors (a missing file, "
+           "malformed JSON or XML) raise kasha.InputError; the scene's contents are checked when it is rendered.")
       .def_static(
           "from_dict",
           [](const py::object& scene, const py::object& baseDir) {
@@ -159,7 +174,7 @@ PYBIND11_MODULE(kasha, m) {
         const auto arg = [](const char* name) { return kasha::python::Argument{"kasha.render", name}; };
         if (!py::isinstance<PyScene>(scene)) kasha::python::refuseType(arg("scene"), "a kasha.Scene", scene);
         kasha::python::RenderRequest r;
-        r.integrator = kasha::python::text(integrator, arg("integrator"));
+        if (!integrator.is_none()) r.integrator = kasha::python::text(integrator, arg("integrator"));
         if (!spp.is_none()) r.spp = integer(spp, arg("spp"), rn::kSpp);
         if (!time.is_none()) r.time = number(time, arg("time"), rn::kTime);
         if (!seed.is_none()) r.seed = integer(seed, arg("seed"), rn::kSeed);
@@ -176,12 +191,12 @@ PYBIND11_MODULE(kasha, m) {
         r.settings = settings;
         return kasha::python::render(scene.cast<PyScene&>(), r, interrupted);
       },
-      py::arg("scene"), py::arg("integrator") = "pt", py::arg("spp") = py::none(), py::arg("time") = py::none(),
+      py::arg("scene"), py::arg("integrator") = py::none(), py::arg("spp") = py::none(), py::arg("time") = py::none(),
       py::arg("seed") = py::none(), py::arg("threads") = 0, py::arg("spectral_bins") = 0,
       py::arg("spectral_step") = 0.0f, py::arg("strategy_images") = false, py::arg("strategy_depth") = 4,
       py::arg("memory_limit") = "8G", py::arg("progress") = py::none(), py::arg("output") = "",
       "Renders `scene` with an integrator (pt, lt, bdpt, ppm, vcm, vc, bpm; bdpt-shared, bdpt-independent and "
-      "bdpt-mollified stand for bdpt with render/bdpt settings) for `spp` samples per pixel and/or `time` seconds "
+      "bdpt-mollified stand for bdpt with render/bdpt settings; None: the scene's render/integrator, else pt) for `spp` samples per pixel and/or `time` seconds "
       "(whole passes). Further keyword arguments are keys of the scene's render object: max_depth, "
       "sensor_sampling, fluorescence_sampling, nee_sampling, light_sampling, hero_wavelengths, and the "
       "integrators' own objects bdpt, vcm, ppm as dicts merged key by key, e.g. ppm={'alpha': 0.7} "

@@ -7,6 +7,7 @@
 #include "core/image_output.h"
 #include "core/output_file.h"
 #include "integrators/photon_mapping/direct_light_wavelengths.h"
+#include "integrators/integrator_factory.h"
 #include "integrators/render_job.h"
 #include "python/py_arrays.h"
 #include "scene/render_overrides.h"
@@ -78,7 +79,10 @@ py::dict render(PyScene& pyScene, const RenderRequest& req, const py::object& in
   // own and never free this one (py_scene.h).
   const std::shared_ptr<const Scene> scene = pyScene.load(withSettings(pyScene, set, req), req.memoryLimit);
   RenderJobOptions o;
-  o.integrator = req.integrator;
+  o.integrator = req.integrator.value_or(scene->render.integrator);
+  if (!req.integrator)
+    if (const std::string why = integratorNameError(o.integrator); !why.empty())
+      throw InputError(scene->path, "/render/integrator", why);
   o.settings = scene->render;
   o.settings.memoryLimit = req.memoryLimit;
   for (const RenderSetting& s : set) o.setKeys.push_back(s.key);

@@ -16,7 +16,7 @@ namespace kasha::python {
 
 // kasha.render's arguments, read and checked by python/py_arguments.h.
 struct RenderRequest {
-  std::string integrator = "pt";
+  std::optional<std::string> integrator;  // none: the scene's (render/integrator, else pt)
   std::optional<int> spp, seed;  // none: the scene's
   std::optional<double> time;
   int threads = 0;

@@ -76,12 +76,18 @@ void requireWithinLists(const nlohmann::json& json, nlohmann::json::json_pointer
 
 }  // namespace
 
-PyScene PyScene::fromFile(const std::string& path) {
+PyScene PyScene::fromFile(const std::string& path, const std::map<std::string, std::string>& defaults) {
   // Read by core/input_file.h's rule (a regular file, size-capped, never blocking) and parsed
   // strictly, as `kasha render` does; a Mitsuba scene (.xml) becomes its kasha JSON translation.
+  for (const auto& [name, value] : defaults) {
+    if (!mitsuba::isMitsubaScenePath(path))
+      throw InputError("kasha.Scene", "defaults", "sets parameters of a Mitsuba XML scene, not of " + path);
+    if (!mitsuba::isParameterName(name))
+      throw InputError("kasha.Scene", "defaults", "'" + printable(name) + "' is not a parameter name (letters, digits and '_')");
+  }
   const std::string text = readSceneFile(path);
   if (!mitsuba::isMitsubaScenePath(path)) return PyScene(parseJsonStrict(text, path), path);
-  mitsuba::Translation t = mitsuba::translateMitsubaScene(text, path);
+  mitsuba::Translation t = mitsuba::translateMitsubaScene(text, path, defaults);
   for (const std::string& n : t.notes) std::cerr << "kasha: note: " << n << "\n";
   return PyScene(std::move(t.scene), path);
 }

@@ -3,6 +3,7 @@
 // editable from Python, and the kasha::Scene loaded from it, reloaded only when the JSON changed.
 #include <pybind11/pybind11.h>
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -18,7 +19,9 @@ class PyScene {
   PyScene(nlohmann::json json, std::string path) : json_(std::move(json)), path_(std::move(path)) {}
   // The scene file's JSON (a Mitsuba 3 .xml scene: its translation, docs/mitsuba-import.md); InputError
   // naming the file if it cannot be read (core/input_file.h) or parsed (core/json_parse.h).
-  static PyScene fromFile(const std::string& path);
+  // `defaults` sets a Mitsuba scene's `$name` parameters (before its <default>s), as `kasha render
+  // -D` does; InputError for a JSON scene or a malformed name.
+  static PyScene fromFile(const std::string& path, const std::map<std::string, std::string>& defaults = {});
   // A dict in the scene format; relative file names start from baseDir.
   static PyScene fromDict(const pybind11::dict& scene, const std::string& baseDir);
 

@@ -155,10 +155,16 @@ inline constexpr int kAutoLanes = 0;
 inline constexpr int kDefaultLanes = 4;  // an integrator's lanes where it carries them by default
 
 struct RenderSettings {
+  // The integrator the scene asks for (render/integrator; integrators/integrator_factory.h checks
+  // the name); the front ends' own choice (--integrator, kasha.render's integrator=) wins.
+  std::string integrator = "pt";
   int spp = 16;                 // samples per pixel (a stop condition)
   double timeBudgetSeconds = 0; // > 0: also stop after this long (whole passes only)
   int maxDepth = 64;            // maximum number of scattering events on a path
   int rrDepth = 3;              // Russian roulette from this depth on
+  // Paths without a scattering event (emitters seen directly) contribute nothing (Mitsuba's
+  // hide_emitters); the rest of the image is unchanged.
+  bool hideEmitters = false;
   uint64_t seed = 1;
   SamplerKind sampler = SamplerKind::Sobol;  // random numbers of every sample (core/sampler.h)
   WavelengthSettings wavelengths;

@@ -16,6 +16,7 @@
 #include "core/mesh_builders.h"
 #include "core/memory_budget.h"
 #include "core/obj_validation.h"
+#include "core/serialized_mesh.h"
 #include "core/spectrum_json.h"
 #include "core/spectrum_presets.h"
 #include "core/texture.h"
@@ -123,6 +124,7 @@ struct Loader {
     if (!root.has("render")) return;
     JsonFields f(root.get("render"), file, "/render");
     RenderSettings& r = scene.render;
+    r.integrator = f.string("integrator", r.integrator);
     r.spp = f.integer("spp", r.spp);
     if (r.spp < 1) f.fail("spp", "must be at least 1");
     r.timeBudgetSeconds = f.number("time", 0.0f);
@@ -130,6 +132,7 @@ struct Loader {
     r.maxDepth = f.integer("max_depth", r.maxDepth);
     if (r.maxDepth < 0) f.fail("max_depth", "must not be negative");
     r.rrDepth = f.integer("rr_depth", r.rrDepth);
+    r.hideEmitters = f.boolean("hide_emitters", r.hideEmitters);
     if (r.rrDepth < 0) f.fail("rr_depth", "must not be negative");
     const int seed = f.integer("seed", int(r.seed));
     if (seed < 0) f.fail("seed", "must not be negative");
@@ -262,10 +265,42 @@ struct Loader {
     if (!std::isfinite(glm::length(up))) f.fail("up", "is too long (its length overflows a 32-bit float)");
     if (!(glm::length(glm::cross(fwd / glm::length(fwd), up / glm::length(up))) > 1e-6f))
       f.fail("up", "is parallel to the viewing direction");
+    if (f.has("filter")) scene.pixelFilter = pixelFilter(f);
     f.finish();
     if (type == "pinhole") scene.camera = Camera(pos, at, up, fov, int(w), int(h));
     else if (type == "thinlens") scene.camera = Camera::thinLens(pos, at, up, fov, int(w), int(h), aperture, focus);
     else scene.camera = Camera::orthographic(pos, at, up, extent, int(w), int(h));
+  }
+
+  // /camera/filter: "box", "tent", "gaussian" or {"type": …, "radius" (tent) / "stddev" (gaussian)}.
+  PixelFilter pixelFilter(JsonFields& cam) {
+    const json& v = cam.get("filter");
+    if (!v.is_string()) return pixelFilter(v, cam.path("filter"));
+    const std::string type = v.get<std::string>();
+    if (type != "box" && type != "tent" && type != "gaussian")
+      cam.fail("filter", "unknown reconstruction filter '" + type + "' (box, tent, gaussian)");
+    return pixelFilter(json{{"type", type}}, cam.path("filter"));
+  }
+  PixelFilter pixelFilter(const json& v, const std::string& pointer) {
+    JsonFields f(v, file, pointer);
+    const std::string type = f.string("type");
+    // The supports PixelFilter accepts, kMinRadius = 1/64 to kMaxRadius = 16 pixels.
+    const float lo = PixelFilter::kMinRadius, hi = PixelFilter::kMaxRadius;
+    PixelFilter filter;
+    if (type == "tent") {
+      const float radius = f.number("radius", 1.0f);
+      if (!(radius >= lo && radius <= hi)) f.fail("radius", "must be in [1/64, 16] pixels");
+      filter = PixelFilter::tent(radius);
+    } else if (type == "gaussian") {
+      const float stddev = f.number("stddev", 0.5f);
+      if (!(stddev >= lo / 4.0f && stddev <= hi / 4.0f))
+        f.fail("stddev", "must be in [1/256, 4] pixels (the support reaches 4 standard deviations)");
+      filter = PixelFilter::gaussian(stddev);
+    } else if (type != "box") {
+      f.fail("type", "unknown reconstruction filter '" + type + "' (box, tent, gaussian)");
+    }
+    f.finish();
+    return filter;
   }
 
   void spectra(JsonFields& root) {
@@ -348,15 +383,32 @@ struct Loader {
     for (Vec3& p : s.positions) p = p * scale + translate;
   }
 
-  void loadPly(JsonFields& f, Shape& s) {
+  void loadPly(JsonFields& f, Shape& s, const std::vector<std::string>& attributes) {
     const std::string path = resolve(f.string("file"));
     const std::string bytes = readMeshFile(f, path);
     try {
-      readPlyMesh(bytes, path, options.memoryLimit, s);
+      readPlyMesh(bytes, path, options.memoryLimit, s, attributes);
     } catch (const std::runtime_error& e) {
       f.fail("file", e.what());
     }
     scaleAndTranslate(f, s);
+  }
+
+  // A Mitsuba serialized file's mesh "shape_index" (core/serialized_mesh.h); returns whether the
+  // file asks for face normals.
+  bool loadSerialized(JsonFields& f, Shape& s) {
+    const std::string path = resolve(f.string("file"));
+    const int index = f.integer("shape_index", 0);
+    if (index < 0) f.fail("shape_index", "must not be negative");
+    const std::string bytes = readMeshFile(f, path);
+    bool faceNormals = false;
+    try {
+      faceNormals = readSerializedMesh(bytes, path, uint64_t(index), options.memoryLimit, s);
+    } catch (const std::runtime_error& e) {  // InputError, MemoryLimitError
+      f.fail("file", e.what());
+    }
+    scaleAndTranslate(f, s);
+    return faceNormals;
   }
 
   // "transform": four rows of four finite numbers, an invertible affine map (last row 0 0 0 1).
@@ -406,6 +458,27 @@ struct Loader {
     s.cornerUvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 0), Vec2(1, 1), Vec2(0, 1)};
   }
 
+  // The open cylinder from p0 to p1 (core/cylinder.h), placed by "transform" if given.
+  void cylinder(JsonFields& f, Shape& s) {
+    const Vec3 p0 = f.vec3("p0"), p1 = f.vec3("p1");
+    const float radius = f.number("radius");
+    if (!(radius > 0.0f)) f.fail("radius", "must be positive");
+    if (!(glm::length(p1 - p0) > 0.0f) || !std::isfinite(glm::length(p1 - p0)))
+      f.fail("p1", "must differ from p0 by a finite, non-zero length");
+    glm::mat4 m = Cylinder::endsMatrix(p0, p1, radius);
+    if (f.has("transform")) m = matrixField(f, "transform") * m;
+    const std::optional<Cylinder> c = Cylinder::fromMatrix(m);
+    if (!c)
+      f.fail(f.has("transform") ? "transform" : "radius",
+             "does not keep the cylinder circular and unmirrored (it may rotate, translate, scale uniformly "
+             "and stretch along the cylinder's axis)");
+    if (!std::isfinite(glm::length(c->base) + c->length))
+      f.fail("p0", "the cylinder is placed beyond the range of a 32-bit float");
+    s.kind = Shape::Kind::Cylinder;
+    s.cylinder = *c;
+    s.cylinder.inward = f.boolean("flip_normals", false);
+  }
+
   void shapes(JsonFields& root) {
     const json& arr = root.get("shapes");
     if (!arr.is_array() || arr.empty()) root.fail("shapes", "expected a non-empty array of shapes");
@@ -415,14 +488,36 @@ struct Loader {
       Shape s;
       s.name = f.string("name", "shape" + std::to_string(i));
       const std::string type = f.string("type");
+      const std::string mat = f.string("material");
+      auto it = materialIndex.find(mat);
+      if (it == materialIndex.end()) f.fail("material", "no material named '" + mat + "' in /materials");
+      s.material = it->second;
+      // What its material's textures read: texture coordinates, mesh attributes (from PLY files).
+      bool readsUv = false;
+      std::vector<std::string> attributes;
+      for (const Texture* t : scene.materials[s.material]->textures()) {
+        readsUv = readsUv || t->readsUv();
+        const std::string a = t->meshAttribute();
+        if (!a.empty() && std::find(attributes.begin(), attributes.end(), a) == attributes.end()) attributes.push_back(a);
+      }
+      const bool ply = type == "mesh" && std::filesystem::path(f.string("file")).extension() == ".ply";
+      if (!attributes.empty() && !ply)
+        f.fail("material", "material '" + mat + "' reads the mesh attribute '" + attributes.front() +
+                               "', which only PLY meshes carry");
       if (type == "sphere") {
         s.kind = Shape::Kind::Sphere;
         s.center = f.vec3("center");
         s.radius = f.number("radius");
         if (!(s.radius > 0.0f)) f.fail("radius", "must be positive");
+      } else if (type == "cylinder") {
+        cylinder(f, s);
       } else if (type == "mesh") {
-        if (std::filesystem::path(f.string("file")).extension() == ".ply") loadPly(f, s);
+        const std::filesystem::path extension = std::filesystem::path(f.string("file")).extension();
+        bool fileAsksForFaceNormals = false;
+        if (ply) loadPly(f, s, attributes);
+        else if (extension == ".serialized") fileAsksForFaceNormals = loadSerialized(f, s);
         else loadObj(f, s);
+        if (f.boolean("face_normals", fileAsksForFaceNormals)) s.cornerNormals.clear();
         meshPlacement(f, s);
       } else if (type == "rectangle") {
         rectangle(f, s);
@@ -431,14 +526,14 @@ struct Loader {
         tessellateUnitDisk(s, kDiskSegments);
         meshPlacement(f, s);
       } else {
-        f.fail("type", "unknown shape type '" + type + "' (sphere, rectangle, mesh, disk)");
+        f.fail("type", "unknown shape type '" + type + "' (sphere, cylinder, rectangle, mesh, disk)");
       }
-      const std::string mat = f.string("material");
-      auto it = materialIndex.find(mat);
-      if (it == materialIndex.end()) f.fail("material", "no material named '" + mat + "' in /materials");
-      s.material = it->second;
-      if (scene.materials[s.material]->textured() && !s.hasUv())
+      if (readsUv && !s.hasUv())
         f.fail("material", "material '" + mat + "' is textured, but this mesh has no texture coordinates (vt)");
+      for (const Texture* t : scene.materials[s.material]->textures())
+        if (const MeshAttribute* a = s.attribute(t->meshAttribute()); a && a->channels != t->channels() && t->channels() == 1)
+          f.fail("material", "material '" + mat + "' reads the mesh attribute '" + a->name +
+                                 "' as a scalar, but it has 3 channels in this mesh");
       if (f.has("emission")) {
         JsonFields e(f.get("emission"), file, ptr + "/emission");
         AreaEmission em;

@@ -83,11 +83,18 @@ def main():
     with ThreadPoolExecutor(args.jobs) as pool:
         results = list(pool.map(lambda s: survey_one(args, s), scenes))
     renders = sum(r["result"] == "renders" for r in results)
-    print("%d of %d scenes render (kasha render SCENE --spp %d)\n" % (renders, len(results), args.spp))
+    outside = sum("outside kasha's scope" in r["result"] for r in results)
+    print("# Mitsuba 3's documentation scenes in kasha\n")
+    print("Made by `python3 bench/mitsuba_scenes/survey.py --scenes mitsuba-data/docs/scenes --spp %d` "
+          "(mitsuba-data from github.com/mitsuba-renderer/mitsuba-data; docs/mitsuba-import.md). "
+          "Each scene is rendered unchanged, with `-D` only for a parameter it has no default for.\n" % args.spp)
+    print("%d of %d scenes render; %d are outside kasha's scope; the first error of each other scene "
+          "names what kasha lacks.\n" % (renders, len(results), outside))
     print("| scene | result |\n|---|---|")
     for r in results:
         extra = " (" + " ".join(r["defines"]) + ")" if r["defines"] else ""
-        print("| %s%s | %s |" % (r["scene"], extra, r["result"].replace("|", "\\|")))
+        result = r["result"].replace("kasha: error: ", "").replace("|", "\\|")
+        print("| %s%s | %s |" % (r["scene"], extra, result))
     if args.json:
         with open(args.json, "w") as f:
             json.dump(results, f, indent=1)

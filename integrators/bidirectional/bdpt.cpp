@@ -52,7 +52,7 @@ bidir::WavelengthMode modeOf(BdptFamilies families) {
 Bdpt::Bdpt(const Scene& scene, const RenderSettings& s)
     : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
       light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
-      ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}}, mode_(modeOf(s.bdpt.families)),
+      ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}, s.hideEmitters}, mode_(modeOf(s.bdpt.families)),
       families_(bidir::familiesFor(scene, mode_)), directXyz_(directEmissionXyz(scene)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by bdpt (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "by bdpt (its MIS weights need the light-start density)");
@@ -200,7 +200,7 @@ Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext&
                                   families.independent && !ws.lightFirst ? &light_.density() : nullptr, ws.lightFirst);
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
-  traceCameraSubpath(scene, pixel + rng.uniform2(), lanes, ws, rng, ctx.counter, C);
+  traceCameraSubpath(scene, scene.pixelFilter.filmPosition(pixel, rng.uniform2()), lanes, ws, rng, ctx.counter, C);
   LS.clear(), LO.clear();
   int sharedLightVertices = 0;
   if (ws.lightFirst) {

@@ -320,13 +320,17 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   cam.kind = Kind::Camera;
   cam.deltaPosition = c.scene.camera.pinhole();
   cam.parallelRays = c.scene.camera.parallelRays();
-  // The camera's density of a: its ray's over the whole film, from the lens point (the sensor's
-  // density of the wavelength arriving is a factor, mis_sums.h).
+  // The camera's density of a: its ray's over the whole film, from the lens point, times the
+  // reconstruction filter's coverage there (the sensor's density of the wavelength arriving is a
+  // factor, mis_sums.h).
+  const Camera& camera = c.scene.camera;
+  const PixelFilter& filter = c.scene.pixelFilter;
   const auto makeLink = [&] {
-    CameraLink l{c.scene.camera.connect(a.p, lensSample)};
+    CameraLink l{camera.connect(a.p, lensSample, filter.filmMargin())};
     if (l.connection) {
       cam.p = l.connection->lensPoint;
-      l.pdfCam = toAreaDensity(l.connection->pdfRay, cam, a);
+      l.pdfCam = toAreaDensity(l.connection->pdfRay * filter.coverage(l.connection->pixel, camera.width(), camera.height()),
+                               cam, a);
     }
     return l;
   };
@@ -440,8 +444,10 @@ void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const s
   std::fill(out, out + c.lanes.n, 0.0f);
   xyz = Vec3(0.0f);
   // Strategies with t ≥ 2 estimate this pixel's radiance at the sensor's wavelengths.
+  // Paths of one segment (t = 2 hitting an emitter, s = 1 seen by the camera) have no scattering vertex.
+  const int fewest = c.walk.hideEmitters ? 2 : 1;
   for (int t = 2; t <= int(C.size()); ++t) {
-    emitterHit(c, C, t, out, xyz);
+    if (t > fewest) emitterHit(c, C, t, out, xyz);
     if (C[size_t(t - 1)].kind != Kind::Surface) continue;
     if (t - 1 <= maxDepth) {
       nextEvent(c, C, t, rng, out);
@@ -454,10 +460,10 @@ void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const s
   }
   // t = 1: light subpath vertices seen by the camera, each through a lens point of its own, splatted
   // to their pixels.
-  for (int s = 1; s <= int(LS.size()) && s - 1 <= maxDepth; ++s)
-    connectToCamera(c, LS, LightFamily::Shared, s, rng.uniform2(), splats, memo);
-  for (int s = 1; s <= int(LO.size()) && s - 1 <= maxDepth; ++s)
-    connectToCamera(c, LO, LightFamily::Own, s, rng.uniform2(), splats, memo);
+  for (int s = fewest; s <= int(LS.size()) && s - 1 <= maxDepth; ++s)
+    connectToCamera(c, LS, LightFamily::Shared, s, c.scene.camera.sampleLens(rng), splats, memo);
+  for (int s = fewest; s <= int(LO.size()) && s - 1 <= maxDepth; ++s)
+    connectToCamera(c, LO, LightFamily::Own, s, c.scene.camera.sampleLens(rng), splats, memo);
 }
 
 }  // namespace kasha::bidir

@@ -24,9 +24,13 @@ void StrategyImages::add(const StrategySample& r) {
   const std::string name = r.s + r.t - 2 > maxDepth_ ? "deeper" : strategyName(r.s, r.t, r.variant);
   std::unique_ptr<Images>& img = images_[name];
   if (!img) img = std::make_unique<Images>(w_, h_);
-  const int x = int(std::clamp(r.pixel.x, 0.0f, float(w_ - 1))), y = int(std::clamp(r.pixel.y, 0.0f, float(h_ - 1)));
-  img->weighted.addSplat(x, y, r.weighted);
-  img->unweighted.addSplat(x, y, r.unweighted);
+  // t ≥ 2 reports the camera sample's pixel (its corner), t = 1 a splat's film position.
+  const auto add = [&](int x, int y, float weight) {
+    img->weighted.addSplat(x, y, r.weighted * weight);
+    img->unweighted.addSplat(x, y, r.unweighted * weight);
+  };
+  if (r.t == 1) filter_.splat(r.pixel, w_, h_, add);
+  else PixelFilter().splat(r.pixel, w_, h_, add);
 }
 
 void StrategyImages::setSamplesPerPixel(int spp) {

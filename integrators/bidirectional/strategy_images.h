@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/film.h"
+#include "core/pixel_filter.h"
 #include "integrators/bidirectional/mis_observer.h"
 #include "integrators/integrator.h"
 
@@ -32,7 +33,9 @@ class StrategyLog final : public MisObserver {
 
 class StrategyImages {
  public:
-  StrategyImages(int width, int height, int maxDepth) : w_(width), h_(height), maxDepth_(maxDepth) {}
+  // Splats (t = 1) spread over the pixels `filter` reaches, as the film's.
+  StrategyImages(int width, int height, int maxDepth, const PixelFilter& filter)
+      : w_(width), h_(height), maxDepth_(maxDepth), filter_(filter) {}
   // Not thread-safe: the render loop merges records after each pass.
   void add(const StrategySample& r);
   void setSamplesPerPixel(int spp);
@@ -50,6 +53,7 @@ class StrategyImages {
 
  private:
   int w_, h_, maxDepth_;
+  PixelFilter filter_;
   std::map<std::string, std::unique_ptr<Images>> images_;
 };
 

@@ -275,7 +275,7 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
   out.clear();
   PathVertex c;
   c.kind = PathVertex::Kind::Camera;
-  const Ray ray = scene.camera.generateRay(filmPos, rng.uniform2());
+  const Ray ray = scene.camera.generateRay(filmPos, scene.camera.sampleLens(rng));
   c.p = ray.o;
   std::fill(c.beta, c.beta + lanes.n, 1.0f);
   c.lambda = lanes.lambda[0];
@@ -286,8 +286,12 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
   c.parallelRays = scene.camera.parallelRays();
   out.push_back(c);
   updateSums(out, TransportMode::Radiance, ws.strategies);
-  // The sensor's density of the last wavelength group is a factor of the weights (mis_sums.h).
-  Track tr = startTrack(lanes, out, c.beta, scene.camera.rayPdf(ray));
+  // The sensor's density of the last wavelength group is a factor of the weights (mis_sums.h); the
+  // reconstruction filter's coverage turns the camera's uniform density into the camera samples'.
+  const PixelFilter& filter = scene.pixelFilter;
+  const float pdfRay = scene.camera.rayPdf(ray, filter.filmMargin()) *
+                       filter.coverage(filmPos, scene.camera.width(), scene.camera.height());
+  Track tr = startTrack(lanes, out, c.beta, pdfRay);
   randomWalk(scene, ray, &tr, 1, TransportMode::Radiance, ws, rng, counter);
 }
 

@@ -40,6 +40,7 @@ struct WalkSettings {
   const LightFirstStart* lightFirst = nullptr;
   // The strategies the weights count (mis_sums.h): BDPT's connections, and vertex merging in vcm.
   Strategies strategies;
+  bool hideEmitters = false;  // RenderSettings::hideEmitters: no path without a scattering vertex
 };
 
 // What a camera sample's lanes point into (Lanes::lights, Lanes::ownStart).

@@ -71,7 +71,7 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
     : sensor_(s.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor),
       light_(s.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart),
       parts_(parts),
-      ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}},
+      ws_{s.maxDepth, s.rrDepth, &light_.density(), nullptr, {}, s.hideEmitters},
       families_(bidir::familiesFor(scene, bidir::WavelengthMode::Unified)),
       lanes_(s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths),
       alpha_(s.vcm.alpha),
@@ -303,7 +303,7 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
   thread_local std::vector<PathVertex> C, LS, LO;  // the camera subpath, the light subpath's two views
-  const Vec2 film = pixel + rng.uniform2();
+  const Vec2 film = scene.pixelFilter.filmPosition(pixel, rng.uniform2());
   traceCameraSubpath(scene, film, lanes, pass.walk, rng, ctx.counter, C);
   Context c{scene, pass.walk, families_, lanes, sensor_.density(), ctx.counter};
   c.spectralSplats = ctx.recordSpectral;
@@ -325,7 +325,7 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
     connectSubpaths(c, C, LS, LO, rng, ctx.splats, radiance, xyz);
   } else {
     std::fill(radiance, radiance + lanes_, 0.0f);
-    for (int t = 2; t <= int(C.size()); ++t) emitterHit(c, C, t, radiance, xyz);
+    for (int t = pass.walk.hideEmitters ? 3 : 2; t <= int(C.size()); ++t) emitterHit(c, C, t, radiance, xyz);
   }
   if (pass.vertices) {
     thread_local std::vector<SpectralSample> atLight;  // merges at the light vertices' own wavelengths

@@ -49,7 +49,8 @@ LightTracer::LightTracer(const Scene& scene, const RenderSettings& s)
       lanes_(s.heroWavelengths),
       atFluorescence_(s.fluorescentLanes),
       maxDepth_(s.maxDepth),
-      rrDepth_(s.rrDepth) {
+      rrDepth_(s.rrDepth),
+      hideEmitters_(s.hideEmitters) {
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart, "for light subpaths");
   if (lanes_ < 1 || lanes_ > kMaxLanes)
     throw std::invalid_argument("wavelength lanes: " + std::to_string(lanes_) + " is outside [1, " +
@@ -60,15 +61,16 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
   const int n = lanes_;
   // Lanes at the strata of the light-start density; the light ∝ Σ_j Φ_l(λ_j), symmetric in them.
   const float uLambda = rng.uniform(), uLight = rng.uniform();
-  const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2(), uLens = rng.uniform2();
+  const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
+  const Vec2 uLens = scene.camera.sampleLens(rng);
   LightStartLanes st = startLightLanes(scene, wavelengths_.density(), n, uLambda, uLight, uPos, uDir);
   if (st.lanes.n == 0) return Vec3(0.0f);
   const EmissionSample& es = st.es;
   LightLanes& lanes = st.lanes;
 
   // The emitter seen directly (area lights; delta lights have no area the camera could see).
-  if (!es.deltaPos && !es.deltaDir && glm::dot(es.n, es.n) > 0.0f) {
-    if (const auto c = scene.camera.connect(es.p, uLens)) {
+  if (!es.deltaPos && !es.deltaDir && glm::dot(es.n, es.n) > 0.0f && !hideEmitters_) {
+    if (const auto c = scene.camera.connect(es.p, uLens, scene.pixelFilter.filmMargin())) {
       const auto& area = static_cast<const AreaLight&>(*st.light);
       float value[kMaxLanes];
       for (int j = 0; j < n; ++j) value[j] = area.shape().emission->eval(lanes.lambda[j], es.n, c->wi) * st.start[j];
@@ -91,13 +93,13 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     // Spectral stage (Importance) of every lane: the lobe and the wavelengths leaving this vertex.
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));
     const float uLobe = rng.uniform(), uLane = rng.uniform();
-    const Vec2 uLens = rng.uniform2();
+    const Vec2 uLens = scene.camera.sampleLens(rng);
     LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Importance, known, n, uLobe, nullptr, atFluorescence_);
     if (e.n == 0) break;
     if (lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
 
     if (!bsdf.has(BsdfFlags::DeltaDirection)) {
-      if (const auto c = scene.camera.connect(hit->p, uLens)) {
+      if (const auto c = scene.camera.connect(hit->p, uLens, scene.pixelFilter.filmMargin())) {
         const Vec3 wo = bsdf.toLocal(c->wi);
         float value[kMaxLanes];
         for (int k = 0; k < e.n; ++k)

@@ -28,6 +28,7 @@ class LightTracer final : public Integrator {
   int lanes_;
   FluorescentLanes atFluorescence_;
   int maxDepth_, rrDepth_;
+  bool hideEmitters_;  // RenderSettings::hideEmitters
 };
 
 }  // namespace kasha

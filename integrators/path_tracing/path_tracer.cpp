@@ -48,6 +48,7 @@ PathTracer::PathTracer(const Scene& scene, const RenderSettings& s)
       atFluorescence_(s.fluorescentLanes),
       maxDepth_(s.maxDepth),
       rrDepth_(s.rrDepth),
+      hideEmitters_(s.hideEmitters),
       directXyz_(directEmissionXyz(scene)) {
   if (n_ == 1) return;  // one wavelength: any sensor, fluorescence and nee strategy
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "with hero wavelengths (their strata need p)");
@@ -61,22 +62,23 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
     Vec3 xyz(0.0f);
     for (int i = 0; i < sensor_.samplesPerEstimate(); ++i) {
       const WavelengthStrategy::Draw d = sensor_.draw(i, rng.uniform());
-      const Vec2 jitter = rng.uniform2();
-      const Vec2 lens = rng.uniform2();
+      const Vec2 uFilm = rng.uniform2();
+      const Vec2 uLens = scene.camera.sampleLens(rng);
       if (!(d.weight > 0.0f)) continue;
       CameraLanesOf<float> lane;
       lane.n = 1;
       lane.lambda[0] = d.lambda;
       lane.T[0] = d.weight;
-      const float L = radiance(scene, scene.camera.generateRay(pixel + jitter, lens), lane, rng, ctx.counter);
+      const Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm), uLens);
+      const float L = radiance(scene, ray, lane, rng, ctx.counter);
       xyz += sensorResponse(ctx, d.lambda, L);
     }
     return xyz;
   }
   const WavelengthDensity& p = sensor_.density();
   const float u = rng.uniform();
-  const Vec2 jitter = rng.uniform2();
-  const Vec2 lens = rng.uniform2();
+  const Vec2 uFilm = rng.uniform2();
+  const Vec2 uLens = scene.camera.sampleLens(rng);
   // Lane j at the stratum (u + j/N) of p's inverse CDF: distributed as p, weighted by 1/(N·p(λ_j)).
   float lambda[kMaxLanes], pdf[kMaxLanes];
   for (int j = 0; j < n_; ++j) {
@@ -84,7 +86,7 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
     lambda[j] = s.lambda;
     pdf[j] = s.pdf;
   }
-  const Ray ray = scene.camera.generateRay(pixel + jitter, lens);
+  const Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm), uLens);
   if (!ctx.recordSpectral) {
     // The lanes' XYZ throughput W(λ_j)/(N·p(λ_j)).
     CameraLanesOf<Vec3> lanes;
@@ -134,8 +136,9 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     rng.startVertex(firstDimension, depth);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++counter.closest;
+    const bool seesEmitters = depth > 0 || !hideEmitters_;
     if (!hit) {
-      if (const EnvironmentLight* env = scene.environment()) {
+      if (const EnvironmentLight* env = seesEmitters ? scene.environment() : nullptr) {
         float w = 1.0f;
         if (!prevSpecular)
           w = powerHeuristic(prevDirPdf * prevSpectralPdf, lastLightProbability(size_t(scene.environmentLight)) *
@@ -145,7 +148,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
       break;
     }
     const Shape& shape = scene.shapes[hit->shape];
-    if (shape.emission) {
+    if (shape.emission && seesEmitters) {
       float w = 1.0f;
       if (!prevSpecular) {
         const size_t li = size_t(scene.shapeLight[hit->shape]);

@@ -70,6 +70,7 @@ class PathTracer final : public Integrator {
   int n_;
   FluorescentLanes atFluorescence_;
   int maxDepth_, rrDepth_;
+  bool hideEmitters_;  // RenderSettings::hideEmitters
   std::vector<Vec3> directXyz_;  // per light: its emission's XYZ seen directly (direct_emission.h)
 };
 

@@ -69,7 +69,7 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
       directLanes_(directLightWavelengths(sources_, s.ppm.neeWavelengths)),
       excitation_(s.wavelengths.fluorescence, sources_, scene.materials.size()),
       n_(s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths),
-      maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), alpha_(s.ppm.alpha),
+      maxDepth_(s.maxDepth), rrDepth_(s.rrDepth), hideEmitters_(s.hideEmitters), alpha_(s.ppm.alpha),
       alwaysKernel_(s.ppm.alwaysKernel), direct_(s.ppm.direct), memoryLimit_(s.memoryLimit),
       sampler_(s.sampler), directXyz_(directEmissionXyz(scene)) {
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by ppm");
@@ -143,12 +143,12 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
   const auto& pass = static_cast<const PhotonPass&>(*ctx.pass);
   const WavelengthDensity& p = sensor_.density();
   const float u = rng.uniform();
-  const Vec2 jitter = rng.uniform2();
-  const Vec2 lens = rng.uniform2();
+  const Vec2 uFilm = rng.uniform2();
+  const Vec2 uLens = scene.camera.sampleLens(rng);
   CameraLanes lanes = stratifiedLanes(p, u, n_);
   float sensorLambda[kMaxLanes];  // the wavelength each sensor share is seen at
   std::copy(lanes.lambda, lanes.lambda + n_, sensorLambda);
-  Ray ray = scene.camera.generateRay(pixel + jitter, lens);
+  Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm), uLens);
   SensorShares L;    // radiance over density arriving at each sensor wavelength
   Vec3 xyz(0.0f);    // elastic photons seen at their own wavelengths
   const uint32_t firstDimension = rng.dimension();
@@ -156,15 +156,16 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     rng.startVertex(firstDimension, bounces);
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++ctx.counter.closest;
+    const bool seesEmitters = bounces > 0 || !hideEmitters_;
     if (!hit) {
-      if (const EnvironmentLight* env = scene.environment())
+      if (const EnvironmentLight* env = seesEmitters ? scene.environment() : nullptr)
         for (int k = 0; k < lanes.n; ++k) L += lanes.T[k] * env->Le(lanes.lambda[k], ray.d);
       break;
     }
     const Shape& shape = scene.shapes[hit->shape];
     // Emission is hit only after the camera or specular vertices: next-event estimation and the
     // photons never count these paths (docs/photon-mapping.md §3).
-    if (shape.emission) {
+    if (shape.emission && seesEmitters) {
       if (bounces == 0 && !ctx.recordSpectral) {
         // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact (as
         // in the path tracer). Spectral bins need each lane's share, so they keep the lanes' estimate.

@@ -55,6 +55,7 @@ class PpmIntegrator final : public Integrator {
   std::optional<WavelengthDensity> directLanes_;  // own lanes of first-vertex elastic NEE (none: the camera's)
   FluorescenceSampling excitation_;  // λ_i of next-event estimation's fluorescent lobe ("material": the Bsdf's own)
   int n_, maxDepth_, rrDepth_;
+  bool hideEmitters_;  // RenderSettings::hideEmitters
   size_t photonsPerPass_;
   float radius1_, alpha_, bandwidth1_;
   bool alwaysKernel_;

@@ -58,3 +58,33 @@ def test_mitsuba_scene_from_python():
     scene.set("/camera/resolution", [8, 6])
     result = kasha.render(scene, spp=1, max_depth=2)
     assert result["xyz"].shape == (6, 8, 3) and np.all(np.isfinite(result["xyz"]))
+
+
+MITSUBA_WITH_PARAMETERS = """<scene version="3.0.0">
+  <integrator type="$integrator"/>
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <film type="hdrfilm"><integer name="width" value="$res"/><integer name="height" value="$res"/></film>
+  </sensor>
+  <emitter type="point"><point name="position" x="0" y="3" z="0"/><spectrum name="intensity" value="1"/></emitter>
+  <shape type="rectangle"><bsdf type="diffuse"/></shape>
+</scene>
+"""
+
+
+def test_mitsuba_defaults_and_the_scenes_integrator(tmp_path):
+    path = tmp_path / "params.xml"
+    path.write_text(MITSUBA_WITH_PARAMETERS)
+    scene = kasha.Scene(str(path), defaults={"integrator": "ptracer", "res": 4})
+    assert scene.get("/render/integrator") == "lt"
+    assert scene.get("/camera/resolution") == [4, 4]
+    # The scene's integrator unless kasha.render names one.
+    assert kasha.render(scene, spp=1, threads=1)["stats"]["integrator"] == "lt"
+    assert kasha.render(scene, integrator="pt", spp=1, threads=1)["stats"]["integrator"] == "pt"
+    with pytest.raises(kasha.InputError, match=r"parameter '\$res' has no <default>"):
+        kasha.Scene(str(path), defaults={"integrator": "path"})
+    with pytest.raises(kasha.InputError, match="kasha.Scene: defaults: 'r-s' is not a parameter name"):
+        kasha.Scene(str(path), defaults={"r-s": 4})
+    with pytest.raises(kasha.InputError, match="sets parameters of a Mitsuba XML scene"):
+        kasha.Scene(os.path.join(REPO, "scenes", "jung18_fig1.json"), defaults={"spp": 4})
+    with pytest.raises(kasha.InputError, match="kasha.Scene: defaults: expected str, int or float values"):
+        kasha.Scene(str(path), defaults={"res": [4]})

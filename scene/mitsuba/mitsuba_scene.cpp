@@ -1,5 +1,8 @@
 #include "scene/mitsuba/mitsuba_scene.h"
 
+#include <algorithm>
+#include <cctype>
+
 
 #include "scene/mitsuba/xml_bsdf.h"
 #include "scene/mitsuba/xml_emitter.h"
@@ -23,9 +26,28 @@ void readDefaults(XmlImport& xml, pugi::xml_node scene) {
   }
 }
 
+// Top-level objects used only where a <ref id=".."/> names them: an area emitter belongs to the
+// shapes that name it, a sampler to the sensor.
+bool isDeclaration(pugi::xml_node c) {
+  const std::string tag = c.name();
+  return (tag == "emitter" && std::string(c.attribute("type").value()) == "area") || tag == "sampler";
+}
+
+// A file's declarations, read before its other elements (a <ref> may come before what it names).
+void readDeclarations(XmlImport& xml, pugi::xml_node scene, SceneJson& out) {
+  for (pugi::xml_node c : scene.children()) {
+    if (c.type() != pugi::node_element || !isDeclaration(c)) continue;
+    if (!c.attribute("id")) xml.fail(c, "a top-level <" + std::string(c.name()) + "> of this kind needs an id to be referred to");
+    xml.claimId(c);
+    const auto [it, added] = out.declared.emplace(xml.attribute(c, "id"), c);
+    if (!added) xml.fail(c, "duplicate id '" + it->first + "' (the <" + it->second.name() + "> at " + xml.where(it->second) + " has it)");
+  }
+}
+
 // A scene's children in order, descending into <include>d files.
 void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
   if (depth > kMaxIncludeDepth) xml.fail(scene, "<include>s " + nestedDeeperThan(kMaxIncludeDepth));
+  readDeclarations(xml, scene, out);
   for (pugi::xml_node c : scene.children()) {
     if (c.type() != pugi::node_element) continue;
     const std::string tag = c.name();
@@ -47,12 +69,18 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
     } else if (tag == "bsdf") {
       if (!c.attribute("id")) xml.fail(c, "a top-level <bsdf> needs an id to be referred to");
       out.addMaterial(xml, c, bsdfMaterial(xml, c));
+    } else if (tag == "texture") {
+      // Translated where a <ref> uses it (xml_texture.h): as a colour or as a scalar.
+      if (!c.attribute("id")) xml.fail(c, "a top-level <texture> needs an id to be referred to");
+      xml.claimId(c);
     } else if (tag == "shape") {
       addShape(xml, c, out);
+    } else if (isDeclaration(c)) {
+      continue;  // declared before
     } else if (tag == "emitter") {
       addEmitter(xml, c, out);
     } else {
-      xml.fail(c, "unsupported element <" + tag + "> (kasha reads default, include, path, integrator, sensor, bsdf, shape, emitter)");
+      xml.fail(c, "unsupported element <" + tag + "> (kasha reads default, include, path, integrator, sensor, sampler, bsdf, texture, shape, emitter)");
     }
   }
 }
@@ -89,6 +117,10 @@ std::string SceneJson::addMaterial(const XmlImport& xml, pugi::xml_node bsdf, js
 }
 
 bool isMitsubaScenePath(const std::string& path) { return path.size() >= 4 && path.ends_with(".xml"); }
+
+bool isParameterName(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
+}
 
 // Reads the scene into `out`; the notes stay in `xml`.
 static void build(XmlImport& xml, SceneJson& out, const std::string& text, const std::string& path,

@@ -28,5 +28,8 @@ std::unique_ptr<Scene> loadMitsubaScene(const std::string& text, const std::stri
 
 // Whether `path` names a Mitsuba scene (ends in .xml).
 bool isMitsubaScenePath(const std::string& path);
+// Whether `name` can be a `$name` parameter set from outside (`kasha render -D`, Python's
+// defaults=): letters, digits and '_', not empty.
+bool isParameterName(const std::string& name);
 
 }  // namespace kasha::mitsuba

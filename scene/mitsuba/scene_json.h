@@ -15,6 +15,14 @@ struct SceneJson {
   // JSON pointer ("/shapes/3", "/materials/wall") → "file:line" and the plugin.
   std::map<std::string, std::pair<std::string, std::string>> origins;
   std::map<std::string, std::string> bsdfIds;  // XML id → material name
+  // Objects declared at the top level with an id and used only where a <ref id=".."/> names them
+  // (an area <emitter> for shapes, a <sampler> for the sensor), by id.
+  std::map<std::string, pugi::xml_node> declared;
+  // The declared object `id` if it is a <tag>, else an empty node.
+  pugi::xml_node declaredAs(const std::string& id, const char* tag) const {
+    const auto it = declared.find(id);
+    return it != declared.end() && std::string(it->second.name()) == tag ? it->second : pugi::xml_node();
+  }
 
   void origin(const std::string& pointer, const XmlImport& xml, pugi::xml_node n) {
     origins[pointer] = {xml.where(n), XmlImport::describe(n)};

@@ -1,9 +1,11 @@
 #include "scene/mitsuba/xml_bsdf.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <vector>
 
+#include "core/conductor_index.h"
 #include "core/math.h"
 #include "core/spectrum_json.h"
 #include "scene/mitsuba/xml_spectrum.h"
@@ -54,50 +56,75 @@ json relativeIor(Plugin& b, const std::string& intKey, const std::string& intDef
   return in;
 }
 
-json roughness(Plugin& b) {
+// One roughness property: a number, or (a texture) 1 with the texture as the factor.
+json roughnessValue(Plugin& b, const std::string& key, json& texture) {
+  const pugi::xml_node p = b.property(key);
+  if (p && isTexture(p)) {
+    texture = textureField(b.xml(), p, TextureUse::Scalar);
+    return 1.0;
+  }
+  return p ? b.number(key, 0.1f) : 0.1f;
+}
+
+// m[key] (GGX α: alpha, or alpha_u and alpha_v) and, where they are textures, m[key + "_texture"].
+void roughness(Plugin& b, json& m, const std::string& key) {
   const std::string dist = b.string("distribution", "beckmann");
   if (dist != "ggx" && dist != "beckmann") b.fail("unknown microfacet distribution '" + dist + "'");
   if (dist == "beckmann") b.note("Beckmann roughness taken as GGX alpha of the same value (kasha has GGX only)");
   b.boolean("sample_visible", true);  // kasha samples visible normals always
-  if (b.has("alpha_u") || b.has("alpha_v")) return json::array({b.number("alpha_u", 0.1f), b.number("alpha_v", 0.1f)});
-  return b.number("alpha", 0.1f);
+  if (b.has("alpha_u") || b.has("alpha_v")) {
+    json tu, tv;
+    m[key] = json::array({roughnessValue(b, "alpha_u", tu), roughnessValue(b, "alpha_v", tv)});
+    if (!tu.is_null() || !tv.is_null()) m[key + "_texture"] = json::array({tu, tv});  // null: untextured
+    return;
+  }
+  json t;
+  m[key] = roughnessValue(b, "alpha", t);
+  if (!t.is_null()) m[key + "_texture"] = t;
 }
 
-// Normal-incidence Fresnel reflectance of a conductor, F0 = ((η−1)² + k²)/((η+1)² + k²), times
-// specular_reflectance, tabulated every nm over 360–830 nm.
-json conductorF0(Plugin& b) {
+// A conductor's Fresnel terms in kasha's JSON (mirror, rough_conductor): a named metal
+// ("material", Mitsuba's default "none" being a perfect mirror), or η and k spectra, with
+// specular_reflectance as the factor on the exact Fresnel reflectance (materials/conductor_fresnel.h).
+void setConductor(Plugin& b, json& m) {
   const std::string material = b.string("material", b.has("eta") ? "" : "none");
-  if (!material.empty() && material != "none")
-    b.fail("named conductor '" + material + "' is not available in kasha (no η/k tables); give <spectrum name=\"eta\"> "
-           "and <spectrum name=\"k\">");
-  const SpectrumContext ctx(b.xml().where(b.node()), b.xml().baseDir(b.node()));
-  const json specular = spectrumProperty(b, "specular_reflectance", 1.0);
-  const Spectrum s = parseSpectrum(specular, ctx, "specular_reflectance");
-  if (material == "none") return specular;  // η = 0, k = 1: a perfect mirror
-  const Spectrum eta = parseSpectrum(spectrumProperty(b, "eta"), ctx, "eta");
-  const Spectrum k = parseSpectrum(spectrumProperty(b, "k"), ctx, "k");
-  std::vector<float> wl, v;
-  for (int nm = 360; nm <= 830; ++nm) {
-    const float n = eta(float(nm)), kk = k(float(nm));
-    wl.push_back(float(nm));
-    v.push_back(s(float(nm)) * (kasha::sqr(n - 1.0f) + kk * kk) / (kasha::sqr(n + 1.0f) + kk * kk));
+  m["reflectance"] = spectrumProperty(b, "specular_reflectance", 1.0);
+  if (material == "none") return;  // η = 0, k = 1: R = 1 at every angle, times specular_reflectance
+  if (!material.empty()) {
+    // Mitsuba's tables are Palik's where a name ends in _palik; kasha has one table per metal.
+    std::string symbol = material;
+    if (symbol.size() > 6 && symbol.ends_with("_palik")) {
+      symbol.resize(symbol.size() - 6);
+      b.note("'" + material + "' is kasha's measured '" + symbol + "' (scenes/spectra/conductors/" + symbol + ".csv)");
+    }
+    if (!namedConductor(symbol)) {
+      std::string list;
+      for (const std::string& n : conductorNames()) list += (list.empty() ? "" : ", ") + n;
+      b.fail(b.property("material"), "no measured index for the conductor '" + material + "' in kasha (" + list +
+                                         "); give <spectrum name=\"eta\"> and <spectrum name=\"k\">");
+    }
+    m["eta"] = symbol;
+    return;
   }
-  b.note("conductor reflectance from η, k at normal incidence (F0), with Schlick's angular dependence in kasha");
-  return {{"type", "tabulated"}, {"wavelengths", wl}, {"values", v}};
+  m["eta"] = spectrumProperty(b, "eta");
+  m["k"] = spectrumProperty(b, "k");
 }
 
 void requireUnitSpecular(Plugin& b, const char* key) {
   const json s = spectrumProperty(b, key, 1.0);
-  if (!(s.is_number() && s.get<float>() == 1.0f)) b.fail(std::string("'") + key + "' other than 1 is not supported");
+  const auto one = [](const json& v) { return v.is_number() && v.get<float>() == 1.0f; };
+  const bool rgbOne = s.is_object() && s.value("type", "") == "rgb" && s["value"].is_array() &&
+                      std::all_of(s["value"].begin(), s["value"].end(), one);  // <rgb value="1"/>
+  if (!one(s) && !rgbOne) b.fail(std::string("'") + key + "' other than 1 is not supported");
 }
 
-// Sets m["reflectance"] from the reflectance property `key`: a spectrum, or a <texture
-// type="bitmap"> (reflectance 1 times the image's colours, xml_texture.h).
+// Sets m["reflectance"] from the reflectance property `key`: a spectrum, or a texture
+// (reflectance 1 times the texture's colours, xml_texture.h).
 void setReflectance(Plugin& b, const std::string& key, json& m) {
   const pugi::xml_node p = b.property(key);
-  if (p && std::string(p.name()) == "texture") {
+  if (p && isTexture(p)) {
     m["reflectance"] = 1.0;
-    m["reflectance_texture"] = bitmapTexture(b.xml(), p);
+    m["reflectance_texture"] = textureField(b.xml(), p, TextureUse::Reflectance);
   } else {
     m["reflectance"] = spectrumProperty(b, key, 0.5);
   }
@@ -143,16 +170,18 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
     setReflectance(b, "reflectance", m);
   } else if (t == "conductor") {
     oneSided();
-    m = {{"type", "mirror"}, {"reflectance", conductorF0(b)}};
+    m = {{"type", "mirror"}};
+    setConductor(b, m);
   } else if (t == "roughconductor") {
     oneSided();
-    m = {{"type", "rough_conductor"}, {"reflectance", conductorF0(b)}};
-    m["alpha"] = roughness(b);
+    m = {{"type", "rough_conductor"}};
+    setConductor(b, m);
+    roughness(b, m, "alpha");
   } else if (t == "dielectric" || t == "roughdielectric") {
     requireUnitSpecular(b, "specular_reflectance");
     requireUnitSpecular(b, "specular_transmittance");
     m = {{"type", t == "dielectric" ? "dielectric" : "rough_dielectric"}, {"ior", relativeIor(b, "int_ior", "bk7")}};
-    if (t == "roughdielectric") m["alpha"] = roughness(b);
+    if (t == "roughdielectric") roughness(b, m, "alpha");
   } else if (t == "plastic" || t == "roughplastic") {
     oneSided();
     requireUnitSpecular(b, "specular_reflectance");
@@ -161,7 +190,7 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
          {"coat_ior", relativeIor(b, "int_ior", "polypropylene")}};
     setReflectance(b, "diffuse_reflectance", m);
     if (t == "roughplastic") {
-      m["coat_alpha"] = roughness(b);
+      roughness(b, m, "coat_alpha");
     } else {
       m["coat_alpha"] = 0.001;
       b.note("smooth coat as GGX alpha 0.001");

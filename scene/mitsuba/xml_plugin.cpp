@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "core/input_file.h"
@@ -121,17 +122,27 @@ std::string XmlImport::baseDir(pugi::xml_node n) const {
 std::string XmlImport::resolve(pugi::xml_node n, const std::string& rel) const {
   // Absolute, so that the JSON loader (which resolves against the top-level file) keeps it.
   if (!rel.empty() && rel[0] == '/') return rel;
-  for (auto dir = searchPaths_.rbegin(); dir != searchPaths_.rend(); ++dir) {
-    const std::filesystem::path candidate = std::filesystem::path(*dir) / rel;
+  auto existing = [&](const std::string& dir) -> std::optional<std::string> {
+    const std::filesystem::path candidate = std::filesystem::absolute(std::filesystem::path(dir) / rel).lexically_normal();
     std::error_code error;
-    if (std::filesystem::exists(candidate, error)) return candidate.lexically_normal().string();
-  }
+    if (std::filesystem::exists(candidate, error)) return candidate.string();
+    return std::nullopt;
+  };
+  for (auto dir = searchPaths_.rbegin(); dir != searchPaths_.rend(); ++dir)
+    if (std::optional<std::string> found = existing(*dir)) return *found;
+  if (std::optional<std::string> found = existing(baseDir(n))) return *found;
+  // Mitsuba's file resolver also holds the top-level scene's directory (an included file may name
+  // files relative to the scene that includes it).
+  const std::string sceneDir = std::filesystem::path(files_.front().path).parent_path().string();
+  if (std::optional<std::string> found = existing(sceneDir.empty() ? "." : sceneDir)) return *found;
   return std::filesystem::absolute(baseDir(n) + "/" + rel).lexically_normal().string();
 }
 
 void XmlImport::addSearchPath(pugi::xml_node n, const std::string& dir) {
-  const std::string path = resolve(n, dir);
+  // Mitsuba 3 (<path>): relative to the file that holds it, else through the file resolver.
+  std::string path = std::filesystem::absolute(baseDir(n) + "/" + dir).lexically_normal().string();
   std::error_code error;
+  if (dir.empty() || dir[0] == '/' || !std::filesystem::is_directory(path, error)) path = resolve(n, dir);
   if (!std::filesystem::is_directory(path, error)) fail(n, "path '" + dir + "' is not a directory (" + path + ")");
   searchPaths_.push_back(path);
 }
@@ -186,6 +197,11 @@ void XmlImport::claimId(pugi::xml_node n) {
     fail(n, "duplicate id '" + id + "' (the <" + it->second.name() + "> at " + where(it->second) + " has it)");
 }
 
+pugi::xml_node XmlImport::declared(const std::string& tag, const std::string& id) const {
+  const auto it = ids_.find({tag, id});
+  return it == ids_.end() ? pugi::xml_node() : it->second;
+}
+
 void XmlImport::fail(pugi::xml_node n, const std::string& reason) const { throw InputError(where(n), describe(n), reason); }
 
 void XmlImport::note(pugi::xml_node n, const std::string& what) {
@@ -215,6 +231,14 @@ std::optional<std::vector<float>> parseNumbers(const std::string& text) {
 Plugin::Plugin(XmlImport& xml, pugi::xml_node node) : xml_(xml), node_(node) {
   if (node.attribute("type")) type_ = xml.attribute(node, "type");
   if (node.attribute("id")) xml.claimId(node);
+  // Plugins of what kasha does not render at all (its scope: docs/mitsuba-import.md), said as such.
+  static const std::map<std::pair<std::string, std::string>, const char*> kOutOfScope = {
+      {{"bsdf", "polarizer"}, "polarisation"},     {{"bsdf", "pplastic"}, "polarisation"},
+      {{"bsdf", "measured_polarized"}, "polarisation"}, {{"integrator", "stokes"}, "polarisation"},
+      {{"bsdf", "hair"}, "hair"},                  {{"shape", "bsplinecurve"}, "curves"},
+      {{"shape", "linearcurve"}, "curves"},        {{"shape", "sdfgrid"}, "signed distance fields"}};
+  const auto out = kOutOfScope.find({node.name(), type_});
+  if (out != kOutOfScope.end()) fail(std::string("outside kasha's scope (") + out->second + ")");
 }
 
 bool Plugin::has(const std::string& name) const {

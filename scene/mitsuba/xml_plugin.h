@@ -58,6 +58,8 @@ class XmlImport {
   // with the same id, in the scene or its <include>s, is an error naming both. (Mitsuba wants ids
   // unique across kinds too; kasha lets a shape and its bsdf share one, as its example scene does.)
   void claimId(pugi::xml_node n);
+  // The element of kind `tag` whose id was claimed as `id` so far, or an empty node.
+  pugi::xml_node declared(const std::string& tag, const std::string& id) const;
 
   // Records an approximation (printed to stderr by the loader).
   void note(pugi::xml_node n, const std::string& what);

@@ -1,7 +1,9 @@
 #include "scene/mitsuba/xml_sensor.h"
 
 #include <cmath>
+#include <map>
 
+#include "core/pixel_filter.h"
 #include "scene/mitsuba/xml_transform.h"
 
 namespace kasha::mitsuba {
@@ -41,6 +43,46 @@ float fovY(XmlImport& xml, Plugin& s, int width, int height) {
   return *y;
 }
 
+// Mitsuba's film without an <rfilter> (Mitsuba 3 docs: hdrfilm): the Gaussian of stddev 0.5.
+json defaultFilter() { return {{"type", "gaussian"}, {"stddev", 0.5f}}; }
+
+// <rfilter> as kasha's /camera/filter (core/pixel_filter.h). Mitsuba's filters with negative lobes
+// get the closest kasha has, with a note: the Gaussian of the same standard deviation where the
+// kernel's second moment is positive, else the box. Mitchell–Netravali's kernel (B, C; 1/3 each
+// by default) integrates to 1 and has second moment ∫x²k = (2 + 3B − 4C)/15 (its cubic pieces
+// integrated), 1/9 by default; Catmull–Rom's (B = 0, C = 1/2) vanishes, and Lanczos's sinc
+// interpolates too: both get the box.
+json reconstructionFilter(XmlImport& xml, pugi::xml_node node) {
+  Plugin f(xml, node);
+  json out;
+  const std::string type = f.type();
+  if (type == "box") {
+    out = "box";
+  } else if (type == "tent") {
+    out = {{"type", "tent"}, {"radius", f.number("radius", 1.0f)}};
+  } else if (type == "gaussian") {
+    out = defaultFilter();
+    out["stddev"] = f.number("stddev", 0.5f);
+  } else if (type == "mitchell" || type == "catmullrom" || type == "lanczos") {
+    float variance = 0.0f;
+    if (type == "mitchell") variance = (2.0f + 3.0f * f.number("B", 1.0f / 3.0f) - 4.0f * f.number("C", 1.0f / 3.0f)) / 15.0f;
+    if (type == "lanczos") f.integer("lobes", 3);
+    const float stddev = std::min(std::sqrt(std::max(variance, 0.0f)), PixelFilter::kMaxRadius / 4.0f);
+    std::string used = "box filter";
+    out = "box";
+    if (stddev >= PixelFilter::kMinRadius / 4.0f) {
+      out = defaultFilter();
+      out["stddev"] = stddev;
+      used = "gaussian filter (stddev " + std::to_string(stddev) + ")";
+    }
+    f.note("rendered with kasha's " + used + ", the closest it has (none with negative lobes)");
+  } else {
+    f.fail("unsupported rfilter plugin (box, tent, gaussian; mitchell, catmullrom, lanczos approximated)");
+  }
+  f.finish();
+  return out;
+}
+
 }  // namespace
 
 std::optional<float> verticalFov(float fov, const std::string& axis, int width, int height) {
@@ -64,6 +106,7 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     s.fail("unsupported sensor plugin (perspective, thinlens, orthographic)");
   if (out.root.contains("camera")) s.fail("a second <sensor> (kasha renders one camera)");
   int width = 768, height = 576;
+  json filter = defaultFilter();
   for (pugi::xml_node f : s.nested("film")) {
     Plugin film(xml, f);
     if (film.type() != "hdrfilm") film.fail("unsupported film plugin (hdrfilm)");
@@ -74,13 +117,20 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     film.string("pixel_format", "");
     film.string("component_format", "");
     film.string("file_format", "");
-    for (pugi::xml_node r : film.nested("rfilter")) {
-      film.note("reconstruction filter ignored: kasha averages the samples of each pixel (box filter)");
-      (void)r;
-    }
+    const std::vector<pugi::xml_node> rfilters = film.nested("rfilter");
+    if (rfilters.size() > 1) film.fail(rfilters[1], "a second <rfilter> (a film has one reconstruction filter)");
+    if (!rfilters.empty()) filter = reconstructionFilter(xml, rfilters[0]);
     film.finish();
   }
-  for (pugi::xml_node smp : s.nested("sampler")) {
+  std::vector<pugi::xml_node> samplers = s.nested("sampler");
+  for (pugi::xml_node r : s.nested("ref")) {
+    const std::string id = xml.attribute(r, "id");
+    const pugi::xml_node declared = out.declaredAs(id, "sampler");
+    if (!declared) s.fail(r, "no <sampler id=\"" + id + "\"> before this reference");
+    samplers.push_back(declared);
+  }
+  if (samplers.size() > 1) s.fail(samplers[1], "more than one sampler");
+  for (pugi::xml_node smp : samplers) {
     Plugin sampler(xml, smp);
     out.root["render"]["spp"] = sampler.integer("sample_count", 4);
     sampler.note("sampler type ignored: kasha draws from its own per-sample random streams");
@@ -112,6 +162,7 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   camera["look_at"] = vec(pos + glm::normalize(transformVector(m, Vec3(0, 0, 1))));
   camera["up"] = vec(transformVector(m, Vec3(0, 1, 0)));
   camera["resolution"] = {width, height};
+  camera["filter"] = filter;
   out.root["camera"] = camera;
   out.origin("/camera", xml, node);
   s.finish();
@@ -119,15 +170,40 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
 
 void addIntegrator(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   Plugin it(xml, node);
-  if (it.type() != "path") it.fail("unsupported integrator plugin (path; choose kasha's integrator with --integrator)");
+  // Mitsuba's integrators that estimate the image kasha renders, as kasha's integrator choice
+  // (render/integrator; --integrator still chooses another). Those that write something else
+  // (arbitrary output variables, Stokes vectors, moments, depth) are refused.
+  static const std::map<std::string, std::string> kEquivalent = {
+      {"path", "pt"}, {"volpath", "pt"}, {"volpathmis", "pt"}, {"direct", "pt"}, {"ptracer", "lt"}, {"bdpt", "bdpt"}};
+  const auto equivalent = kEquivalent.find(it.type());
+  if (equivalent == kEquivalent.end()) {
+    if (it.type() == "aov" || it.type() == "stokes" || it.type() == "moment" || it.type() == "depth")
+      it.fail("integrator '" + it.type() + "' writes other quantities than radiance; kasha renders radiance only");
+    it.fail("unsupported integrator plugin (path, volpath, direct, ptracer, bdpt; kasha's own with --integrator)");
+  }
+  out.root["render"]["integrator"] = equivalent->second;
   // Mitsuba counts path depth in vertices after the camera (1: emitters seen directly), kasha in
-  // scattering events: one less. Mitsuba's −1 (unbounded) keeps kasha's default.
-  const int maxDepth = it.integer("max_depth", -1), rrDepth = it.integer("rr_depth", 5);
+  // scattering events: one less. Mitsuba's −1 (unbounded) keeps kasha's default. `direct` is
+  // emitters seen directly plus one scattering event.
+  int maxDepth = -1;
+  if (it.type() == "direct") {
+    maxDepth = 2;
+    it.note("kasha's pt with max_depth 1 (emitters seen directly and lit once); emitter_samples and bsdf_samples "
+            "ignored (pt takes one light and one BSDF sample per vertex with MIS: the same image, other noise)");
+    it.integer("emitter_samples", 1);
+    it.integer("bsdf_samples", 1);
+  } else {
+    maxDepth = it.integer("max_depth", -1);
+    const int rrDepth = it.integer("rr_depth", 5);
+    if (rrDepth < 1) it.fail("rr_depth must be at least 1");
+    out.root["render"]["rr_depth"] = rrDepth - 1;
+    if (it.type() != "path")
+      it.note("rendered with kasha's " + equivalent->second + " (--integrator chooses another)");
+    if (it.type() == "ptracer") it.integer("samples_per_pass", 0);  // how work is split: no effect on the image
+  }
   if (maxDepth == 0 || maxDepth < -1) it.fail("max_depth must be -1 or at least 1");
-  if (rrDepth < 1) it.fail("rr_depth must be at least 1");
   if (maxDepth > 0) out.root["render"]["max_depth"] = maxDepth - 1;
-  out.root["render"]["rr_depth"] = rrDepth - 1;
-  if (it.boolean("hide_emitters", false)) it.fail("hide_emitters = true is not supported");
+  if (it.boolean("hide_emitters", false)) out.root["render"]["hide_emitters"] = true;
   out.origin("/render", xml, node);
   it.finish();
 }

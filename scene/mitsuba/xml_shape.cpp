@@ -27,23 +27,35 @@ json faceCorners(const Mat4& m, std::array<Vec3, 4> local, Vec3 localNormal, boo
   return c;
 }
 
-std::string material(Plugin& s, SceneJson& out) {
-  const std::vector<pugi::xml_node> bsdfs = s.nested("bsdf"), refs = s.nested("ref");
-  if (bsdfs.size() + refs.size() > 1) s.fail("more than one BSDF");
-  if (!bsdfs.empty()) return out.addMaterial(s.xml(), bsdfs[0], bsdfMaterial(s.xml(), bsdfs[0]));
-  if (!refs.empty()) {
-    const std::string id = s.xml().attribute(refs[0], "id");
-    const auto it = out.bsdfIds.find(id);
-    if (it == out.bsdfIds.end()) s.fail(refs[0], "no <bsdf id=\"" + id + "\"> before this reference");
-    return it->second;
+// A shape's <ref>s split by what they name: a <bsdf> or a top-level area <emitter>.
+struct ShapeRefs {
+  std::vector<pugi::xml_node> bsdfs, emitters;  // the <ref>s, and the <emitter>s they name
+};
+
+ShapeRefs shapeRefs(Plugin& s, const SceneJson& out) {
+  ShapeRefs refs;
+  for (pugi::xml_node r : s.nested("ref")) {
+    const std::string id = s.xml().attribute(r, "id");
+    if (out.bsdfIds.count(id)) refs.bsdfs.push_back(r);
+    else if (pugi::xml_node e = out.declaredAs(id, "emitter")) refs.emitters.push_back(e);
+    else s.fail(r, "no <bsdf id=\"" + id + "\"> or area <emitter id=\"" + id + "\"> before this reference");
   }
+  return refs;
+}
+
+std::string material(Plugin& s, SceneJson& out, const ShapeRefs& refs) {
+  const std::vector<pugi::xml_node> bsdfs = s.nested("bsdf");
+  if (bsdfs.size() + refs.bsdfs.size() > 1) s.fail("more than one BSDF");
+  if (!bsdfs.empty()) return out.addMaterial(s.xml(), bsdfs[0], bsdfMaterial(s.xml(), bsdfs[0]));
+  if (!refs.bsdfs.empty()) return out.bsdfIds.at(s.xml().attribute(refs.bsdfs[0], "id"));
   // Mitsuba's default BSDF: diffuse with reflectance 0.5 (one-sided).
   s.note("no BSDF: Mitsuba's default diffuse 0.5, reflecting on both sides in kasha");
   return out.addMaterial(s.xml(), s.node(), {{"type", "lambertian"}, {"reflectance", 0.5}});
 }
 
-json emission(Plugin& s) {
-  const std::vector<pugi::xml_node> emitters = s.nested("emitter");
+json emission(Plugin& s, const ShapeRefs& refs) {
+  std::vector<pugi::xml_node> emitters = s.nested("emitter");
+  emitters.insert(emitters.end(), refs.emitters.begin(), refs.emitters.end());
   if (emitters.empty()) return nullptr;
   if (emitters.size() > 1) s.fail(emitters[1], "more than one emitter in a shape");
   Plugin e(s.xml(), emitters[0]);
@@ -62,6 +74,15 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     if (!s.boolean("face_normals", false))
       s.note("shaded with the triangles' own normals (kasha has no vertex normals): Mitsuba's face_normals = true");
     s.boolean("flip_tex_coords", true);  // kasha reads OBJ's vt as Mitsuba's flipped default does
+    return {mesh};
+  }
+  if (t == "serialized") {
+    if (!s.has("filename")) s.fail("missing property 'filename'");
+    const int index = s.integer("shape_index", 0);
+    if (index < 0) s.fail("shape_index must not be negative");
+    json mesh = {{"type", "mesh"}, {"file", s.xml().resolve(s.node(), s.string("filename", ""))}, {"shape_index", index},
+                 {"transform", matrixJson(m)}, {"flip_normals", flip}};
+    if (s.has("face_normals")) mesh["face_normals"] = s.boolean("face_normals", false);  // else the file's flag
     return {mesh};
   }
   if (t == "rectangle")
@@ -94,11 +115,18 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     if (!(scale > 0.0f)) s.fail("a sphere's to_world may only rotate, translate and scale uniformly");
     return {{{"type", "sphere"}, {"center", {center.x, center.y, center.z}}, {"radius", s.number("radius", 1.0f) * scale}}};
   }
+  if (t == "cylinder") {
+    // Mitsuba's defaults: p0 = (0, 0, 0), p1 = (0, 0, 1), radius 1; to_world after them.
+    const pugi::xml_node p0 = s.property("p0"), p1 = s.property("p1");
+    const Vec3 a = p0 ? parsePointProperty(s.xml(), p0) : Vec3(0.0f), b = p1 ? parsePointProperty(s.xml(), p1) : Vec3(0, 0, 1);
+    return {{{"type", "cylinder"}, {"p0", {a.x, a.y, a.z}}, {"p1", {b.x, b.y, b.z}}, {"radius", s.number("radius", 1.0f)},
+             {"transform", matrixJson(m)}, {"flip_normals", flip}}};
+  }
   if (t == "disk") {
     s.note("disk tessellated into a polygon of 256 triangles (area 0.01% below the disk's)");
     return {{{"type", "disk"}, {"transform", matrixJson(m)}, {"flip_normals", flip}}};
   }
-  s.fail("unsupported shape plugin (obj, ply, rectangle, cube, sphere, disk)");
+  s.fail("unsupported shape plugin (obj, ply, serialized, rectangle, cube, sphere, disk, cylinder)");
 }
 
 }  // namespace
@@ -108,8 +136,9 @@ void addShape(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   const Mat4 m = toWorld(s);
   const bool flip = s.boolean("flip_normals", false);
   std::vector<json> parts = geometry(s, m, flip);
-  const std::string mat = material(s, out);
-  const json em = emission(s);
+  const ShapeRefs refs = shapeRefs(s, out);
+  const std::string mat = material(s, out, refs);
+  const json em = emission(s, refs);
   const std::string base = node.attribute("id") ? xml.attribute(node, "id") : xml.label(node);
   json& shapes = out.root["shapes"];
   for (size_t i = 0; i < parts.size(); ++i) {

@@ -1,6 +1,7 @@
 #pragma once
-// Mitsuba shapes as kasha shapes: obj / ply → mesh with a transform; rectangle → rectangle by its
-// transformed corners; cube → six rectangles; sphere → sphere (uniform scale only); disk → kasha's
+// Mitsuba shapes as kasha shapes: obj / ply / serialized → mesh with a transform; rectangle →
+// rectangle by its transformed corners; cube → six rectangles; sphere → sphere (uniform scale
+// only); cylinder → cylinder (p0, p1, radius and to_world as its transform); disk → kasha's
 // tessellated disk. A nested <bsdf> or <ref> sets the material (default: Mitsuba's diffuse 0.5),
 // a nested <emitter type="area"> the emission.
 #include "scene/mitsuba/scene_json.h"

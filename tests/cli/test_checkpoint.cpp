@@ -337,6 +337,7 @@ TEST_P(CheckpointCli, EveryEstimatorSettingIsRecordedAndMustMatch) {
       {"pt", {"--fluorescence-sampling", "uniform"}, "fluorescence_sampling"},
       {"pt", {"--spectral-bins", "4"}, "spectral_bins"},
       {"pt", {"--set", "rr_depth=5"}, "rr_depth"},
+      {"pt", {"--set", "hide_emitters=true"}, "hide_emitters"},
       {"pt", {"--set", "fluorescent_lanes=end"}, "fluorescent_lanes"},
       {"lt", {"--light-sampling", "uniform"}, "light_sampling"},
       {"bdpt", {"--set", "bdpt.families=own"}, "bdpt"},

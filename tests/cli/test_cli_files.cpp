@@ -203,6 +203,26 @@ TEST_F(CliFiles, MitsubaParametersFromTheCommandLine) {
   EXPECT_FALSE(fs::exists(dir + "/q.exr"));
 }
 
+TEST_F(CliFiles, TheSceneChoosesTheIntegratorAndTheCommandLineOverrides) {
+  std::string text = kScene;
+  text.replace(text.find("\"spp\": 1"), 8, "\"spp\": 1, \"integrator\": \"lt\"");
+  const std::string lt = write("lt.json", text);
+  const auto integratorOf = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"render", lt, "-q", "--no-png", "-o", dir + "/i.exr"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const test::Finished r = run(args);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return nlohmann::json::parse(test::readTextFile(dir + "/i.stats.json"))["integrator"].get<std::string>();
+  };
+  EXPECT_EQ(integratorOf({}), "lt");
+  EXPECT_EQ(integratorOf({"--integrator", "pt"}), "pt");
+  EXPECT_EQ(integratorOf({"--set", "integrator=bdpt"}), "bdpt");
+  text.replace(text.find("\"lt\""), 4, "\"nope\"");
+  const std::string nope = write("nope.json", text);
+  expectRefused({"render", nope, "-q"}, 1, nope + ": /render/integrator: unknown integrator 'nope' (pt, lt, bdpt");
+  expectRefused({"render", scene, "-q", "--set", "integrator=nope"}, 2, "--set integrator=nope: unknown integrator 'nope'");
+}
+
 TEST_F(CliFiles, CommandLineMistakesExitWith2) {
   expectRefused({"render", scene, "-q", "--integrator", "foo"}, 2, "unknown integrator 'foo'");
   expectRefused({"render", scene, "-q", "--light-sampling", "uniform"}, 2, "--light-sampling: ");
@@ -274,7 +294,7 @@ TEST_F(CliFiles, HostileScenesGetOneLine) {
                                                "<shape type=\"rectangle\"><ref id=\"\x1b[2J\x07\"/></shape></scene>");
   const test::Finished r = run({"render", esc, "-q"});
   EXPECT_EQ(r.code, 1) << r.err;
-  EXPECT_CONTAINS(r.err, "kasha: error: " + esc + ":2: shape 'rectangle': no <bsdf id=\"\\x1b[2J\\x07\"> before this reference\n");
+  EXPECT_CONTAINS(r.err, "kasha: error: " + esc + ":2: shape 'rectangle': no <bsdf id=\"\\x1b[2J\\x07\"> or area <emitter id=\"\\x1b[2J\\x07\"> before this reference\n");
   EXPECT_EQ(r.err.find_first_of("\x1b\x07"), std::string::npos);
 }
 

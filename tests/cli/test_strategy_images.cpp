@@ -31,7 +31,7 @@ bidir::StrategyImages renderWithStrategies(const Scene& scene, const std::string
   RenderSettings s = scene.render;
   s.maxDepth = maxDepth;
   const auto bdpt = test::makeTestIntegrator(integrator, scene, s);
-  bidir::StrategyImages images(film.width(), film.height(), depth);
+  bidir::StrategyImages images(film.width(), film.height(), depth, scene.pixelFilter);
   RenderOptions opt;
   opt.spp = spp;
   opt.seed = seed;

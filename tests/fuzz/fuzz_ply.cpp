@@ -2,7 +2,8 @@
 // readPlyMesh, the function the scene loader calls. Bytes are either refused with an error naming
 // the file (InputError, MemoryLimitError, or assimp's or kasha's own refusal), or they passed the
 // check and become what it declares: every vertex, a triangle or more per face, every index
-// inside the positions, every position finite. The check's rewritten file passes the check
+// inside the positions, every position finite; asked for mesh attributes, a value in [0, 1] per
+// vertex or face. The check's rewritten file passes the check
 // unchanged. A broken promise, a crash, a hang, an allocation beyond libFuzzer's RSS limit or a
 // sanitizer report is a finding.
 #include <cmath>
@@ -60,5 +61,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (const kasha::Vec3& p : s.positions)
     require(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z), "finite positions");
   require(s.cornerUvs.empty() || s.cornerUvs.size() == s.indices.size(), "a texture coordinate per corner or none");
+  // Mesh attributes, where the file has them: one value per vertex or triangle, each in [0, 1].
+  kasha::Shape a;
+  try {
+    kasha::readPlyMesh(bytes, "fuzz.ply", kMemoryLimit, a, {"vertex_color", "face_color"});
+  } catch (const std::runtime_error& e) {
+    require(namesFile(e), "the attribute message names the file");
+    return 0;
+  }
+  require(a.attributes.size() == 2, "both attributes read");
+  for (const kasha::MeshAttribute& m : a.attributes) {
+    require(m.values.size() == (m.perFace() ? a.indices.size() / 3 : a.positions.size()), "a value per vertex or face");
+    for (const kasha::Vec3& v : m.values)
+      for (int k = 0; k < 3; ++k) require(v[k] >= 0.0f && v[k] <= 1.0f, "attribute values in [0, 1]");
+  }
   return 0;
 }

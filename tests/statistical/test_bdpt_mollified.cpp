@@ -88,7 +88,7 @@ Batches renderBatches(Scene& scene, const std::string& integrator, int maxDepth,
   Batches run;
   for (int i = 0; i < batches; ++i) {
     Film film(scene.camera.width(), scene.camera.height());
-    bidir::StrategyImages images(film.width(), film.height(), 64);
+    bidir::StrategyImages images(film.width(), film.height(), 64, scene.pixelFilter);
     RenderOptions opt;
     opt.spp = spp;
     opt.seed = 500 + uint64_t(i);

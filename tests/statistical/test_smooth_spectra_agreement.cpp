@@ -84,7 +84,7 @@ TEST(SmoothSpectraStrategies, UnweightedStrategiesOfTheSamePathsAgree) {
   constexpr int kBatches = 10;
   for (int b = 0; b < kBatches; ++b) {
     Film film(kRes, kRes);
-    bidir::StrategyImages images(kRes, kRes, 3);
+    bidir::StrategyImages images(kRes, kRes, 3, scene->pixelFilter);
     RenderOptions opt;
     opt.spp = 512;
     opt.seed = 31 * uint64_t(b + 1);

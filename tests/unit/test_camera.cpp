@@ -64,6 +64,30 @@ TEST(Camera, ConnectionInvertsTheRayAndCarriesItsDensity) {
   }
 }
 
+// A reconstruction filter's reach widens the film by filmMargin pixels on every side: a ray through
+// a film position just outside the image connects back to it, with the ray's density, only when
+// the margin holds that position.
+TEST(Camera, FilmMarginWidensTheFilmForConnectionsAndDensities) {
+  const float margin = 1.5f;
+  for (const auto& [name, camera] : cameras()) {
+    for (const Vec2 film : {Vec2(-1.0f, 0.5f * kH), Vec2(kW + 1.2f, kH + 0.4f), Vec2(0.5f * kW, -1.4f)}) {
+      const Vec2 lens(0.3f, 0.8f);
+      const Ray ray = camera.generateRay(film, lens);
+      const Vec3 p = ray.o + 7.0f * ray.d;
+      const std::optional<Camera::Connection> c = camera.connect(p, lens, margin);
+      ASSERT_TRUE(c) << name;
+      EXPECT_NEAR(c->pixel.x, film.x, 2e-3f) << name;
+      EXPECT_NEAR(c->pixel.y, film.y, 2e-3f) << name;
+      EXPECT_NEAR(camera.rayPdf(ray, margin) / c->pdfRay, 1.0f, 1e-5f) << name;
+      EXPECT_FALSE(camera.connect(p, lens)) << name;
+      EXPECT_EQ(camera.rayPdf(ray), 0.0f) << name;
+      const Ray beyond = camera.generateRay(film + 2.0f * (film - Vec2(0.5f * kW, 0.5f * kH)) / float(kW), lens);
+      EXPECT_FALSE(camera.connect(beyond.o + 7.0f * beyond.d, lens, margin)) << name;
+      EXPECT_EQ(camera.rayPdf(beyond, margin), 0.0f) << name;
+    }
+  }
+}
+
 // At another resolution the camera keeps its projection and its vertical extent: the rays through
 // the middle of the top edge and of the film agree.
 TEST(Camera, ResizedKeepsTheProjectionAndTheVerticalExtent) {

@@ -120,6 +120,26 @@ std::unique_ptr<Material> material(const std::string& json, const std::string& d
                        WavelengthRange{300.0f, 830.0f});
 }
 
+// Material::textures() lists one texture per textured field of every kind (what the scene loader
+// checks shapes against), and is empty exactly when textured() is false.
+TEST_F(MaterialTextures, TexturesListEveryTexturedField) {
+  const std::string checker = R"({"type": "checkerboard", "color0": 0.5, "color1": 0.25})";
+  for (const Kind& k : kinds()) {
+    const auto plain = material(k.json, dir);
+    EXPECT_FALSE(plain->textured()) << k.name;
+    EXPECT_TRUE(plain->textures().empty()) << k.name;
+    std::string json = k.json;
+    json.pop_back();
+    for (const std::string& f : k.textures) json += ", \"" + f + "\": " + checker;
+    const auto textured = material(json + "}", dir);
+    EXPECT_TRUE(textured->textured()) << k.name;
+    // A roughness's one texture is listed for both axes.
+    size_t expected = k.textures.size();
+    for (const std::string& f : k.textures) expected += f.ends_with("alpha_texture");
+    EXPECT_EQ(textured->textures().size(), expected) << k.name;
+  }
+}
+
 // A textured material's Bsdf carries its own model, and copies carry theirs; an untextured one
 // points at the material.
 TEST_F(MaterialTextures, PerHitModelLivesInTheBsdf) {

@@ -220,6 +220,58 @@ TEST_F(MitsubaImport, ThinLensAndOrthographicSensors) {
   EXPECT_TRUE(contains(fileError(sensor("fisheye", "")), "unsupported sensor plugin (perspective, thinlens, orthographic)"));
 }
 
+// <rfilter> inside <film>: box, tent and gaussian as kasha's filters with Mitsuba's parameters; none
+// is Mitsuba's default Gaussian (stddev 0.5); the filters kasha lacks become the Gaussian of the
+// same standard deviation or the box, with one note naming it; anything else is an error.
+TEST_F(MitsubaImport, ReconstructionFilters) {
+  const auto film = [&](const std::string& rfilter) {
+    return write("film.xml", std::string("<scene version=\"3.0.0\">") + R"(
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/>)" + rfilter + R"(</film>
+  </sensor>)" + kLight + kFloor + "</scene>");
+  };
+  const auto translated = [&](const std::string& rfilter) {
+    const std::string path = film(rfilter);
+    std::ifstream in(path);
+    return mitsuba::translateMitsubaScene(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  };
+  const auto filterOf = [&](const std::string& rfilter) { return loadScene(film(rfilter))->pixelFilter; };
+  // The notes about the filter (the floor's one-sided BSDF has its own).
+  const auto filterNotes = [](const mitsuba::Translation& t) {
+    std::vector<std::string> out;
+    for (const std::string& n : t.notes)
+      if (n.find("rfilter '") != std::string::npos) out.push_back(n);
+    return out;
+  };
+  const PixelFilter none = filterOf("");
+  EXPECT_EQ(none.type(), PixelFilterType::Gaussian);
+  EXPECT_EQ(none.stddev(), 0.5f);
+  EXPECT_EQ(filterOf(R"(<rfilter type="box"/>)").type(), PixelFilterType::Box);
+  EXPECT_EQ(filterOf(R"(<rfilter type="tent"/>)").radius(), 1.0f);
+  EXPECT_EQ(filterOf(R"(<rfilter type="tent"><float name="radius" value="1.25"/></rfilter>)").radius(), 1.25f);
+  EXPECT_EQ(filterOf(R"(<rfilter type="gaussian"><float name="stddev" value="0.25"/></rfilter>)").radius(), 1.0f);
+  for (const std::string& rfilter : {std::string(R"(<rfilter type="box"/>)"), std::string(R"(<rfilter type="gaussian"/>)")})
+    EXPECT_TRUE(filterNotes(translated(rfilter)).empty()) << rfilter;
+  // Mitchell–Netravali with B = C = 1/3: ∫x²k = 1/9 (its cubics integrated by hand).
+  const mitsuba::Translation mitchell = translated(R"(<rfilter type="mitchell"/>)");
+  EXPECT_NEAR(mitchell.scene["camera"]["filter"]["stddev"].get<float>(), 1.0f / 3.0f, 1e-6f);
+  ASSERT_EQ(filterNotes(mitchell).size(), 1u);
+  EXPECT_TRUE(contains(filterNotes(mitchell)[0], "rfilter 'mitchell': rendered with kasha's gaussian filter (stddev 0.333333), the closest it has"));
+  for (const char* sharp : {"catmullrom", "lanczos"}) {
+    const mitsuba::Translation t = translated(std::string("<rfilter type=\"") + sharp + "\"/>");
+    EXPECT_EQ(t.scene["camera"]["filter"], "box") << sharp;
+    ASSERT_EQ(filterNotes(t).size(), 1u) << sharp;
+    EXPECT_TRUE(contains(filterNotes(t)[0], std::string("rfilter '") + sharp + "': rendered with kasha's box filter"));
+  }
+  EXPECT_EQ(translated(R"(<rfilter type="lanczos"><integer name="lobes" value="2"/></rfilter>)").scene["camera"]["filter"], "box");
+  EXPECT_TRUE(contains(fileError(film(R"(<rfilter type="sinc"/>)")), "rfilter 'sinc': unsupported rfilter plugin"));
+  EXPECT_TRUE(contains(fileError(film(R"(<rfilter type="tent"><float name="radius" value="-1"/></rfilter>)")),
+                       "/camera/filter/radius: must be in [1/64, 16] pixels"));
+  EXPECT_TRUE(contains(fileError(film(R"(<rfilter type="box"/><rfilter type="tent"/>)")), "a second <rfilter>"));
+  EXPECT_TRUE(contains(fileError(film(R"(<rfilter type="gaussian"><float name="radius" value="2"/></rfilter>)")),
+                       "unsupported property 'radius'"));
+}
+
 // Without fov, Mitsuba's perspective camera has a focal length (default 50 mm) on a 36 × 24 mm film,
 // whose angle is the diagonal's: 2·atan(√(36² + 24²)/(2·f)); on a 300 × 200 film (the 36 × 24
 // aspect) the vertical angle is then 2·atan(24/(2·f)) exactly. focus_distance has no effect there.
@@ -262,6 +314,63 @@ TEST_F(MitsubaImport, SearchPathsFindFilesBeforeTheScenesDirectory) {
   const std::string notDir = write("scenes/notdir.xml", std::string("<scene version=\"3.0.0\">") + kSensor +
                                                             R"(<path value="../nowhere"/>)" + kLight + kFloor + "</scene>");
   EXPECT_TRUE(contains(fileError(notDir), "path '../nowhere' is not a directory"));
+}
+
+TEST_F(MitsubaImport, AnIncludedFilesPathFallsBackToTheTopLevelScenesDirectory) {
+  // As in Mitsuba's documentation scenes: a/b/include/x.xml says <path value="../../common"/>, which
+  // is not a directory from there (a/common) but is from the including scene's a/b (common).
+  fs::create_directories(dir / "common" / "meshes");
+  fs::create_directories(dir / "a" / "b" / "include");
+  write("common/meshes/quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  write("a/b/include/x.xml", R"(<scene version="3.0.0"><path value="../../common"/>
+    <shape type="obj"><string name="filename" value="meshes/quad.obj"/><bsdf type="diffuse"/></shape></scene>)");
+  const std::string path = write("a/b/scene.xml", std::string("<scene version=\"3.0.0\">") + kSensor + kLight +
+                                                      R"(<include filename="include/x.xml"/></scene>)");
+  const auto s = loadScene(path);
+  ASSERT_EQ(s->shapes.size(), 1u);
+  EXPECT_NEAR(s->shapes[0].area, 1.0f, 1e-5f);
+}
+
+TEST_F(MitsubaImport, TheIntegratorElementChoosesKashasIntegrator) {
+  const auto render = [&](const std::string& integrator) { return translate(integrator + kLight + kFloor).scene["render"]; };
+  const auto notes = [&](const std::string& integrator) { return translate(integrator + kLight + kFloor).notes; };
+  EXPECT_EQ(render(R"(<integrator type="path"><integer name="max_depth" value="4"/></integrator>)"),
+            json({{"integrator", "pt"}, {"max_depth", 3}, {"rr_depth", 4}}));
+  // direct: emitters seen directly and lit once, whatever its sample counts.
+  const std::string direct = R"(<integrator type="direct"><integer name="emitter_samples" value="0"/></integrator>)";
+  EXPECT_EQ(render(direct), json({{"integrator", "pt"}, {"max_depth", 1}}));
+  bool noted = false;
+  for (const std::string& n : notes(direct)) noted |= contains(n, "integrator 'direct': kasha's pt with max_depth 1");
+  EXPECT_TRUE(noted);
+  EXPECT_EQ(render(R"(<integrator type="ptracer"><integer name="samples_per_pass" value="64"/></integrator>)")["integrator"], "lt");
+  EXPECT_EQ(render(R"(<integrator type="volpath"/>)")["integrator"], "pt");
+  EXPECT_EQ(render(R"(<integrator type="bdpt"/>)")["integrator"], "bdpt");
+  for (const char* output : {"aov", "moment", "depth"})
+    EXPECT_TRUE(contains(error(std::string("<integrator type=\"") + output + "\"/>"), "writes other quantities than radiance"));
+  // The loaded scene asks for it; the front ends' --integrator still wins (tests/cli).
+  EXPECT_EQ(load(std::string(R"(<integrator type="ptracer"/>)") + kLight + kFloor)->render.integrator, "lt");
+}
+
+TEST_F(MitsubaImport, RefsNameAreaEmittersAndSamplersDeclaredAtTheTop) {
+  // The shape names an area emitter declared after it; the sensor a sampler declared before it.
+  const std::string body = R"(
+    <sampler type="independent" id="s"><integer name="sample_count" value="9"/></sampler>
+    <sensor type="perspective"><float name="fov" value="45"/><ref id="s"/></sensor>
+    <bsdf type="diffuse" id="white"/>
+    <shape type="rectangle"><ref id="white"/><ref id="glow"/></shape>
+    <emitter type="area" id="glow"><spectrum name="radiance" value="2"/></emitter>)";
+  const std::string path = write("declared.xml", "<scene version=\"3.0.0\">" + body + "</scene>");
+  std::ifstream in(path);
+  const mitsuba::Translation t = mitsuba::translateMitsubaScene(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  EXPECT_EQ(t.scene["render"]["spp"], 9);
+  ASSERT_EQ(t.scene["shapes"].size(), 1u);
+  EXPECT_EQ(t.scene["shapes"][0]["material"], "white");
+  EXPECT_EQ(t.scene["shapes"][0]["emission"]["radiance"], 2.0);
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="rectangle"><ref id="s"/></shape>)" +
+                             R"(<sampler type="independent" id="s"/>)"),
+                       "no <bsdf id=\"s\"> or area <emitter id=\"s\"> before this reference"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + kFloor + R"(<emitter type="area"/>)"),
+                       "a top-level <emitter> of this kind needs an id to be referred to"));
 }
 
 TEST_F(MitsubaImport, ShapesObjPlyRectangleCubeSphereDisk) {
@@ -346,8 +455,7 @@ TEST_F(MitsubaImport, Bsdfs) {
     <shape type="rectangle"><ref id="j"/></shape>)");
   const json& m = t.scene["materials"];
   EXPECT_EQ(m["d"], json({{"type", "lambertian"}, {"reflectance", 0.25}}));
-  EXPECT_EQ(m["c"]["type"], "mirror");
-  EXPECT_NEAR(m["c"]["reflectance"]["values"][0].get<float>(), 0.04f, 1e-6f);  // ((1.5−1)/(1.5+1))²
+  EXPECT_EQ(m["c"], json({{"type", "mirror"}, {"reflectance", 1.0}, {"eta", 1.5}, {"k", 0.0}}));
   EXPECT_EQ(m["none"]["reflectance"], 1.0);
   EXPECT_EQ(m["rc"]["type"], "rough_conductor");
   EXPECT_EQ(m["rc"]["alpha"], 0.3f);
@@ -486,7 +594,71 @@ TEST_F(MitsubaImport, BitmapTextures) {
       <texture type="bitmap" name="reflectance"><string name="filename" value="wood.exr"/>
       <string name="wrap_mode" value="zero"/></texture></bsdf></shape>)"), "texture 'bitmap': wrap_mode 'zero' is not repeat, mirror or clamp"));
   EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="rectangle"><bsdf type="diffuse">
-      <texture type="checkerboard" name="reflectance"/></bsdf></shape>)"), "texture 'checkerboard': unsupported texture plugin (bitmap)"));
+      <texture type="noise" name="reflectance"/></bsdf></shape>)"), "texture 'noise': unsupported texture plugin (bitmap, checkerboard, mesh_attribute)"));
+}
+
+// <texture type="checkerboard"> declared at the top level and referred to by <ref>, nested on a
+// roughness (Mitsuba's eval_1 reads the colours the other way round), on one axis, and
+// mesh_attribute; errors in one line naming the element.
+TEST_F(MitsubaImport, CheckerboardAndMeshAttributeTextures) {
+  const std::string textures = std::string(kLight) + R"(
+    <texture type="checkerboard" id="tex">
+      <rgb name="color0" value="0.2"/><rgb name="color1" value="0.1, 0.2, 0.3"/>
+      <transform name="to_uv"><scale x="8" y="4"/><translate x="0.5" y="0.25"/></transform>
+    </texture>
+    <bsdf type="diffuse" id="floor"><ref name="reflectance" id="tex"/></bsdf>
+    <bsdf type="roughdielectric" id="glass"><texture name="alpha" type="checkerboard">
+      <float name="color0" value="0.0"/><float name="color1" value="0.4"/></texture></bsdf>
+    <bsdf type="roughconductor" id="metal"><texture name="alpha_u" type="checkerboard"/><float name="alpha_v" value="0.3"/></bsdf>
+    <bsdf type="diffuse" id="painted"><texture type="mesh_attribute" name="reflectance">
+      <string name="name" value="face_color"/></texture></bsdf>
+    <shape type="rectangle"><ref id="floor"/></shape>)";
+  const auto t = translate(textures);
+  const json& m = t.scene["materials"];
+  EXPECT_EQ(m["floor"]["reflectance"], 1.0);
+  const json& floor = m["floor"]["reflectance_texture"];
+  EXPECT_EQ(floor["type"], "checkerboard");
+  EXPECT_FLOAT_EQ(floor["color0"].get<float>(), 0.2f);
+  ASSERT_EQ(floor["color1"].size(), 3u);
+  EXPECT_FLOAT_EQ(floor["color1"][2].get<float>(), 0.3f);
+  // to_uv = translate · scale: u' = 8u + 0.5, v' = 4v + 0.25.
+  const std::vector<std::vector<float>> toUv = {{8, 0, 0.5f}, {0, 4, 0.25f}};
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(floor["to_uv"][r][c].get<float>(), toUv[r][c]) << r << c;
+  EXPECT_EQ(m["glass"]["alpha"], 1.0);
+  EXPECT_FLOAT_EQ(m["glass"]["alpha_texture"]["color0"].get<float>(), 0.4f);  // swapped: eval_1
+  EXPECT_FLOAT_EQ(m["glass"]["alpha_texture"]["color1"].get<float>(), 0.0f);
+  EXPECT_FLOAT_EQ(m["metal"]["alpha"][1].get<float>(), 0.3f);
+  EXPECT_FLOAT_EQ(m["metal"]["alpha_texture"][0]["color0"].get<float>(), 0.2f);  // the defaults, swapped
+  EXPECT_FLOAT_EQ(m["metal"]["alpha_texture"][0]["color1"].get<float>(), 0.4f);
+  EXPECT_TRUE(m["metal"]["alpha_texture"][1].is_null());
+  EXPECT_EQ(m["painted"]["reflectance_texture"], json({{"type", "mesh_attribute"}, {"name", "face_color"}}));
+  // It loads (the mesh attribute is not on a shape), and the floor reads the checkerboard.
+  const auto s = load(textures);
+  const float lambda = 550.0f;
+  const Frame world{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  const Vec3 n(0, 0, 1);
+  const auto at = [&](Vec2 uv) {
+    return s->materials[0]->bsdf(HitContext{uv, world, world, {&lambda, 1}}).eval(TransportMode::Radiance, n, n, lambda,
+                                                                                 lambda, SpectralLobe::Elastic) * kPi;
+  };
+  ASSERT_EQ(s->materialNames[0], "floor");
+  EXPECT_NEAR(at(Vec2(0.01f, 0.1f)), rgbToSigmoid(Vec3(0.2f))(lambda), 1e-6f);  // (0.58, 0.65): color0
+  EXPECT_NEAR(at(Vec2(0.01f, 0.01f)), rgbToSigmoid(Vec3(0.1f, 0.2f, 0.3f))(lambda), 1e-6f);  // (0.58, 0.29): color1
+  // Errors.
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<bsdf type="diffuse" id="d"><ref name="reflectance" id="nope"/></bsdf>)" + kFloor),
+                       "no <texture id=\"nope\"> before this reference"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<texture type="checkerboard"/>)" + kFloor),
+                       "a top-level <texture> needs an id to be referred to"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<bsdf type="roughconductor" id="d"><texture name="alpha" type="bitmap">
+      <string name="filename" value="x.exr"/></texture></bsdf>)" + kFloor), "bitmap textures are supported on reflectances only"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<bsdf type="diffuse" id="d"><texture name="reflectance" type="checkerboard">
+      <texture name="color0" type="checkerboard"/></texture></bsdf>)" + kFloor),
+                       "a checkerboard colour must be a <float>, an <rgb> or a constant <spectrum>, not <texture>"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<bsdf type="diffuse" id="d"><texture name="reflectance" type="mesh_attribute">
+      <string name="name" value="color"/></texture></bsdf>)" + kFloor), "name 'color' is not a mesh attribute's"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="rectangle"><bsdf type="diffuse"><texture name="reflectance" type="mesh_attribute">
+      <string name="name" value="vertex_color"/></texture></bsdf></shape>)"), "which only PLY meshes carry"));
 }
 
 TEST_F(MitsubaImport, DefaultsRefsAndIncludes) {
@@ -537,10 +709,15 @@ TEST_F(MitsubaImport, ExampleSceneLoads) {
 TEST_F(MitsubaImport, UnsupportedPluginsAndPropertiesAreErrorsWithFileLineAndPlugin) {
   // kSensor spans lines 1–6 of the file; the element under test starts on line 7.
   const std::string prefix = "\n";
-  EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"hair\" id=\"h\"/>"), file() + ":7: bsdf 'hair': unsupported BSDF plugin"));
+  EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"blendbsdf\" id=\"h\"/>"), file() + ":7: bsdf 'blendbsdf': unsupported BSDF plugin"));
+  // Outside kasha's scope, said as such.
+  EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"hair\" id=\"h\"/>"), file() + ":7: bsdf 'hair': outside kasha's scope (hair)"));
+  EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"pplastic\" id=\"p\"/>"), file() + ":7: bsdf 'pplastic': outside kasha's scope (polarisation)"));
+  EXPECT_TRUE(contains(error(prefix + "<shape type=\"linearcurve\"/>"), file() + ":7: shape 'linearcurve': outside kasha's scope (curves)"));
   EXPECT_TRUE(contains(error(prefix + "<shape type=\"shapegroup\"/>"), file() + ":7: shape 'shapegroup': unsupported shape plugin"));
   EXPECT_TRUE(contains(error(prefix + "<emitter type=\"sky\"/>"), file() + ":7: emitter 'sky': unsupported emitter plugin"));
-  EXPECT_TRUE(contains(error(prefix + "<integrator type=\"volpath\"/>"), file() + ":7: integrator 'volpath': unsupported"));
+  EXPECT_TRUE(contains(error(prefix + "<integrator type=\"prb\"/>"), file() + ":7: integrator 'prb': unsupported integrator plugin"));
+  EXPECT_TRUE(contains(error(prefix + "<integrator type=\"aov\"/>"), file() + ":7: integrator 'aov': integrator 'aov' writes other quantities than radiance"));
   EXPECT_TRUE(contains(error(prefix + "<medium type=\"homogeneous\"/>"), file() + ":7: medium 'homogeneous': unsupported element <medium>"));
   // A property the plugin does not read: the line of the property, the plugin's name.
   EXPECT_TRUE(contains(error(prefix + std::string(kLight) + "<shape type=\"sphere\">\n<float name=\"radiuss\" value=\"1\"/></shape>"),
@@ -693,7 +870,7 @@ TEST_F(MitsubaImport, DuplicateIdsNameBothElements) {
 TEST_F(MitsubaImport, ControlCharactersFromTheFileAreEscaped) {
   // An ESC sequence that would clear the terminal and a BEL, in an id quoted by the message.
   const std::string msg = error(std::string(kLight) + "<shape type=\"rectangle\"><ref id=\"\x1b[2Jx\x07\"/></shape>");
-  EXPECT_TRUE(contains(msg, "no <bsdf id=\"\\x1b[2Jx\\x07\"> before this reference"));
+  EXPECT_TRUE(contains(msg, "no <bsdf id=\"\\x1b[2Jx\\x07\"> or area <emitter id=\"\\x1b[2Jx\\x07\"> before this reference"));
   EXPECT_EQ(msg.find('\x1b'), std::string::npos);
   EXPECT_EQ(msg.find('\x07'), std::string::npos);
 }

@@ -403,7 +403,7 @@ TEST_F(SceneLoader, UnknownTypes) {
   expectError([](json& j) { j["materials"]["white"]["type"] = "glass"; }, "/materials/white/type",
               "unknown material type 'glass'");
   expectError([](json& j) { j["shapes"][0]["type"] = "cube"; }, "/shapes/0/type",
-              "unknown shape type 'cube' (sphere, rectangle, mesh, disk)");
+              "unknown shape type 'cube' (sphere, cylinder, rectangle, mesh, disk)");
   expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "area"}])"); }, "/lights/0/type",
               "unknown light type 'area' (point, spot, distant, environment, envmap)");
   expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "hsv"}}; },
@@ -653,6 +653,31 @@ TEST_F(SceneLoader, BadCamera) {
   expectError([](json& j) { j["camera"]["fov"] = 180; }, "/camera/fov", "(0, 180) degrees");
   expectError([](json& j) { j["camera"]["fov"] = 405; }, "/camera/fov", "(0, 180) degrees");  // tan would wrap round to 45
   expectError([](json& j) { j["camera"]["fov"] = -45; }, "/camera/fov", "(0, 180) degrees");
+}
+
+TEST_F(SceneLoader, CameraFilters) {
+  const auto filterOf = [&](const json& filter) {
+    json j = base;
+    j["camera"]["filter"] = filter;
+    return loadSceneFromString(j.dump(), path)->pixelFilter;
+  };
+  EXPECT_EQ(loadSceneFromString(base.dump(), path)->pixelFilter.type(), PixelFilterType::Box);  // the default
+  EXPECT_EQ(filterOf("box").type(), PixelFilterType::Box);
+  EXPECT_EQ(filterOf("tent").radius(), 1.0f);
+  EXPECT_EQ(filterOf({{"type", "tent"}, {"radius", 1.5}}).radius(), 1.5f);
+  const PixelFilter g = filterOf("gaussian");
+  EXPECT_EQ(g.type(), PixelFilterType::Gaussian);
+  EXPECT_EQ(g.stddev(), 0.5f);
+  EXPECT_EQ(g.radius(), 2.0f);
+  EXPECT_EQ(filterOf({{"type", "gaussian"}, {"stddev", 0.25}}).radius(), 1.0f);
+  expectError([](json& j) { j["camera"]["filter"] = "mitchell"; }, "/camera/filter", "unknown reconstruction filter 'mitchell' (box, tent, gaussian)");
+  expectError([](json& j) { j["camera"]["filter"] = {{"type", "lanczos"}}; }, "/camera/filter/type", "unknown reconstruction filter");
+  expectError([](json& j) { j["camera"]["filter"] = 1; }, "/camera/filter", "expected an object");
+  expectError([](json& j) { j["camera"]["filter"] = {{"type", "tent"}, {"radius", 0}}; }, "/camera/filter/radius", "[1/64, 16] pixels");
+  expectError([](json& j) { j["camera"]["filter"] = {{"type", "tent"}, {"radius", 17}}; }, "/camera/filter/radius", "[1/64, 16] pixels");
+  expectError([](json& j) { j["camera"]["filter"] = {{"type", "gaussian"}, {"stddev", -1}}; }, "/camera/filter/stddev", "[1/256, 4] pixels");
+  expectError([](json& j) { j["camera"]["filter"] = {{"type", "gaussian"}, {"radius", 1}}; }, "/camera/filter/radius", "unknown field");
+  expectError([](json& j) { j["camera"]["filter"] = {{"type", "box"}, {"stddev", 1}}; }, "/camera/filter/stddev", "unknown field");
 }
 
 TEST_F(SceneLoader, BadRenderSettings) {

@@ -8,6 +8,7 @@
 #include <png.h>
 #include <zlib.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -207,7 +208,7 @@ TEST_F(TextureFiles, ClearErrors) {
   EXPECT_EQ(error({{"c_texture", {{"file", "two.png"}, {"channel", "x"}}}}),
             at + "c_texture/channel: unknown channel 'x' (mean, r, g, b, a)");
   EXPECT_EQ(error({{"c_texture", 3}}),
-            at + "c_texture: expected an image file name or {\"file\": ..., \"channel\": ...}, got number");
+            at + "c_texture: expected an image file name or a texture object ({\"file\": ...} or {\"type\": ...}), got number");
   // An RGB colour is a reflectance's texture only.
   EXPECT_EQ(error({{"c_texture", {{"file", "two.png"}, {"channel", "rgb"}}}}),
             at + "c_texture/channel: unknown channel 'rgb' (mean, r, g, b, a)");
@@ -234,7 +235,7 @@ const std::string kRectangle = R"({"type": "rectangle", "corners": [[0,0,0], [2,
 const std::string kJung = R"({"type": "jung_fluorescent", "absorption": {"type": "box", "min": 380, "max": 470, "value": 0.9},
   "emission": {"type": "box", "min": 500, "max": 560}, "reflectance": 0.7, "c": 0.8, "Q": 0.9)";
 
-TEST_F(TextureFiles, RectangleAndSphereTextureCoordinates) {
+TEST_F(TextureFiles, RectangleSphereAndDiskTextureCoordinates) {
   writeText("rect.json", sceneJson(kJung + "}", kRectangle));
   const auto scene = loadScene(dir + "/rect.json");
   const std::optional<Hit> h = scene->accel->intersect(Ray{Vec3(1.5f, 0.25f, 1.0f), Vec3(0, 0, -1)});
@@ -247,6 +248,18 @@ TEST_F(TextureFiles, RectangleAndSphereTextureCoordinates) {
   EXPECT_NEAR(sphere.surfaceUv(0, Vec2(0), Vec3(0, -1, 0)).y, 0.0f, 1e-6f);
   EXPECT_NEAR(sphere.surfaceUv(0, Vec2(0), Vec3(-1, 0, 0)).x, 0.0f, 1e-6f);
   EXPECT_NEAR(sphere.surfaceUv(0, Vec2(0), Vec3(0, 0, 1)).x, 0.75f, 1e-6f);
+  // The disk as Mitsuba's: u = radius, v = angle/2π, within what the 256-triangle fan's linear
+  // interpolation allows: its chords (1 − cos(π/256)) and, towards the centre, whose one vertex
+  // carries its triangle's middle angle, half a triangle's angle (1/512).
+  writeText("disk.json", sceneJson(kJung + "}", R"({"type": "disk", "material": "paper"})"));
+  const auto disk = loadScene(dir + "/disk.json");
+  for (const float angle : {0.3f, 1.7f, 4.0f}) {
+    const Vec3 p(0.5f * std::cos(angle), 0.5f * std::sin(angle), 1.0f);
+    const std::optional<Hit> d = disk->accel->intersect(Ray{p, Vec3(0, 0, -1)});
+    ASSERT_TRUE(d);
+    EXPECT_NEAR(disk->uv(*d).x, 0.5f, 2e-4f) << angle;
+    EXPECT_NEAR(disk->uv(*d).y, angle / (2.0f * kPi), 1.0f / 512.0f) << angle;
+  }
 }
 
 TEST_F(TextureFiles, MeshWithoutTextureCoordinatesIsAnError) {
