@@ -136,7 +136,8 @@ std::vector<Ray> cameraRays(const Scene& s, size_t n) {
   Rng rng(5);
   std::vector<Ray> rays(n);
   for (Ray& r : rays)
-    r = s.camera.generateRay(Vec2(rng.uniform() * float(s.camera.width()), rng.uniform() * float(s.camera.height())));
+    r = s.camera.generateRay(Vec2(rng.uniform() * float(s.camera.width()), rng.uniform() * float(s.camera.height())),
+                             Vec2(rng.uniform(), rng.uniform()));
   return rays;
 }
 

@@ -228,8 +228,29 @@ struct Loader {
   void camera(JsonFields& root) {
     JsonFields f(root.get("camera"), file, "/camera");
     const Vec3 pos = f.vec3("position"), at = f.vec3("look_at"), up = f.vec3("up", Vec3(0, 1, 0));
-    const float fov = f.number("fov");
-    if (!(fov > 0.0f && fov < 180.0f)) f.fail("fov", "vertical field of view must be in (0, 180) degrees");
+    const std::string type = f.string("type", "pinhole");
+    if (type != "pinhole" && type != "thinlens" && type != "orthographic")
+      f.fail("type", "'" + type + "' is not a camera (pinhole, thinlens, orthographic)");
+    float fov = 0.0f;
+    Vec2 extent(0.0f);
+    if (type == "orthographic") {
+      const json& e = f.get("extent");
+      if (!e.is_array() || e.size() != 2 || !e[0].is_number() || !e[1].is_number())
+        f.fail("extent", "expected [width, height] of the film in scene units");
+      extent = Vec2(e[0].get<float>(), e[1].get<float>());
+      if (!(extent.x > 0.0f && extent.y > 0.0f && std::isfinite(extent.x) && std::isfinite(extent.y)))
+        f.fail("extent", "the film's width and height must be positive and finite");
+    } else {
+      fov = f.number("fov");
+      if (!(fov > 0.0f && fov < 180.0f)) f.fail("fov", "vertical field of view must be in (0, 180) degrees");
+    }
+    float aperture = 0.0f, focus = 1.0f;
+    if (type == "thinlens") {
+      aperture = f.number("aperture_radius");
+      if (!(aperture >= 0.0f && std::isfinite(aperture))) f.fail("aperture_radius", "must be finite and at least 0");
+      focus = f.number("focus_distance");
+      if (!(focus > 0.0f && std::isfinite(focus))) f.fail("focus_distance", "must be positive and finite");
+    }
     const json& res = f.get("resolution");
     if (!res.is_array() || res.size() != 2 || !res[0].is_number_integer() || !res[1].is_number_integer())
       f.fail("resolution", "expected [width, height] in pixels");
@@ -246,7 +267,9 @@ struct Loader {
       f.fail("up", "is parallel to the viewing direction");
     if (f.has("filter")) scene.pixelFilter = pixelFilter(f);
     f.finish();
-    scene.camera = Camera(pos, at, up, fov, int(w), int(h));
+    if (type == "pinhole") scene.camera = Camera(pos, at, up, fov, int(w), int(h));
+    else if (type == "thinlens") scene.camera = Camera::thinLens(pos, at, up, fov, int(w), int(h), aperture, focus);
+    else scene.camera = Camera::orthographic(pos, at, up, extent, int(w), int(h));
   }
 
   // /camera/filter: "box", "tent", "gaussian" or {"type": …, "radius" (tent) / "stddev" (gaussian)}.

@@ -312,30 +312,33 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
   }
 }
 
-void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s, Vec2 lensSample,
                      std::vector<Splat>& splats, VisibilityMemo* memo) {
   const PathVertex& a = L[size_t(s - 1)];
   if (a.kind == Kind::Infinite || !a.connectible()) return;
   PathVertex cam;
   cam.kind = Kind::Camera;
-  cam.p = c.scene.camera.position();
-  cam.deltaPosition = true;
-  // The camera's density of a: its direction over the whole film, times the reconstruction
-  // filter's coverage there (the sensor's density of the wavelength arriving is a factor,
-  // mis_sums.h).
+  cam.deltaPosition = c.scene.camera.pinhole();
+  cam.parallelRays = c.scene.camera.parallelRays();
+  // The camera's density of a: its ray's over the whole film, from the lens point, times the
+  // reconstruction filter's coverage there (the sensor's density of the wavelength arriving is a
+  // factor, mis_sums.h).
   const Camera& camera = c.scene.camera;
   const PixelFilter& filter = c.scene.pixelFilter;
   const auto makeLink = [&] {
-    CameraLink l{camera.connect(a.p, filter.filmMargin())};
-    if (l.connection)
-      l.pdfCam = toAreaDensity(l.connection->pdfDir * filter.coverage(l.connection->pixel, camera.width(), camera.height()),
+    CameraLink l{camera.connect(a.p, lensSample, filter.filmMargin())};
+    if (l.connection) {
+      cam.p = l.connection->lensPoint;
+      l.pdfCam = toAreaDensity(l.connection->pdfRay * filter.coverage(l.connection->pixel, camera.width(), camera.height()),
                                cam, a);
+    }
     return l;
   };
   const CameraLink link = memo ? memo->link(s, makeLink) : makeLink();
   const std::optional<Camera::Connection>& conn = link.connection;
   if (!conn) return;
-  // The wavelength arriving at the pinhole: the light itself for s = 1, else the one a's sampled
+  cam.p = conn->lensPoint;  // also where the memo kept the other view's link
+  // The wavelength arriving at the camera: the light itself for s = 1, else the one a's sampled
   // spectral event sends towards the camera; with several lanes at a, each lane's own.
   const float lambda = s == 1 ? a.lambda : a.lambdaNext;
   const bool lanes = a.allLanes(c.lanes);
@@ -455,9 +458,12 @@ void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const s
     for (int s = 2; s <= int(LO.size()) && (s - 1) + (t - 1) <= maxDepth; ++s)
       connect(c, LO, LightFamily::Own, s, C, t, out, memo);
   }
-  // t = 1: light subpath vertices seen by the pinhole, splatted to their pixels.
-  for (int s = fewest; s <= int(LS.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LS, LightFamily::Shared, s, splats, memo);
-  for (int s = fewest; s <= int(LO.size()) && s - 1 <= maxDepth; ++s) connectToCamera(c, LO, LightFamily::Own, s, splats, memo);
+  // t = 1: light subpath vertices seen by the camera, each through a lens point of its own, splatted
+  // to their pixels.
+  for (int s = fewest; s <= int(LS.size()) && s - 1 <= maxDepth; ++s)
+    connectToCamera(c, LS, LightFamily::Shared, s, c.scene.camera.sampleLens(rng), splats, memo);
+  for (int s = fewest; s <= int(LO.size()) && s - 1 <= maxDepth; ++s)
+    connectToCamera(c, LO, LightFamily::Own, s, c.scene.camera.sampleLens(rng), splats, memo);
 }
 
 }  // namespace kasha::bidir

@@ -12,8 +12,8 @@
 
 namespace kasha::bidir {
 
-// The pinhole's view of a light-subpath vertex (t = 1): where it projects and the camera's density
-// of it; the same for both views at a common vertex.
+// The camera's view of a light-subpath vertex (t = 1): where it projects through a lens point and
+// the camera's density of it; the same for both views at a common vertex.
 struct CameraLink {
   std::optional<Camera::Connection> connection;
   double pdfCam = 0.0;  // the camera's area density of the vertex (whole film)
@@ -100,9 +100,11 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
 // With `memo`, visibility is remembered for the other view of a merged light subpath.
 void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
              const std::vector<PathVertex>& C, int t, float* out, VisibilityMemo* memo = nullptr);
-// t = 1: L[s−1] (s ≥ 1) of a light subpath of `family` seen by the pinhole, with the spectral event
-// the light subpath sampled there; appends a splat (film units) per lane if visible.
-void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s,
+// t = 1: L[s−1] (s ≥ 1) of a light subpath of `family` seen by the camera through the lens point
+// lensSample picks (Camera::connect), with the spectral event the light subpath sampled there;
+// appends a splat (film units) per lane if visible. With `memo`, a common vertex keeps the first
+// view's lens point.
+void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFamily family, int s, Vec2 lensSample,
                      std::vector<Splat>& splats, VisibilityMemo* memo = nullptr);
 
 // Every strategy of one camera sample: the camera subpath C joined to the light subpaths of the

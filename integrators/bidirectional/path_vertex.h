@@ -67,6 +67,9 @@ struct PathVertex {
   bool specular = false;
   float pdfFwd = 0.0f, pdfRev = 0.0f;
   bool deltaPosition = false;  // point and spot lights, the pinhole
+  // The orthographic camera: its rays share one direction, so the density of the next vertex is
+  // per unit area across them, times |cos| there (no 1/d², as from a light at infinity).
+  bool parallelRays = false;
   // A light subpath's first vertex: the probability with which its light was chosen (and, on an
   // own-family subpath, its wavelength with it: p_light(λ_0)·p(light | λ_0)).
   float choicePdf = 0.0f;
@@ -95,7 +98,9 @@ struct PathVertex {
 };
 
 // Area density at `to` of a solid-angle density at `from` (|cos| at `to` / d²); a vertex without a
-// normal (point light, camera) or at infinity gets no cosine (and no distance for infinity).
+// normal (point light, camera) or at infinity gets no cosine (and no distance for infinity). From
+// parallel rays (the orthographic camera) the density is per unit area across them: |cos| at `to`
+// alone.
 inline float toAreaDensity(float pdfSolidAngle, const PathVertex& from, const PathVertex& to) {
   if (to.kind == PathVertex::Kind::Infinite) return pdfSolidAngle;
   if (from.kind == PathVertex::Kind::Infinite) return pdfSolidAngle;  // handled by the caller
@@ -103,7 +108,7 @@ inline float toAreaDensity(float pdfSolidAngle, const PathVertex& from, const Pa
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.0f)) return 0.0f;
   const float c = glm::dot(to.n, to.n) > 0.0f ? std::abs(glm::dot(to.n, d)) / std::sqrt(dist2) : 1.0f;
-  return pdfSolidAngle * c / dist2;
+  return from.parallelRays ? pdfSolidAngle * c : pdfSolidAngle * c / dist2;
 }
 
 }  // namespace kasha::bidir

@@ -275,20 +275,23 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
   out.clear();
   PathVertex c;
   c.kind = PathVertex::Kind::Camera;
-  c.p = scene.camera.position();
+  const Ray ray = scene.camera.generateRay(filmPos, scene.camera.sampleLens(rng));
+  c.p = ray.o;
   std::fill(c.beta, c.beta + lanes.n, 1.0f);
   c.lambda = lanes.lambda[0];
+  // The lens point's density is the same in every strategy (each samples the lens alike): a
+  // common factor, left out (docs/bdpt-mis.md §2).
   c.pdfFwd = 1.0f;
-  c.deltaPosition = true;
+  c.deltaPosition = scene.camera.pinhole();
+  c.parallelRays = scene.camera.parallelRays();
   out.push_back(c);
   updateSums(out, TransportMode::Radiance, ws.strategies);
-  const Ray ray = scene.camera.generateRay(filmPos);
   // The sensor's density of the last wavelength group is a factor of the weights (mis_sums.h); the
   // reconstruction filter's coverage turns the camera's uniform density into the camera samples'.
   const PixelFilter& filter = scene.pixelFilter;
-  const float pdfDir = scene.camera.directionPdf(ray.d, filter.filmMargin()) *
+  const float pdfRay = scene.camera.rayPdf(ray, filter.filmMargin()) *
                        filter.coverage(filmPos, scene.camera.width(), scene.camera.height());
-  Track tr = startTrack(lanes, out, c.beta, pdfDir);
+  Track tr = startTrack(lanes, out, c.beta, pdfRay);
   randomWalk(scene, ray, &tr, 1, TransportMode::Radiance, ws, rng, counter);
 }
 

@@ -62,14 +62,15 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
   // Lanes at the strata of the light-start density; the light ∝ Σ_j Φ_l(λ_j), symmetric in them.
   const float uLambda = rng.uniform(), uLight = rng.uniform();
   const Vec2 uPos = rng.uniform2(), uDir = rng.uniform2();
+  const Vec2 uLens = scene.camera.sampleLens(rng);
   LightStartLanes st = startLightLanes(scene, wavelengths_.density(), n, uLambda, uLight, uPos, uDir);
   if (st.lanes.n == 0) return Vec3(0.0f);
   const EmissionSample& es = st.es;
   LightLanes& lanes = st.lanes;
 
-  // The emitter seen directly (area lights; delta lights are not visible to a pinhole).
+  // The emitter seen directly (area lights; delta lights have no area the camera could see).
   if (!es.deltaPos && !es.deltaDir && glm::dot(es.n, es.n) > 0.0f && !hideEmitters_) {
-    if (const auto c = scene.camera.connect(es.p, scene.pixelFilter.filmMargin())) {
+    if (const auto c = scene.camera.connect(es.p, uLens, scene.pixelFilter.filmMargin())) {
       const auto& area = static_cast<const AreaLight&>(*st.light);
       float value[kMaxLanes];
       for (int j = 0; j < n; ++j) value[j] = area.shape().emission->eval(lanes.lambda[j], es.n, c->wi) * st.start[j];
@@ -92,12 +93,13 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     // Spectral stage (Importance) of every lane: the lobe and the wavelengths leaving this vertex.
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));
     const float uLobe = rng.uniform(), uLane = rng.uniform();
+    const Vec2 uLens = scene.camera.sampleLens(rng);
     LaneEvent e = sampleLaneEvent(bsdf, TransportMode::Importance, known, n, uLobe, nullptr, atFluorescence_);
     if (e.n == 0) break;
     if (lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
 
     if (!bsdf.has(BsdfFlags::DeltaDirection)) {
-      if (const auto c = scene.camera.connect(hit->p, scene.pixelFilter.filmMargin())) {
+      if (const auto c = scene.camera.connect(hit->p, uLens, scene.pixelFilter.filmMargin())) {
         const Vec3 wo = bsdf.toLocal(c->wi);
         float value[kMaxLanes];
         for (int k = 0; k < e.n; ++k)

@@ -1,5 +1,5 @@
 #pragma once
-// Light tracing: subpaths from the lights in Importance mode, each connected to the pinhole at
+// Light tracing: subpaths from the lights in Importance mode, each connected to the camera at
 // every non-specular vertex and splatted into the pixel it lands on. A subpath carries N wavelength
 // lanes (docs/wavelength-sampling.md "Hero wavelengths"; N = 1 is classic light tracing) at the
 // strata of the light-start strategy's density (by default the scene's emitted power spectrum),

@@ -63,12 +63,13 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
     for (int i = 0; i < sensor_.samplesPerEstimate(); ++i) {
       const WavelengthStrategy::Draw d = sensor_.draw(i, rng.uniform());
       const Vec2 uFilm = rng.uniform2();
+      const Vec2 uLens = scene.camera.sampleLens(rng);
       if (!(d.weight > 0.0f)) continue;
       CameraLanesOf<float> lane;
       lane.n = 1;
       lane.lambda[0] = d.lambda;
       lane.T[0] = d.weight;
-      const Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm));
+      const Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm), uLens);
       const float L = radiance(scene, ray, lane, rng, ctx.counter);
       xyz += sensorResponse(ctx, d.lambda, L);
     }
@@ -77,6 +78,7 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
   const WavelengthDensity& p = sensor_.density();
   const float u = rng.uniform();
   const Vec2 uFilm = rng.uniform2();
+  const Vec2 uLens = scene.camera.sampleLens(rng);
   // Lane j at the stratum (u + j/N) of p's inverse CDF: distributed as p, weighted by 1/(N·p(λ_j)).
   float lambda[kMaxLanes], pdf[kMaxLanes];
   for (int j = 0; j < n_; ++j) {
@@ -84,7 +86,7 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
     lambda[j] = s.lambda;
     pdf[j] = s.pdf;
   }
-  const Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm));
+  const Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm), uLens);
   if (!ctx.recordSpectral) {
     // The lanes' XYZ throughput W(λ_j)/(N·p(λ_j)).
     CameraLanesOf<Vec3> lanes;

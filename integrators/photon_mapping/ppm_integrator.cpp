@@ -144,10 +144,11 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
   const WavelengthDensity& p = sensor_.density();
   const float u = rng.uniform();
   const Vec2 uFilm = rng.uniform2();
+  const Vec2 uLens = scene.camera.sampleLens(rng);
   CameraLanes lanes = stratifiedLanes(p, u, n_);
   float sensorLambda[kMaxLanes];  // the wavelength each sensor share is seen at
   std::copy(lanes.lambda, lanes.lambda + n_, sensorLambda);
-  Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm));
+  Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm), uLens);
   SensorShares L;    // radiance over density arriving at each sensor wavelength
   Vec3 xyz(0.0f);    // elastic photons seen at their own wavelengths
   const uint32_t firstDimension = rng.dimension();

@@ -13,6 +13,36 @@ using nlohmann::json;
 
 json vec(const Vec3& v) { return {v.x, v.y, v.z}; }
 
+// kasha's vertical field of view (degrees) of a perspective or thin-lens sensor: its `fov` along
+// `fov_axis`, or (Mitsuba 3's parse_fov) a focal length "<x>mm" on a 36 × 24 mm film, 50 mm by
+// default, whose angle is the diagonal's.
+float fovY(XmlImport& xml, Plugin& s, int width, int height) {
+  if (s.has("fov") && s.has("focal_length")) s.fail("give fov or focal_length, not both");
+  float fov = 0.0f;
+  std::string axis = "diagonal";
+  if (s.has("fov")) {
+    fov = s.number("fov");
+    axis = s.string("fov_axis", "x");
+  } else {
+    const std::string text = s.string("focal_length", "50mm");
+    const std::string mm = text.size() > 2 && text.compare(text.size() - 2, 2, "mm") == 0 ? text.substr(0, text.size() - 2) : text;
+    const std::optional<std::vector<float>> f = parseNumbers(mm);
+    if (!f || f->size() != 1 || !((*f)[0] > 0.0f))
+      s.fail(s.property("focal_length"), "focal_length must be a positive length in mm (\"50mm\"), got '" + text + "'");
+    fov = glm::degrees(2.0f * std::atan(std::sqrt(36.0f * 36.0f + 24.0f * 24.0f) / (2.0f * (*f)[0])));
+    if (s.has("fov_axis")) s.note("fov_axis ignored: a focal length gives the diagonal's angle (as in Mitsuba)");
+    s.string("fov_axis", "");
+  }
+  // tan(fov/2) below: beyond (0, 180) degrees it would wrap round to another angle.
+  if (!(fov > 0.0f && fov < 180.0f)) {
+    const pugi::xml_node p = s.property("fov");
+    s.fail(p, "fov must be in (0, 180) degrees, got " + xml.attribute(p, "value"));
+  }
+  const std::optional<float> y = verticalFov(fov, axis, width, height);
+  if (!y) s.fail("unknown fov_axis '" + axis + "' (x, y, diagonal, smaller, larger)");
+  return *y;
+}
+
 // Mitsuba's film without an <rfilter> (Mitsuba 3 docs: hdrfilm): the Gaussian of stddev 0.5.
 json defaultFilter() { return {{"type", "gaussian"}, {"stddev", 0.5f}}; }
 
@@ -71,7 +101,9 @@ std::optional<float> verticalFov(float fov, const std::string& axis, int width, 
 
 void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   Plugin s(xml, node);
-  if (s.type() != "perspective") s.fail("unsupported sensor plugin (perspective)");
+  const std::string type = s.type();
+  if (type != "perspective" && type != "thinlens" && type != "orthographic")
+    s.fail("unsupported sensor plugin (perspective, thinlens, orthographic)");
   if (out.root.contains("camera")) s.fail("a second <sensor> (kasha renders one camera)");
   int width = 768, height = 576;
   json filter = defaultFilter();
@@ -105,46 +137,33 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     sampler.integer("seed", 0);
     sampler.finish();
   }
-  // A field of view, or (Mitsuba 3's parse_fov) a focal length "<x>mm" on a 36 × 24 mm film,
-  // 50 mm by default, whose angle is the diagonal's.
-  if (s.has("fov") && s.has("focal_length")) s.fail("give fov or focal_length, not both");
-  float fov = 0.0f;
-  std::string axis = "diagonal";
-  if (s.has("fov")) {
-    fov = s.number("fov");
-    axis = s.string("fov_axis", "x");
-  } else {
-    const std::string text = s.string("focal_length", "50mm");
-    const std::string mm = text.size() > 2 && text.compare(text.size() - 2, 2, "mm") == 0 ? text.substr(0, text.size() - 2) : text;
-    const std::optional<std::vector<float>> f = parseNumbers(mm);
-    if (!f || f->size() != 1 || !((*f)[0] > 0.0f))
-      s.fail(s.property("focal_length"), "focal_length must be a positive length in mm (\"50mm\"), got '" + text + "'");
-    fov = glm::degrees(2.0f * std::atan(std::sqrt(36.0f * 36.0f + 24.0f * 24.0f) / (2.0f * (*f)[0])));
-    if (s.has("fov_axis")) s.note("fov_axis ignored: a focal length gives the diagonal's angle (as in Mitsuba)");
-    s.string("fov_axis", "");
-  }
-  // tan(fov/2) below: beyond (0, 180) degrees it would wrap round to another angle.
-  if (!(fov > 0.0f && fov < 180.0f)) {
-    const pugi::xml_node p = s.property("fov");
-    s.fail(p, "fov must be in (0, 180) degrees, got " + xml.attribute(p, "value"));
-  }
-  const std::optional<float> fovY = verticalFov(fov, axis, width, height);
-  if (!fovY) s.fail("unknown fov_axis '" + axis + "' (x, y, diagonal, smaller, larger)");
-  // A pinhole has no focus: Mitsuba's perspective camera ignores it too.
-  s.number("focus_distance", 0.0f);
+  json camera = {{"type", type == "perspective" ? "pinhole" : type}};
+  if (type != "orthographic") camera["fov"] = fovY(xml, s, width, height);
   if (s.has("near_clip") || s.has("far_clip")) s.note("near_clip and far_clip ignored (kasha does not clip)");
   s.number("near_clip", 0.0f);
-  s.number("far_clip", 0.0f);
+  // Mitsuba's focus is at the far clip plane unless given (ProjectiveCamera); a pinhole has none,
+  // and Mitsuba's perspective camera ignores it too.
+  const float farClip = s.number("far_clip", 1e4f);
+  const float focusDistance = s.number("focus_distance", farClip);
+  if (type == "thinlens") {
+    camera["aperture_radius"] = s.number("aperture_radius");
+    camera["focus_distance"] = focusDistance;
+  }
   const Mat4 m = toWorld(s);
   if (glm::determinant(glm::mat3(m)) < 0.0f)
     s.fail("to_world mirrors the image (a negative scale); kasha's camera cannot be mirrored");
+  // Mitsuba 3's orthographic_projection: the film spans x ∈ [−1, 1], y ∈ [−1/aspect, 1/aspect] of
+  // the camera's plane z = 0, which to_world scales.
+  if (type == "orthographic")
+    camera["extent"] = {2.0f * glm::length(transformVector(m, Vec3(1, 0, 0))),
+                        2.0f * glm::length(transformVector(m, Vec3(0, 1, 0))) * float(height) / float(width)};
   const Vec3 pos = transformPoint(m, Vec3(0.0f));
-  out.root["camera"] = {{"position", vec(pos)},
-                        {"look_at", vec(pos + glm::normalize(transformVector(m, Vec3(0, 0, 1))))},
-                        {"up", vec(transformVector(m, Vec3(0, 1, 0)))},
-                        {"fov", *fovY},
-                        {"resolution", {width, height}},
-                        {"filter", filter}};
+  camera["position"] = vec(pos);
+  camera["look_at"] = vec(pos + glm::normalize(transformVector(m, Vec3(0, 0, 1))));
+  camera["up"] = vec(transformVector(m, Vec3(0, 1, 0)));
+  camera["resolution"] = {width, height};
+  camera["filter"] = filter;
+  out.root["camera"] = camera;
   out.origin("/camera", xml, node);
   s.finish();
 }

@@ -1,6 +1,6 @@
 #pragma once
-// Mitsuba's <sensor type="perspective"> (fov, fov_axis, to_world, its <film> size and <sampler>
-// sample count) as kasha's camera and samples per pixel, and <integrator type="path">'s
+// Mitsuba's <sensor> of type perspective, thinlens or orthographic (fov, fov_axis, focal_length,
+// aperture_radius, focus_distance, to_world, its <film> size and <sampler> sample count) as kasha's camera and samples per pixel, and <integrator type="path">'s
 // max_depth and rr_depth as kasha's render settings.
 #include "scene/mitsuba/scene_json.h"
 

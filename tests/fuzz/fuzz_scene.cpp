@@ -33,8 +33,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } catch (const InputError&) {
     return 0;
   }
-  const Camera& c = scene->camera;
-  scene->camera = Camera(c.position(), c.position() + c.forward(), c.up(), c.fovYDegrees(), 4, 4);
+  scene->camera = scene->camera.resized(4, 4);
   RenderSettings settings = scene->render;
   settings.maxDepth = std::min(settings.maxDepth, 6);
   for (const char* name : {"pt", "lt"}) {

@@ -67,7 +67,7 @@ TEST(Jung18Fig1, ClosedFormColoursOutsideTheGamutOnlyWithFluorescence) {
 std::vector<Vec3> colourOfShape(const Scene& scene, const std::string& shape, int seeds) {
   const int w = scene.camera.width(), h = scene.camera.height();
   auto hits = [&](int x, int y) {
-    const std::optional<Hit> hit = scene.accel->intersect(scene.camera.generateRay(Vec2(x + 0.5f, y + 0.5f)));
+    const std::optional<Hit> hit = scene.accel->intersect(scene.camera.generateRay(Vec2(x + 0.5f, y + 0.5f), Vec2(0.5f)));
     return hit && scene.shapes[hit->shape].name == shape;
   };
   std::vector<std::pair<int, int>> pixels;

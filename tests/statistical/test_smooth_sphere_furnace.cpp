@@ -54,7 +54,7 @@ std::vector<double> expectedRegions(const Scene& scene, int n, const PointValue&
       double pixel = 0.0;
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
-          const Ray ray = cam.generateRay(Vec2(float(x) + (float(i) + 0.5f) / float(n), float(y) + (float(j) + 0.5f) / float(n)));
+          const Ray ray = cam.generateRay(Vec2(float(x) + (float(i) + 0.5f) / float(n), float(y) + (float(j) + 0.5f) / float(n)), Vec2(0.5f));
           const std::optional<Hit> h = scene.accel->intersect(ray);
           if (!h) {
             pixel += miss;

@@ -2,7 +2,8 @@
 // path (integrators/bidirectional/mis.h, §5): on subpaths traced in scenes with area, point, spot, distant
 // and environment lights, elastic, fluorescent, glossy and specular vertices, every connection's
 // weight computed both ways must agree (relative 1e-5), for each wavelength family alone and both
-// together, with and without spectral mollification, and with wavelength lanes.
+// together, with and without spectral mollification, and with wavelength lanes; through the pinhole,
+// a thin lens and an orthographic camera.
 #include <gtest/gtest.h>
 
 #include "integrators/bidirectional/connect.h"
@@ -15,18 +16,34 @@
 namespace kasha::bidir {
 namespace {
 
+// The scene's own camera, or in its frame a thin lens (focused in front of the Cornell box, radius
+// 30 mm) or an orthographic camera (a 400 × 400 mm film).
+enum class CameraKind { Scene, ThinLens, Orthographic };
+
+void replaceCamera(Scene& scene, CameraKind kind) {
+  const Camera& c = scene.camera;
+  const Vec3 at = c.position() + c.forward();
+  if (kind == CameraKind::ThinLens)
+    scene.camera = Camera::thinLens(c.position(), at, c.up(), c.fovYDegrees(), c.width(), c.height(), 30.0f, 500.0f);
+  if (kind == CameraKind::Orthographic)
+    scene.camera = Camera::orthographic(c.position(), at, c.up(), Vec2(400.0f), c.width(), c.height());
+}
+
 struct Case {
   const char* scene;
   Families families;
   float bandwidth;  // mollification's kernel half-width (nm), 0: none
   int lanes = 1;    // wavelength lanes per camera sample (docs/bdpt-mis.md §10)
   bool merged = false;  // both families on one light subpath (the unified estimator, §11)
+  CameraKind camera = CameraKind::Scene;
 };
 
 std::string describe(const Case& c) {
   return std::string(c.scene) + (c.families.shared ? " shared" : "") + (c.families.independent ? " own" : "") +
          (c.bandwidth > 0.0f ? " mollified" : "") + (c.lanes > 1 ? " lanes " + std::to_string(c.lanes) : "") +
-         (c.merged ? " merged" : "");
+         (c.merged ? " merged" : "") + (c.camera == CameraKind::ThinLens       ? " thin lens"
+                                        : c.camera == CameraKind::Orthographic ? " orthographic"
+                                                                               : "");
 }
 
 class RecursiveWeights : public ::testing::TestWithParam<Case> {};
@@ -34,6 +51,7 @@ class RecursiveWeights : public ::testing::TestWithParam<Case> {};
 TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   const Case& param = GetParam();
   const auto scene = loadScene(test::sourcePath(param.scene));
+  replaceCamera(*scene, param.camera);
   const WavelengthSources sources(*scene);
   const WavelengthStrategy sensor(scene->render.wavelengths.sensor, sources, WavelengthSite::Sensor);
   const WavelengthStrategy light(scene->render.wavelengths.light, sources, WavelengthSite::LightStart);
@@ -108,7 +126,10 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/validation/mollify_mirror.json", kBoth, 0.0f, 4, true},
                       Case{"scenes/validation/furnace_point_light.json", kBoth, 0.0f, 4, true},
                       Case{"scenes/validation/smooth_sphere_distant.json", kBoth, 0.0f, 4, true},
-                      Case{"scenes/validation/single_sphere_environment.json", kBoth, 0.0f, 4, true}),
+                      Case{"scenes/validation/single_sphere_environment.json", kBoth, 0.0f, 4, true},
+                      // Cameras with a lens point of their own per connection, and parallel rays.
+                      Case{"scenes/cornell_glossy.json", kBoth, 0.0f, 4, false, CameraKind::ThinLens},
+                      Case{"scenes/cornell_glossy.json", kBoth, 0.0f, 4, true, CameraKind::Orthographic}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string name = describe(info.param);
       for (char& ch : name)

@@ -198,6 +198,34 @@ TEST_F(MitsubaImport, PerspectiveSensorFilmSamplerAndIntegrator) {
   EXPECT_NEAR(s->camera.fovYDegrees(), 2.0f * std::atan(std::tan(glm::radians(15.0f)) * 0.5f) * 180.0f / kPi, 1e-3f);
 }
 
+// thinlens: a perspective camera with Mitsuba's aperture_radius and focus_distance (default: the
+// far clip plane, 10⁴). orthographic: the film spans [−1, 1] × [−1/aspect, 1/aspect] of the camera's
+// plane, scaled by to_world (Mitsuba 3's orthographic_projection), so a scale of 2 on a 960 × 720
+// film gives 4 × 3 world units.
+TEST_F(MitsubaImport, ThinLensAndOrthographicSensors) {
+  const auto sensor = [&](const std::string& type, const std::string& properties) {
+    return write("sensor.xml", std::string("<scene version=\"3.0.0\">") + "<sensor type=\"" + type + "\">" + properties + R"(
+    <film type="hdrfilm"><integer name="width" value="960"/><integer name="height" value="720"/></film>
+  </sensor>)" + kLight + kFloor + "</scene>");
+  };
+  auto s = loadScene(sensor("thinlens", R"(<float name="fov" value="40"/><string name="fov_axis" value="y"/>
+    <float name="aperture_radius" value="0.2"/><float name="focus_distance" value="5.9"/>)"));
+  EXPECT_NEAR(s->camera.fovYDegrees(), 40.0f, 1e-4f);
+  EXPECT_FLOAT_EQ(s->camera.apertureRadius(), 0.2f);
+  EXPECT_FLOAT_EQ(s->camera.focusDistance(), 5.9f);
+  EXPECT_FLOAT_EQ(loadScene(sensor("thinlens", R"(<float name="aperture_radius" value="0.2"/>)"))->camera.focusDistance(), 1e4f);
+  EXPECT_TRUE(contains(fileError(sensor("thinlens", "")), "aperture_radius"));
+  s = loadScene(sensor("orthographic", R"(<transform name="to_world"><scale x="2" y="2"/>
+    <lookat origin="0, 1, -5" target="0, 1, 0" up="0, 1, 0"/></transform>)"));
+  ASSERT_TRUE(s->camera.parallelRays());
+  EXPECT_NEAR(s->camera.filmExtent().x, 4.0f, 1e-5f);
+  EXPECT_NEAR(s->camera.filmExtent().y, 3.0f, 1e-5f);
+  EXPECT_NEAR(glm::length(s->camera.position() - Vec3(0, 1, -5)), 0.0f, 1e-5f);
+  EXPECT_NEAR(s->camera.forward().z, 1.0f, 1e-6f);
+  EXPECT_TRUE(contains(fileError(sensor("orthographic", R"(<float name="fov" value="40"/>)")), "unsupported property 'fov'"));
+  EXPECT_TRUE(contains(fileError(sensor("fisheye", "")), "unsupported sensor plugin (perspective, thinlens, orthographic)"));
+}
+
 // <rfilter> inside <film>: box, tent and gaussian as kasha's filters with Mitsuba's parameters; none
 // is Mitsuba's default Gaussian (stddev 0.5); the filters kasha lacks become the Gaussian of the
 // same standard deviation or the box, with one note naming it; anything else is an error.

@@ -299,6 +299,39 @@ TEST_F(SceneLoader, MalformedJson) {
   EXPECT_EQ(errorOfText("[1, 2]"), path + ": /: expected an object, got array");
 }
 
+// The camera's "type": a thin lens (aperture_radius, focus_distance) and an orthographic camera
+// (extent instead of fov); their fields are checked like the pinhole's.
+TEST_F(SceneLoader, CameraTypes) {
+  json j = base;
+  j["camera"]["type"] = "thinlens";
+  j["camera"]["aperture_radius"] = 0.1;
+  j["camera"]["focus_distance"] = 3;
+  auto scene = loadSceneFromString(j.dump(), path);
+  EXPECT_FALSE(scene->camera.pinhole());
+  EXPECT_FALSE(scene->camera.parallelRays());
+  EXPECT_FLOAT_EQ(scene->camera.apertureRadius(), 0.1f);
+  EXPECT_FLOAT_EQ(scene->camera.focusDistance(), 3.0f);
+  j = base;
+  j["camera"]["type"] = "orthographic";
+  j["camera"].erase("fov");
+  j["camera"]["extent"] = {4, 2};
+  scene = loadSceneFromString(j.dump(), path);
+  EXPECT_TRUE(scene->camera.parallelRays());
+  EXPECT_EQ(scene->camera.filmExtent(), Vec2(4, 2));
+  expectError([](json& j) { j["camera"]["type"] = "fisheye"; }, "/camera/type", "'fisheye' is not a camera (pinhole, thinlens, orthographic)");
+  expectError([](json& j) { j["camera"]["type"] = "thinlens"; j["camera"]["focus_distance"] = 1; },
+              "/camera/aperture_radius", "missing required field");
+  expectError([](json& j) { j["camera"]["type"] = "thinlens"; j["camera"]["aperture_radius"] = -1; j["camera"]["focus_distance"] = 1; },
+              "/camera/aperture_radius", "must be finite and at least 0");
+  expectError([](json& j) { j["camera"]["type"] = "thinlens"; j["camera"]["aperture_radius"] = 0.1; j["camera"]["focus_distance"] = 0; },
+              "/camera/focus_distance", "must be positive and finite");
+  expectError([](json& j) { j["camera"]["aperture_radius"] = 0.1; }, "/camera/aperture_radius", "unknown field");
+  expectError([](json& j) { j["camera"]["type"] = "orthographic"; }, "/camera/extent", "missing required field");
+  expectError([](json& j) { j["camera"]["type"] = "orthographic"; j["camera"]["extent"] = {4, 2}; }, "/camera/fov", "unknown field");
+  expectError([](json& j) { j["camera"]["type"] = "orthographic"; j["camera"].erase("fov"); j["camera"]["extent"] = {4, 0}; },
+              "/camera/extent", "the film's width and height must be positive and finite");
+}
+
 TEST_F(SceneLoader, MissingRequiredField) {
   expectError([](json& j) { j.erase("camera"); }, "/camera", "missing required field");
   expectError([](json& j) { j.erase("materials"); }, "/materials", "missing required field");
