@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/stb_guard.h"
 #include "core/memory_budget.h"
 
 // stb_image's implementation, restricted to the formats kasha reads.
@@ -12,7 +13,6 @@
 #define STB_IMAGE_STATIC
 #define STBI_NO_STDIO
 #define STBI_ONLY_PNG
-#define STBI_ONLY_JPEG
 #define STBI_ONLY_BMP
 #define STBI_ONLY_TGA
 #define STBI_ONLY_HDR
@@ -47,6 +47,7 @@ StbImageInput::StbImageInput(const std::string& path, const std::string& what, c
   width_ = uint64_t(w);
   height_ = uint64_t(h);
   linear_ = stbi_is_hdr_from_memory(stbBytes(bytes_), length) != 0;
+  if (linear_) checkHdrRuns(bytes_, width_, height_, path);  // before stb decodes the pixels
   sixteenBit_ = stbi_is_16_bit_from_memory(stbBytes(bytes_), length) != 0;
 }
 

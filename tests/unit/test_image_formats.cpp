@@ -103,19 +103,17 @@ TEST_F(ImageFormats, SixteenBitPng) {
   }
 }
 
-// JPEG is lossy: a constant 8×8 block at quality 100 comes back within 2 codes.
-TEST_F(ImageFormats, Jpeg) {
-  std::vector<unsigned char> px;
-  for (int i = 0; i < 64; ++i) px.insert(px.end(), {200, 100, 50});
+// JPEG waits for a reader of its own (Debian 12's stb_image decodes it unsafely): refused in one line.
+TEST_F(ImageFormats, JpegIsRefusedInOneLine) {
+  std::vector<unsigned char> px(8 * 8 * 3, 100);
   ASSERT_TRUE(stbi_write_jpg(path("a.jpg").c_str(), 8, 8, 3, px.data(), 100));
-  ASSERT_TRUE(stbi_write_jpg(path("b.JPEG").c_str(), 8, 8, 3, px.data(), 100));
-  for (const char* name : {"a.jpg", "b.JPEG"}) {
-    const Vec3 data = texelRgb(path(name), 3, 5, 8, 8);
-    const Vec3 srgb = texelRgb(path(name), 3, 5, 8, 8, TextureEncoding::Srgb);
-    for (int c = 0; c < 3; ++c) {
-      EXPECT_NEAR(data[c], px[size_t(c)] / 255.0, 2.0 / 255.0) << name;
-      EXPECT_GE(srgb[c], srgbToLinear((px[size_t(c)] - 2) / 255.0)) << name;
-      EXPECT_LE(srgb[c], srgbToLinear((px[size_t(c)] + 2) / 255.0)) << name;
+  for (const char* name : {"a.jpg", "missing.JPEG"}) {
+    try {
+      TextureLoader(kDefaultMemoryLimit).load(path(name), TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Bilinear);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const std::runtime_error& e) {  // the scene loader names the file and the field
+      EXPECT_NE(std::string(e.what()).find("JPEG images are not read yet (convert it to PNG or OpenEXR)"), std::string::npos)
+          << e.what();
     }
   }
 }
@@ -139,7 +137,6 @@ TEST_F(ImageFormats, ForgedHugeHeadersAreRefusedBeforeDecoding) {
   ASSERT_TRUE(stbi_write_bmp(path("a.bmp").c_str(), 2, 2, 3, rgb));
   ASSERT_TRUE(stbi_write_tga(path("a.tga").c_str(), 2, 2, 3, rgb));
   ASSERT_TRUE(stbi_write_hdr(path("a.hdr").c_str(), 2, 2, 3, hdr));
-  ASSERT_TRUE(stbi_write_jpg(path("a.jpg").c_str(), 2, 2, 3, rgb, 90));
   const uint32_t n = 16000;
   const auto le = [](std::string& b, size_t at, uint32_t v, int bytes) {
     for (int k = 0; k < bytes; ++k) b[at + size_t(k)] = char((v >> (8 * k)) & 0xff);
@@ -156,15 +153,7 @@ TEST_F(ImageFormats, ForgedHugeHeadersAreRefusedBeforeDecoding) {
   const size_t dims = rad.find("-Y 2 +X 2");
   ASSERT_NE(dims, std::string::npos);
   writeBytes("big.hdr", rad.replace(dims, 9, "-Y 16000 +X 16000"));
-  std::string jpg = readBytes("a.jpg");  // SOF0: FF C0, length, precision, height, width (big-endian)
-  const size_t sof = jpg.find("\xFF\xC0");
-  ASSERT_NE(sof, std::string::npos);
-  for (const size_t at : {sof + 5, sof + 7}) {
-    jpg[at] = char(n >> 8);
-    jpg[at + 1] = char(n & 0xff);
-  }
-  writeBytes("big.jpg", jpg);
-  for (const char* name : {"big.bmp", "big.tga", "big.hdr", "big.jpg"}) {
+  for (const char* name : {"big.bmp", "big.tga", "big.hdr"}) {
     try {
       TextureLoader(uint64_t(64) << 20).load(path(name), TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Bilinear);
       ADD_FAILURE() << name << ": no error";
@@ -183,7 +172,7 @@ TEST_F(ImageFormats, ForgedHugeHeadersAreRefusedBeforeDecoding) {
 // A file is read as the format its extension names (stb_image alone would take any it knows).
 TEST_F(ImageFormats, WrongOrCorruptFilesNameTheFormat) {
   ASSERT_TRUE(stbi_write_bmp(path("bmp.png").c_str(), 1, 1, 3, kCodes));
-  writeBytes("bad.jpg", "\xFF\xD8 and then nothing of a JPEG");
+  writeBytes("bad.tga", "\x00\x07 and then nothing of a TGA");
   const auto error = [&](const std::string& name) -> std::string {
     try {
       TextureLoader(kDefaultMemoryLimit).load(path(name), TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Bilinear);
@@ -193,8 +182,25 @@ TEST_F(ImageFormats, WrongOrCorruptFilesNameTheFormat) {
     return "no error";
   };
   EXPECT_EQ(error("bmp.png"), path("bmp.png") + ": cannot read PNG: not PNG (its signature is missing)");
-  EXPECT_EQ(error("bad.jpg"),
-            path("bad.jpg") + ": cannot read JPEG: corrupt, not JPEG, or larger than stb_image decodes (2^30 bytes)");
+  EXPECT_EQ(error("bad.tga"),
+            path("bad.tga") + ": cannot read TGA: corrupt, not TGA, or larger than stb_image decodes (2^30 bytes)");
+}
+
+TEST_F(ImageFormats, RunLengthEncodedHdrThatEndsEarlyIsRefusedBeforeStbLoopsOnIt) {
+  // core/stb_guard.h: stb_image reads zeros past the end, and a dump of length 0 never ends its loop.
+  std::vector<float> values(16 * 2 * 3, 0.25f);
+  ASSERT_TRUE(stbi_write_hdr(path("full.hdr").c_str(), 16, 2, 3, values.data()));
+  const std::string full = readBytes("full.hdr");
+  writeBytes("short.hdr", full.substr(0, full.size() - 5));
+  try {
+    TextureLoader(kDefaultMemoryLimit).load(path("short.hdr"), TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Bilinear);
+    ADD_FAILURE() << "short.hdr accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), path("short.hdr") + ": cannot read Radiance HDR: a run-length encoded scanline (1) "
+                                                         "holds a run of length 0, or the data ends early");
+  }
+  EXPECT_NO_THROW(TextureLoader(kDefaultMemoryLimit).load(path("full.hdr"), TextureChannel::Mean, TextureWrap::Repeat,
+                                                          TextureFilter::Bilinear));
 }
 
 }  // namespace

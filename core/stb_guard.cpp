@@ -1,0 +1,43 @@
+#include "core/stb_guard.h"
+
+#include <cstdint>
+
+#include "core/error.h"
+
+namespace kasha {
+
+void checkHdrRuns(const std::string& bytes, uint64_t width, uint64_t height, const std::string& path) {
+  // stb's header: lines up to an empty one, then the resolution line ("-Y h +X w"), then the pixels.
+  const size_t headerEnd = bytes.find("\n\n");
+  if (headerEnd == std::string::npos) return;  // stb refuses it
+  const size_t resolutionEnd = bytes.find('\n', headerEnd + 2);
+  if (resolutionEnd == std::string::npos) return;
+  // stb decodes widths outside [8, 32768) flat, and a scanline without the RLE header flat from
+  // there on: neither loops.
+  if (width < 8 || width >= 32768) return;
+  const size_t n = bytes.size();
+  size_t p = resolutionEnd + 1;
+  const auto next = [&]() -> unsigned { return p < n ? uint8_t(bytes[p++]) : (++p, 0u); };  // stb reads 0 past the end
+  for (uint64_t j = 0; j < height; ++j) {
+    const unsigned c1 = next(), c2 = next(), hi = next();
+    if (c1 != 2 || c2 != 2 || (hi & 0x80)) return;
+    if (((hi << 8) | next()) != width) return;  // stb refuses it
+    for (int k = 0; k < 4; ++k)
+      for (uint64_t i = 0; i < width;) {
+        unsigned count = next();
+        if (count > 128) {
+          next();  // the run's value
+          count -= 128;
+        } else {
+          if (count == 0)
+            throw InputError(path, "", "cannot read Radiance HDR: a run-length encoded scanline (" + std::to_string(j) +
+                                           ") holds a run of length 0, or the data ends early");
+          p += count;
+        }
+        if (count > width - i) return;  // stb refuses it
+        i += count;
+      }
+  }
+}
+
+}  // namespace kasha
