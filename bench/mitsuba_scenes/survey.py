@@ -60,6 +60,9 @@ def survey_one(args, scene_path):
         if len(lines) != 1 or run.returncode < 0:
             first += "  [NOT ONE ERROR LINE: exit %d, %d error lines]" % (run.returncode, len(lines))
         first = first.replace(os.path.dirname(scene_path) + "/", "")
+        # mitsuba-data's own files (common/...) named from its root, not from this machine's
+        root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(scene_path))))
+        first = first.replace(root + "/", os.path.basename(root) + "/")
         return {"scene": name, "result": first, "seconds": round(seconds, 1), "defines": defines}
     except subprocess.TimeoutExpired:
         return {"scene": name, "result": "TIMEOUT after %d s" % args.timeout, "defines": defines}
