@@ -6,6 +6,19 @@
 
 namespace kasha {
 
+void checkPngChunks(const std::string& bytes, const std::string& path) {
+  const size_t n = bytes.size();
+  if (bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0) return;  // stb's PNG reader needs the signature
+  for (size_t p = 8; p + 8 <= n;) {  // length (4, big-endian), type (4), data, CRC (4)
+    uint64_t length = 0;
+    for (size_t k = 0; k < 4; ++k) length = (length << 8) | uint8_t(bytes[p + k]);
+    if (length > n - (p + 8))
+      throw InputError(path, "", "cannot read PNG: a chunk declares " + std::to_string(length) + " bytes, more than the file holds");
+    if (bytes.compare(p + 4, 4, "IEND") == 0) return;
+    p += 12 + length;
+  }
+}
+
 void checkHdrRuns(const std::string& bytes, uint64_t width, uint64_t height, const std::string& path) {
   // stb's header: lines up to an empty one, then the resolution line ("-Y h +X w"), then the pixels.
   const size_t headerEnd = bytes.find("\n\n");

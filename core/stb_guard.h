@@ -8,6 +8,11 @@
 
 namespace kasha {
 
+// PNG: stb grows its buffer for the image data to each IDAT chunk's declared length before
+// reading it (2 GB for a 500-byte file). Walks the chunks and throws InputError naming `path` for
+// one that declares more bytes than the file holds after it.
+void checkPngChunks(const std::string& bytes, const std::string& path);
+
 // Radiance HDR: in a run-length encoded scanline, a "dump" of length 0 (or data ending early, which
 // stb reads as zeros) never advances stbi__hdr_load's loop. Walks the scanlines of a width × height
 // image as stb does and throws InputError naming `path` at such a run.

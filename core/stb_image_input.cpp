@@ -37,6 +37,7 @@ StbImageInput::StbImageInput(const std::string& path, const std::string& what, c
   if (bytes_.compare(0, signature.size(), signature) != 0)
     throw InputError(path, "", "cannot read " + format + ": not " + format + " (its signature is missing)");
   if (bytes_.size() > size_t(INT_MAX)) throw InputError(path, "", "cannot read " + format + ": larger than 2 GiB");
+  checkPngChunks(bytes_, path);  // before stb reads a chunk
   const int length = int(bytes_.size());
   int w = 0, h = 0, channels = 0;
   // stbi_info tries every format and reports only that none fits; its decoders refuse an image
