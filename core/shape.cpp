@@ -1,7 +1,10 @@
 #include "core/shape.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "core/sampling.h"
 
@@ -133,6 +136,20 @@ SurfaceSample Shape::sampleUniform(Vec2 u) const {
   const Vec3 a = positions[indices[3 * t]], bb = positions[indices[3 * t + 1]], c = positions[indices[3 * t + 2]];
   const Vec3 p = b.x * a + b.y * bb + (1.0f - b.x - b.y) * c;
   return {p, triangleNormal(uint32_t(t)), 1.0f / area};
+}
+
+bool Shape::closed() const {
+  if (kind == Kind::Sphere) return true;
+  if (kind == Kind::Cylinder) return false;
+  // Edges by their end positions (meshes may repeat a position under several indices).
+  const auto key = [](const Vec3& a, const Vec3& b) {
+    const auto less = [](const Vec3& x, const Vec3& y) { return std::tie(x.x, x.y, x.z) < std::tie(y.x, y.y, y.z); };
+    return less(a, b) ? std::array<float, 6>{a.x, a.y, a.z, b.x, b.y, b.z} : std::array<float, 6>{b.x, b.y, b.z, a.x, a.y, a.z};
+  };
+  std::map<std::array<float, 6>, int> uses;
+  for (size_t t = 0; t + 2 < indices.size(); t += 3)
+    for (int e = 0; e < 3; ++e) ++uses[key(positions[indices[t + size_t(e)]], positions[indices[t + size_t((e + 1) % 3)]])];
+  return std::all_of(uses.begin(), uses.end(), [](const auto& u) { return u.second == 2; });
 }
 
 }  // namespace kasha

@@ -38,10 +38,23 @@ struct MeshAttribute {
   bool perFace() const { return name.starts_with("face_"); }
 };
 
+// The material index of a shape that is only a boundary between media (index-matched: light
+// crosses it unchanged, docs/media.md §1).
+inline constexpr uint32_t kNoMaterial = 0xffffffffu;
+
+// The media on the two sides of a shape's surface: indices into Scene::media, −1 for vacuum. The
+// interior is the side the geometric normal points away from.
+struct MediumInterface {
+  int interior = -1, exterior = -1;
+};
+
 struct Shape {
   enum class Kind { Mesh, Sphere, Cylinder } kind = Kind::Mesh;
   std::string name;
-  uint32_t material = 0;
+  uint32_t material = 0;  // or kNoMaterial
+  // Absent: crossing the surface does not change the medium a ray is in.
+  std::optional<MediumInterface> media;
+  bool isMediumBoundary() const { return material == kNoMaterial; }
   std::optional<AreaEmission> emission;
   // Mesh
   std::vector<Vec3> positions;
@@ -92,6 +105,9 @@ struct Shape {
   // barycentrics (b1, b2) of corners 1 and 2, as surfaceUv; a face attribute's triangle value.
   Vec3 attributeAt(const MeshAttribute& a, uint32_t prim, Vec2 bary) const;
   SurfaceSample sampleUniform(Vec2 u) const;
+  // Whether the surface encloses a volume: spheres; meshes whose every edge (a pair of vertex
+  // positions) is shared by exactly two triangles; never an open cylinder.
+  bool closed() const;
 };
 
 }  // namespace kasha

@@ -16,7 +16,7 @@
 #include "scene/render_settings.h"
 #include "scene/wavelength_strategy.h"
 #include "integrators/lane_light_choice.h"
-#include "integrators/shadow_ray.h"
+#include "integrators/medium_transport.h"
 #include "integrators/wavelength_lanes.h"
 
 namespace kasha {
@@ -49,7 +49,8 @@ struct NeeSpectralPdfs {
 };
 
 // The contribution of one light sample to every lane of event `e` at the non-specular vertex
-// `hit` (outgoing direction wo in the Bsdf's frame); `before[j]` is lane j's throughput before
+// `hit` (outgoing direction wo in the Bsdf's frame; a surface hit, or a point in a medium with
+// ng = 0, `where` saying which, with the transmittance of the media on the shadow ray); `before[j]` is lane j's throughput before
 // the event at the known wavelength known[j], `lights` the light choice for the event's lanes
 // (a LaneLightChoice reset with e.lambda, or a OneLaneLightChoice), lambdaOut0 the outgoing
 // wavelength the direction sampling of the event's lane 0 uses (for the power heuristic), `spectral`
@@ -57,7 +58,8 @@ struct NeeSpectralPdfs {
 // light, uPos the point on it. Returns zero at a purely specular vertex. T is the lanes' throughput
 // type.
 template <class T, class LightChoice>
-T laneNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3& wo, std::span<const float> known,
+T laneNextEvent(const Scene& scene, const Hit& hit, VertexMedium where, const Bsdf& bsdf, const Vec3& wo,
+                std::span<const float> known,
                 const T* before, const LaneEvent& e, const LightChoice& lights, float lambdaOut0, float uLight,
                 Vec2 uPos, NeeWeight weighting, RayCounter& counter, NeeSpectralPdfs spectral = {}) {
   T sum = before[0] * 0.0f;
@@ -80,14 +82,17 @@ T laneNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf, const Vec3
     weight[k] = laneWeight(bsdf, TransportMode::Radiance, known, before, e, k, wi, wo);
     any = any || !(weight[k] == sum);
   }
-  if (!any || wi.z == 0.0f || !lightVisible(scene, hit, *ls, counter)) return sum;
+  float tr[kMaxLanes];
+  if (!any || bsdf.cosineFactor(wi) == 0.0f ||
+      !lightTransmittance(scene, hit, where, *ls, {e.lambda, size_t(e.n)}, tr, counter))
+    return sum;
   const float w = ls->delta || weighting == NeeWeight::Alone
                       ? 1.0f
                       : powerHeuristic(lightPdf * spectral.nee,
                                        bsdf.directionPdf(TransportMode::Radiance, wo, wi, e.lobe, e.lambda[0], lambdaOut0) *
                                            spectral.event);
   for (int k = 0; k < e.n; ++k)
-    if (Li[k] > 0.0f) sum += weight[k] * (std::abs(wi.z) * Li[k] * w / lightPdf);
+    if (Li[k] > 0.0f) sum += weight[k] * (bsdf.cosineFactor(wi) * tr[k] * Li[k] * w / lightPdf);
   return sum;
 }
 

@@ -24,6 +24,7 @@ LightStartLanes startLightLanes(const Scene& scene, const WavelengthDensity& den
   const auto [li, pSelect] = selectLaneLight(scene, {lambda, size_t(n)}, uLight);
   if (!(pSelect > 0.0f)) return s;
   s.light = scene.lights[li].get();
+  s.lightIndex = li;
   const std::optional<EmissionSample> es = s.light->sampleEmission(lambda[0], uPos, uDir);
   if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return s;
   s.es = *es;
@@ -45,7 +46,7 @@ std::optional<Vec3> scatterLightLanes(const Bsdf& bsdf, const Vec3& wi, const La
   const std::span<const float> known(lanes.lambda, size_t(lanes.n));
   float next[kMaxLanes];
   for (int k = 0; k < e.n; ++k)
-    next[k] = laneWeight(bsdf, TransportMode::Importance, known, lanes.beta, e, k, ds->w, wi) * std::abs(ds->w.z) / ds->pdf;
+    next[k] = laneWeight(bsdf, TransportMode::Importance, known, lanes.beta, e, k, ds->w, wi) * bsdf.cosineFactor(ds->w) / ds->pdf;
   lanes.n = e.n;
   std::copy(next, next + e.n, lanes.beta);
   std::copy(e.lambda, e.lambda + e.n, lanes.lambda);

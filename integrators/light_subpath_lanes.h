@@ -25,6 +25,7 @@ struct LightLanes {
 struct LightStartLanes {
   LightLanes lanes;  // lanes.n = 0 if the start failed (no light emits at the lanes, or no emission sample)
   const Light* light = nullptr;
+  size_t lightIndex = 0;  // light's index in Scene::lights
   EmissionSample es;
   float start[kMaxLanes];  // 1/(N·p(λ_j)·P(light)): lane j's weight, the balance heuristic over the lanes;
                            // lanes.beta[j] = L_e(λ_j)·start_j·cos/(p_pos·p_dir)

@@ -10,6 +10,7 @@
 // storage that every Bsdf carries but only such a Bsdf touches, so building, copying and
 // destroying an untextured material's Bsdf costs what it did before (a pointer and two frames).
 // A per-hit model must be trivially destructible and fit the storage (checked at compile time).
+#include <cmath>
 #include <cstddef>
 #include <new>
 #include <span>
@@ -74,6 +75,9 @@ class Bsdf {
   BsdfFlags flags() const { return flags_; }
   bool has(BsdfFlags f) const { return kasha::has(flags_, f); }
   const Frame& geometricFrame() const { return geometric_; }
+  // The factor that turns f into the integrand of the scattering integral for a local direction
+  // (the one sampled, or toward a light or the camera): |cos θ| at a surface, 1 at a medium point.
+  float cosineFactor(const Vec3& w) const { return has(BsdfFlags::Volume) ? 1.0f : std::abs(w.z); }
   // The model it evaluates (for tests and tools that inspect parameters).
   const BsdfModel& model() const { return *model_; }
   // |ω_i·n_s|/|ω_i·n_g| of light arriving along local ω_i (1 without a shading normal): what turns

@@ -51,6 +51,10 @@ enum class BsdfFlags : uint8_t {
   // light path; Jung18 eq. 3, Zhdanov's E·A), so the mixture of the lanes' excitation densities at
   // a fluorescent event is q itself, evaluated once (integrators/wavelength_lanes.cpp).
   FactorisedFluorescence = 1 << 3,
+  // A point inside a participating medium (materials/volume_scattering.h): f is the volume's
+  // scattering kernel per unit length, directions range over the whole sphere, and no cosine
+  // projects it (Bsdf::cosineFactor).
+  Volume = 1 << 4,
 };
 constexpr BsdfFlags operator|(BsdfFlags a, BsdfFlags b) { return BsdfFlags(uint8_t(a) | uint8_t(b)); }
 constexpr bool has(BsdfFlags set, BsdfFlags f) { return (uint8_t(set) & uint8_t(f)) != 0; }

@@ -9,9 +9,11 @@
 #include "core/accel.h"
 #include "core/camera.h"
 #include "core/light.h"
+#include "core/medium.h"
 #include "core/pixel_filter.h"
 #include "core/shape.h"
 #include "materials/material.h"
+#include "materials/volume_scattering.h"
 #include "scene/light_selector.h"
 #include "scene/render_settings.h"
 
@@ -29,6 +31,13 @@ struct Scene {
   std::vector<std::unique_ptr<Light>> lights;
   std::vector<int> shapeLight;        // index into lights per shape, or −1
   int environmentLight = -1;          // index into lights, or −1
+  // Participating media (docs/media.md), their collision kernels (one per medium), the medium the
+  // camera sits in and each light's (−1: vacuum). A light on a shape with a MediumInterface emits
+  // into the medium on its emitting side.
+  std::vector<std::unique_ptr<Medium>> media;
+  std::vector<std::unique_ptr<VolumeScattering>> mediumScattering;
+  int cameraMedium = -1;
+  std::vector<int> lightMedium;  // parallel to lights
   std::unique_ptr<Accel> accel;
   std::unique_ptr<LightSelector> lightSelector;
 
@@ -51,6 +60,21 @@ struct Scene {
       ctx.dpdv = d.dpdv;
     }
     return m.bsdf(ctx);
+  }
+  // Whether any ray can meet a medium or an index-matched boundary.
+  bool hasMedia() const { return !media.empty(); }
+  // The medium a ray is in after leaving hit h along world direction d, having been in `current`:
+  // the side of the shape's MediumInterface that d points into, or `current` if it has none.
+  int mediumBeyond(const Hit& h, const Vec3& d, int current) const {
+    const std::optional<MediumInterface>& m = shapes[h.shape].media;
+    if (!m) return current;
+    return glm::dot(d, h.ng) < 0.0f ? m->interior : m->exterior;
+  }
+  // The collision kernel of medium m as a Bsdf (materials/volume_scattering.h), in a fixed frame:
+  // a medium point has no normal, and its phase function depends on angles between directions only.
+  Bsdf mediumBsdf(int m) const {
+    const Frame frame{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    return Bsdf(*mediumScattering[size_t(m)], HitContext{Vec2(0.0f), frame, frame, {}, MeshPoint{}, Vec3(0.0f), Vec3(0.0f)});
   }
   const EnvironmentLight* environment() const {
     return environmentLight < 0 ? nullptr : static_cast<const EnvironmentLight*>(lights[size_t(environmentLight)].get());

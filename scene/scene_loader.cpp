@@ -21,6 +21,7 @@
 #include "core/spectrum_presets.h"
 #include "core/texture.h"
 #include "materials/material_json.h"
+#include "materials/medium_json.h"
 #include "scene/mitsuba/mitsuba_scene.h"
 
 namespace kasha {
@@ -44,6 +45,8 @@ struct Loader {
   SpectrumContext ctx;
   std::map<std::string, Spectrum> named;
   std::map<std::string, uint32_t> materialIndex;
+  std::map<std::string, int> mediumIndex;
+  std::string cameraMedium;  // /camera/medium, resolved once /media is read
   Scene& scene;
   SceneLoadOptions options;
   const json* spectraJson = nullptr;
@@ -229,6 +232,7 @@ struct Loader {
     JsonFields f(root.get("camera"), file, "/camera");
     const Vec3 pos = f.vec3("position"), at = f.vec3("look_at"), up = f.vec3("up", Vec3(0, 1, 0));
     const std::string type = f.string("type", "pinhole");
+    cameraMedium = f.string("medium", "");
     if (type != "pinhole" && type != "thinlens" && type != "orthographic")
       f.fail("type", "'" + type + "' is not a camera (pinhole, thinlens, orthographic)");
     float fov = 0.0f;
@@ -319,6 +323,43 @@ struct Loader {
       scene.materialNames.push_back(it.key());
       scene.materials.push_back(parseMaterial(it.value(), ctx, "/materials/" + it.key(), scene.range));
     }
+  }
+
+  // /media: named participating media (materials/medium_json.h); then the camera's medium.
+  void media(JsonFields& root) {
+    if (root.has("media")) {
+      const json& m = root.get("media");
+      if (!m.is_object()) root.fail("media", "expected an object of named media");
+      for (auto it = m.begin(); it != m.end(); ++it) {
+        mediumIndex[it.key()] = int(scene.media.size());
+        scene.media.push_back(parseMedium(it.key(), it.value(), ctx, "/media/" + it.key(), scene.range));
+        scene.mediumScattering.push_back(std::make_unique<VolumeScattering>(*scene.media.back()));
+      }
+    }
+    if (!cameraMedium.empty()) scene.cameraMedium = mediumNamed(cameraMedium, file, "/camera/medium");
+  }
+
+  // The index of the medium `name` in /media; an InputError at `field` if there is none.
+  int mediumNamed(const std::string& name, const std::string& where, const std::string& field) const {
+    const auto it = mediumIndex.find(name);
+    if (it == mediumIndex.end()) throw InputError(where, field, "no medium named '" + name + "' in /media");
+    return it->second;
+  }
+
+  // A shape's media: "interior" and "exterior" (either may be absent: vacuum), or "medium" for the
+  // same medium on both sides (a shape immersed in it, such as an emitter).
+  std::optional<MediumInterface> mediumInterface(JsonFields& f) const {
+    const bool sides = f.has("interior") || f.has("exterior");
+    if (f.has("medium") && sides) f.fail("medium", "give either medium or interior/exterior");
+    if (f.has("medium")) {
+      const int m = mediumNamed(f.string("medium"), file, f.path("medium"));
+      return MediumInterface{m, m};
+    }
+    if (!sides) return std::nullopt;
+    MediumInterface mi;
+    if (f.has("interior")) mi.interior = mediumNamed(f.string("interior"), file, f.path("interior"));
+    if (f.has("exterior")) mi.exterior = mediumNamed(f.string("exterior"), file, f.path("exterior"));
+    return mi;
   }
 
   void loadObj(JsonFields& f, Shape& s) {
@@ -488,14 +529,22 @@ struct Loader {
       Shape s;
       s.name = f.string("name", "shape" + std::to_string(i));
       const std::string type = f.string("type");
-      const std::string mat = f.string("material");
-      auto it = materialIndex.find(mat);
-      if (it == materialIndex.end()) f.fail("material", "no material named '" + mat + "' in /materials");
-      s.material = it->second;
+      s.media = mediumInterface(f);
+      // A shape with media and no material is an index-matched boundary between them.
+      const std::string mat = s.media ? f.string("material", "") : f.string("material");
+      if (mat.empty()) {
+        s.material = kNoMaterial;
+      } else {
+        auto it = materialIndex.find(mat);
+        if (it == materialIndex.end()) f.fail("material", "no material named '" + mat + "' in /materials");
+        s.material = it->second;
+      }
       // What its material's textures read: texture coordinates, mesh attributes (from PLY files).
       bool readsUv = false;
       std::vector<std::string> attributes;
-      for (const Texture* t : scene.materials[s.material]->textures()) {
+      const std::vector<const Texture*> textures =
+          s.isMediumBoundary() ? std::vector<const Texture*>{} : scene.materials[s.material]->textures();
+      for (const Texture* t : textures) {
         readsUv = readsUv || t->readsUv();
         const std::string a = t->meshAttribute();
         if (!a.empty() && std::find(attributes.begin(), attributes.end(), a) == attributes.end()) attributes.push_back(a);
@@ -530,11 +579,12 @@ struct Loader {
       }
       if (readsUv && !s.hasUv())
         f.fail("material", "material '" + mat + "' is textured, but this mesh has no texture coordinates (vt)");
-      for (const Texture* t : scene.materials[s.material]->textures())
+      for (const Texture* t : textures)
         if (const MeshAttribute* a = s.attribute(t->meshAttribute()); a && a->channels != t->channels() && t->channels() == 1)
           f.fail("material", "material '" + mat + "' reads the mesh attribute '" + a->name +
                                  "' as a scalar, but it has 3 channels in this mesh");
       if (f.has("emission")) {
+        if (s.isMediumBoundary()) f.fail("emission", "a medium boundary without a material cannot emit (give it a material)");
         JsonFields e(f.get("emission"), file, ptr + "/emission");
         AreaEmission em;
         em.radiance = emitterSpectrum(e, "radiance");
@@ -551,6 +601,12 @@ struct Loader {
           throw InputError(file, ptr, type + " has a vertex beyond the range of a 32-bit float");
       if (!(s.area > 0.0f)) throw InputError(file, ptr, "degenerate " + type + ": total area is zero");
       if (!std::isfinite(s.area)) throw InputError(file, ptr, type + " is too large: its area overflows a 32-bit float");
+      // Different media on the two sides need a surface that separates them: a closed one.
+      if (s.media && s.media->interior != s.media->exterior && !s.closed())
+        throw InputError(file, ptr + "/interior",
+                         "shape '" + s.name + "' is not closed (" + type +
+                             " with an edge that is not shared by exactly two triangles), so it cannot separate "
+                             "its interior medium from its exterior");
       scene.shapes.push_back(std::move(s));
     }
   }
@@ -565,6 +621,9 @@ struct Loader {
         JsonFields f(arr[i], file, ptr);
         const std::string type = f.string("type");
         std::unique_ptr<Light> l;
+        // Lights inside the scene may sit in a medium; distant and environment light comes from outside it.
+        const bool placed = type == "point" || type == "spot";
+        const int medium = placed && f.has("medium") ? mediumNamed(f.string("medium"), file, f.path("medium")) : -1;
         if (type == "point") {
           const Vec3 p = f.vec3("position");
           Spectrum I = emitterSpectrum(f, "intensity");
@@ -611,6 +670,7 @@ struct Loader {
         }
         f.finish();
         scene.lights.push_back(std::move(l));
+        scene.lightMedium.push_back(medium);
       }
     }
     scene.shapeLight.assign(scene.shapes.size(), -1);
@@ -618,6 +678,8 @@ struct Loader {
       if (scene.shapes[i].emission) {
         scene.shapeLight[i] = int(scene.lights.size());
         scene.lights.push_back(std::make_unique<AreaLight>(scene.shapes[i]));
+        // Its shape's MediumInterface, if any, says which medium each side emits into.
+        scene.lightMedium.push_back(scene.shapes[i].media ? scene.shapes[i].media->exterior : -1);
       }
     if (scene.lights.empty()) throw InputError(file, "/lights", "the scene has no light (no light and no emissive shape)");
     // Power = spectrum · scale · a geometric factor (area, 4π, ...): finite factors can still
@@ -680,6 +742,7 @@ std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& original, const s
   L.camera(f);
   L.spectra(f);
   L.materials(f);
+  L.media(f);
   L.shapes(f);
   scene->accel = std::make_unique<Accel>(scene->shapes);
   L.lights(f);

@@ -4,6 +4,7 @@
 
 #include "core/color.h"
 #include "integrators/light_subpath_lanes.h"
+#include "integrators/medium_transport.h"
 
 namespace kasha {
 namespace {
@@ -11,10 +12,12 @@ namespace {
 // The film divides by samples per pixel, and there are w·h light subpaths per sample per pixel.
 float perPath(const Scene& scene) { return 1.0f / (float(scene.camera.width()) * float(scene.camera.height())); }
 
-bool visible(const Scene& scene, const Vec3& p, const Vec3& n, const Camera::Connection& c, SampleContext& ctx) {
-  ++ctx.counter.shadow;
-  const Vec3 origin = glm::dot(n, n) > 0.0f ? offsetPoint(p, n, c.wi) : p;
-  return !scene.accel->occluded(origin, c.wi, c.dist * (1.0f - 1e-4f) - rayEpsilon(p));
+// The transmittance of every lane from vertex v (a surface point, or a medium point with ng = 0)
+// to the camera point of c; false if a surface blocks it.
+bool cameraTransmittance(const Scene& scene, const Hit& v, VertexMedium where, const Camera::Connection& c,
+                         std::span<const float> lambda, float* tr, SampleContext& ctx) {
+  return segmentTransmittance(scene, offsetPoint(v.p, v.ng, c.wi), c.wi, c.dist * (1.0f - 1e-4f) - rayEpsilon(v.p),
+                              where.leaving(scene, v, c.wi), lambda, tr, ctx.counter);
 }
 
 // The XYZ of lane k's value[k] at lambda[k] (the sensor responds with W(λ_k)), summed over the lanes.
@@ -67,28 +70,57 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
   if (st.lanes.n == 0) return Vec3(0.0f);
   const EmissionSample& es = st.es;
   LightLanes& lanes = st.lanes;
+  // The light's point as a vertex: on an area light's shape (whose MediumInterface, if any, names
+  // the medium on each side), else a point in the light's medium.
+  Hit origin;
+  origin.p = es.p;
+  origin.ng = es.n;
+  const bool onShape = glm::dot(es.n, es.n) > 0.0f;  // only area lights' samples have a normal
+  if (onShape) origin.shape = uint32_t(&static_cast<const AreaLight&>(*st.light).shape() - scene.shapes.data());
+  const VertexMedium atLight{scene.lightMedium[st.lightIndex], onShape};
 
   // The emitter seen directly (area lights; delta lights have no area the camera could see).
   if (!es.deltaPos && !es.deltaDir && glm::dot(es.n, es.n) > 0.0f && !hideEmitters_) {
     if (const auto c = scene.camera.connect(es.p, uLens, scene.pixelFilter.filmMargin())) {
       const auto& area = static_cast<const AreaLight&>(*st.light);
-      float value[kMaxLanes];
+      float value[kMaxLanes], tr[kMaxLanes];
       for (int j = 0; j < n; ++j) value[j] = area.shape().emission->eval(lanes.lambda[j], es.n, c->wi) * st.start[j];
-      if (contributes(ctx, lanes.lambda, value, n) && visible(scene, es.p, es.n, *c, ctx))
+      if (contributes(ctx, lanes.lambda, value, n) &&
+          cameraTransmittance(scene, origin, atLight, *c, {lanes.lambda, size_t(n)}, tr, ctx)) {
+        for (int j = 0; j < n; ++j) value[j] *= tr[j];
         splatLanes(ctx, c->pixel, lanes.lambda, value, n, std::abs(glm::dot(es.n, c->wi)) / es.pdfPos * c->importance * perPath(scene));
+      }
     }
   }
 
   const float magnitude0 = lanes.sum();  // Russian roulette compares the throughput with this
   if (!(magnitude0 > 0.0f)) return Vec3(0.0f);
-  Ray ray{glm::dot(es.n, es.n) > 0.0f ? offsetPoint(es.p, es.n, es.w) : es.p, es.w};
+  Ray ray{offsetPoint(es.p, es.n, es.w), es.w};
+  // Media (docs/media.md §3): the medium the ray travels in, and the lanes' spectral MIS of free flights.
+  const bool media = scene.hasMedia();
+  int medium = atLight.leaving(scene, origin, es.w);
+  LaneRatios ratios;
+  ratios.reset(lanes.n);
   const uint32_t firstDimension = rng.dimension();
   for (int depth = 1; depth <= maxDepth_; ++depth) {
     rng.startVertex(firstDimension, depth - 1);
-    const std::optional<Hit> hit = scene.accel->intersect(ray);
-    ++ctx.counter.closest;
-    if (!hit) break;
-    const Bsdf bsdf = scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)});
+    const float uFlight = media ? freeFlightUniform(rng, firstDimension, depth - 1) : 0.0f;
+    const FreeFlight flight = traceFreeFlight(scene, ray, medium, {lanes.lambda, size_t(lanes.n)}, uFlight, ctx.counter);
+    float mis = 1.0f;  // every contribution's share of the lanes' spectral MIS (LaneRatios)
+    if (media) {
+      for (int k = 0; k < lanes.n; ++k) {
+        lanes.beta[k] *= flight.weight[k];
+        ratios.r[k] *= flight.ratio[k];
+      }
+      mis = ratios.misWeight();
+    }
+    if (!flight.hit && !flight.collided) break;
+    // A surface, or a point in a medium (no shape, no normal: offsetPoint leaves it where it is).
+    Hit vertex;
+    if (flight.hit) vertex = *flight.hit;
+    else vertex.p = flight.p, vertex.ng = Vec3(0.0f);
+    const VertexMedium where{flight.medium, flight.hit.has_value()};
+    const Bsdf bsdf = flight.hit ? scene.bsdf(vertex, {lanes.lambda, size_t(lanes.n)}) : scene.mediumBsdf(flight.medium);
     const Vec3 wi = bsdf.toLocal(-ray.d);
     // Spectral stage (Importance) of every lane: the lobe and the wavelengths leaving this vertex.
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));
@@ -99,19 +131,28 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     if (lanesEndAt(e, bsdf)) keepOneLane(e, uLane);
 
     if (!bsdf.has(BsdfFlags::DeltaDirection)) {
-      if (const auto c = scene.camera.connect(hit->p, uLens, scene.pixelFilter.filmMargin())) {
+      if (const auto c = scene.camera.connect(vertex.p, uLens, scene.pixelFilter.filmMargin())) {
         const Vec3 wo = bsdf.toLocal(c->wi);
-        float value[kMaxLanes];
+        float value[kMaxLanes], tr[kMaxLanes];
         for (int k = 0; k < e.n; ++k)
-          value[k] = laneWeight(bsdf, TransportMode::Importance, known, lanes.beta, e, k, wo, wi) * std::abs(wo.z);
-        if (contributes(ctx, e.lambda, value, e.n) && visible(scene, hit->p, hit->ng, *c, ctx))
+          value[k] = laneWeight(bsdf, TransportMode::Importance, known, lanes.beta, e, k, wo, wi) * bsdf.cosineFactor(wo);
+        if (contributes(ctx, e.lambda, value, e.n) &&
+            cameraTransmittance(scene, vertex, where, *c, {e.lambda, size_t(e.n)}, tr, ctx)) {
+          for (int k = 0; k < e.n; ++k) value[k] *= tr[k] * mis;
           splatLanes(ctx, c->pixel, e.lambda, value, e.n, c->importance * perPath(scene));
+        }
       }
     }
     if (depth == maxDepth_) break;
+    // Fresh lanes (fluorescent), or one lane kept: the free flights' MIS so far goes into them.
+    if (media && (e.lobe == SpectralLobe::Fluorescent || e.n != lanes.n)) {
+      for (int k = 0; k < lanes.n; ++k) lanes.beta[k] *= mis;
+      ratios.reset(e.n);
+    }
     const std::optional<Vec3> w = scatterLightLanes(bsdf, wi, e, lanes, depth >= rrDepth_, magnitude0, rng);
     if (!w) break;
-    ray = Ray{offsetPoint(hit->p, hit->ng, *w), *w};
+    ray = Ray{offsetPoint(vertex.p, vertex.ng, *w), *w};
+    medium = where.leaving(scene, vertex, *w);
   }
   return Vec3(0.0f);
 }

@@ -9,6 +9,7 @@
 #include "integrators/direct_emission.h"
 #include "integrators/lane_light_choice.h"
 #include "integrators/lane_next_event.h"
+#include "integrators/medium_transport.h"
 
 namespace kasha {
 namespace {
@@ -131,24 +132,42 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     if constexpr (oneLane) return scene.lightSelector->probability(light, lanes.lambda[0]);
     else return lightChoice[current ^ 1].probability(light);
   };
+  // Media (docs/media.md §3): the medium the ray travels in, and the lanes' spectral MIS of free flights.
+  const bool media = scene.hasMedia();
+  int medium = scene.cameraMedium;
+  LaneRatios ratios;
+  ratios.reset(lanes.n);
   const uint32_t firstDimension = rng.dimension();
   for (int depth = 0;; ++depth) {
     rng.startVertex(firstDimension, depth);
-    const std::optional<Hit> hit = scene.accel->intersect(ray);
-    ++counter.closest;
+    const float uFlight = media ? freeFlightUniform(rng, firstDimension, depth) : 0.0f;
+    const FreeFlight flight = traceFreeFlight(scene, ray, medium, {lanes.lambda, size_t(lanes.n)}, uFlight, counter);
+    float mis = 1.0f;  // every contribution's share of the lanes' spectral MIS (LaneRatios)
+    if (media) {
+      for (int k = 0; k < lanes.n; ++k) {
+        lanes.T[k] = lanes.T[k] * flight.weight[k];
+        ratios.r[k] *= flight.ratio[k];
+      }
+      mis = ratios.misWeight();
+    }
+    const std::optional<Hit>& hit = flight.hit;
     const bool seesEmitters = depth > 0 || !hideEmitters_;
-    if (!hit) {
+    if (!hit && !flight.collided) {
       if (const EnvironmentLight* env = seesEmitters ? scene.environment() : nullptr) {
         float w = 1.0f;
         if (!prevSpecular)
           w = powerHeuristic(prevDirPdf * prevSpectralPdf, lastLightProbability(size_t(scene.environmentLight)) *
                                                                env->pdfDirection(ray.d) * prevNeeSpectralPdf);
-        for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (env->Le(lanes.lambda[j], ray.d) * w);
+        for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (env->Le(lanes.lambda[j], ray.d) * w * mis);
       }
       break;
     }
-    const Shape& shape = scene.shapes[hit->shape];
-    if (shape.emission && seesEmitters) {
+    // A surface, or a point in a medium (no shape, no normal: offsetPoint leaves it where it is).
+    const Shape* shape = flight.collided ? nullptr : &scene.shapes[hit->shape];
+    Hit vertex;
+    if (shape) vertex = *hit;
+    else vertex.p = flight.p, vertex.ng = Vec3(0.0f);
+    if (shape && shape->emission && seesEmitters) {
       float w = 1.0f;
       if (!prevSpecular) {
         const size_t li = size_t(scene.shapeLight[hit->shape]);
@@ -158,26 +177,30 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
       }
       // Seen directly, an area emitter's L_e(λ)·[side] is known at every λ: its XYZ is exact.
       // Spectral bins need each lane's share, and one lane its wavelength: there the lanes estimate it.
-      if (depth > 0 || !std::is_same_v<T, Vec3>) {
-        for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (shape.emission->eval(lanes.lambda[j], hit->ng, -ray.d) * w);
+      // (Through a medium, the lanes estimate its transmittance too.)
+      if (depth > 0 || media || !std::is_same_v<T, Vec3>) {
+        for (int j = 0; j < lanes.n; ++j)
+          L += lanes.T[j] * (shape->emission->eval(lanes.lambda[j], hit->ng, -ray.d) * w * mis);
       } else if constexpr (std::is_same_v<T, Vec3>) {
-        if (shape.emission->emitsTowards(hit->ng, -ray.d)) L += directXyz_[size_t(scene.shapeLight[hit->shape])];
+        if (shape->emission->emitsTowards(hit->ng, -ray.d)) L += directXyz_[size_t(scene.shapeLight[hit->shape])];
       }
     }
     if (depth >= maxDepth_) break;
 
-    const Bsdf bsdf = scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)});
+    const Bsdf bsdf = shape ? scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)}) : scene.mediumBsdf(flight.medium);
+    const VertexMedium where{flight.medium, shape != nullptr};
     const Vec3 wo = bsdf.toLocal(-ray.d);
     const float uLobe = rng.uniform();
     const float uLane = oneLane ? 0.0f : rng.uniform();  // the lane kept where the lanes end
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));
     // The lobe and λ_i (Jung18 eq. 7's P_c, then the fluorescence strategy or the material's own
     // density): one lane samples them as sampleLaneEvent would with N = 1, without its mixture.
-    LaneEvent e = oneLane ? oneLaneEvent(excitation_.sample(bsdf, shape.material, lanes.lambda[0], uLobe))
+    // A medium's collision samples its own (the fluorescence strategies are the surfaces').
+    const bool strategy = shape && excitation_.draws(shape->material);
+    LaneEvent e = oneLane ? oneLaneEvent(shape ? excitation_.sample(bsdf, shape->material, lanes.lambda[0], uLobe)
+                                               : bsdf.sampleSpectral(TransportMode::Radiance, lanes.lambda[0], uLobe))
                           : sampleLaneEvent(bsdf, TransportMode::Radiance, known, n_, uLobe,
-                                            excitation_.draws(shape.material) ? &excitation_.density(shape.material)
-                                                                              : nullptr,
-                                            atFluorescence_);
+                                            strategy ? &excitation_.density(shape->material) : nullptr, atFluorescence_);
     if (e.n == 0) break;
     // The lanes share one direction sample only where its density is the same for every lane:
     // next-event estimation below weights all of them with one direction density. (And they end
@@ -190,7 +213,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     // N = 1), after a fluorescent event with an nee strategy: with a λ_i of its own, its MIS weight
     // comparing full densities, wavelength included: the light sample's P_c·p_nee(λ)·p_light against
     // the event's P_c·p_event(λ)·p_dir.
-    const bool ownNee = oneLane && e.lobe == SpectralLobe::Fluorescent && nee_.draws(shape.material);
+    const bool ownNee = oneLane && shape && e.lobe == SpectralLobe::Fluorescent && nee_.draws(shape->material);
     const float uNee = ownNee ? rng.uniform() : 0.0f;
     const float uLight = rng.uniform();
     const Vec2 uPos = rng.uniform2();
@@ -199,19 +222,19 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
       LaneEvent own;
       NeeSpectralPdfs spectral;
       if (ownNee) {
-        const WavelengthSample ws = nee_.sampleExcitation(shape.material, uNee);
+        const WavelengthSample ws = nee_.sampleExcitation(shape->material, uNee);
         spectral.nee = ws.pdf > 0.0f ? bsdf.fluorescenceProbability(TransportMode::Radiance, lambdaOut0) * ws.pdf : 0.0f;
-        spectral.event = excitation_.pdf(bsdf, shape.material, lambdaOut0, ws.lambda, e.lobe);
+        spectral.event = excitation_.pdf(bsdf, shape->material, lambdaOut0, ws.lambda, e.lobe);
         own = e;
         own.lambda[0] = ws.lambda;
         own.scale[0] = spectral.nee > 0.0f ? 1.0f / spectral.nee : 0.0f;
-        prevSpectralPdf = excitation_.pdf(bsdf, shape.material, lambdaOut0, e.lambda[0], e.lobe);
-        prevNeeSpectralPdf = nee_.pdf(bsdf, shape.material, lambdaOut0, e.lambda[0], e.lobe);
+        prevSpectralPdf = excitation_.pdf(bsdf, shape->material, lambdaOut0, e.lambda[0], e.lobe);
+        prevNeeSpectralPdf = nee_.pdf(bsdf, shape->material, lambdaOut0, e.lambda[0], e.lobe);
       }
       const LaneEvent& nee = ownNee ? own : e;
-      L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, nee,
+      L += laneNextEvent(scene, vertex, where, bsdf, wo, known, lanes.T, nee,
                          OneLaneLightChoice{*scene.lightSelector, nee.lambda[0]}, lambdaOut0, uLight, uPos,
-                         NeeWeight::PowerHeuristic, counter, spectral);
+                         NeeWeight::PowerHeuristic, counter, spectral) * mis;
     } else {
       LaneLightChoice& lights = lightChoice[current];
       if (!bsdf.has(BsdfFlags::DeltaDirection)) {
@@ -220,8 +243,8 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
         laneImportance(bsdf, TransportMode::Radiance, known, before, e, importance);
         lights.reset(scene, {e.lambda, size_t(e.n)}, importance);
       }
-      L += laneNextEvent(scene, *hit, bsdf, wo, known, lanes.T, e, lights, lambdaOut0, uLight, uPos,
-                         NeeWeight::PowerHeuristic, counter);
+      L += laneNextEvent(scene, vertex, where, bsdf, wo, known, lanes.T, e, lights, lambdaOut0, uLight, uPos,
+                         NeeWeight::PowerHeuristic, counter) * mis;
     }
 
     // Direction stage at lane 0's wavelengths; every lane has the same density.
@@ -230,7 +253,12 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     if (!ds || ds->pdf <= 0.0f) break;
     T next[kMaxLanes];
     for (int k = 0; k < e.n; ++k)
-      next[k] = laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, ds->w, wo) * (std::abs(ds->w.z) / ds->pdf);
+      next[k] = laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, ds->w, wo) * (bsdf.cosineFactor(ds->w) / ds->pdf);
+    // Fresh lanes (fluorescent), or one lane kept: the free flights' MIS so far goes into them.
+    if (media && (e.lobe == SpectralLobe::Fluorescent || e.n != lanes.n)) {
+      for (int k = 0; k < e.n; ++k) next[k] = next[k] * mis;
+      ratios.reset(e.n);
+    }
     lanes.n = e.n;
     float m = 0.0f;  // their magnitude
     for (int k = 0; k < e.n; ++k) {
@@ -242,9 +270,10 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     prevDirPdf = ds->pdf;
     prevSpecular = ds->specular;
     current ^= 1;
-    prevP = hit->p;
+    prevP = vertex.p;
     const Vec3 wiWorld = bsdf.toWorld(ds->w);
-    ray = Ray{offsetPoint(hit->p, hit->ng, wiWorld), wiWorld};
+    ray = Ray{offsetPoint(vertex.p, vertex.ng, wiWorld), wiWorld};
+    medium = where.leaving(scene, vertex, wiWorld);
 
     // Russian roulette on the lanes' total throughput (every lane divided by the same q).
     if (depth + 1 >= rrDepth_) {

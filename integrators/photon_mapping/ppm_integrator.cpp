@@ -56,7 +56,7 @@ SensorShares lanesNextEvent(const Scene& scene, const Hit& hit, const Bsdf& bsdf
   for (int j = 0; j < lanes.n; ++j) before[j] = lanes.T[j].sum();
   laneImportance(bsdf, TransportMode::Radiance, known, before, direct, importance);
   lights.reset(scene, {direct.lambda, size_t(direct.n)}, importance);
-  return laneNextEvent(scene, hit, bsdf, wo, known, lanes.T, direct, lights, /*lambdaOut0, unused without MIS*/ 0.0f,
+  return laneNextEvent(scene, hit, VertexMedium{}, bsdf, wo, known, lanes.T, direct, lights, /*lambdaOut0, unused without MIS*/ 0.0f,
                        uLight, uPos, NeeWeight::Alone, counter);
 }
 

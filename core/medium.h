@@ -1,0 +1,62 @@
+#pragma once
+// A homogeneous participating medium (docs/media.md): absorption σ_a(λ) and elastic scattering
+// σ_s(λ) by the medium itself, with a Henyey–Greenstein phase function, and any number of
+// fluorophores, each absorbing with σ_f(λ) and re-emitting a share Y (the energy yield, as
+// Jung18's Q at surfaces) of what it absorbs, isotropically, with the emission spectrum e(λ)
+// whatever the excitation wavelength (Kasha's rule). Coefficients are per unit of scene length.
+//   σ_t(λ) = σ_a(λ) + σ_s(λ) + Σ_k σ_f,k(λ)                                     (media.md eq. 1)
+// Free flight and transmittance over a path through several media are functions of the optical
+// depth τ(λ) = Σ σ_t(λ)·d over its segments (media.md eq. 2): T(λ) = exp(−τ(λ)).
+#include <string>
+#include <vector>
+
+#include "core/spectral_distribution.h"
+#include "core/spectrum.h"
+
+namespace kasha {
+
+struct Fluorophore {
+  Spectrum absorption;  // σ_f(λ) per unit length
+  Spectrum emission;    // e(λ), any scale: normalised over the scene's range
+  float yield = 0.0f;   // Y, emitted energy per absorbed energy
+};
+
+struct MediumParams {
+  Spectrum absorption = Spectrum::constant(0.0f);  // σ_a(λ)
+  Spectrum scattering = Spectrum::constant(0.0f);  // σ_s(λ)
+  float g = 0.0f;                                  // Henyey–Greenstein asymmetry, in (−1, 1)
+  std::vector<Fluorophore> fluorophores;
+};
+
+// Checks what a medium must satisfy: finite non-negative coefficients over the range, g in
+// (−1, 1), yields in [0, 1] (energy conservation, as Jung18 eq. 8), emission spectra that are
+// non-negative with a positive integral over the range. Returns "" or "field: reason".
+std::string checkMediumParams(const MediumParams& p, WavelengthRange range);
+
+class Medium {
+ public:
+  // Throws std::invalid_argument with checkMediumParams' message.
+  Medium(std::string name, MediumParams params, WavelengthRange range);
+
+  const std::string& name() const { return name_; }
+  const MediumParams& params() const { return params_; }
+  const WavelengthRange& range() const { return range_; }
+  float sigmaA(float lambda) const { return params_.absorption(lambda); }
+  float sigmaS(float lambda) const { return params_.scattering(lambda); }
+  float sigmaF(size_t k, float lambda) const { return params_.fluorophores[k].absorption(lambda); }
+  float sigmaT(float lambda) const;  // eq. 1
+  bool fluoresces() const { return fluorescent_; }
+  // Per fluorophore k: λ ∝ σ_f,k (camera paths' excitation) and λ ∝ e_k (light paths' emission;
+  // its pdf is the normalised e_k).
+  const SpectralDistribution& absorptionDistribution(size_t k) const { return absorption_[k]; }
+  const SpectralDistribution& emissionDistribution(size_t k) const { return emission_[k]; }
+
+ private:
+  std::string name_;
+  MediumParams params_;
+  WavelengthRange range_;
+  std::vector<SpectralDistribution> absorption_, emission_;
+  bool fluorescent_ = false;
+};
+
+}  // namespace kasha

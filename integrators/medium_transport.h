@@ -1,0 +1,79 @@
+#pragma once
+// Rays through participating media (docs/media.md §3), for every integrator that transports light
+// in them: free flights sampled by optical depth at the wavelength of the path's hero lane (lane 0),
+// and transmittance along connections, both across index-matched boundaries (shapes that only
+// separate media), switching media as the shapes' MediumInterfaces say.
+#include <optional>
+#include <span>
+
+#include "core/light.h"
+#include "core/sampler.h"
+#include "integrators/integrator.h"
+#include "integrators/wavelength_lanes.h"
+#include "scene/scene.h"
+
+namespace kasha {
+
+// Spectral MIS of the lanes of a path whose free flights were drawn at lane 0's wavelength (hero
+// wavelength sampling, Wilkie et al. 2014; docs/media.md eq. 9): r_k is the ratio p_k/p_0 of the
+// densities with which the path's free flights since the lanes were drawn would have been sampled
+// had lane k been the hero. Lane 0 is a uniform choice among lanes drawn at symmetric strata, so
+// lane k's contribution f_k/p_0 divided by the mean of the r_j is the balance heuristic over the
+// N hero choices: unbiased for every lane. Every r_k stays 1 where σ_t does not depend on λ, and
+// in scenes without media.
+struct LaneRatios {
+  int n = 0;
+  float r[kMaxLanes];
+  void reset(int lanes);
+  // 1/((1/N)·Σ_k r_k): what every lane's contribution is multiplied by.
+  float misWeight() const;
+};
+
+// What a ray from a vertex reaches through the media: a collision in a medium, a surface, or
+// nothing.
+struct FreeFlight {
+  std::optional<Hit> hit;  // the surface reached (never an index-matched boundary) if no collision
+  bool collided = false;   // a collision at p in `medium`
+  Vec3 p{0.0f};
+  int medium = -1;         // the medium collided in, or the ray's on arriving at `hit` or escaping
+  // Per lane: the free flight's transmittance (times σ_t at a collision is not included) over lane
+  // 0's density of the event, T_k/p_0, and the ratio of the densities, p_k/p_0 (LaneRatios). Both
+  // 1 if the ray crossed no medium.
+  float weight[kMaxLanes];
+  float ratio[kMaxLanes];
+};
+
+// Follows `ray` from a vertex in `medium` (−1: vacuum) with the lanes' wavelengths, colliding where
+// the optical depth at lambda[0] reaches −ln(1 − u) (docs/media.md eq. 6). In a scene without
+// media this is one intersection, and the weights are 1.
+FreeFlight traceFreeFlight(const Scene& scene, Ray ray, int medium, std::span<const float> lambda, float u,
+                           RayCounter& counter);
+
+// The transmittance exp(−τ(λ_k)) of every lane along the segment from `origin` (in `medium`) in
+// direction d up to distance tMax, across index-matched boundaries; false (and tr unset) if a
+// surface blocks the segment. In a scene without media, one occlusion query.
+bool segmentTransmittance(const Scene& scene, Vec3 origin, const Vec3& d, float tMax, int medium,
+                          std::span<const float> lambda, float* tr, RayCounter& counter);
+
+// The medium around a path vertex: the one the path arrived in, and whether the vertex is on a
+// surface (whose MediumInterface decides which medium a direction leaves into) or a point inside
+// that medium.
+struct VertexMedium {
+  int medium = -1;
+  bool onSurface = true;
+  int leaving(const Scene& scene, const Hit& hit, const Vec3& d) const {
+    return onSurface ? scene.mediumBeyond(hit, d, medium) : medium;
+  }
+};
+
+// The shadow ray of next-event estimation: the transmittance of every lane from vertex `hit` (a
+// surface hit, or a medium point with ng = 0) to the light point of `ls`; false if a surface blocks it.
+bool lightTransmittance(const Scene& scene, const Hit& hit, VertexMedium where, const LightSample& ls,
+                        std::span<const float> lambda, float* tr, RayCounter& counter);
+
+// The uniform of the free flight from vertex `depth` of a path whose dimensions start at
+// firstDimension: from a region of the sampler's dimensions of its own, so that the vertex blocks
+// of docs/sampler.md keep their layout. Leaves the sampler at vertex `depth`'s block.
+float freeFlightUniform(Sampler& rng, uint32_t firstDimension, int depth);
+
+}  // namespace kasha

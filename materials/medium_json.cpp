@@ -1,0 +1,81 @@
+#include "materials/medium_json.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/json_fields.h"
+
+namespace kasha {
+namespace {
+
+Spectrum spectrumOr(JsonFields& f, const std::string& key, const SpectrumContext& ctx, float fallback) {
+  return f.has(key) ? parseSpectrum(f.get(key), ctx, f.path(key)) : Spectrum::constant(fallback);
+}
+
+// Centimetres per scene unit.
+float centimetresPer(JsonFields& f) {
+  const std::string unit = f.string("length_unit", "");
+  if (unit == "m") return 100.0f;
+  if (unit == "cm") return 1.0f;
+  if (unit == "mm") return 0.1f;
+  if (unit == "um") return 1e-4f;
+  if (unit.empty()) f.fail("length_unit", "is needed with molar_absorption (the scene's unit: m, cm, mm or um)");
+  f.fail("length_unit", "'" + unit + "' is not a length unit (m, cm, mm, um)");
+}
+
+Fluorophore fluorophore(JsonFields& medium, const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr) {
+  JsonFields f(v, medium.file(), ptr);
+  Fluorophore fl;
+  if (f.has("sigma_f") == f.has("molar_absorption"))
+    f.fail("sigma_f", "give either sigma_f or molar_absorption with concentration");
+  if (f.has("sigma_f")) {
+    fl.absorption = parseSpectrum(f.get("sigma_f"), ctx, f.path("sigma_f"));
+  } else {
+    const Spectrum epsilon = parseSpectrum(f.get("molar_absorption"), ctx, f.path("molar_absorption"));
+    const float c = f.number("concentration");
+    if (!(c >= 0.0f && std::isfinite(c))) f.fail("concentration", "must be a finite, non-negative molarity (mol/L)");
+    fl.absorption = epsilon.scaled(std::log(10.0f) * c * centimetresPer(medium));  // Beer–Lambert, decadic
+  }
+  fl.emission = parseSpectrum(f.get("emission"), ctx, f.path("emission"));
+  fl.yield = f.number("yield");
+  f.finish();
+  return fl;
+}
+
+}  // namespace
+
+std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::json& v, const SpectrumContext& ctx,
+                                    const std::string& pointer, WavelengthRange range) {
+  JsonFields f(v, ctx.file, pointer);
+  const std::string type = f.string("type");
+  if (type != "homogeneous") f.fail("type", "'" + type + "' is not a medium type (homogeneous)");
+  MediumParams p;
+  p.absorption = spectrumOr(f, "sigma_a", ctx, 0.0f);
+  p.scattering = spectrumOr(f, "sigma_s", ctx, 0.0f);
+  p.g = f.number("g", 0.0f);
+  if (f.has("fluorophores")) {
+    const nlohmann::json& list = f.get("fluorophores");
+    if (!list.is_array()) f.fail("fluorophores", "expected an array of fluorophores");
+    for (size_t k = 0; k < list.size(); ++k)
+      p.fluorophores.push_back(fluorophore(f, list[k], ctx, f.path("fluorophores") + "/" + std::to_string(k)));
+  }
+  f.string("length_unit", "");
+  f.finish();
+  const std::string problem = checkMediumParams(p, range);
+  if (!problem.empty()) {
+    // "field: reason", the field possibly "fluorophores[k].x": as a JSON pointer below the medium.
+    const size_t colon = problem.find(": ");
+    std::string field = problem.substr(0, colon);
+    if (field.starts_with("fluorophores[")) {
+      const size_t close = field.find(']');
+      const std::string k = field.substr(13, close - 13), key = field.substr(close + 2);
+      const bool molar = key == "sigma_f" && v["fluorophores"][std::stoul(k)].contains("molar_absorption");
+      field = "fluorophores/" + k + "/" + (molar ? "molar_absorption" : key);
+    }
+    throw InputError(ctx.file, pointer + "/" + field, problem.substr(colon + 2));
+  }
+  return std::make_unique<Medium>(name, std::move(p), range);
+}
+
+}  // namespace kasha
