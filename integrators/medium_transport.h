@@ -15,7 +15,7 @@
 namespace kasha {
 
 // Spectral MIS of the lanes of a path whose free flights were drawn at lane 0's wavelength (hero
-// wavelength sampling, Wilkie et al. 2014; docs/media.md eq. 9): r_k is the ratio p_k/p_0 of the
+// wavelength sampling, Wilkie et al. 2014; docs/media.md eq. 7): r_k is the ratio p_k/p_0 of the
 // densities with which the path's free flights since the lanes were drawn would have been sampled
 // had lane k been the hero. Lane 0 is a uniform choice among lanes drawn at symmetric strata, so
 // lane k's contribution f_k/p_0 divided by the mean of the r_j is the balance heuristic over the
