@@ -31,8 +31,9 @@ std::string checkMediumParams(const MediumParams& p, WavelengthRange range) {
   return {};
 }
 
-Medium::Medium(std::string name, MediumParams params, WavelengthRange range)
-    : name_(std::move(name)), params_(std::move(params)), range_(range) {
+Medium::Medium(std::string name, MediumParams params, WavelengthRange range,
+               std::shared_ptr<const DensityField> density)
+    : name_(std::move(name)), params_(std::move(params)), range_(range), density_(std::move(density)) {
   if (std::string m = checkMediumParams(params_, range_); !m.empty()) throw std::invalid_argument(m);
   for (const Fluorophore& f : params_.fluorophores) {
     absorption_.emplace_back(f.absorption, range_);

@@ -7,9 +7,13 @@
 //   σ_t(λ) = σ_a(λ) + σ_s(λ) + Σ_k σ_f,k(λ)                                     (media.md eq. 1)
 // Free flight and transmittance over a path through several media are functions of the optical
 // depth τ(λ) = Σ σ_t(λ)·d over its segments (media.md eq. 2): T(λ) = exp(−τ(λ)).
+// A heterogeneous medium scales all of its coefficients by a density field d(x) ≥ 0 (a grid):
+// σ(x, λ) = d(x)·σ(λ), and is tracked against the majorant σ̄(λ) = max d · σ_t(λ) (media.md §4).
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/math.h"
 #include "core/spectral_distribution.h"
 #include "core/spectrum.h"
 
@@ -33,10 +37,19 @@ struct MediumParams {
 // non-negative with a positive integral over the range. Returns "" or "field: reason".
 std::string checkMediumParams(const MediumParams& p, WavelengthRange range);
 
+// The density of a heterogeneous medium at world points (a grid, core/volume_grid.h).
+class DensityField {
+ public:
+  virtual ~DensityField() = default;
+  virtual float density(const Vec3& p) const = 0;  // d(p) ≥ 0
+  virtual float maxDensity() const = 0;             // ≥ d(p) everywhere: the majorant's density
+};
+
 class Medium {
  public:
-  // Throws std::invalid_argument with checkMediumParams' message.
-  Medium(std::string name, MediumParams params, WavelengthRange range);
+  // Throws std::invalid_argument with checkMediumParams' message. `density` null: homogeneous.
+  Medium(std::string name, MediumParams params, WavelengthRange range,
+         std::shared_ptr<const DensityField> density = nullptr);
 
   const std::string& name() const { return name_; }
   const MediumParams& params() const { return params_; }
@@ -46,6 +59,10 @@ class Medium {
   float sigmaF(size_t k, float lambda) const { return params_.fluorophores[k].absorption(lambda); }
   float sigmaT(float lambda) const;  // eq. 1
   bool fluoresces() const { return fluorescent_; }
+  bool heterogeneous() const { return density_ != nullptr; }
+  // d(p) (1 if homogeneous) and its maximum: the coefficients at p are d(p) times the σ(λ) above.
+  float density(const Vec3& p) const { return density_ ? density_->density(p) : 1.0f; }
+  float maxDensity() const { return density_ ? density_->maxDensity() : 1.0f; }
   // Per fluorophore k: λ ∝ σ_f,k (camera paths' excitation) and λ ∝ e_k (light paths' emission;
   // its pdf is the normalised e_k).
   const SpectralDistribution& absorptionDistribution(size_t k) const { return absorption_[k]; }
@@ -56,6 +73,7 @@ class Medium {
   MediumParams params_;
   WavelengthRange range_;
   std::vector<SpectralDistribution> absorption_, emission_;
+  std::shared_ptr<const DensityField> density_;
   bool fluorescent_ = false;
 };
 
