@@ -22,6 +22,7 @@
 #include "core/texture.h"
 #include "materials/material_json.h"
 #include "materials/medium_json.h"
+#include "scene/medium_consistency.h"
 #include "scene/mitsuba/mitsuba_scene.h"
 
 namespace kasha {
@@ -748,6 +749,7 @@ std::unique_ptr<Scene> loadSceneFromJson(const nlohmann::json& original, const s
   L.lights(f);
   f.string("description", "");
   f.finish();
+  checkMediumAssignments(*scene, path);
   return scene;
 }
 
