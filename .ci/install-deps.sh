@@ -6,7 +6,7 @@ PACKAGES=(
   build-essential cmake ccache pkg-config
   libembree-dev libopenexr-dev libimath-dev libflann-dev liblz4-dev libglm-dev libtbb-dev
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libtinyobjloader-dev libcli11-dev libpng-dev libstb-dev libpugixml-dev libassimp-dev zlib1g-dev
+  libtinyobjloader-dev libcli11-dev libpng-dev libjpeg62-turbo-dev libstb-dev libpugixml-dev libassimp-dev zlib1g-dev
   libopenmpi-dev openmpi-bin
   python3-numpy python3-matplotlib
   python3-dev pybind11-dev python3-pybind11 python3-pytest

@@ -13,6 +13,7 @@
 #include "core/exr_input.h"
 #include "core/input_file.h"
 #include "core/memory_budget.h"
+#include "core/jpeg_input.h"
 #include "core/stb_image_input.h"
 
 namespace kasha {
@@ -26,7 +27,7 @@ std::string lowerExtension(const std::string& path) {
 }
 
 // The one choice of decoder: each format family has one reader.
-enum class ImageFamily { OpenExr, Stb };
+enum class ImageFamily { OpenExr, Jpeg, Stb };
 struct ImageFormat {
   const char* extension;
   ImageFamily family;
@@ -36,6 +37,8 @@ struct ImageFormat {
 constexpr ImageFormat kImageFormats[] = {
     {"exr", ImageFamily::OpenExr, "OpenEXR", ""},  // OpenEXR checks its own magic number
     {"png", ImageFamily::Stb, "PNG", "\x89PNG\r\n\x1a\n"},
+    {"jpg", ImageFamily::Jpeg, "JPEG", ""},  // core/jpeg_input.h checks its own signature
+    {"jpeg", ImageFamily::Jpeg, "JPEG", ""},
     {"bmp", ImageFamily::Stb, "BMP", "BM"},
     {"tga", ImageFamily::Stb, "TGA", ""},  // TGA has no signature
     {"hdr", ImageFamily::Stb, "Radiance HDR", "#?"},
@@ -45,11 +48,7 @@ const ImageFormat& imageFormat(const std::string& path) {
   const std::string ext = lowerExtension(path);
   for (const ImageFormat& f : kImageFormats)
     if (ext == f.extension) return f;
-  // Debian 12's stb_image decodes JPEG unsafely on hostile input (fuzz_image found writes past its
-  // Huffman tables and negative table indices), so JPEG waits for a reader of its own.
-  if (ext == "jpg" || ext == "jpeg")
-    throw std::runtime_error("JPEG images are not read yet (convert it to PNG or OpenEXR)");
-  throw std::runtime_error("unknown image format '." + ext + "' (expected .png, .bmp, .tga, .hdr or .exr)");
+  throw std::runtime_error("unknown image format '." + ext + "' (expected .png, .jpg, .bmp, .tga, .hdr or .exr)");
 }
 
 int channelCount(TextureChannel c) { return c == TextureChannel::Rgb ? 3 : 1; }
@@ -76,11 +75,11 @@ struct Decoded {
 // decodeBytes: the decoder's own buffer while reading.
 using SizeCheck = std::function<void(uint64_t width, uint64_t height, uint64_t decodeBytes)>;
 
-// Reads the file through core/input_file.h (a regular file only, never blocking) and decodes it
-// from memory once `check` has accepted the header's size. sRGB: integer codes are sRGB-encoded.
-Decoded decodeStb(const std::string& path, const ImageFormat& format, TextureChannel channel, TextureEncoding encoding,
-                  const SizeCheck& check) {
-  const StbImageInput in(path, "texture", format.name, format.signature);
+// Decodes an image read through core/input_file.h (a regular file only, never blocking) from
+// memory once `check` has accepted the header's size (StbImageInput, JpegInput). sRGB: integer
+// codes are sRGB-encoded.
+template <class Input>
+Decoded decodeCodes(const Input& in, TextureChannel channel, TextureEncoding encoding, const SizeCheck& check) {
   check(in.width(), in.height(), in.decodeBytes());
   const bool srgb = encoding == TextureEncoding::Srgb && !in.linear();
   Decoded d{int(in.width()), int(in.height()), {}};
@@ -92,7 +91,7 @@ Decoded decodeStb(const std::string& path, const ImageFormat& format, TextureCha
   return d;
 }
 
-// As decodeStb, through core/exr_input.h.
+// As decodeCodes, through core/exr_input.h.
 Decoded decodeExr(const std::string& path, TextureChannel channel, const SizeCheck& check) {
   ExrInput in(path, "texture");
   check(in.width(), in.height(), saturatingMul(saturatingMul(in.width(), in.height()), sizeof(Imf::Rgba)));
@@ -250,7 +249,9 @@ std::shared_ptr<const ImageTexture> TextureLoader::load(const std::string& path,
     }
   };
   Decoded d = format.family == ImageFamily::OpenExr ? decodeExr(path, channel, check)
-                                                    : decodeStb(path, format, channel, encoding, check);
+              : format.family == ImageFamily::Jpeg
+                  ? decodeCodes(JpegInput(path, "texture"), channel, encoding, check)
+                  : decodeCodes(StbImageInput(path, "texture", format.name, format.signature), channel, encoding, check);
   for (size_t i = 0; i < d.texels.size(); ++i)
     if (!(d.texels[i] >= 0.0f && d.texels[i] <= 1.0f)) {
       const size_t px = i / size_t(nc);
