@@ -229,7 +229,11 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
   } else if (t == "plastic" || t == "roughplastic") {
     oneSided();
     requireUnitSpecular(b, "specular_reflectance");
-    if (b.boolean("nonlinear", false)) b.fail("nonlinear = true is not supported");
+    // Mitsuba's nonlinear shapes the light the coat reflects back onto the base (ρ/(1 − ρ·F_dr)
+    // instead of ρ/(1 − F_dr)); the approximation below leaves that light out either way.
+    if (b.boolean("nonlinear", false))
+      b.note("nonlinear = true acts on the light the coat reflects back onto the base, which kasha's "
+             "approximation leaves out: rendered as without it");
     m = {{"type", "coated_fluorescent"}, {"absorption", 0.0}, {"emission", 1.0}, {"c", 0.0}, {"Q", 0.0},
          {"coat_ior", relativeIor(b, "int_ior", "polypropylene")}};
     setReflectance(b, "diffuse_reflectance", m);

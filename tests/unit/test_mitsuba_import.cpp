@@ -453,7 +453,8 @@ TEST_F(MitsubaImport, Bsdfs) {
     <bsdf type="roughdielectric" id="rg"><float name="alpha" value="0.2"/><float name="int_ior" value="1.5"/><float name="ext_ior" value="1.25"/></bsdf>
     <bsdf type="thindielectric" id="tg"><float name="int_ior" value="1.6"/><float name="ext_ior" value="1.0"/></bsdf>
     <bsdf type="plastic" id="p"><spectrum name="diffuse_reflectance" value="0.4"/></bsdf>
-    <bsdf type="roughplastic" id="rp"><float name="alpha" value="0.05"/><string name="distribution" value="ggx"/></bsdf>
+    <bsdf type="roughplastic" id="rp"><float name="alpha" value="0.05"/><string name="distribution" value="ggx"/>
+      <boolean name="nonlinear" value="true"/></bsdf>
     <bsdf type="twosided" id="two"><bsdf type="diffuse"/></bsdf>
     <bsdf type="jung_fluorescent" id="j">
       <spectrum name="absorption" value="400:0.8, 500:0"/><spectrum name="emission" value="500:0, 550:1, 600:0"/>
@@ -483,6 +484,10 @@ TEST_F(MitsubaImport, Bsdfs) {
   int plastic = 0;
   for (const std::string& n : t.notes) plastic += n.find("coated_fluorescent") != std::string::npos;
   EXPECT_EQ(plastic, 2);
+  // nonlinear acts on light the approximation leaves out: accepted, and said.
+  int nonlinear = 0;
+  for (const std::string& n : t.notes) nonlinear += n.find("nonlinear = true acts on the light the coat reflects") != std::string::npos;
+  EXPECT_EQ(nonlinear, 1);
   // The whole scene loads (the JSON loader accepts every translation).
   EXPECT_NO_THROW(load(std::string(kLight) + R"(
     <shape type="rectangle"><bsdf type="plastic"/></shape>
