@@ -21,6 +21,7 @@
 #include "core/spectrum_presets.h"
 #include "core/texture.h"
 #include "materials/material_json.h"
+#include "core/projector_light.h"
 #include "materials/medium_json.h"
 #include "scene/medium_consistency.h"
 #include "scene/mitsuba/mitsuba_scene.h"
@@ -612,6 +613,49 @@ struct Loader {
     }
   }
 
+  // A projector (core/projector_light.h): "image" (a file; "encoding" "srgb", the default, or
+  // "linear") or "irradiance" (an RGB colour), "fov" across the image's width, "scale".
+  std::unique_ptr<Light> projector(JsonFields& f) {
+    const Vec3 p = f.vec3("position"), at = f.vec3("look_at"), up = f.vec3("up", Vec3(0, 1, 0));
+    if (!(glm::length(at - p) > 0.0f)) f.fail("look_at", "equals the position");
+    if (!(glm::length(glm::cross(up, glm::normalize(at - p))) > 1e-6f)) f.fail("up", "is parallel to the projection");
+    const float fov = f.number("fov");
+    if (!(fov > 0.0f && fov < 180.0f)) f.fail("fov", "horizontal field of view must be in (0, 180) degrees");
+    const float scale = f.number("scale", 1.0f);
+    if (!(scale > 0.0f)) f.fail("scale", "must be positive");
+    if (f.has("image") == f.has("irradiance")) f.fail("image", "give either image (a file) or irradiance (an RGB colour)");
+    RgbImage image;
+    if (f.has("irradiance")) {
+      const json& c = f.get("irradiance");
+      if (!c.is_array() || c.size() != 3) f.fail("irradiance", "expected [r, g, b] (linear sRGB)");
+      Vec3 rgb;
+      for (int k = 0; k < 3; ++k) {
+        if (!c[size_t(k)].is_number() || !(c[size_t(k)].get<float>() >= 0.0f)) f.fail("irradiance", "expected 3 numbers ≥ 0");
+        rgb[k] = c[size_t(k)].get<float>();
+      }
+      image = RgbImage{1, 1, {rgb}};
+    } else {
+      const std::string encoding = f.string("encoding", "srgb");
+      if (encoding != "srgb" && encoding != "linear") f.fail("encoding", "'" + encoding + "' is not srgb or linear");
+      try {
+        const auto t = textures.load(resolve(f.string("image")), TextureChannel::Rgb, TextureWrap::Clamp, TextureFilter::Nearest,
+                                     encoding == "srgb" ? TextureEncoding::Srgb : TextureEncoding::Linear);
+        image.width = t->width();
+        image.height = t->height();
+        for (int y = 0; y < image.height; ++y)  // row 0 at the top; texture v counts from the bottom
+          for (int x = 0; x < image.width; ++x)
+            image.pixels.push_back(t->rgb(Vec2((float(x) + 0.5f) / float(image.width), 1.0f - (float(y) + 0.5f) / float(image.height))));
+      } catch (const std::runtime_error& e) {
+        f.fail("image", e.what());
+      }
+    }
+    try {
+      return std::make_unique<ProjectorLight>(p, at, up, fov, image, scale, scene.range);
+    } catch (const std::runtime_error& e) {
+      f.fail(f.has("image") ? "image" : "irradiance", e.what());
+    }
+  }
+
   void lights(JsonFields& root) {
     const SceneBounds bounds = scene.accel->bounds();
     if (root.has("lights")) {
@@ -623,7 +667,7 @@ struct Loader {
         const std::string type = f.string("type");
         std::unique_ptr<Light> l;
         // Lights inside the scene may sit in a medium; distant and environment light comes from outside it.
-        const bool placed = type == "point" || type == "spot";
+        const bool placed = type == "point" || type == "spot" || type == "projector";
         const int medium = placed && f.has("medium") ? mediumNamed(f.string("medium"), file, f.path("medium")) : -1;
         if (type == "point") {
           const Vec3 p = f.vec3("position");
@@ -641,6 +685,8 @@ struct Loader {
           Spectrum I = emitterSpectrum(f, "intensity");
           const float scale = scaleField(f, I);
           l = std::make_unique<SpotLight>(p, at - p, cone, falloff, std::move(I), scale);
+        } else if (type == "projector") {
+          l = projector(f);
         } else if (type == "distant") {
           const Vec3 d = f.vec3("direction");
           if (!(glm::length(d) > 0.0f)) f.fail("direction", "must not be zero");
@@ -667,7 +713,7 @@ struct Loader {
             f.fail("file", e.what());
           }
         } else {
-          f.fail("type", "unknown light type '" + type + "' (point, spot, distant, environment, envmap)");
+          f.fail("type", "unknown light type '" + type + "' (point, spot, projector, distant, environment, envmap)");
         }
         f.finish();
         scene.lights.push_back(std::move(l));

@@ -1,5 +1,7 @@
 #include "scene/mitsuba/xml_emitter.h"
 
+#include <cmath>
+
 #include "scene/mitsuba/xml_spectrum.h"
 #include "scene/mitsuba/xml_transform.h"
 
@@ -9,6 +11,42 @@ namespace {
 using nlohmann::json;
 
 json vec(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+// Mitsuba's projector (core/projector_light.h): its frame from to_world (x left, y up, z forward),
+// "fov" across the image's width (fov_axis x, Mitsuba's default), "irradiance" an <rgb> or a
+// bitmap <texture>.
+json projector(Plugin& e) {
+  const Mat4 m = toWorld(e);
+  const Vec3 p = transformPoint(m, Vec3(0.0f));
+  json light = {{"type", "projector"}, {"position", vec(p)}, {"look_at", vec(p + transformVector(m, Vec3(0, 0, 1)))},
+                {"up", vec(transformVector(m, Vec3(0, 1, 0)))}, {"scale", e.number("scale", 1.0f)}};
+  if (e.string("fov_axis", "x") != "x") e.fail("fov_axis other than x is not supported (give the fov across the width)");
+  // Without a fov, Mitsuba's 50 mm focal length on a 36 mm wide film.
+  light["fov"] = e.has("fov") ? e.number("fov") : 2.0f * std::atan(18.0f / 50.0f) * 180.0f / kPi;
+  const pugi::xml_node irradiance = e.property("irradiance");
+  const std::string tag = irradiance ? irradiance.name() : "";
+  if (!irradiance) {
+    light["irradiance"] = {1.0, 1.0, 1.0};
+  } else if (tag == "texture") {
+    Plugin t(e.xml(), irradiance);
+    if (t.type() != "bitmap") t.fail("a projector's irradiance texture must be a bitmap");
+    const pugi::xml_node file = t.property("filename");
+    if (!file) t.fail("missing property 'filename'");
+    light["image"] = e.xml().resolve(file, e.xml().attribute(file, "value"));
+    light["encoding"] = t.boolean("raw", false) ? "linear" : "srgb";
+    if (t.string("filter_type", "bilinear") != "nearest") t.note("kasha projects the image's texels without filtering");
+    t.string("wrap_mode", "");
+    t.finish();
+  } else if (tag == "rgb" || tag == "float") {
+    const std::string value = e.xml().attribute(irradiance, "value");
+    const auto v = parseNumbers(value);
+    if (!v || (v->size() != 1 && v->size() != 3)) e.fail(irradiance, "value '" + value + "' is not one or three numbers");
+    light["irradiance"] = v->size() == 1 ? json{(*v)[0], (*v)[0], (*v)[0]} : json{(*v)[0], (*v)[1], (*v)[2]};
+  } else {
+    e.fail(irradiance, "a projector's irradiance must be an <rgb> or a bitmap <texture>");
+  }
+  return light;
+}
 
 }  // namespace
 
@@ -38,10 +76,12 @@ void addEmitter(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     if (!e.has("filename")) e.fail("missing property 'filename'");
     light = {{"type", "envmap"}, {"file", xml.resolve(node, e.string("filename", ""))},
              {"scale", e.number("scale", 1.0f)}, {"transform", matrixJson(toWorld(e))}};
+  } else if (t == "projector") {
+    light = projector(e);
   } else if (t == "area") {
     e.fail("an area emitter must be nested in a <shape>");
   } else {
-    e.fail("unsupported emitter plugin (area, point, spot, directional, constant, envmap)");
+    e.fail("unsupported emitter plugin (area, point, spot, projector, directional, constant, envmap)");
   }
   e.finish();
   json& lights = out.root["lights"];
