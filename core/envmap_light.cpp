@@ -17,27 +17,14 @@ namespace {
 
 // The light's mean radiance over the sphere, Σ_t L_t(λ)·ΔΩ_t / 4π, every 5 nm over the range:
 // the spectrum that, times the environment's 4π²r², is its power (LightSelector).
+// The mean radiance over the sphere: texels weighted by their solid angle ΔΩ = (2π/W)·(cos θ_top − cos θ_bottom).
 Spectrum meanRadiance(const std::vector<RgbIlluminant>& texels, int w, int h, WavelengthRange range) {
-  std::vector<float> rowSolidAngle(static_cast<size_t>(h));
-  for (int y = 0; y < h; ++y)  // ΔΩ of a texel: (2π/W)·(cos θ_top − cos θ_bottom)
-    rowSolidAngle[size_t(y)] = 2.0f * kPi / float(w) * (std::cos(kPi * float(y) / float(h)) - std::cos(kPi * float(y + 1) / float(h)));
-  std::vector<float> wl, v;
-  for (float nm = range.min;; nm = std::min(nm + 5.0f, range.max)) {
-    double sum = 0.0;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) sum += double(texels[size_t(y) * size_t(w) + size_t(x)](nm)) * rowSolidAngle[size_t(y)];
-    wl.push_back(nm);
-    v.push_back(float(sum / (4.0 * M_PI)));
-    if (nm >= range.max) break;
-  }
-  return Spectrum::piecewiseLinear(std::move(wl), std::move(v));
-}
-
-std::vector<RgbIlluminant> upsample(const RgbImage& image) {
-  std::vector<RgbIlluminant> t;
-  t.reserve(image.pixels.size());
-  for (const Vec3& p : image.pixels) t.push_back(rgbIlluminant(p));
-  return t;
+  std::vector<float> solidAngle(texels.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      solidAngle[size_t(y) * size_t(w) + size_t(x)] =
+          2.0f * kPi / float(w) * (std::cos(kPi * float(y) / float(h)) - std::cos(kPi * float(y + 1) / float(h)));
+  return meanTexelSpectrum(texels, solidAngle, 4.0 * M_PI, range);  // Σ ΔΩ = 4π
 }
 
 // Sampling weights: luminance (Rec. 709 / sRGB Y) times sin θ at the row's centre.
@@ -47,7 +34,7 @@ std::vector<float> weights(const RgbImage& image) {
     const float sinTheta = std::sin(kPi * (float(y) + 0.5f) / float(image.height));
     for (int x = 0; x < image.width; ++x) {
       const Vec3& p = image.pixels[size_t(y) * size_t(image.width) + size_t(x)];
-      w[size_t(y) * size_t(image.width) + size_t(x)] = (0.2126f * p.x + 0.7152f * p.y + 0.0722f * p.z) * sinTheta;
+      w[size_t(y) * size_t(image.width) + size_t(x)] = luminance(p) * sinTheta;
     }
   }
   return w;
@@ -96,7 +83,7 @@ EnvMapLight::EnvMapLight(const RgbImage& image, const glm::mat4& toWorld, float 
     : EnvironmentLight(Spectrum::constant(0.0f), scale, bounds),
       w_(image.width),
       h_(image.height),
-      texels_(upsample(image)),
+      texels_(upsampleTexels(image)),
       distribution_(weights(image), image.width, image.height) {
   if (distribution_.empty()) throw std::runtime_error("the environment image is black");
   const glm::mat3 m(toWorld);

@@ -14,13 +14,10 @@
 #include "core/distribution_2d.h"
 #include "core/light.h"
 #include "core/rgb_illuminant.h"
+#include "core/rgb_image.h"
 
 namespace kasha {
 
-struct RgbImage {
-  int width = 0, height = 0;
-  std::vector<Vec3> pixels;  // linear RGB, row-major, row 0 at the top
-};
 
 // Bytes an environment light holds per image pixel while it is built (the decoded image, the
 // texels' spectra, the sampling density).

@@ -88,11 +88,7 @@ float AreaLight::pdfEmissionDirection(const Vec3& n, const Vec3& w) const {
 // ---- point ---------------------------------------------------------------------------------
 
 std::optional<LightSample> PointLight::sampleLi(const Vec3& p, float lambda, Vec2) const {
-  const Vec3 d = pos_ - p;
-  const float dist2 = glm::dot(d, d);
-  if (!(dist2 > 0.0f)) return std::nullopt;
-  const float dist = std::sqrt(dist2);
-  return LightSample{d / dist, dist, intensity(lambda) / dist2, 1.0f, true};
+  return sampleLightPoint(p, pos_, [&](const Vec3&) { return intensity(lambda); });
 }
 
 float PointLight::Li(const LightSample& s, float lambda) const { return intensity(lambda) / (s.dist * s.dist); }
@@ -136,12 +132,7 @@ float SpotLight::falloff(float cosTheta) const {
 }
 
 std::optional<LightSample> SpotLight::sampleLi(const Vec3& p, float lambda, Vec2) const {
-  const Vec3 d = pos_ - p;
-  const float dist2 = glm::dot(d, d);
-  if (!(dist2 > 0.0f)) return std::nullopt;
-  const float dist = std::sqrt(dist2);
-  const Vec3 wi = d / dist;
-  return LightSample{wi, dist, scale_ * spectrum_(lambda) * falloff(glm::dot(-wi, dir_)) / dist2, 1.0f, true};
+  return sampleLightPoint(p, pos_, [&](const Vec3& w) { return emittedTowards(lambda, Vec3(0.0f), w); });
 }
 
 float SpotLight::Li(const LightSample& s, float lambda) const {

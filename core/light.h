@@ -4,6 +4,7 @@
 // from a receiving point (next-event estimation: sampleLi) and as the start of light subpaths
 // (sampleEmission), with the densities both need for MIS.
 #include <memory>
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -76,6 +77,19 @@ class Light {
   float scale_;
   float powerFactor_;  // geometric factor turning scale·spectrum into power
 };
+
+// sampleLi of a light at one point `at` seen from p: the direction toward it, its distance, and
+// Li = I(w)/d² with I(w) the intensity `intensity` gives along w, the direction leaving the light;
+// nullopt where p is the light's point.
+template <class Intensity>
+std::optional<LightSample> sampleLightPoint(const Vec3& p, const Vec3& at, const Intensity& intensity) {
+  const Vec3 d = at - p;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f)) return std::nullopt;
+  const float dist = std::sqrt(dist2);
+  const Vec3 wi = d / dist;
+  return LightSample{wi, dist, intensity(-wi) / dist2, 1.0f, true};
+}
 
 class AreaLight final : public Light {
  public:

@@ -5,39 +5,6 @@
 #include <stdexcept>
 
 namespace kasha {
-namespace {
-
-// The luminance of a linear sRGB colour (ITU-R BT.709), for sampling texels.
-float luminance(const Vec3& rgb) { return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z; }
-
-// The mean of the texels' emission spectra, tabulated every 5 nm over the range: the light's
-// spectrum, which with powerFactor π·A gives its power (Light::power; it steers light selection).
-Spectrum meanSpectrum(const std::vector<RgbIlluminant>& texels, WavelengthRange range) {
-  std::vector<float> lambdas, values;
-  for (float l = range.min; l <= range.max + 1e-3f; l += 5.0f) {
-    double sum = 0.0;
-    for (const RgbIlluminant& t : texels) sum += t(l);
-    lambdas.push_back(l);
-    values.push_back(float(sum / double(texels.size())));
-  }
-  return Spectrum::piecewiseLinear(std::move(lambdas), std::move(values));
-}
-
-std::vector<RgbIlluminant> illuminants(const RgbImage& image) {
-  std::vector<RgbIlluminant> t;
-  t.reserve(image.pixels.size());
-  for (const Vec3& c : image.pixels) t.push_back(rgbIlluminant(c));
-  return t;
-}
-
-std::vector<float> luminances(const RgbImage& image) {
-  std::vector<float> w;
-  w.reserve(image.pixels.size());
-  for (const Vec3& c : image.pixels) w.push_back(std::max(0.0f, luminance(c)));
-  return w;
-}
-
-}  // namespace
 
 ProjectorLight::ProjectorLight(Vec3 position, Vec3 lookAt, Vec3 up, float fovXDegrees, const RgbImage& image,
                                float scale, WavelengthRange range)
@@ -47,14 +14,14 @@ ProjectorLight::ProjectorLight(Vec3 position, Vec3 lookAt, Vec3 up, float fovXDe
       tanY_(tanX_ * float(image.height) / float(image.width)),
       w_(image.width),
       h_(image.height),
-      texels_(illuminants(image)),
-      distribution_(luminances(image), image.width, image.height) {
+      texels_(upsampleTexels(image)),
+      distribution_(texelLuminances(image), image.width, image.height) {
   if (distribution_.empty()) throw std::runtime_error("the projector's image is black");
   // Mitsuba's look-at: forward z, left x = up × z, up y = z × x.
   const Vec3 z = glm::normalize(lookAt - position);
   const Vec3 x = glm::normalize(glm::cross(up, z));
   frame_ = Frame{x, glm::cross(z, x), z};
-  spectrum_ = meanSpectrum(texels_, range);
+  spectrum_ = meanTexelSpectrum(texels_, std::vector<float>(texels_.size(), 1.0f), double(texels_.size()), range);
   powerFactor_ = kPi * 4.0f * tanX_ * tanY_;  // ∫I dω = π·scale·∫E dA over the plane z = 1
 }
 
@@ -79,13 +46,7 @@ float ProjectorLight::emittedTowards(float lambda, const Vec3&, const Vec3& w) c
 }
 
 std::optional<LightSample> ProjectorLight::sampleLi(const Vec3& p, float lambda, Vec2) const {
-  const Vec3 d = pos_ - p;
-  const float dist2 = glm::dot(d, d);
-  if (!(dist2 > 0.0f)) return std::nullopt;
-  const float dist = std::sqrt(dist2);
-  const Vec3 wi = d / dist;
-  if (!directionToUv(-wi)) return std::nullopt;  // outside the image: nothing at any wavelength
-  return LightSample{wi, dist, emittedTowards(lambda, Vec3(0.0f), -wi) / dist2, 1.0f, true};
+  return sampleLightPoint(p, pos_, [&](const Vec3& w) { return emittedTowards(lambda, Vec3(0.0f), w); });
 }
 
 float ProjectorLight::Li(const LightSample& s, float lambda) const {

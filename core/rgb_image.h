@@ -1,0 +1,29 @@
+#pragma once
+// An RGB image that emits (environment maps, projectors): linear sRGB texels, each upsampled to an
+// emission spectrum (core/rgb_illuminant.h) and sampled in proportion to its luminance.
+#include <vector>
+
+#include "core/math.h"
+#include "core/rgb_illuminant.h"
+#include "core/spectrum.h"
+
+namespace kasha {
+
+struct RgbImage {
+  int width = 0, height = 0;
+  std::vector<Vec3> pixels;  // linear RGB, row-major, row 0 at the top
+};
+
+// The luminance Y of a linear sRGB colour (ITU-R BT.709 primaries).
+inline float luminance(const Vec3& rgb) { return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z; }
+
+// Each texel's emission spectrum, row-major.
+std::vector<RgbIlluminant> upsampleTexels(const RgbImage& image);
+// Each texel's luminance (negative values as 0), row-major.
+std::vector<float> texelLuminances(const RgbImage& image);
+// Σ w_i·L_i(λ) / total over the texels, tabulated every 5 nm over the range (a light's spectrum,
+// which steers light selection).
+Spectrum meanTexelSpectrum(const std::vector<RgbIlluminant>& texels, const std::vector<float>& weights, double total,
+                           WavelengthRange range);
+
+}  // namespace kasha
