@@ -194,107 +194,95 @@ TEST(VolumeScatteringDirection, FluorescentIsUniformOverTheSphere) {
 // ---------------------------------------------------------------------------------------------
 // The spectral stage
 
-struct Case {
-  const char* name;
-  MediumParams params;
-};
-std::vector<Case> cases() { return {{"one fluorophore", oneFluorophore(0.3f)}, {"two fluorophores", twoFluorophores(0.3f)}}; }
-// In the first absorption band, in the overlap of the second's absorption and the first's
-// emission, in the emission bands, and where only elastic scattering happens.
-const float kKnown[] = {420.0f, 500.0f, 560.0f, 650.0f, 800.0f};
-
-TEST(VolumeScatteringSpectral, DensitiesAndLobeProbabilityAreEq5) {
-  for (const Case& c : cases()) {
-    const Medium medium("m", c.params, kRange);
+// Runs `check` for one and two fluorophores, both modes, and known wavelengths in the first
+// absorption band, in the overlap of the second's absorption and the first's emission, in the
+// emission bands, and where only elastic scattering happens.
+void forEachCase(const std::function<void(const VolumeScattering&, const SpectralStage&, TransportMode, float)>& check) {
+  for (const MediumParams& params : {oneFluorophore(0.3f), twoFluorophores(0.3f)}) {
+    const Medium medium("m", params, kRange);
     const VolumeScattering vs(medium);
-    const SpectralStage ref(c.params);
+    const SpectralStage ref(params);
     for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance})
-      for (const float known : kKnown) {
-        SCOPED_TRACE(std::string(c.name) + " " + toString(mode) + " known λ = " + std::to_string(known));
-        const double total = ref.total(mode, known);
-        EXPECT_TRUE(test::close(vs.albedoWeight(mode, known), total, 1e-3));
-        EXPECT_TRUE(test::close(vs.fluorescenceProbability(mode, known), ref.fluorescent(mode, known) / total, 1e-3, 1e-6));
-        EXPECT_TRUE(test::close(vs.spectralPdf(mode, known, known, SpectralLobe::Elastic), ref.elastic(known) / total, 1e-3));
-        for (float other = 361.0f; other < 830.0f; other += 7.0f)
-          EXPECT_TRUE(test::close(vs.spectralPdf(mode, known, other, SpectralLobe::Fluorescent),
-                                  ref.fluorescentPdf(mode, known, other), 1e-3, 1e-9))
-              << "other λ " << other;
+      for (const float known : {420.0f, 500.0f, 560.0f, 650.0f, 800.0f}) {
+        SCOPED_TRACE(std::to_string(params.fluorophores.size()) + " fluorophore(s), " + toString(mode) +
+                     ", known λ = " + std::to_string(known));
+        check(vs, ref, mode, known);
       }
   }
+}
+
+TEST(VolumeScatteringSpectral, DensitiesAndLobeProbabilityAreEq5) {
+  forEachCase([](const VolumeScattering& vs, const SpectralStage& ref, TransportMode mode, float known) {
+    const double total = ref.total(mode, known);
+    EXPECT_TRUE(test::close(vs.albedoWeight(mode, known), total, 1e-3));
+    EXPECT_TRUE(test::close(vs.fluorescenceProbability(mode, known), ref.fluorescent(mode, known) / total, 1e-3, 1e-6));
+    EXPECT_TRUE(test::close(vs.spectralPdf(mode, known, known, SpectralLobe::Elastic), ref.elastic(known) / total, 1e-3));
+    for (float other = 361.0f; other < 830.0f; other += 7.0f)
+      EXPECT_TRUE(test::close(vs.spectralPdf(mode, known, other, SpectralLobe::Fluorescent),
+                              ref.fluorescentPdf(mode, known, other), 1e-3, 1e-9))
+          << "other λ " << other;
+  });
 }
 
 // χ² of sampleSpectral's (lobe, wavelength) in 5 nm bins plus one elastic cell against
 // spectralPdf, and its reported pdf against spectralPdf.
 TEST(VolumeScatteringSpectral, SamplingFollowsSpectralPdf) {
   uint64_t seed = 300;
-  const int bins = 94, n = 100000, sub = 10;
-  const float width = kRange.width() / bins;
-  for (const Case& c : cases()) {
-    const Medium medium("m", c.params, kRange);
-    const VolumeScattering vs(medium);
-    for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance})
-      for (const float known : kKnown) {
-        SCOPED_TRACE(std::string(c.name) + " " + toString(mode) + " known λ = " + std::to_string(known));
-        std::vector<double> observed(bins + 1, 0.0), expected(bins + 1, 0.0);
-        Rng rng(seed++, 5);
-        int fluorescent = 0;
-        for (int i = 0; i < n; ++i) {
-          const SpectralChoice s = vs.sampleSpectral(mode, known, rng.uniform());
-          ASSERT_GT(s.pdf, 0.0f);
-          if (s.lobe == SpectralLobe::Elastic) {
-            ASSERT_EQ(s.lambda, known);
-            ASSERT_TRUE(test::close(s.pdf, vs.spectralPdf(mode, known, known, SpectralLobe::Elastic), 1e-5));
-            observed[bins] += 1.0;
-            continue;
-          }
-          ++fluorescent;
-          ASSERT_TRUE(kRange.contains(s.lambda)) << s.lambda;
-          ASSERT_TRUE(test::close(s.pdf, vs.spectralPdf(mode, known, s.lambda, SpectralLobe::Fluorescent), 1e-4));
-          observed[size_t(std::clamp(int((s.lambda - kRange.min) / width), 0, bins - 1))] += 1.0;
-        }
-        for (int b = 0; b < bins; ++b)
-          for (int k = 0; k < sub; ++k)
-            expected[size_t(b)] += n * width / sub *
-                                   vs.spectralPdf(mode, known, kRange.min + width * (b + (k + 0.5f) / sub),
-                                                  SpectralLobe::Fluorescent);
-        expected[bins] = n * vs.spectralPdf(mode, known, known, SpectralLobe::Elastic);
-        EXPECT_GT(test::chi2PValue(observed, expected), 1e-3);
-        // The fluorescent lobe's frequency is fluorescenceProbability (binomial, 4σ).
-        const double pFl = vs.fluorescenceProbability(mode, known);
-        EXPECT_NEAR(double(fluorescent) / n, pFl, 4.0 * std::sqrt(pFl * (1.0 - pFl) / n) + 1e-9);
+  forEachCase([&](const VolumeScattering& vs, const SpectralStage&, TransportMode mode, float known) {
+    const int bins = 94, n = 100000, sub = 10;
+    const float width = kRange.width() / bins;
+    std::vector<double> observed(bins + 1, 0.0), expected(bins + 1, 0.0);
+    Rng rng(seed++, 5);
+    int fluorescent = 0;
+    for (int i = 0; i < n; ++i) {
+      const SpectralChoice s = vs.sampleSpectral(mode, known, rng.uniform());
+      ASSERT_GT(s.pdf, 0.0f);
+      if (s.lobe == SpectralLobe::Elastic) {
+        ASSERT_EQ(s.lambda, known);
+        ASSERT_TRUE(test::close(s.pdf, vs.spectralPdf(mode, known, known, SpectralLobe::Elastic), 1e-5));
+        observed[bins] += 1.0;
+        continue;
       }
-  }
+      ++fluorescent;
+      ASSERT_TRUE(kRange.contains(s.lambda)) << s.lambda;
+      ASSERT_TRUE(test::close(s.pdf, vs.spectralPdf(mode, known, s.lambda, SpectralLobe::Fluorescent), 1e-4));
+      observed[size_t(std::clamp(int((s.lambda - kRange.min) / width), 0, bins - 1))] += 1.0;
+    }
+    for (int b = 0; b < bins; ++b)
+      for (int k = 0; k < sub; ++k)
+        expected[size_t(b)] += n * width / sub *
+                               vs.spectralPdf(mode, known, kRange.min + width * (b + (k + 0.5f) / sub),
+                                              SpectralLobe::Fluorescent);
+    expected[bins] = n * vs.spectralPdf(mode, known, known, SpectralLobe::Elastic);
+    EXPECT_GT(test::chi2PValue(observed, expected), 1e-3);
+    // The fluorescent lobe's frequency is fluorescenceProbability (binomial, 4σ).
+    const double pFl = vs.fluorescenceProbability(mode, known);
+    EXPECT_NEAR(double(fluorescent) / n, pFl, 4.0 * std::sqrt(pFl * (1.0 - pFl) / n) + 1e-9);
+  });
 }
 
 // f/pdf of a whole sampled event (both stages) is A_el + A_fl at the known wavelength, whichever
 // lobe, fluorophore and direction were drawn; and eval()/pdf() at the sampled event agree with it.
 TEST(VolumeScatteringEvent, WeightOfASampledEventIsTheAlbedoWeight) {
   Rng rng(400, 1);
-  for (const Case& c : cases()) {
-    const Medium medium("m", c.params, kRange);
-    const VolumeScattering vs(medium);
-    const SpectralStage ref(c.params);
-    for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance})
-      for (const float known : kKnown) {
-        SCOPED_TRACE(std::string(c.name) + " " + toString(mode) + " known λ = " + std::to_string(known));
-        const double total = ref.total(mode, known);
-        int lobes[2] = {0, 0};
-        for (int i = 0; i < 2000; ++i) {
-          const Vec3 wKnown = sampleUniformSphere(Vec2(rng.uniform(), rng.uniform()));
-          const std::optional<ScatterSample> s =
-              vs.sample(mode, wKnown, known, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
-          ASSERT_TRUE(s.has_value());
-          ++lobes[int(s->lobe == SpectralLobe::Fluorescent)];
-          ASSERT_TRUE(test::close(s->f / s->pdf, total, 2e-3)) << "lobe " << int(s->lobe) << " λ " << s->lambda;
-          const test::Event e = test::physical(mode, wKnown, known, s->w, s->lambda);
-          ASSERT_TRUE(test::close(vs.eval(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, s->lobe), s->f, 1e-5));
-          ASSERT_TRUE(test::close(vs.pdf(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, s->lobe).pdf, s->pdf, 1e-4));
-        }
-        if (ref.fluorescent(mode, known) > 0.05 * total) {
-          EXPECT_GT(lobes[1], 0);
-        }
-      }
-  }
+  forEachCase([&](const VolumeScattering& vs, const SpectralStage& ref, TransportMode mode, float known) {
+    const double total = ref.total(mode, known);
+    int fluorescent = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const Vec3 wKnown = sampleUniformSphere(Vec2(rng.uniform(), rng.uniform()));
+      const std::optional<ScatterSample> s =
+          vs.sample(mode, wKnown, known, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+      ASSERT_TRUE(s.has_value());
+      fluorescent += s->lobe == SpectralLobe::Fluorescent;
+      ASSERT_TRUE(test::close(s->f / s->pdf, total, 2e-3)) << "lobe " << int(s->lobe) << " λ " << s->lambda;
+      const test::Event e = test::physical(mode, wKnown, known, s->w, s->lambda);
+      ASSERT_TRUE(test::close(vs.eval(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, s->lobe), s->f, 1e-5));
+      ASSERT_TRUE(test::close(vs.pdf(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, s->lobe).pdf, s->pdf, 1e-4));
+    }
+    if (ref.fluorescent(mode, known) > 0.05 * total) {
+      EXPECT_GT(fluorescent, 0);
+    }
+  });
 }
 
 // The joint (lobe, direction, wavelength) χ² of tests/material_chi2.h through the Bsdf of a medium
