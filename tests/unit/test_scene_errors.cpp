@@ -950,6 +950,8 @@ TEST_F(SceneLoader, BadMediumFields) {
               "is needed with molar_absorption");
   expectError(media([](json& m) { m["ink"]["length_unit"] = "inch"; }), "/media/ink/length_unit",
               "'inch' is not a length unit (m, cm, mm, um)");
+  expectError(media([](json& m) { m["fog"]["length_unit"] = "km"; }), "/media/fog/length_unit",
+              "'km' is not a length unit (m, cm, mm, um)");
   expectError(media([](json& m) { m["ink"]["fluorophores"][0]["molar_absorption"] = 1e4; }),
               "/media/ink/fluorophores/0/sigma_f", "give either sigma_f or molar_absorption");
   expectError(media([](json& m) { m["ink"]["fluorophores"][0].erase("sigma_f"); }),
