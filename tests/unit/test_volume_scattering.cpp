@@ -171,6 +171,7 @@ TEST(VolumeScatteringDirection, ElasticIsHenyeyGreensteinAboutTheContinuingDirec
   }
 }
 
+// Isotropic re-emission: uniform over the sphere, the HG distribution with g = 0.
 TEST(VolumeScatteringDirection, FluorescentIsUniformOverTheSphere) {
   const Medium medium("m", oneFluorophore(0.8f), kRange);
   const VolumeScattering vs(medium);
