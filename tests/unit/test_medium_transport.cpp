@@ -9,7 +9,8 @@
 //     collision probability per interval and its transmittance, both on their own (a fixed hero)
 //     and with the lanes' spectral MIS (LaneRatios::misWeight, hero chosen among symmetric
 //     strata).
-//   - segmentTransmittance is exp(−Σσ_t·d), and false when a surface blocks the segment.
+//   - segmentTransmittance is exp(−Σσ_t·d), and false when a surface blocks the segment; shadow
+//     rays (lightTransmittance) start in the medium on their side of a boundary (VertexMedium).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -221,6 +222,36 @@ TEST_F(FreeFlightTest, SegmentTransmittanceIsTheExponentialOfTheOpticalDepth) {
   EXPECT_TRUE(segmentTransmittance(*scene, Vec3(0.0f), Vec3(0, 1, 0), 2.9f, mediumNamed("inner"), lambda, tr, counter));
   EXPECT_NEAR(tr[0], std::exp(-(sigmaInner(lambda[0]) + sigmaOuter(lambda[0]))), 2e-5);
   EXPECT_FALSE(segmentTransmittance(*scene, Vec3(0.0f), Vec3(0, 1, 0), 3.1f, mediumNamed("inner"), lambda, tr, counter));
+}
+
+// The medium a direction leaves into from a vertex: a boundary's side (interior against the
+// normal), the current medium through a shape without media, and a medium point's own medium.
+// Shadow rays start in it: from a surface vertex on the inner sphere, outwards and inwards.
+TEST_F(FreeFlightTest, ShadowRaysLeaveIntoTheMediumOnTheirSide) {
+  const int inner = mediumNamed("inner"), outer = mediumNamed("outer");
+  const std::optional<Hit> innerHit = scene->accel->intersect(Ray{Vec3(-1.5f, 0, 0), Vec3(1, 0, 0)});
+  ASSERT_TRUE(innerHit.has_value());
+  ASSERT_NEAR(innerHit->p.x, -1.0f, 1e-4f);
+  const VertexMedium onInner{outer, true};
+  EXPECT_EQ(onInner.leaving(*scene, *innerHit, Vec3(1, 0, 0)), inner);
+  EXPECT_EQ(onInner.leaving(*scene, *innerHit, Vec3(-1, 0, 0)), outer);
+  const std::optional<Hit> wall = scene->accel->intersect(Ray{Vec3(0, 2.5f, 0), Vec3(0, 1, 0)});
+  ASSERT_TRUE(wall.has_value());  // the rectangle: no media, the ray stays where it was
+  EXPECT_EQ((VertexMedium{-1, true}).leaving(*scene, *wall, Vec3(0, -1, 0)), -1);
+  EXPECT_EQ((VertexMedium{inner, false}).leaving(*scene, *innerHit, Vec3(-1, 0, 0)), inner);
+
+  // A light 1.5 beyond the inner sphere's surface at x = −1, seen from it: outwards through 1 of
+  // outer and 0.5 of vacuum; inwards (light at x = 0.5) through 1.5 of inner.
+  const std::array<float, kLanes> lambda = kLambdas;
+  float tr[kLanes];
+  LightSample out;
+  out.wi = Vec3(-1, 0, 0), out.dist = 1.5f;
+  ASSERT_TRUE(lightTransmittance(*scene, *innerHit, onInner, out, lambda, tr, counter));
+  for (int k = 0; k < kLanes; ++k) EXPECT_NEAR(tr[k], std::exp(-sigmaOuter(lambda[size_t(k)])), 1e-4) << k;
+  LightSample in;
+  in.wi = Vec3(1, 0, 0), in.dist = 1.5f;
+  ASSERT_TRUE(lightTransmittance(*scene, *innerHit, onInner, in, lambda, tr, counter));
+  for (int k = 0; k < kLanes; ++k) EXPECT_NEAR(tr[k], std::exp(-1.5 * sigmaInner(lambda[size_t(k)])), 1e-4) << k;
 }
 
 }  // namespace
