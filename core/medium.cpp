@@ -28,6 +28,13 @@ std::string checkMediumParams(const MediumParams& p, WavelengthRange range) {
     if (std::string m = checkCoefficient(f.emission, range, at + "emission"); !m.empty()) return m;
     if (!(f.emission.integral(range) > 0.0f)) return at + "emission: integrates to zero over the wavelength range";
   }
+  // σ_t (eq. 1) must stay finite too: an infinite one turns every flight's weight T/p into 0.
+  float sigmaT = p.absorption.maxValue(range.min, range.max);
+  const auto overflows = [&](const Spectrum& s) { return !std::isfinite(sigmaT += s.maxValue(range.min, range.max)); };
+  if (overflows(p.scattering)) return "sigma_s: sigma_t = sigma_a + sigma_s + sum of sigma_f overflows a 32-bit float";
+  for (size_t k = 0; k < p.fluorophores.size(); ++k)
+    if (overflows(p.fluorophores[k].absorption))
+      return "fluorophores[" + std::to_string(k) + "].sigma_f: sigma_t = sigma_a + sigma_s + sum of sigma_f overflows a 32-bit float";
   return {};
 }
 

@@ -32,9 +32,10 @@ struct MediumParams {
   std::vector<Fluorophore> fluorophores;
 };
 
-// Checks what a medium must satisfy: finite non-negative coefficients over the range, g in
-// (−1, 1), yields in [0, 1] (energy conservation, as Jung18 eq. 8), emission spectra that are
-// non-negative with a positive integral over the range. Returns "" or "field: reason".
+// Checks what a medium must satisfy: finite non-negative coefficients over the range whose sum
+// σ_t is finite too, g in (−1, 1), yields in [0, 1] (energy conservation, as Jung18 eq. 8),
+// emission spectra that are non-negative with a positive integral over the range. Returns "" or
+// "field: reason".
 std::string checkMediumParams(const MediumParams& p, WavelengthRange range);
 
 // The density of a heterogeneous medium at world points (a grid, core/volume_grid.h).

@@ -60,7 +60,7 @@ std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::jso
     for (size_t k = 0; k < list.size(); ++k)
       p.fluorophores.push_back(fluorophore(f, list[k], ctx, f.path("fluorophores") + "/" + std::to_string(k)));
   }
-  f.string("length_unit", "");
+  if (f.has("length_unit")) centimetresPer(f);  // a misspelt unit is an error even where unused
   f.finish();
   const std::string problem = checkMediumParams(p, range);
   if (!problem.empty()) {

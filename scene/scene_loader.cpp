@@ -605,7 +605,7 @@ struct Loader {
       if (!std::isfinite(s.area)) throw InputError(file, ptr, type + " is too large: its area overflows a 32-bit float");
       // Different media on the two sides need a surface that separates them: a closed one.
       if (s.media && s.media->interior != s.media->exterior && !s.closed())
-        throw InputError(file, ptr + "/interior",
+        throw InputError(file, ptr + (f.has("interior") ? "/interior" : "/exterior"),
                          "shape '" + s.name + "' is not closed (" + type +
                              " with an edge that is not shared by exactly two triangles), so it cannot separate "
                              "its interior medium from its exterior");

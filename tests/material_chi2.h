@@ -2,7 +2,7 @@
 // χ² goodness-of-fit machinery shared by the material tests (docs/validation.md §3):
 // quadrature over the sphere, the physical order of a sampled event, and a
 // joint (lobe, direction, wavelength) χ² test of Bsdf::sample against Bsdf::pdf,
-// through the Bsdf a material builds at a hit.
+// through the Bsdf a material builds at a hit (or any Bsdf in the world frame).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -79,9 +79,9 @@ inline int dirCell(const Chi2Config& c, const Vec3& w) {
   return ic * c.nPhi + ip;
 }
 
-inline Chi2Result jointChi2(const Material& material, TransportMode mode, const Vec3& wKnown, float lKnown,
-                            uint64_t seed, const Chi2Config& c = {}) {
-  const Bsdf m = localBsdf(material, lKnown);
+// Of a Bsdf whose local frame is the world frame (a material's at a hit, or a medium point's).
+inline Chi2Result jointChi2(const Bsdf& m, TransportMode mode, const Vec3& wKnown, float lKnown, uint64_t seed,
+                            const Chi2Config& c = {}) {
   const int nL = int(std::lround(c.range.width() / c.binNm));
   const int nDir = c.nCos * c.nPhi;
   // Layout: [fluorescent: dir * nL + l] [elastic: dir] [outside the range: 1]
@@ -142,6 +142,11 @@ inline Chi2Result jointChi2(const Material& material, TransportMode mode, const 
   }
   res.p = test::chi2PValue(observed, expected);
   return res;
+}
+
+inline Chi2Result jointChi2(const Material& material, TransportMode mode, const Vec3& wKnown, float lKnown,
+                            uint64_t seed, const Chi2Config& c = {}) {
+  return jointChi2(localBsdf(material, lKnown), mode, wKnown, lKnown, seed, c);
 }
 
 }  // namespace kasha::test

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/medium.h"
 #include "scene/scene_loader.h"
 #include "materials/lambertian.h"
 #include "tests/support.h"
@@ -70,6 +71,7 @@ class SceneLoader : public ::testing::Test {
     const std::string prefix = path + ": " + pointer + ": ";
     EXPECT_EQ(msg.rfind(prefix, 0), 0u) << "expected prefix '" << prefix << "' in: " << msg;
     EXPECT_CONTAINS(msg, reason);
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line: " << msg;
   }
 
   // Loads `base` with one mutation applied.
@@ -862,6 +864,173 @@ TEST_F(SceneLoader, NumbersThatOverflowOnceCombined) {
   write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   expectError([](json& j) { j["shapes"].push_back({{"type", "mesh"}, {"file", "tri.obj"}, {"scale", 1e38}, {"translate", {3e38, 0, 0}}, {"material", "white"}}); },
               "/shapes/1", "mesh has a vertex beyond the range of a 32-bit float");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Participating media (docs/scene-format.md#media)
+
+// The minimal scene with a fog sphere in front of the lamp, and a fluorescent medium "ink".
+json withMedia(json j) {
+  j["media"] = json::parse(R"({
+    "fog": {"type": "homogeneous", "sigma_a": 0.1, "sigma_s": 0.5, "g": 0.3},
+    "ink": {"type": "homogeneous", "sigma_s": 0.2, "length_unit": "cm",
+            "fluorophores": [{"sigma_f": {"type": "gaussian", "center": 450, "fwhm": 40}, "emission": {"type": "gaussian", "center": 520, "fwhm": 30}, "yield": 0.9},
+                             {"molar_absorption": {"type": "box", "min": 400, "max": 500, "value": 7e4}, "concentration": 1e-5,
+                              "emission": {"type": "gaussian", "center": 600, "fwhm": 30}, "yield": 0.5}]}})");
+  j["shapes"].push_back(json::parse(R"({"type": "sphere", "center": [0, 0, -1], "radius": 0.5, "interior": "fog"})"));
+  return j;
+}
+
+TEST_F(SceneLoader, MediaLoad) {
+  json j = withMedia(base);
+  j["camera"]["medium"] = "ink";
+  j["shapes"][0]["medium"] = "ink";  // the lamp immersed in ink: the same medium on both sides
+  j["lights"] = json::parse(R"([{"type": "point", "position": [0, 0, -1], "intensity": 1, "medium": "fog"}])");
+  const auto scene = loadSceneFromString(j.dump(), path);
+  ASSERT_EQ(scene->media.size(), 2u);
+  const Medium& ink = *scene->media[size_t(scene->cameraMedium)];
+  EXPECT_EQ(ink.name(), "ink");
+  // σ_f = ln 10·ε·c·(cm per scene unit): 7e4 L/(mol·cm) at 1e-5 mol/L is 0.7 per cm, 1.612 per cm as
+  // a natural-log coefficient; σ_t at 450 nm adds σ_s and the first fluorophore's peak.
+  EXPECT_NEAR(ink.sigmaF(1, 450.0f), std::log(10.0) * 0.7, 1e-4);
+  EXPECT_NEAR(ink.sigmaT(450.0f), 0.2 + 1.0 + std::log(10.0) * 0.7, 1e-4);
+  EXPECT_EQ(scene->media[size_t(scene->lightMedium[0])]->name(), "fog");
+  // In metres, the same dye absorbs 100 times more per scene unit.
+  j["media"]["ink"]["length_unit"] = "m";
+  EXPECT_NEAR(loadSceneFromString(j.dump(), path)->media[size_t(scene->cameraMedium)]->sigmaF(1, 450.0f),
+              100.0 * std::log(10.0) * 0.7, 1e-2);
+}
+
+TEST_F(SceneLoader, BadMediumCoefficients) {
+  auto media = [](const std::function<void(json&)>& change) {
+    return [change](json& j) {
+      j = withMedia(j);
+      change(j["media"]);
+    };
+  };
+  // Negative, NaN and infinite coefficients.
+  expectError(media([](json& m) { m["fog"]["sigma_a"] = -0.1; }), "/media/fog/sigma_a", "must not be negative");
+  expectError(media([](json& m) { m["fog"]["sigma_s"] = json::parse(R"({"type": "tabulated", "wavelengths": [400, 500], "values": [0.5, -1]})"); }),
+              "/media/fog/sigma_s/values/1", "negative value");
+  expectError(media([](json& m) { m["fog"]["sigma_s"] = json::parse(R"({"type": "tabulated", "wavelengths": [400, 500], "values": [0.5, "nan"]})"); }),
+              "/media/fog/sigma_s/values/1", "expected a finite number");
+  expectError(media([](json& m) { m["fog"]["sigma_a"] = "NaN"; }), "/media/fog/sigma_a", "unknown spectrum 'NaN'");
+  expectError(media([](json& m) { m["fog"]["sigma_a"] = 1e39; }), "/media/fog/sigma_a", "32-bit");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][0]["sigma_f"] = -1; }), "/media/ink/fluorophores/0/sigma_f",
+              "must not be negative");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][1]["molar_absorption"] = -1; }),
+              "/media/ink/fluorophores/1/molar_absorption", "must not be negative");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][1]["molar_absorption"] = 3e38; m["ink"]["fluorophores"][1]["concentration"] = 10; }),
+              "/media/ink/fluorophores/1/molar_absorption", "infinite value in the wavelength range");
+  // Each coefficient fits a float; their sum σ_t does not.
+  expectError(media([](json& m) { m["fog"]["sigma_a"] = 3e38; m["fog"]["sigma_s"] = 3e38; }), "/media/fog/sigma_s",
+              "overflows a 32-bit float");
+  // g in (−1, 1), yields in [0, 1], emission with energy in the range.
+  for (const double g : {1.0, -1.0, 1.5})
+    expectError(media([g](json& m) { m["fog"]["g"] = g; }), "/media/fog/g", "is outside (-1, 1)");
+  expectError(media([](json& m) { m["fog"]["g"] = "forward"; }), "/media/fog/g", "expected a number, got string");
+  for (const double y : {1.2, -0.1})
+    expectError(media([y](json& m) { m["ink"]["fluorophores"][1]["yield"] = y; }), "/media/ink/fluorophores/1/yield",
+                "is outside [0, 1]");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][0]["emission"] = json::parse(R"({"type": "box", "min": 900, "max": 1000})"); }),
+              "/media/ink/fluorophores/0/emission", "integrates to zero over the wavelength range");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][0]["emission"] = 0; }), "/media/ink/fluorophores/0/emission",
+              "integrates to zero");
+}
+
+TEST_F(SceneLoader, BadMediumFields) {
+  auto media = [](const std::function<void(json&)>& change) {
+    return [change](json& j) {
+      j = withMedia(j);
+      change(j["media"]);
+    };
+  };
+  // Molar absorption needs the scene's length unit, and is the alternative to sigma_f.
+  expectError(media([](json& m) { m["ink"].erase("length_unit"); }), "/media/ink/length_unit",
+              "is needed with molar_absorption");
+  expectError(media([](json& m) { m["ink"]["length_unit"] = "inch"; }), "/media/ink/length_unit",
+              "'inch' is not a length unit (m, cm, mm, um)");
+  expectError(media([](json& m) { m["fog"]["length_unit"] = "km"; }), "/media/fog/length_unit",
+              "'km' is not a length unit (m, cm, mm, um)");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][0]["molar_absorption"] = 1e4; }),
+              "/media/ink/fluorophores/0/sigma_f", "give either sigma_f or molar_absorption");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][0].erase("sigma_f"); }),
+              "/media/ink/fluorophores/0/sigma_f", "give either sigma_f or molar_absorption");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][1].erase("concentration"); }),
+              "/media/ink/fluorophores/1/concentration", "missing");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][1]["concentration"] = -1e-5; }),
+              "/media/ink/fluorophores/1/concentration", "non-negative molarity");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][1].erase("yield"); }), "/media/ink/fluorophores/1/yield",
+              "missing");
+  expectError(media([](json& m) { m["ink"]["fluorophores"][0]["Q"] = 0.5; }), "/media/ink/fluorophores/0/Q",
+              "unknown field");
+  expectError(media([](json& m) { m["ink"]["fluorophores"] = {{"yield", 1}}; }), "/media/ink/fluorophores",
+              "expected an array");
+  expectError(media([](json& m) { m["fog"]["type"] = "heterogeneous"; }), "/media/fog/type",
+              "'heterogeneous' is not a medium type (homogeneous)");
+  expectError(media([](json& m) { m["fog"]["sigma_t"] = 1; }), "/media/fog/sigma_t", "unknown field");
+  expectError(media([](json& m) { m = json::array(); }), "/media", "expected an object of named media");
+}
+
+TEST_F(SceneLoader, BadMediumReferences) {
+  const auto shape = [](const char* key, const char* value) {
+    return [key, value](json& j) {
+      j = withMedia(j);
+      j["shapes"][1].erase("interior");
+      j["shapes"][1][key] = value;
+    };
+  };
+  // Unknown names, wherever a medium is named.
+  expectError(shape("interior", "smoke"), "/shapes/1/interior", "no medium named 'smoke' in /media");
+  expectError(shape("exterior", "smoke"), "/shapes/1/exterior", "no medium named 'smoke' in /media");
+  expectError(shape("medium", "smoke"), "/shapes/1/medium", "no medium named 'smoke' in /media");
+  expectError([](json& j) { j = withMedia(j); j["camera"]["medium"] = "smoke"; }, "/camera/medium",
+              "no medium named 'smoke' in /media");
+  expectError([](json& j) { j["camera"]["medium"] = "fog"; }, "/camera/medium", "no medium named 'fog' in /media");
+  expectError([](json& j) {
+    j = withMedia(j);
+    j["lights"] = json::parse(R"([{"type": "point", "position": [0, 1, 0], "intensity": 1, "medium": "smoke"}])");
+  }, "/lights/0/medium", "no medium named 'smoke' in /media");
+  expectError([](json& j) {
+    j = withMedia(j);
+    j["lights"] = json::parse(R"([{"type": "spot", "position": [0, 1, 0], "look_at": [0, 0, 0], "cone_angle": 30, "intensity": 1, "medium": "smoke"}])");
+  }, "/lights/0/medium", "no medium named 'smoke' in /media");
+  // Lights at infinity are outside every medium.
+  expectError([](json& j) {
+    j = withMedia(j);
+    j["lights"] = json::parse(R"([{"type": "distant", "direction": [0, 0, 1], "irradiance": 1, "medium": "fog"}])");
+  }, "/lights/0/medium", "unknown field");
+  expectError([](json& j) { j = withMedia(j); j["shapes"][1]["interior"] = 3; }, "/shapes/1/interior",
+              "expected a string, got number");
+  // Both ways of naming media.
+  expectError([](json& j) { j = withMedia(j); j["shapes"][1]["medium"] = "fog"; }, "/shapes/1/medium",
+              "give either medium or interior/exterior");
+}
+
+TEST_F(SceneLoader, MediumBoundaries) {
+  // A surface that does not enclose a volume cannot separate two media ...
+  expectError([](json& j) { j = withMedia(j); j["shapes"][0]["interior"] = "fog"; }, "/shapes/0/interior",
+              "shape 'shape0' is not closed");
+  expectError([](json& j) { j = withMedia(j); j["shapes"][0]["exterior"] = "fog"; }, "/shapes/0/exterior",
+              "is not closed");
+  write("open_box.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nf 1 2 3\nf 1 3 4\nf 1 2 6\nf 1 6 5\n");
+  expectError([](json& j) {
+    j = withMedia(j);
+    j["shapes"].push_back({{"type", "mesh"}, {"file", "open_box.obj"}, {"interior", "ink"}, {"exterior", "fog"}, {"name", "box"}});
+  }, "/shapes/2/interior", "shape 'box' is not closed (mesh with an edge that is not shared by exactly two triangles)");
+  // ... but may sit in one (the same medium on both sides).
+  {
+    json j = withMedia(base);
+    j["shapes"][0]["medium"] = "fog";
+    EXPECT_NO_THROW(loadSceneFromString(j.dump(), path));
+  }
+  // A boundary without a material is index-matched: it cannot emit.
+  expectError([](json& j) {
+    j = withMedia(j);
+    j["shapes"][1]["emission"] = {{"radiance", 1}};
+  }, "/shapes/1/emission", "a medium boundary without a material cannot emit");
+  // Without media, a shape still needs a material.
+  expectError([](json& j) { j = withMedia(j); j["shapes"][1].erase("interior"); }, "/shapes/1/material", "missing");
 }
 
 }  // namespace
