@@ -29,7 +29,7 @@ float LaneRatios::misWeight() const {
 }
 
 FreeFlight traceFreeFlight(const Scene& scene, Ray ray, int medium, std::span<const float> lambda, float u,
-                           RayCounter& counter) {
+                           TransportMode mode, RayCounter& counter) {
   FreeFlight f;
   const size_t n = lambda.size();
   std::fill(f.weight, f.weight + n, 1.0f);
@@ -39,35 +39,67 @@ FreeFlight traceFreeFlight(const Scene& scene, Ray ray, int medium, std::span<co
     ++counter.closest;
     return f;
   }
-  const float target = -std::log1p(-u);  // the optical depth at λ_0 where the flight ends
-  float tau[kMaxLanes] = {};              // optical depth so far per lane
+  // A camera path's flight in a fluorescent medium is drawn from the one-sample mixture of the
+  // analog density (rate σ_t) and a source-seeking one (rate σ_t + A_fl, A_fl the fluorescent
+  // source rate at λ_o), each with probability ½ (docs/media.md §3). Its lanes' densities are
+  // the mixture's: ½·σ_t·e^{−τ} + ½·σ̄·e^{−τ̄} at a collision, ½·e^{−τ} + ½·e^{−τ̄} past it.
+  const bool mixture = mode == TransportMode::Radiance &&
+                       std::any_of(scene.media.begin(), scene.media.end(), [](const auto& m) { return m->fluoresces(); });
+  const bool seek = mixture && u >= 0.5f;
+  if (mixture) u = seek ? 2.0f * u - 1.0f : 2.0f * u;
+  const float target = -std::log1p(-std::min(u, 0x1.fffffep-1f));  // the drawn component's optical depth at λ_0
+  float tau[kMaxLanes] = {};      // optical depth so far per lane
+  float tauSeek[kMaxLanes] = {};  // the same with σ_t + A_fl
+  const auto sourceRate = [&](int m, float l) {
+    return mixture ? scene.mediumScattering[size_t(m)]->fluorescentWeight(TransportMode::Radiance, l) : 0.0f;
+  };
+  // Lane k's density over e^{−τ_0}, with rates sigma (σ_t) and seekRate (σ_t + A_fl) at the end
+  // point: 1 and 1 for a flight past it.
+  const auto density = [&](size_t k, float sigma, float seekRate) {
+    const float analog = sigma * std::exp(tau[0] - tau[k]);
+    return mixture ? 0.5f * (analog + seekRate * std::exp(tau[0] - tauSeek[k])) : analog;
+  };
   for (int crossing = 0; crossing <= kMaxCrossings; ++crossing) {
     const std::optional<Hit> hit = scene.accel->intersect(ray);
     ++counter.closest;
     const float length = hit ? hit->t : kInf;
     if (medium >= 0) {
       const Medium& m = *scene.media[size_t(medium)];
-      const float sigma0 = m.sigmaT(lambda[0]);
-      if (sigma0 > 0.0f && target - tau[0] < sigma0 * length) {
-        // A collision: lane k's T_k = exp(−τ_k), p_0 = σ_t(λ_0)·exp(−τ_0), p_k = σ_t(λ_k)·exp(−τ_k).
-        const float t = (target - tau[0]) / sigma0;
-        for (size_t k = 1; k < n; ++k) tau[k] += opticalDepth(m.sigmaT(lambda[k]), t);
-        tau[0] = target;
+      float sigma[kMaxLanes], seekRate[kMaxLanes];
+      for (size_t k = 0; k < n; ++k) {
+        sigma[k] = m.sigmaT(lambda[k]);
+        seekRate[k] = sigma[k] + sourceRate(medium, lambda[k]);
+      }
+      const float rate0 = seek ? seekRate[0] : sigma[0], drawn = seek ? tauSeek[0] : tau[0];
+      if (rate0 > 0.0f && target - drawn < rate0 * length) {
+        // A collision: lane k's T_k = e^{−τ_k}; its weight T_k/p_0 and ratio p_k/p_0.
+        const float t = (target - drawn) / rate0;
         for (size_t k = 0; k < n; ++k) {
-          const float rel = std::exp(tau[0] - tau[k]);
-          f.weight[k] = rel / sigma0;
-          f.ratio[k] = (k == 0 ? sigma0 : m.sigmaT(lambda[k])) * rel / sigma0;
+          tau[k] += opticalDepth(sigma[k], t);
+          tauSeek[k] += opticalDepth(seekRate[k], t);
+        }
+        const float p0 = density(0, sigma[0], seekRate[0]);
+        for (size_t k = 0; k < n; ++k) {
+          f.weight[k] = std::exp(tau[0] - tau[k]) / p0;
+          f.ratio[k] = density(k, sigma[k], seekRate[k]) / p0;
         }
         f.collided = true;
         f.p = ray.o + t * ray.d;
         f.medium = medium;
         return f;
       }
-      for (size_t k = 0; k < n; ++k) tau[k] += opticalDepth(k == 0 ? sigma0 : m.sigmaT(lambda[k]), length);
+      for (size_t k = 0; k < n; ++k) {
+        tau[k] += opticalDepth(sigma[k], length);
+        tauSeek[k] += opticalDepth(seekRate[k], length);
+      }
     }
     if (!hit || !scene.shapes[hit->shape].isMediumBoundary()) {
-      // Passed every medium on the way: P_k = exp(−τ_k), the weight and the ratio are P_k/P_0.
-      for (size_t k = 0; k < n; ++k) f.weight[k] = f.ratio[k] = std::exp(tau[0] - tau[k]);
+      // Passed every medium on the way: lane k's probability P_k; the weight T_k/P_0, the ratio P_k/P_0.
+      const float p0 = density(0, 1.0f, 1.0f);
+      for (size_t k = 0; k < n; ++k) {
+        f.weight[k] = std::exp(tau[0] - tau[k]) / p0;
+        f.ratio[k] = density(k, 1.0f, 1.0f) / p0;
+      }
       f.hit = hit;
       f.medium = medium;
       return f;
