@@ -149,10 +149,12 @@ def main():
               *revolve(cup(0.625 * SQUARE, 0.125 * SQUARE, 0.3, 4.5), 4, 45.0))
     write_obj('cuvette_liquid.obj', 'Fluorescein solution in the cuvette (fluorescein_cuvette.json)',
               *revolve(block((0.5 - GAP) * SQUARE, 0.3 + GAP, 3.5), 4, 45.0))
-    # LSC: a 10 x 10 cm PMMA sheet, 6 mm thick, on a black 6 x 6 cm stand 1.5 cm tall.
+    # LSC: a 10 x 10 cm PMMA sheet, 6 mm thick, on a black 6 x 6 cm stand 1.5 cm tall (GAP below
+    # the sheet: coplanar faces would leave it to rounding which surface a ray meets first).
     write_obj('lsc_slab.obj', 'Fluorescent PMMA sheet, 10 x 10 x 0.6 cm (lsc_slab.json)',
               *revolve(block(5.0 * SQUARE, 1.5, 2.1), 4, 45.0))
-    write_obj('lsc_stand.obj', 'Stand under the sheet (lsc_slab.json)', *revolve(block(3.0 * SQUARE, 0.0, 1.5), 4, 45.0))
+    write_obj('lsc_stand.obj', 'Stand under the sheet (lsc_slab.json)',
+              *revolve(block(3.0 * SQUARE, 0.0, 1.5 - GAP), 4, 45.0))
 
     lam, lumogen_em, lumogen_peak = lumogen_csv()
     fl, fe = fitc_emission()
