@@ -40,9 +40,10 @@ FreeFlight traceFreeFlight(const Scene& scene, Ray ray, int medium, std::span<co
     return f;
   }
   // A camera path's flight in a fluorescent medium is drawn from the one-sample mixture of the
-  // analog density (rate σ_t) and a source-seeking one (rate σ_t + A_fl, A_fl the fluorescent
-  // source rate at λ_o), each with probability ½ (docs/media.md §3). Its lanes' densities are
-  // the mixture's: ½·σ_t·e^{−τ} + ½·σ̄·e^{−τ̄} at a collision, ½·e^{−τ} + ½·e^{−τ̄} past it.
+  // analog density (rate σ_t) and a source-seeking one (rate σ̄ = σ_t + A_fl, A_fl the fluorescent
+  // source rate at λ_o), each with probability ½ (docs/media-scenes.md, "Path tracing in
+  // fluorescent media"; Veach 1997 §9.2.4, one-sample model with the balance heuristic). Its
+  // density, and its lanes': ½·σ_t·e^{−τ} + ½·σ̄·e^{−τ̄} at a collision, ½·e^{−τ} + ½·e^{−τ̄} past it.
   const bool mixture = mode == TransportMode::Radiance &&
                        std::any_of(scene.media.begin(), scene.media.end(), [](const auto& m) { return m->fluoresces(); });
   const bool seek = mixture && u >= 0.5f;
