@@ -44,6 +44,8 @@ class DensityField {
   virtual ~DensityField() = default;
   virtual float density(const Vec3& p) const = 0;  // d(p) ≥ 0
   virtual float maxDensity() const = 0;             // ≥ d(p) everywhere: the majorant's density
+  // The distance along the ray (o, d) beyond which d is 0 (a grid's box), infinite if it never is.
+  virtual float extent(const Vec3& o, const Vec3& d) const = 0;
 };
 
 class Medium {
@@ -64,6 +66,7 @@ class Medium {
   // d(p) (1 if homogeneous) and its maximum: the coefficients at p are d(p) times the σ(λ) above.
   float density(const Vec3& p) const { return density_ ? density_->density(p) : 1.0f; }
   float maxDensity() const { return density_ ? density_->maxDensity() : 1.0f; }
+  float densityExtent(const Vec3& o, const Vec3& d) const { return density_ ? density_->extent(o, d) : kInf; }
   // Per fluorophore k: λ ∝ σ_f,k (camera paths' excitation) and λ ∝ e_k (light paths' emission;
   // its pdf is the normalised e_k).
   const SpectralDistribution& absorptionDistribution(size_t k) const { return absorption_[k]; }

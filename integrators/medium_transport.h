@@ -44,10 +44,13 @@ struct FreeFlight {
 };
 
 // Follows `ray` from a vertex in `medium` (−1: vacuum) with the lanes' wavelengths, colliding where
-// the optical depth at lambda[0] reaches −ln(1 − u) (docs/media.md eq. 6). In a scene without
-// media this is one intersection, and the weights are 1.
+// the optical depth at lambda[0] reaches −ln(1 − u) (docs/media.md eq. 6), by delta tracking in
+// heterogeneous media (eq. 8). Camera paths (Radiance) in a scene with a fluorescent medium draw
+// it, half of the time, with the fluorescent source rate A_fl(λ_0) added to σ_t (eq. 6b): a medium
+// that fluoresces at λ_o without absorbing it (a Stokes shift) would otherwise never be collided
+// with at λ_o. In a scene without media this is one intersection, and the weights are 1.
 FreeFlight traceFreeFlight(const Scene& scene, Ray ray, int medium, std::span<const float> lambda, float u,
-                           RayCounter& counter);
+                           TransportMode mode, RayCounter& counter);
 
 // The transmittance exp(−τ(λ_k)) of every lane along the segment from `origin` (in `medium`) in
 // direction d up to distance tMax, across index-matched boundaries; false (and tr unset) if a

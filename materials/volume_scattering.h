@@ -42,11 +42,13 @@ class VolumeScattering final : public BsdfModel {
 
   // A_el + A_fl at the known wavelength: what f/pdf of a sampled event is.
   float albedoWeight(TransportMode mode, float lambdaKnown) const;
+  // A_fl at the known wavelength; for Radiance, the rate per unit length at which the medium's
+  // fluorescence adds light at λ_o (free flights of camera paths seek it, medium_transport.h).
+  float fluorescentWeight(TransportMode mode, float lambdaKnown) const;
 
  private:
   // Fluorophore k's share of A_fl at the known wavelength (unnormalised).
   float fluorescentShare(TransportMode mode, size_t k, float lambdaKnown) const;
-  float fluorescentWeight(TransportMode mode, float lambdaKnown) const;  // A_fl
   const Medium* medium_;
   std::vector<float> absorptionIntegral_;  // ∫σ_f,k over the range
   BsdfFlags flags_;

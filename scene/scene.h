@@ -63,6 +63,11 @@ struct Scene {
   }
   // Whether any ray can meet a medium or an index-matched boundary.
   bool hasMedia() const { return !media.empty(); }
+  bool hasFluorescentMedia() const {
+    for (const auto& m : media)
+      if (m->fluoresces()) return true;
+    return false;
+  }
   // The medium a ray is in after leaving hit h along world direction d, having been in `current`:
   // the side of the shape's MediumInterface that d points into, or `current` if it has none.
   int mediumBeyond(const Hit& h, const Vec3& d, int current) const {

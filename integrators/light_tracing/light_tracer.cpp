@@ -105,7 +105,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
   for (int depth = 1; depth <= maxDepth_; ++depth) {
     rng.startVertex(firstDimension, depth - 1);
     const float uFlight = media ? freeFlightUniform(rng, firstDimension, depth - 1) : 0.0f;
-    const FreeFlight flight = traceFreeFlight(scene, ray, medium, {lanes.lambda, size_t(lanes.n)}, uFlight, ctx.counter);
+    const FreeFlight flight = traceFreeFlight(scene, ray, medium, {lanes.lambda, size_t(lanes.n)}, uFlight, TransportMode::Importance, ctx.counter);
     float mis = 1.0f;  // every contribution's share of the lanes' spectral MIS (LaneRatios)
     if (media) {
       for (int k = 0; k < lanes.n; ++k) {

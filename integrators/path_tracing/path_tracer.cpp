@@ -141,7 +141,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
   for (int depth = 0;; ++depth) {
     rng.startVertex(firstDimension, depth);
     const float uFlight = media ? freeFlightUniform(rng, firstDimension, depth) : 0.0f;
-    const FreeFlight flight = traceFreeFlight(scene, ray, medium, {lanes.lambda, size_t(lanes.n)}, uFlight, counter);
+    const FreeFlight flight = traceFreeFlight(scene, ray, medium, {lanes.lambda, size_t(lanes.n)}, uFlight, TransportMode::Radiance, counter);
     float mis = 1.0f;  // every contribution's share of the lanes' spectral MIS (LaneRatios)
     if (media) {
       for (int k = 0; k < lanes.n; ++k) {

@@ -63,14 +63,14 @@ TEST(BoundaryCrossing, FreeFlightCollidesExactlyWithinTheSlabsOpticalDepth) {
     const double tau = 5.0 * kThickness / mu;  // the slab's optical depth at lane 0
     // Optical depth τ(1 − 5·10⁻⁵) ends the flight inside, 5·10⁻⁶ above the far face.
     const float inside = float(-std::expm1(-tau * (1.0 - 5e-5)));
-    const FreeFlight collided = traceFreeFlight(*scene, ray, -1, kLambda, inside, counter);
+    const FreeFlight collided = traceFreeFlight(*scene, ray, -1, kLambda, inside, TransportMode::Importance, counter);
     ASSERT_TRUE(collided.collided);
     EXPECT_NEAR(collided.p.y, -kThickness * (1.0 - 5e-5), 1e-6);
     // Lane 1's weight T_1/p_0 = e^{τ_0 − τ_1}/σ_0 at the same point (σ_t 8 and 5).
     EXPECT_NEAR(collided.weight[1], std::exp(-3.0 * kThickness * (1.0 - 5e-5) / mu) / 5.0, 1e-5);
     // τ(1 + 5·10⁻⁵) passes through: weight e^{τ_0 − τ_1} for lane 1.
     const float beyond = float(-std::expm1(-tau * (1.0 + 5e-5)));
-    const FreeFlight passed = traceFreeFlight(*scene, ray, -1, kLambda, beyond, counter);
+    const FreeFlight passed = traceFreeFlight(*scene, ray, -1, kLambda, beyond, TransportMode::Importance, counter);
     EXPECT_FALSE(passed.collided);
     EXPECT_FALSE(passed.hit.has_value());
     EXPECT_EQ(passed.medium, -1);

@@ -84,7 +84,7 @@ class FreeFlightTest : public ::testing::Test {
   }
   FreeFlight fly(const std::array<float, kLanes>& lambda, float u, Vec3 origin = Vec3(-3, 0, 0),
                  Vec3 d = Vec3(1, 0, 0), int medium = -1) {
-    return traceFreeFlight(*scene, Ray{origin, d}, medium, lambda, u, counter);
+    return traceFreeFlight(*scene, Ray{origin, d}, medium, lambda, u, TransportMode::Radiance, counter);
   }
   std::unique_ptr<Scene> scene;
   RayCounter counter;

@@ -407,7 +407,7 @@ TEST_F(SceneLoader, UnknownTypes) {
   expectError([](json& j) { j["shapes"][0]["type"] = "cube"; }, "/shapes/0/type",
               "unknown shape type 'cube' (sphere, cylinder, rectangle, mesh, disk)");
   expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "area"}])"); }, "/lights/0/type",
-              "unknown light type 'area' (point, spot, distant, environment, envmap)");
+              "unknown light type 'area' (point, spot, projector, distant, environment, envmap)");
   expectError([](json& j) { j["materials"]["white"]["reflectance"] = {{"type", "hsv"}}; },
               "/materials/white/reflectance/type", "unknown spectrum type 'hsv'");
   expectError([](json& j) { j["render"] = {{"sensor_sampling", "random"}}; }, "/render/sensor_sampling",
@@ -885,6 +885,7 @@ TEST_F(SceneLoader, MediaLoad) {
   json j = withMedia(base);
   j["camera"]["medium"] = "ink";
   j["shapes"][0]["medium"] = "ink";  // the lamp immersed in ink: the same medium on both sides
+  j["shapes"][1]["exterior"] = "ink";  // the fog sphere in it (the camera's rays check it)
   j["lights"] = json::parse(R"([{"type": "point", "position": [0, 0, -1], "intensity": 1, "medium": "fog"}])");
   const auto scene = loadSceneFromString(j.dump(), path);
   ASSERT_EQ(scene->media.size(), 2u);
@@ -1022,6 +1023,8 @@ TEST_F(SceneLoader, MediumBoundaries) {
   {
     json j = withMedia(base);
     j["shapes"][0]["medium"] = "fog";
+    j["shapes"][1]["exterior"] = "fog";
+    j["camera"]["medium"] = "fog";  // the camera's rays check that it is in fog too
     EXPECT_NO_THROW(loadSceneFromString(j.dump(), path));
   }
   // A boundary without a material is index-matched: it cannot emit.
