@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/json_fields.h"
+#include "core/volume_grid.h"
 
 namespace kasha {
 namespace {
@@ -43,12 +44,29 @@ Fluorophore fluorophore(JsonFields& medium, const nlohmann::json& v, const Spect
   return fl;
 }
 
+// {"type": "heterogeneous", "density": {"file": "x.vol", ...}, ...}: the density grid is read and
+// checked (core/volume_grid.h), and the medium refused until heterogeneous transport exists.
+[[noreturn]] void refuseHeterogeneous(JsonFields& f, const SpectrumContext& ctx) {
+  JsonFields density(f.get("density"), ctx.file, f.path("density"));
+  const std::string rel = density.string("file");
+  const std::string path = (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel;
+  int channels = 0;
+  try {
+    channels = VolumeGrid::read(path, ctx.memoryLimit).channels();
+  } catch (const InputError& e) {
+    throw InputError(ctx.file, density.path("file"), e.what());
+  }
+  if (channels != 1) density.fail("file", "a density grid has 1 channel, '" + rel + "' has " + std::to_string(channels));
+  f.fail("type", "heterogeneous media are not transported yet");
+}
+
 }  // namespace
 
 std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::json& v, const SpectrumContext& ctx,
                                     const std::string& pointer, WavelengthRange range) {
   JsonFields f(v, ctx.file, pointer);
   const std::string type = f.string("type");
+  if (type == "heterogeneous") refuseHeterogeneous(f, ctx);
   if (type != "homogeneous") f.fail("type", "'" + type + "' is not a medium type (homogeneous)");
   MediumParams p;
   p.absorption = spectrumOr(f, "sigma_a", ctx, 0.0f);

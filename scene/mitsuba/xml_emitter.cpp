@@ -1,5 +1,6 @@
 #include "scene/mitsuba/xml_emitter.h"
 
+#include "scene/mitsuba/xml_medium.h"
 #include "scene/mitsuba/xml_spectrum.h"
 #include "scene/mitsuba/xml_transform.h"
 
@@ -43,6 +44,12 @@ void addEmitter(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   } else {
     e.fail("unsupported emitter plugin (area, point, spot, directional, constant, envmap)");
   }
+  std::vector<pugi::xml_node> refs;
+  if (const std::optional<std::string> medium = endpointMedium(e, out, refs)) {
+    if (t != "point" && t != "spot") e.fail("a medium around a " + t + " emitter: kasha's distant and environment light comes from outside every medium");
+    light["medium"] = *medium;
+  }
+  if (!refs.empty()) e.fail(refs[0], "unsupported <ref> (an emitter takes a <ref> to a <medium> only)");
   e.finish();
   json& lights = out.root["lights"];
   out.origin("/lights/" + std::to_string(lights.size()), xml, node);
