@@ -90,7 +90,9 @@ VolumeGrid VolumeGrid::parse(const std::string& bytes, const std::string& path, 
 }
 
 VolumeGrid VolumeGrid::read(const std::string& path, uint64_t memoryLimit) {
-  InputFile file(path, "volume grid file", memoryLimit > UINT64_MAX - kHeaderBytes ? UINT64_MAX : memoryLimit + kHeaderBytes);
+  // No cap of its own: only the header is read before the data's size is checked against the
+  // file's and the memory limit.
+  InputFile file(path, "volume grid file", UINT64_MAX);
   unsigned char header[kHeaderBytes] = {};
   if (file.size() >= kHeaderBytes) file.read(header, kHeaderBytes);
   VolumeGrid g;
