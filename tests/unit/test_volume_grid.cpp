@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <random>
 
@@ -128,30 +127,25 @@ TEST(VolumeGrid, HeadersThatLieAreOneLineErrors) {
 class VolumeGridFile : public test::TempDirTest {
  protected:
   VolumeGridFile() : TempDirTest("volume_grid") {}
-  std::string write(const std::string& name, const std::string& bytes) const {
-    const std::string path = dir + "/" + name;
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-  }
 };
 
 TEST_F(VolumeGridFile, ReadsWhatParseReads) {
   const std::vector<float> values = sampledAtCentres(3, 2, 2, [](float x, float y, float z) { return x + 10 * y + 100 * z; });
-  const VolumeGrid g = VolumeGrid::read(write("a.vol", volBytes({3, 2, 2}, 1, values)), kLimit);
+  const VolumeGrid g = VolumeGrid::read(writeFile("a.vol", volBytes({3, 2, 2}, 1, values)), kLimit);
   for (int z = 0; z < 2; ++z)
     for (int y = 0; y < 2; ++y)
       for (int x = 0; x < 3; ++x) EXPECT_EQ(g.cell(x, y, z), values[size_t((z * 2 + y) * 3 + x)]);
   // A header declaring 16 GiB in a 56-byte file: an error from the header alone.
-  const std::string lying = write("lying.vol", volBytes({2048, 2048, 1024}, 1, {1, 2}));
+  const std::string lying = writeFile("lying.vol", volBytes({2048, 2048, 1024}, 1, {1, 2}));
   try {
     VolumeGrid::read(lying, kLimit);
     ADD_FAILURE() << "read a lying header";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(lying + ": header: declares 2048x2048x1024 cells"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(VolumeGrid::read(write("short.vol", "VOL"), kLimit), InputError);
+  EXPECT_THROW(VolumeGrid::read(writeFile("short.vol", "VOL"), kLimit), InputError);
   EXPECT_THROW(VolumeGrid::read(dir + "/missing.vol", kLimit), InputError);
-  EXPECT_THROW(VolumeGrid::read(write("big.vol", volBytes({3, 2, 2}, 1, values)), 16), MemoryLimitError);
+  EXPECT_THROW(VolumeGrid::read(writeFile("big.vol", volBytes({3, 2, 2}, 1, values)), 16), MemoryLimitError);
 }
 
 }  // namespace
