@@ -136,6 +136,13 @@ static void build(XmlImport& xml, SceneJson& out, const std::string& text, const
   visit(xml, scene, out, 0);
   if (!out.root.contains("camera")) throw InputError(path, "", "the scene has no <sensor>");
   if (!out.root.contains("shapes")) throw InputError(path, "", "the scene has no <shape>");
+  // Mitsuba 3's path (its default), direct and ptracer integrators do not handle participating
+  // media (their documentation); kasha's integrators transport them.
+  const std::string integrator = out.integrator ? xml.attribute(out.integrator, "type") : "path";
+  if (out.root.contains("media") && (integrator == "path" || integrator == "direct" || integrator == "ptracer"))
+    xml.note(out.integrator ? out.integrator : scene,
+             "Mitsuba's " + integrator + " integrator" + (out.integrator ? "" : " (its default)") +
+                 " ignores participating media; kasha renders them (Mitsuba's volpath would)");
 }
 
 Translation translateMitsubaScene(const std::string& text, const std::string& path,

@@ -185,6 +185,7 @@ void addIntegrator(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     it.fail("unsupported integrator plugin (path, volpath, direct, ptracer, bdpt; kasha's own with --integrator)");
   }
   out.root["render"]["integrator"] = equivalent->second;
+  out.integrator = node;
   // Mitsuba counts path depth in vertices after the camera (1: emitters seen directly), kasha in
   // scattering events: one less. Mitsuba's −1 (unbounded) keeps kasha's default. `direct` is
   // emitters seen directly plus one scattering event.

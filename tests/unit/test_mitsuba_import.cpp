@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -973,6 +974,14 @@ TEST_F(MitsubaImport, MediumDefaultsAreMitsubas) {
   EXPECT_FLOAT_EQ(hg.scene["media"]["fog"]["g"].get<float>(), 0.8f);
   const auto iso = translate(mediumSphere(R"(<medium id="fog" type="homogeneous"><phase type="isotropic"/></medium>)"));
   EXPECT_EQ(iso.scene["media"]["fog"]["g"], 0.0);
+  // Mitsuba's default integrator, path, ignores media: said in a note; volpath does not.
+  const auto ignores = [](const mitsuba::Translation& t) {
+    return std::any_of(t.notes.begin(), t.notes.end(), [](const std::string& n) { return n.find("ignores participating media") != std::string::npos; });
+  };
+  EXPECT_TRUE(ignores(iso));
+  EXPECT_TRUE(ignores(translate(mediumSphere("<integrator type=\"direct\"/><medium id=\"fog\" type=\"homogeneous\"/>"))));
+  EXPECT_FALSE(ignores(translate(mediumSphere("<integrator type=\"volpath\"/><medium id=\"fog\" type=\"homogeneous\"/>"))));
+  EXPECT_FALSE(ignores(translate(std::string(kLight) + kFloor)));
 }
 
 TEST_F(MitsubaImport, SpectralAlbedoAndExtinctionMultiply) {
