@@ -45,7 +45,7 @@ ShapeRefs shapeRefs(Plugin& s, const SceneJson& out) {
     const std::string id = s.xml().attribute(r, "id");
     if (out.bsdfIds.count(id)) refs.bsdfs.push_back(r);
     else if (pugi::xml_node e = out.declaredAs(id, "emitter")) refs.emitters.push_back(e);
-    else s.fail(r, "no <bsdf id=\"" + id + "\"> or area <emitter id=\"" + id + "\"> before this reference (a medium is referred to as name=\"interior\" or \"exterior\")");
+    else s.fail(r, "no <bsdf id=\"" + id + "\"> or area <emitter id=\"" + id + "\"> before this reference");
   }
   return refs;
 }
