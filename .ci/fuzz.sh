@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # libFuzzer run of kasha's readers — the scene parser (JSON and Mitsuba XML), the spectrum/matrix reader, the strict OBJ
-# reader, the PLY check with assimp behind it, the Mitsuba serialized mesh reader, image (texture and render) input, material files and the
-# checkpoint reader: builds the fuzz targets of tests/fuzz in the instrumented tree that .ci/sanitize.sh shares
+# reader, the PLY check with assimp behind it, the Mitsuba serialized mesh reader, image (texture and render) input, material files, the
+# checkpoint reader and Mitsuba's volume grids: builds the fuzz targets of tests/fuzz in the instrumented tree that .ci/sanitize.sh shares
 # (.ci/sanitize-build.sh: clang 14, -DKASHA_FUZZ=ON, ASan + UBSan, into build-sanitize/; after the
 # sanitizer stage there is nothing left to build), and runs each target for FUZZ_SECONDS (default
 # 15) on a copy of its seed corpus tests/fuzz/corpus/<target>/. A finding stops the run, leaves the
@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET="${FUZZ_SECONDS:-15}"
 BUILD=build-sanitize
 
-TARGETS=(fuzz_scene fuzz_mitsuba fuzz_spectrum_csv fuzz_obj fuzz_ply fuzz_serialized fuzz_image fuzz_material fuzz_checkpoint)
+TARGETS=(fuzz_scene fuzz_mitsuba fuzz_spectrum_csv fuzz_obj fuzz_ply fuzz_serialized fuzz_image fuzz_material fuzz_checkpoint fuzz_volume_grid)
 bash .ci/sanitize-build.sh "${TARGETS[@]}"
 
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1"

@@ -1,5 +1,8 @@
 #include "core/json_fields.h"
 
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
 #include <climits>
 #include <cmath>
 
@@ -76,6 +79,23 @@ Vec3 JsonFields::vec3(const std::string& key, Vec3 fallback) { return has(key) ?
 void JsonFields::finish() const {
   for (auto it = obj_.begin(); it != obj_.end(); ++it)
     if (!used_.count(it.key())) throw InputError(file_, path(it.key()), "unknown field");
+}
+
+glm::mat4 JsonFields::affine(const std::string& key) {
+  const nlohmann::json& rows = get(key);
+  glm::mat4 m(1.0f);
+  if (!rows.is_array() || rows.size() != 4) fail(key, "expected 4 rows of 4 numbers");
+  for (size_t r = 0; r < 4; ++r) {
+    if (!rows[r].is_array() || rows[r].size() != 4) fail(key, "expected 4 rows of 4 numbers");
+    for (size_t c = 0; c < 4; ++c) {
+      if (!rows[r][c].is_number() || !std::isfinite(rows[r][c].get<double>())) fail(key, "expected finite numbers");
+      m[int(c)][int(r)] = rows[r][c].get<float>();
+    }
+  }
+  if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f)
+    fail(key, "the last row must be [0, 0, 0, 1] (an affine map)");
+  if (glm::determinant(glm::mat3(m)) == 0.0f) fail(key, "the matrix is singular");
+  return m;
 }
 
 }  // namespace kasha

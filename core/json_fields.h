@@ -7,6 +7,8 @@
 #include <string>
 
 #include "core/error.h"
+#include <glm/mat4x4.hpp>
+
 #include "core/math.h"
 
 namespace kasha {
@@ -30,6 +32,8 @@ class JsonFields {
   std::string string(const std::string& key, const std::string& fallback);
   Vec3 vec3(const std::string& key);
   Vec3 vec3(const std::string& key, Vec3 fallback);
+  // Four rows of four finite numbers, an invertible affine map (last row 0 0 0 1).
+  glm::mat4 affine(const std::string& key);
   // Throws for any key that was never read.
   void finish() const;
 

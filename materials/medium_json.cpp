@@ -4,7 +4,9 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/grid_density.h"
 #include "core/json_fields.h"
+#include "core/volume_grid.h"
 
 namespace kasha {
 namespace {
@@ -43,13 +45,40 @@ Fluorophore fluorophore(JsonFields& medium, const nlohmann::json& v, const Spect
   return fl;
 }
 
+// "density" of a heterogeneous medium: {"file": "x.vol", "transform": <to_world, optional>,
+// "use_grid_bbox": false} (core/grid_density.h); the grid must have one channel.
+std::shared_ptr<const DensityField> densityGrid(JsonFields& f, const SpectrumContext& ctx) {
+  JsonFields density(f.get("density"), ctx.file, f.path("density"));
+  const std::string rel = density.string("file");
+  const std::string path = (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel;
+  const glm::mat4 toWorld = density.has("transform") ? density.affine("transform") : glm::mat4(1.0f);
+  const bool useGridBox = density.boolean("use_grid_bbox", false);
+  density.finish();
+  VolumeGrid grid = [&] {
+    try {
+      return VolumeGrid::read(path, ctx.memoryLimit);
+    } catch (const InputError& e) {
+      throw InputError(ctx.file, density.path("file"), e.what());
+    }
+  }();
+  if (grid.channels() != 1) density.fail("file", "a density grid has 1 channel, '" + rel + "' has " + std::to_string(grid.channels()));
+  return std::make_shared<GridDensity>(std::move(grid), toWorld, useGridBox);
+}
+
 }  // namespace
 
 std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::json& v, const SpectrumContext& ctx,
                                     const std::string& pointer, WavelengthRange range) {
   JsonFields f(v, ctx.file, pointer);
   const std::string type = f.string("type");
-  if (type != "homogeneous") f.fail("type", "'" + type + "' is not a medium type (homogeneous)");
+  if (type != "homogeneous" && type != "heterogeneous")
+    f.fail("type", "'" + type + "' is not a medium type (homogeneous, heterogeneous)");
+  std::shared_ptr<const DensityField> density;
+  if (type == "heterogeneous") {
+    density = densityGrid(f, ctx);
+    // Camera paths' source-seeking free flights (media.md eq. 6b) need a homogeneous medium.
+    if (f.has("fluorophores")) f.fail("fluorophores", "a heterogeneous medium cannot fluoresce yet (media.md §4)");
+  }
   MediumParams p;
   p.absorption = spectrumOr(f, "sigma_a", ctx, 0.0f);
   p.scattering = spectrumOr(f, "sigma_s", ctx, 0.0f);
@@ -75,7 +104,7 @@ std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::jso
     }
     throw InputError(ctx.file, pointer + "/" + field, problem.substr(colon + 2));
   }
-  return std::make_unique<Medium>(name, std::move(p), range);
+  return std::make_unique<Medium>(name, std::move(p), range, std::move(density));
 }
 
 }  // namespace kasha

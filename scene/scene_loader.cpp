@@ -454,27 +454,9 @@ struct Loader {
     return faceNormals;
   }
 
-  // "transform": four rows of four finite numbers, an invertible affine map (last row 0 0 0 1).
-  glm::mat4 matrixField(JsonFields& f, const std::string& key) {
-    const json& rows = f.get(key);
-    glm::mat4 m(1.0f);
-    if (!rows.is_array() || rows.size() != 4) f.fail(key, "expected 4 rows of 4 numbers");
-    for (int r = 0; r < 4; ++r) {
-      if (!rows[r].is_array() || rows[r].size() != 4) f.fail(key, "expected 4 rows of 4 numbers");
-      for (int c = 0; c < 4; ++c) {
-        if (!rows[r][c].is_number() || !std::isfinite(rows[r][c].get<double>())) f.fail(key, "expected finite numbers");
-        m[c][r] = rows[r][c].get<float>();
-      }
-    }
-    if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f)
-      f.fail(key, "the last row must be [0, 0, 0, 1] (an affine map)");
-    if (glm::determinant(glm::mat3(m)) == 0.0f) f.fail(key, "the matrix is singular");
-    return m;
-  }
-
   // Placement of triangle shapes: "transform" (after any scale/translate), then "flip_normals".
   void meshPlacement(JsonFields& f, Shape& s) {
-    if (f.has("transform")) transformMesh(s, matrixField(f, "transform"));
+    if (f.has("transform")) transformMesh(s, f.affine("transform"));
     if (f.boolean("flip_normals", false)) flipMeshNormals(s);
   }
 
@@ -509,7 +491,7 @@ struct Loader {
     if (!(glm::length(p1 - p0) > 0.0f) || !std::isfinite(glm::length(p1 - p0)))
       f.fail("p1", "must differ from p0 by a finite, non-zero length");
     glm::mat4 m = Cylinder::endsMatrix(p0, p1, radius);
-    if (f.has("transform")) m = matrixField(f, "transform") * m;
+    if (f.has("transform")) m = f.affine("transform") * m;
     const std::optional<Cylinder> c = Cylinder::fromMatrix(m);
     if (!c)
       f.fail(f.has("transform") ? "transform" : "radius",
@@ -704,7 +686,7 @@ struct Loader {
           const std::string path = resolve(f.string("file"));
           const float scale = f.number("scale", 1.0f);
           if (!(scale > 0.0f)) f.fail("scale", "must be positive");
-          const glm::mat4 m = f.has("transform") ? matrixField(f, "transform") : glm::mat4(1.0f);
+          const glm::mat4 m = f.has("transform") ? f.affine("transform") : glm::mat4(1.0f);
           if (!(uniformScale(glm::mat3(m)) > 0.0f)) f.fail("transform", "must rotate only (and scale uniformly)");
           scene.environmentLight = int(scene.lights.size());
           try {

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace kasha::test {
@@ -15,6 +16,12 @@ class TempDirTest : public ::testing::Test {
       : dir((std::filesystem::path(::testing::TempDir()) / ("kasha_" + name + "." + std::to_string(getpid()))).string()) {}
   void SetUp() override { std::filesystem::create_directories(dir); }
   void TearDown() override { std::filesystem::remove_all(dir); }
+  // Writes `bytes` to the file `name` in the directory; returns its path.
+  std::string writeFile(const std::string& name, const std::string& bytes) const {
+    const std::string path = dir + "/" + name;
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+  }
 
   const std::string dir;
 };

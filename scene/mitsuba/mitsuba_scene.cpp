@@ -6,6 +6,7 @@
 
 #include "scene/mitsuba/xml_bsdf.h"
 #include "scene/mitsuba/xml_emitter.h"
+#include "scene/mitsuba/xml_medium.h"
 #include "scene/mitsuba/xml_sensor.h"
 #include "scene/mitsuba/xml_shape.h"
 
@@ -68,7 +69,11 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
       addSensor(xml, c, out);
     } else if (tag == "bsdf") {
       if (!c.attribute("id")) xml.fail(c, "a top-level <bsdf> needs an id to be referred to");
-      out.addMaterial(xml, c, bsdfMaterial(xml, c));
+      if (isNullBsdf(xml, c)) out.bsdfIds[xml.attribute(c, "id")] = "";  // no material: a medium boundary
+      else out.addMaterial(xml, c, bsdfMaterial(xml, c));
+    } else if (tag == "medium") {
+      if (!c.attribute("id")) xml.fail(c, "a top-level <medium> needs an id to be referred to");
+      addMedium(xml, c, out);
     } else if (tag == "texture") {
       // Translated where a <ref> uses it (xml_texture.h): as a colour or as a scalar.
       if (!c.attribute("id")) xml.fail(c, "a top-level <texture> needs an id to be referred to");
@@ -80,7 +85,7 @@ void visit(XmlImport& xml, pugi::xml_node scene, SceneJson& out, int depth) {
     } else if (tag == "emitter") {
       addEmitter(xml, c, out);
     } else {
-      xml.fail(c, "unsupported element <" + tag + "> (kasha reads default, include, path, integrator, sensor, sampler, bsdf, texture, shape, emitter)");
+      xml.fail(c, "unsupported element <" + tag + "> (kasha reads default, include, path, integrator, sensor, sampler, bsdf, texture, medium, shape, emitter)");
     }
   }
 }
@@ -131,6 +136,13 @@ static void build(XmlImport& xml, SceneJson& out, const std::string& text, const
   visit(xml, scene, out, 0);
   if (!out.root.contains("camera")) throw InputError(path, "", "the scene has no <sensor>");
   if (!out.root.contains("shapes")) throw InputError(path, "", "the scene has no <shape>");
+  // Mitsuba 3's path (its default), direct and ptracer integrators do not handle participating
+  // media (their documentation); kasha's integrators transport them.
+  const std::string integrator = out.integrator ? xml.attribute(out.integrator, "type") : "path";
+  if (out.root.contains("media") && (integrator == "path" || integrator == "direct" || integrator == "ptracer"))
+    xml.note(out.integrator ? out.integrator : scene,
+             "Mitsuba's " + integrator + " integrator" + (out.integrator ? "" : " (its default)") +
+                 " ignores participating media; kasha renders them (Mitsuba's volpath would)");
 }
 
 Translation translateMitsubaScene(const std::string& text, const std::string& path,

@@ -14,7 +14,9 @@ struct SceneJson {
   nlohmann::json root = nlohmann::json::object();
   // JSON pointer ("/shapes/3", "/materials/wall") → "file:line" and the plugin.
   std::map<std::string, std::pair<std::string, std::string>> origins;
-  std::map<std::string, std::string> bsdfIds;  // XML id → material name
+  std::map<std::string, std::string> bsdfIds;  // XML id → material name ("" for a null BSDF: none)
+  std::map<std::string, std::string> mediumIds;  // XML id → medium name in /media
+  pugi::xml_node integrator;  // the <integrator>, if any (Mitsuba's default is `path`)
   // Objects declared at the top level with an id and used only where a <ref id=".."/> names them
   // (an area <emitter> for shapes, a <sampler> for the sensor), by id.
   std::map<std::string, pugi::xml_node> declared;

@@ -267,4 +267,10 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
 
 json bsdfMaterial(XmlImport& xml, pugi::xml_node bsdf) { return translate(xml, bsdf, false); }
 
+bool isNullBsdf(XmlImport& xml, pugi::xml_node bsdf) {
+  if (xml.optionalAttribute(bsdf, "type").value_or("") != "null") return false;
+  Plugin(xml, bsdf).finish();  // claims its id; a null BSDF has no properties
+  return true;
+}
+
 }  // namespace kasha::mitsuba

@@ -14,5 +14,8 @@ namespace kasha::mitsuba {
 
 // The kasha material JSON of a <bsdf> element.
 nlohmann::json bsdfMaterial(XmlImport& xml, pugi::xml_node bsdf);
+// Whether `bsdf` is Mitsuba's `null` BSDF (light passes through unchanged), which kasha writes as a
+// shape without a material: an index-matched medium boundary. Reads (and checks) the element.
+bool isNullBsdf(XmlImport& xml, pugi::xml_node bsdf);
 
 }  // namespace kasha::mitsuba

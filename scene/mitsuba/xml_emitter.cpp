@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "scene/mitsuba/xml_medium.h"
 #include "scene/mitsuba/xml_spectrum.h"
 #include "scene/mitsuba/xml_transform.h"
 
@@ -83,6 +84,13 @@ void addEmitter(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   } else {
     e.fail("unsupported emitter plugin (area, point, spot, projector, directional, constant, envmap)");
   }
+  std::vector<pugi::xml_node> refs;
+  if (const std::optional<std::string> medium = endpointMedium(e, out, refs)) {
+    if (t != "point" && t != "spot" && t != "projector")
+      e.fail("a medium around a " + t + " emitter: kasha's distant and environment light comes from outside every medium");
+    light["medium"] = *medium;
+  }
+  if (!refs.empty()) e.fail(refs[0], "unsupported <ref> (an emitter takes a <ref> to a <medium> only)");
   e.finish();
   json& lights = out.root["lights"];
   out.origin("/lights/" + std::to_string(lights.size()), xml, node);

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "core/pixel_filter.h"
+#include "scene/mitsuba/xml_medium.h"
 #include "scene/mitsuba/xml_transform.h"
 
 namespace kasha::mitsuba {
@@ -122,11 +123,12 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     if (!rfilters.empty()) filter = reconstructionFilter(xml, rfilters[0]);
     film.finish();
   }
-  std::vector<pugi::xml_node> samplers = s.nested("sampler");
-  for (pugi::xml_node r : s.nested("ref")) {
+  std::vector<pugi::xml_node> samplers = s.nested("sampler"), refs;
+  const std::optional<std::string> medium = endpointMedium(s, out, refs);
+  for (pugi::xml_node r : refs) {
     const std::string id = xml.attribute(r, "id");
     const pugi::xml_node declared = out.declaredAs(id, "sampler");
-    if (!declared) s.fail(r, "no <sampler id=\"" + id + "\"> before this reference");
+    if (!declared) s.fail(r, "no <sampler id=\"" + id + "\"> or <medium id=\"" + id + "\"> before this reference");
     samplers.push_back(declared);
   }
   if (samplers.size() > 1) s.fail(samplers[1], "more than one sampler");
@@ -163,6 +165,7 @@ void addSensor(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   camera["up"] = vec(transformVector(m, Vec3(0, 1, 0)));
   camera["resolution"] = {width, height};
   camera["filter"] = filter;
+  if (medium) camera["medium"] = *medium;
   out.root["camera"] = camera;
   out.origin("/camera", xml, node);
   s.finish();
@@ -182,6 +185,7 @@ void addIntegrator(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     it.fail("unsupported integrator plugin (path, volpath, direct, ptracer, bdpt; kasha's own with --integrator)");
   }
   out.root["render"]["integrator"] = equivalent->second;
+  out.integrator = node;
   // Mitsuba counts path depth in vertices after the camera (1: emitters seen directly), kasha in
   // scattering events: one less. Mitsuba's −1 (unbounded) keeps kasha's default. `direct` is
   // emitters seen directly plus one scattering event.

@@ -6,6 +6,7 @@
 
 #include "core/affine.h"
 #include "scene/mitsuba/xml_bsdf.h"
+#include "scene/mitsuba/xml_medium.h"
 #include "scene/mitsuba/xml_spectrum.h"
 #include "scene/mitsuba/xml_transform.h"
 
@@ -27,14 +28,20 @@ json faceCorners(const Mat4& m, std::array<Vec3, 4> local, Vec3 localNormal, boo
   return c;
 }
 
-// A shape's <ref>s split by what they name: a <bsdf> or a top-level area <emitter>.
+// A shape's unnamed <ref>s split by what they name: a <bsdf> or a top-level area <emitter>.
 struct ShapeRefs {
   std::vector<pugi::xml_node> bsdfs, emitters;  // the <ref>s, and the <emitter>s they name
 };
 
+bool namesMediumSide(pugi::xml_node n) {
+  const std::string name = n.attribute("name").value();
+  return name == "interior" || name == "exterior";
+}
+
 ShapeRefs shapeRefs(Plugin& s, const SceneJson& out) {
   ShapeRefs refs;
   for (pugi::xml_node r : s.nested("ref")) {
+    if (namesMediumSide(r)) continue;  // shapeMedia's
     const std::string id = s.xml().attribute(r, "id");
     if (out.bsdfIds.count(id)) refs.bsdfs.push_back(r);
     else if (pugi::xml_node e = out.declaredAs(id, "emitter")) refs.emitters.push_back(e);
@@ -43,11 +50,35 @@ ShapeRefs shapeRefs(Plugin& s, const SceneJson& out) {
   return refs;
 }
 
-std::string material(Plugin& s, SceneJson& out, const ShapeRefs& refs) {
+// The shape's "interior" and "exterior" media (kasha JSON: absent is vacuum): <ref name="interior"
+// id=".."/> or a nested <medium name="interior" ...>, as Mitsuba 3's shapes take them.
+json shapeMedia(Plugin& s, SceneJson& out) {
+  json sides = json::object();
+  for (const char* side : {"interior", "exterior"}) {
+    const pugi::xml_node p = s.property(side);
+    if (!p) continue;
+    const std::optional<std::string> medium = mediumOf(s.xml(), p, out);
+    if (!medium) s.fail(p, std::string("'") + side + "' must be a <medium> or a <ref> to a <medium id> declared before");
+    sides[side] = *medium;
+  }
+  return sides;
+}
+
+// The shape's material; "" for none (a null BSDF, or no BSDF on a shape with media): an
+// index-matched medium boundary.
+std::string material(Plugin& s, SceneJson& out, const ShapeRefs& refs, bool hasMedia) {
   const std::vector<pugi::xml_node> bsdfs = s.nested("bsdf");
   if (bsdfs.size() + refs.bsdfs.size() > 1) s.fail("more than one BSDF");
-  if (!bsdfs.empty()) return out.addMaterial(s.xml(), bsdfs[0], bsdfMaterial(s.xml(), bsdfs[0]));
+  if (!bsdfs.empty())
+    return isNullBsdf(s.xml(), bsdfs[0]) ? "" : out.addMaterial(s.xml(), bsdfs[0], bsdfMaterial(s.xml(), bsdfs[0]));
   if (!refs.bsdfs.empty()) return out.bsdfIds.at(s.xml().attribute(refs.bsdfs[0], "id"));
+  if (hasMedia) {
+    // Mitsuba 3's documentation (heterogeneous) calls this boundary index-matched; its code
+    // (src/render/shape.cpp) gives every shape without a BSDF a diffuse one.
+    s.note("no BSDF on a shape with media: an index-matched boundary (Mitsuba 3 renders a diffuse surface here; "
+           "<bsdf type=\"null\"/> says index-matched in both)");
+    return "";
+  }
   // Mitsuba's default BSDF: diffuse with reflectance 0.5 (one-sided).
   s.note("no BSDF: Mitsuba's default diffuse 0.5, reflecting on both sides in kasha");
   return out.addMaterial(s.xml(), s.node(), {{"type", "lambertian"}, {"reflectance", 0.5}});
@@ -137,14 +168,20 @@ void addShape(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
   const bool flip = s.boolean("flip_normals", false);
   std::vector<json> parts = geometry(s, m, flip);
   const ShapeRefs refs = shapeRefs(s, out);
-  const std::string mat = material(s, out, refs);
+  const json media = shapeMedia(s, out);
+  const std::string mat = material(s, out, refs, !media.empty());
+  if (mat.empty() && media.empty()) s.fail("a null BSDF on a shape without media (an invisible shape; kasha has none)");
+  if (s.type() == "cube" && media.value("interior", "") != media.value("exterior", ""))
+    s.fail("a cube with different media inside and outside: kasha's cube is six rectangles, not a closed surface "
+           "(use an obj or ply box)");
   const json em = emission(s, refs);
   const std::string base = node.attribute("id") ? xml.attribute(node, "id") : xml.label(node);
   json& shapes = out.root["shapes"];
   for (size_t i = 0; i < parts.size(); ++i) {
     json& p = parts[i];
     p["name"] = parts.size() == 1 ? base : base + "/" + std::to_string(i);
-    p["material"] = mat;
+    if (!mat.empty()) p["material"] = mat;
+    p.update(media);
     if (!em.is_null()) p["emission"] = em;
     out.origin("/shapes/" + std::to_string(shapes.size()), xml, node);
     shapes.push_back(std::move(p));

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,8 @@
 #include "scene/mitsuba/xml_sensor.h"
 #include "scene/mitsuba/xml_spectrum.h"
 #include "scene/mitsuba/xml_transform.h"
+#include "tests/texture_files.h"
+#include "tests/volume_grid_files.h"
 
 namespace kasha {
 namespace {
@@ -784,7 +787,7 @@ TEST_F(MitsubaImport, UnsupportedPluginsAndPropertiesAreErrorsWithFileLineAndPlu
   EXPECT_TRUE(contains(error(prefix + "<emitter type=\"sky\"/>"), file() + ":7: emitter 'sky': unsupported emitter plugin"));
   EXPECT_TRUE(contains(error(prefix + "<integrator type=\"prb\"/>"), file() + ":7: integrator 'prb': unsupported integrator plugin"));
   EXPECT_TRUE(contains(error(prefix + "<integrator type=\"aov\"/>"), file() + ":7: integrator 'aov': integrator 'aov' writes other quantities than radiance"));
-  EXPECT_TRUE(contains(error(prefix + "<medium type=\"homogeneous\"/>"), file() + ":7: medium 'homogeneous': unsupported element <medium>"));
+  EXPECT_TRUE(contains(error(prefix + "<medium type=\"homogeneous\"/>"), file() + ":7: medium 'homogeneous': a top-level <medium> needs an id"));
   // A property the plugin does not read: the line of the property, the plugin's name.
   EXPECT_TRUE(contains(error(prefix + std::string(kLight) + "<shape type=\"sphere\">\n<float name=\"radiuss\" value=\"1\"/></shape>"),
                   file() + ":8: shape 'sphere': unsupported property 'radiuss'"));
@@ -939,6 +942,236 @@ TEST_F(MitsubaImport, ControlCharactersFromTheFileAreEscaped) {
   EXPECT_TRUE(contains(msg, "no <bsdf id=\"\\x1b[2Jx\\x07\"> or area <emitter id=\"\\x1b[2Jx\\x07\"> before this reference"));
   EXPECT_EQ(msg.find('\x1b'), std::string::npos);
   EXPECT_EQ(msg.find('\x07'), std::string::npos);
+}
+
+// ---- media --------------------------------------------------------------------------------------
+
+// A sphere of the medium `id` (declared in `medium`) with no BSDF, an index-matched boundary (shape
+// 0), and a floor.
+std::string mediumSphere(const std::string& medium, const std::string& id = "fog") {
+  return std::string(kLight) + medium + "<shape type=\"sphere\"><ref name=\"interior\" id=\"" + id + "\"/></shape>" + kFloor;
+}
+
+TEST_F(MitsubaImport, HomogeneousMediumIsSigmaTTimesAlbedoTimesScale) {
+  // σ_a = σ_t(1 − α)·scale = 2·0.25·0.5, σ_s = σ_t·α·scale = 2·0.75·0.5.
+  const std::string medium = R"(<medium id="fog" type="homogeneous"><float name="sigma_t" value="2"/>
+      <float name="albedo" value="0.75"/><float name="scale" value="0.5"/><phase type="hg"><float name="g" value="0.3"/></phase></medium>)";
+  const auto t = translate(mediumSphere(medium));
+  EXPECT_EQ(t.scene["media"]["fog"], json({{"type", "homogeneous"}, {"sigma_a", 0.25}, {"sigma_s", 0.75}, {"g", 0.3f}}));
+  EXPECT_EQ(t.scene["shapes"][0]["interior"], "fog");
+  EXPECT_FALSE(t.scene["shapes"][0].contains("material"));  // index-matched
+  EXPECT_FALSE(t.scene["shapes"][0].contains("exterior"));  // vacuum
+  const auto scene = load(mediumSphere(medium));
+  ASSERT_EQ(scene->media.size(), 1u);
+  EXPECT_FLOAT_EQ(scene->media[0]->sigmaT(500.0f), 1.0f);
+  EXPECT_FLOAT_EQ(scene->media[0]->sigmaS(700.0f), 0.75f);
+  ASSERT_TRUE(scene->shapes[0].media.has_value());
+  EXPECT_EQ(scene->shapes[0].media->interior, 0);
+  EXPECT_EQ(scene->shapes[0].media->exterior, -1);
+  EXPECT_TRUE(scene->shapes[0].isMediumBoundary());
+}
+
+TEST_F(MitsubaImport, MediumDefaultsAreMitsubas) {
+  // Mitsuba 3: σ_t = 1, albedo 0.75, scale 1, isotropic phase; hg's g defaults to 0.8.
+  const auto t = translate(mediumSphere(R"(<medium id="fog" type="homogeneous"/>)"));
+  EXPECT_EQ(t.scene["media"]["fog"], json({{"type", "homogeneous"}, {"sigma_a", 0.25}, {"sigma_s", 0.75}, {"g", 0.0}}));
+  const auto hg = translate(mediumSphere(R"(<medium id="fog" type="homogeneous"><phase type="hg"/></medium>)"));
+  EXPECT_FLOAT_EQ(hg.scene["media"]["fog"]["g"].get<float>(), 0.8f);
+  const auto iso = translate(mediumSphere(R"(<medium id="fog" type="homogeneous"><phase type="isotropic"/></medium>)"));
+  EXPECT_EQ(iso.scene["media"]["fog"]["g"], 0.0);
+  // Mitsuba's default integrator, path, ignores media: said in a note; volpath does not.
+  const auto ignores = [](const mitsuba::Translation& t) {
+    return std::any_of(t.notes.begin(), t.notes.end(), [](const std::string& n) { return n.find("ignores participating media") != std::string::npos; });
+  };
+  EXPECT_TRUE(ignores(iso));
+  EXPECT_TRUE(ignores(translate(mediumSphere("<integrator type=\"direct\"/><medium id=\"fog\" type=\"homogeneous\"/>"))));
+  EXPECT_FALSE(ignores(translate(mediumSphere("<integrator type=\"volpath\"/><medium id=\"fog\" type=\"homogeneous\"/>"))));
+  EXPECT_FALSE(ignores(translate(std::string(kLight) + kFloor)));
+}
+
+TEST_F(MitsubaImport, SpectralAlbedoAndExtinctionMultiply) {
+  // An RGB albedo (Jakob–Hanika, the scene's reflectance upsampling) times a constant σ_t, as in
+  // Mitsuba's medium_homogeneous_sss scene, and times a tabulated σ_t.
+  const Vec3 rgb(0.85f, 0.97f, 0.3f);
+  const Spectrum albedo = rgbToSpectrum(rgb, WavelengthRange{});
+  const std::string colour = "<rgb name=\"albedo\" value=\"0.85, 0.97, 0.3\"/>";
+  const auto constant = load(mediumSphere("<medium id=\"fog\" type=\"homogeneous\"><float name=\"scale\" value=\"5\"/>"
+                                          "<float name=\"sigma_t\" value=\"10\"/>" + colour + "</medium>"));
+  const auto tabulated = load(mediumSphere("<medium id=\"fog\" type=\"homogeneous\"><float name=\"scale\" value=\"2\"/>"
+                                           "<spectrum name=\"sigma_t\" value=\"400:1, 700:4\"/>" + colour + "</medium>"));
+  for (float nm : {380.0f, 451.5f, 532.25f, 610.0f, 699.7f, 800.0f}) {
+    const float a = albedo(nm);
+    const Medium& c = *constant->media[0];
+    EXPECT_NEAR(c.sigmaS(nm), 50.0f * a, 1e-4f) << nm;
+    EXPECT_NEAR(c.sigmaA(nm), 50.0f * (1.0f - a), 1e-4f) << nm;
+    const float sigmaT = nm <= 400.0f ? 1.0f : nm >= 700.0f ? 4.0f : 1.0f + 3.0f * (nm - 400.0f) / 300.0f;
+    const Medium& t = *tabulated->media[0];
+    // Tabulated at ≤ 1 nm between the knots of both: the product's quadratic term is below
+    // (1 nm)²/4 · |σ_t'·α'| ≈ 1e-4 of the value.
+    EXPECT_NEAR(t.sigmaS(nm), 2.0f * sigmaT * a, 2e-3f * sigmaT) << nm;
+    EXPECT_NEAR(t.sigmaA(nm), 2.0f * sigmaT * (1.0f - a), 2e-3f * sigmaT) << nm;
+  }
+}
+
+TEST_F(MitsubaImport, InlineMediaExteriorAndSensorMedium) {
+  const std::string body = R"(<medium id="air" type="homogeneous"><float name="sigma_t" value="0.01"/></medium>
+    <sensor type="perspective"><ref id="air"/>
+      <transform name="to_world"><lookat origin="0, 0, -5" target="0, 0, 0" up="0, 1, 0"/></transform>
+      <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+    </sensor>
+    <emitter type="point"><point name="position" x="0" y="3" z="0"/><medium type="homogeneous" id="around_light"/></emitter>
+    <shape type="sphere"><bsdf type="dielectric"/><ref name="exterior" id="air"/>
+      <medium name="interior" type="homogeneous"><float name="sigma_t" value="3"/><float name="albedo" value="0"/></medium>
+    </shape>)";
+  const std::string path = write("scene.xml", "<scene version=\"3.0.0\">" + body + "</scene>");
+  std::ifstream in(path);
+  const auto t = mitsuba::translateMitsubaScene(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  EXPECT_EQ(t.scene["camera"]["medium"], "air");
+  EXPECT_EQ(t.scene["lights"][0]["medium"], "around_light");
+  const json& sphere = t.scene["shapes"][0];
+  EXPECT_EQ(sphere["exterior"], "air");
+  EXPECT_EQ(t.scene["materials"][sphere["material"].get<std::string>()]["type"], "dielectric");
+  EXPECT_EQ(t.scene["media"][sphere["interior"].get<std::string>()], json({{"type", "homogeneous"}, {"sigma_a", 3.0}, {"sigma_s", 0.0}, {"g", 0.0}}));
+  const auto scene = loadScene(path);
+  EXPECT_EQ(scene->media[size_t(scene->cameraMedium)]->name(), "air");
+  EXPECT_EQ(scene->media[size_t(scene->shapes[0].media->exterior)]->name(), "air");
+  EXPECT_FLOAT_EQ(scene->media[size_t(scene->shapes[0].media->interior)]->sigmaA(550.0f), 3.0f);
+}
+
+TEST_F(MitsubaImport, NullBsdfIsAMediumBoundary) {
+  const std::string medium = R"(<medium id="fog" type="homogeneous"/><bsdf type="null" id="none"/>)";
+  const auto t = translate(std::string(kLight) + medium +
+                           R"(<shape type="sphere"><ref id="none"/><ref name="interior" id="fog"/></shape>
+                              <shape type="sphere"><bsdf type="null"/><ref name="exterior" id="fog"/></shape>)" + kFloor);
+  EXPECT_FALSE(t.scene["shapes"][0].contains("material"));
+  EXPECT_FALSE(t.scene["shapes"][1].contains("material"));
+  EXPECT_EQ(t.scene["shapes"][1]["exterior"], "fog");
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="sphere"><bsdf type="null"/></shape>)"),
+                       file() + ":6: shape 'sphere': a null BSDF on a shape without media"));
+}
+
+TEST_F(MitsubaImport, FluorescentHomogeneousMedium) {
+  // kasha's extension: the homogeneous medium's parameters plus fluorophores; σ_f is scaled by
+  // `scale` like σ_t, a molar absorption is converted by length_unit instead.
+  const std::string medium = R"(<medium id="fog" type="fluorescent_homogeneous">
+      <float name="sigma_t" value="0.5"/><float name="albedo" value="0.5"/><float name="scale" value="2"/>
+      <string name="length_unit" value="mm"/>
+      <fluorophore><spectrum name="sigma_f" value="300:0.2, 500:0.2, 501:0, 900:0"/>
+        <spectrum name="emission" value="500:0, 550:1, 600:0"/><float name="yield" value="0.9"/></fluorophore>
+      <fluorophore><spectrum name="molar_absorption" value="400:1000, 900:1000"/><float name="concentration" value="0.01"/>
+        <spectrum name="emission" value="600:0, 650:1, 700:0"/><float name="yield" value="0.5"/></fluorophore>
+    </medium>)";
+  const auto scene = load(mediumSphere(medium));
+  const Medium& m = *scene->media[0];
+  ASSERT_EQ(m.params().fluorophores.size(), 2u);
+  EXPECT_FLOAT_EQ(m.sigmaF(0, 450.0f), 0.4f);
+  // ln 10 · 1000 L/(mol·cm) · 0.01 mol/L · 0.1 cm per mm.
+  EXPECT_NEAR(m.sigmaF(1, 450.0f), std::log(10.0f) * 1.0f, 1e-5f);
+  EXPECT_FLOAT_EQ(m.params().fluorophores[1].yield, 0.5f);
+  EXPECT_FLOAT_EQ(m.sigmaS(450.0f), 0.5f);
+  EXPECT_FLOAT_EQ(m.sigmaT(450.0f), 1.0f + 0.4f + std::log(10.0f) * 1.0f);
+  EXPECT_TRUE(m.fluoresces());
+}
+
+TEST_F(MitsubaImport, UnsupportedMediaAreOneLineErrors) {
+  const std::string line = file() + ":7: ";  // kSensor, then kLight on line 6
+  EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"homogeneous\"><phase type=\"rayleigh\"/></medium>")),
+                       line + "phase 'rayleigh': unsupported phase plugin (isotropic, hg)"));
+  EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"homogeneous\"><spectrum name=\"radiance\" value=\"1\"/></medium>")),
+                       line + "medium 'homogeneous': unsupported property 'radiance'"));
+  EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"homogeneous\"><volume name=\"albedo\" type=\"gridvolume\">"
+                                          "<string name=\"filename\" value=\"a.vol\"/></volume></medium>")),
+                       line + "volume 'gridvolume': a spatially varying albedo is not supported"));
+  EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"homogeneous\"><float name=\"albedo\" value=\"1.5\"/></medium>")),
+                       line + "medium 'homogeneous': albedo must lie in [0, 1]"));
+  EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"homogeneous\"><phase type=\"hg\"><float name=\"g\" value=\"1\"/></phase></medium>")),
+                       line + "medium 'homogeneous': in kasha's translation /media/fog/g"));
+  EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"fancy\"/>")),
+                       line + "medium 'fancy': unsupported medium plugin"));
+  EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"other\" type=\"homogeneous\"/>")),
+                       "'interior' must be a <medium> or a <ref> to a <medium id> declared before"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + "<medium id=\"fog\" type=\"homogeneous\"/>\n"
+                                                   "<shape type=\"cube\"><ref name=\"interior\" id=\"fog\"/></shape>"),
+                       line + "shape 'cube': a cube with different media inside and outside"));
+  EXPECT_TRUE(contains(error("<medium id=\"fog\" type=\"homogeneous\"/>\n<emitter type=\"constant\"><ref id=\"fog\"/></emitter>" + std::string(kFloor)),
+                       line + "emitter 'constant': a medium around a constant emitter"));
+}
+
+TEST_F(MitsubaImport, HeterogeneousGridMediumIsTranslatedAndLoaded) {
+  std::ofstream(dir / "smoke.vol", std::ios::binary) << test::volBytes({2, 2, 2}, 1, {0, 1, 2, 3, 4, 5, 6, 7});
+  const std::string medium = R"(
+<medium id="fog" type="heterogeneous"><volume name="sigma_t" type="gridvolume"><string name="filename" value="smoke.vol"/>
+  <transform name="to_world"><scale value="2"/></transform></volume><float name="albedo" value="0.9"/><float name="scale" value="10"/></medium>)";
+  const auto t = translate(mediumSphere(medium));
+  const json& fog = t.scene["media"]["fog"];
+  EXPECT_EQ(fog["type"], "heterogeneous");
+  EXPECT_EQ(fog["density"]["file"], (dir / "smoke.vol").string());
+  EXPECT_EQ(fog["density"]["use_grid_bbox"], false);
+  EXPECT_EQ(fog["density"]["transform"][0][0], 2.0);
+  EXPECT_NEAR(fog["sigma_a"].get<double>(), 1.0, 1e-6);  // (1 − 0.9)·10, scaled by the density
+  EXPECT_NEAR(fog["sigma_s"].get<double>(), 9.0, 1e-6);
+  // Loaded: the grid, scaled by 2, covers [0, 2]³; at its centre the trilinear value is the mean of
+  // its eight cells, 3.5; outside it the medium is empty; its maximum, 7, makes the majorant.
+  const auto scene = load(mediumSphere(medium));
+  const Medium& m = *scene->media.at(0);
+  ASSERT_TRUE(m.heterogeneous());
+  EXPECT_NEAR(m.density(Vec3(1.0f)), 3.5f, 1e-5f);
+  EXPECT_EQ(m.density(Vec3(3.0f, 1.0f, 1.0f)), 0.0f);
+  EXPECT_EQ(m.maxDensity(), 7.0f);
+  EXPECT_NEAR(m.densityExtent(Vec3(-1.0f, 1.0f, 1.0f), Vec3(1, 0, 0)), 3.0f, 1e-5f);  // leaves the box at x = 2
+  // The grid is read and checked.
+  std::ofstream(dir / "smoke.vol", std::ios::binary) << test::volBytes({2, 2, 2}, 1, {0, 1, 2});
+  EXPECT_TRUE(contains(error(mediumSphere(medium)), "smoke.vol: header: declares 2x2x2 cells of 1 channels (32 bytes), but 12 bytes follow the header"));
+  // A heterogeneous medium without grids is homogeneous.
+  const auto plain = translate(mediumSphere(R"(<medium id="fog" type="heterogeneous"><float name="sigma_t" value="4"/></medium>)"));
+  EXPECT_EQ(plain.scene["media"]["fog"]["type"], "homogeneous");
+}
+
+TEST_F(MitsubaImport, MediumSphereRendersAsItsJsonTwin) {
+  // The same scene written by hand in kasha's JSON (σ_a = 2·0.25·0.5, σ_s = 2·0.75·0.5) renders
+  // the same image with pt at the same seed; the camera is the translation's (its field of view is
+  // another test's business).
+  const std::string xml = R"(<scene version="3.0.0">
+    <sensor type="perspective"><float name="fov" value="40"/><string name="fov_axis" value="y"/>
+      <transform name="to_world"><lookat origin="0, 0, -5" target="0, 0, 0" up="0, 1, 0"/></transform>
+      <film type="hdrfilm"><integer name="width" value="12"/><integer name="height" value="12"/><rfilter type="box"/></film>
+      <sampler type="independent"><integer name="sample_count" value="4"/></sampler>
+    </sensor>
+    <emitter type="point"><point name="position" x="0" y="3" z="-2"/><spectrum name="intensity" value="20"/></emitter>
+    <medium id="fog" type="homogeneous"><float name="sigma_t" value="2"/><float name="albedo" value="0.75"/>
+      <float name="scale" value="0.5"/><phase type="hg"><float name="g" value="0.3"/></phase></medium>
+    <shape type="sphere"><float name="radius" value="1.2"/><ref name="interior" id="fog"/></shape>
+    <shape type="sphere"><point name="center" x="0" y="0" z="3"/><float name="radius" value="1.5"/>
+      <bsdf type="diffuse"><spectrum name="reflectance" value="0.5"/></bsdf></shape>
+  </scene>)";
+  const std::string xmlPath = write("fog.xml", xml);
+  std::ifstream in(xmlPath);
+  const json camera = mitsuba::translateMitsubaScene(std::string(std::istreambuf_iterator<char>(in), {}), xmlPath).scene["camera"];
+  const auto twin = [&](double sigmaS) {
+    const json scene = {
+        {"camera", camera},
+        {"render", {{"spp", 4}}},
+        {"media", {{"fog", {{"type", "homogeneous"}, {"sigma_a", 0.25}, {"sigma_s", sigmaS}, {"g", 0.3}}}}},
+        {"materials", {{"grey", {{"type", "lambertian"}, {"reflectance", 0.5}}}}},
+        {"shapes", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1.2}, {"interior", "fog"}},
+                    {{"type", "sphere"}, {"center", {0, 0, 3}}, {"radius", 1.5}, {"material", "grey"}}}},
+        {"lights", {{{"type", "point"}, {"position", {0, 3, -2}}, {"intensity", 20}}}}};
+    return write("fog" + std::to_string(sigmaS) + ".json", scene.dump());
+  };
+  const std::vector<Vec3> fromXml = test::renderFilm(xmlPath, "pt"), fromJson = test::renderFilm(twin(0.75), "pt");
+  ASSERT_EQ(fromXml.size(), 144u);
+  size_t differing = 0, lit = 0;
+  for (size_t i = 0; i < fromXml.size(); ++i) {
+    differing += fromXml[i] != fromJson[i];
+    lit += fromXml[i].y > 0.0f;
+  }
+  EXPECT_EQ(differing, 0u) << "bit-identical pixels expected";
+  EXPECT_GT(lit, 30u);  // both spheres
+  // The comparison sees the medium: another σ_s changes the image.
+  const std::vector<Vec3> other = test::renderFilm(twin(0.7), "pt");
+  size_t changed = 0;
+  for (size_t i = 0; i < other.size(); ++i) changed += other[i] != fromXml[i];
+  EXPECT_GT(changed, 10u);
 }
 
 }  // namespace

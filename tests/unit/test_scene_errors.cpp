@@ -967,8 +967,13 @@ TEST_F(SceneLoader, BadMediumFields) {
               "unknown field");
   expectError(media([](json& m) { m["ink"]["fluorophores"] = {{"yield", 1}}; }), "/media/ink/fluorophores",
               "expected an array");
-  expectError(media([](json& m) { m["fog"]["type"] = "heterogeneous"; }), "/media/fog/type",
-              "'heterogeneous' is not a medium type (homogeneous)");
+  expectError(media([](json& m) { m["fog"]["type"] = "smoke"; }), "/media/fog/type",
+              "'smoke' is not a medium type (homogeneous, heterogeneous)");
+  expectError(media([](json& m) { m["fog"]["type"] = "heterogeneous"; }), "/media/fog/density", "missing required field");
+  expectError(media([](json& m) {
+    m["ink"]["type"] = "heterogeneous";
+    m["ink"]["density"] = {{"file", "missing.vol"}};
+  }), "/media/ink/density/file", "missing.vol");
   expectError(media([](json& m) { m["fog"]["sigma_t"] = 1; }), "/media/fog/sigma_t", "unknown field");
   expectError(media([](json& m) { m = json::array(); }), "/media", "expected an object of named media");
 }
