@@ -7,7 +7,7 @@
 # agreement, the furnace scene series, the point light in a sphere, uniform sensor sampling, tests
 # named Slow, and the statistical agreements whose code the closed forms run too: smooth spectra,
 # the mollified joins, the smooth sphere, split photons, the fluorescent caustic, merge bias, Jung18
-# fig. 1: 536 of the 2094 test-seconds, about 4.5 of the 17.5 minutes on 2 cores), and the closed
+# fig. 1, the media scenes' lt-vs-pt agreement, whose media code the media closed forms run too: 536 of the 2094 test-seconds, about 4.5 of the 17.5 minutes on 2 cores), and the closed
 # forms of the estimators whose code others' closed forms run: bdpt with its pilot (it runs
 # bdpt.both's, bdpt-shared's or bdpt-independent's estimator; the pilot runs in BdptFamilies.*), vcm
 # with its pilot (pt's or vcm.bidirectional's; the pilot in VcmPaths.*), and vc and bpm
@@ -21,6 +21,6 @@ export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_stri
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 exclude=()
 if [ "${SANITIZE_ALL:-0}" != "1" ]; then
-  exclude=(-E '^Cornell/|Scenes/Furnace\.|PointLightInsideFluorescentSphere|UniformSensorSampling|Slow|SmoothSpectraStrategies\.|SmoothSpectra\.Agrees|MollifiedConnectionsRenderWhat|SmoothSphere\.|SplitPhotonsMeetTheFurnace|FluorescentCausticAgreement\.|MergeBias\.|Jung18Fig1\.|^(bdpt|vcm|vcm\.gather|vc|bpm)\.ClosedForm\.')
+  exclude=(-E '^Cornell/|Scenes/Furnace\.|PointLightInsideFluorescentSphere|UniformSensorSampling|Slow|SmoothSpectraStrategies\.|SmoothSpectra\.Agrees|MollifiedConnectionsRenderWhat|SmoothSphere\.|SplitPhotonsMeetTheFurnace|FluorescentCausticAgreement\.|MergeBias\.|Jung18Fig1\.|MediaScenes\.|^(bdpt|vcm|vcm\.gather|vc|bpm)\.ClosedForm\.')
 fi
 ctest --test-dir build-sanitize --output-on-failure -j2 "${exclude[@]}"
