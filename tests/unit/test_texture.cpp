@@ -202,7 +202,7 @@ TEST_F(TextureFiles, ClearErrors) {
   writeText("garbage.exr", "not an image");
   EXPECT_EQ(error({{"Q_texture", "garbage.exr"}}).rfind(at + "Q_texture: " + dir + "/garbage.exr: cannot read OpenEXR", 0), 0u);
   EXPECT_EQ(error({{"c_texture", "ink.gif"}}), at + "c_texture: '" + dir +
-                                                  "/ink.gif': unknown image format '.gif' (expected .png, .bmp, .tga, "
+                                                  "/ink.gif': unknown image format '.gif' (expected .png, .jpg, .bmp, .tga, "
                                                   ".hdr or .exr)");
   writePng("two.png", 2, 1, std::vector<unsigned char>(8, 255));
   writePng("three.png", 3, 1, std::vector<unsigned char>(12, 255));
