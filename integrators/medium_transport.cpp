@@ -50,17 +50,10 @@ float LaneRatios::misWeight() const {
   return float(n) / s;
 }
 
-FreeFlight traceFreeFlight(const Scene& scene, Ray ray, int medium, std::span<const float> lambda, float u,
-                           TransportMode mode, RayCounter& counter) {
+FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, std::span<const float> lambda, float u,
+                                       TransportMode mode, RayCounter& counter) {
   FreeFlight f;
   const size_t n = lambda.size();
-  std::fill(f.weight, f.weight + n, 1.0f);
-  std::fill(f.ratio, f.ratio + n, 1.0f);
-  if (!scene.hasMedia()) {
-    f.hit = scene.accel->intersect(ray);
-    ++counter.closest;
-    return f;
-  }
   // A camera path's flight, in a scene with a fluorescent medium, is drawn from the one-sample
   // mixture of the analog density (rate σ_t) and a source-seeking one (rate σ_t + A_fl, A_fl the
   // fluorescent source rate at λ_o of media.md eq. 5), each with probability ½ (media.md eq. 6b;
@@ -156,19 +149,14 @@ FreeFlight traceFreeFlight(const Scene& scene, Ray ray, int medium, std::span<co
     gap = crossingGap(*hit, ray.d);
   }
   std::fill(f.weight, f.weight + n, 0.0f);  // lost between boundaries: absorbed
+  std::fill(f.ratio, f.ratio + n, 1.0f);
   f.medium = medium;
   return f;
 }
 
-bool segmentTransmittance(const Scene& scene, Vec3 origin, const Vec3& d, float tMax, int medium,
-                          std::span<const float> lambda, float* tr, RayCounter& counter) {
+bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec3& d, float tMax, int medium,
+                                      std::span<const float> lambda, float* tr, RayCounter& counter) {
   const size_t n = lambda.size();
-  if (!scene.hasMedia()) {
-    ++counter.shadow;
-    if (scene.accel->occluded(origin, d, tMax)) return false;
-    std::fill(tr, tr + n, 1.0f);
-    return true;
-  }
   float tau[kMaxLanes] = {};  // homogeneous segments' optical depth
   float ratio[kMaxLanes];     // heterogeneous segments' ratio-tracking estimates
   std::fill(ratio, ratio + n, 1.0f);

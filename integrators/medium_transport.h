@@ -3,6 +3,7 @@
 // in them: free flights sampled by optical depth at the wavelength of the path's hero lane (lane 0),
 // and transmittance along connections, both across index-matched boundaries (shapes that only
 // separate media), switching media as the shapes' MediumInterfaces say.
+#include <algorithm>
 #include <optional>
 #include <span>
 
@@ -48,15 +49,32 @@ struct FreeFlight {
 // heterogeneous media (eq. 8). Camera paths (Radiance) in a scene with a fluorescent medium draw
 // it, half of the time, with the fluorescent source rate A_fl(λ_0) added to σ_t (eq. 6b): a medium
 // that fluoresces at λ_o without absorbing it (a Stokes shift) would otherwise never be collided
-// with at λ_o. In a scene without media this is one intersection, and the weights are 1.
-FreeFlight traceFreeFlight(const Scene& scene, Ray ray, int medium, std::span<const float> lambda, float u,
-                           TransportMode mode, RayCounter& counter);
+// with at λ_o. In a scene without media this is one intersection (inline: the integrators' hot
+// loop), and `weight` and `ratio` are left unset: without media there is nothing to weigh.
+FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, std::span<const float> lambda, float u,
+                                       TransportMode mode, RayCounter& counter);
+inline FreeFlight traceFreeFlight(const Scene& scene, const Ray& ray, int medium, std::span<const float> lambda, float u,
+                                  TransportMode mode, RayCounter& counter) {
+  if (scene.hasMedia()) return traceFreeFlightThroughMedia(scene, ray, medium, lambda, u, mode, counter);
+  FreeFlight f;
+  f.hit = scene.accel->intersect(ray);
+  ++counter.closest;
+  return f;
+}
 
 // The transmittance exp(−τ(λ_k)) of every lane along the segment from `origin` (in `medium`) in
 // direction d up to distance tMax, across index-matched boundaries; false (and tr unset) if a
-// surface blocks the segment. In a scene without media, one occlusion query.
-bool segmentTransmittance(const Scene& scene, Vec3 origin, const Vec3& d, float tMax, int medium,
-                          std::span<const float> lambda, float* tr, RayCounter& counter);
+// surface blocks the segment. In a scene without media, one occlusion query (inline).
+bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec3& d, float tMax, int medium,
+                                      std::span<const float> lambda, float* tr, RayCounter& counter);
+inline bool segmentTransmittance(const Scene& scene, const Vec3& origin, const Vec3& d, float tMax, int medium,
+                                 std::span<const float> lambda, float* tr, RayCounter& counter) {
+  if (scene.hasMedia()) return segmentTransmittanceThroughMedia(scene, origin, d, tMax, medium, lambda, tr, counter);
+  ++counter.shadow;
+  if (scene.accel->occluded(origin, d, tMax)) return false;
+  std::fill(tr, tr + lambda.size(), 1.0f);
+  return true;
+}
 
 // The medium around a path vertex: the one the path arrived in, and whether the vertex is on a
 // surface (whose MediumInterface decides which medium a direction leaves into) or a point inside

@@ -77,10 +77,8 @@ struct Scene {
   }
   // The collision kernel of medium m as a Bsdf (materials/volume_scattering.h), in a fixed frame:
   // a medium point has no normal, and its phase function depends on angles between directions only.
-  Bsdf mediumBsdf(int m) const {
-    const Frame frame{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
-    return Bsdf(*mediumScattering[size_t(m)], HitContext{Vec2(0.0f), frame, frame, {}, MeshPoint{}, Vec3(0.0f), Vec3(0.0f)});
-  }
+  // (Out of line, scene/scene.cpp: it stays out of the integrators' hot loops in scenes without media.)
+  Bsdf mediumBsdf(int m) const;
   const EnvironmentLight* environment() const {
     return environmentLight < 0 ? nullptr : static_cast<const EnvironmentLight*>(lights[size_t(environmentLight)].get());
   }

@@ -1,0 +1,10 @@
+#include "scene/scene.h"
+
+namespace kasha {
+
+Bsdf Scene::mediumBsdf(int m) const {
+  const Frame frame{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  return Bsdf(*mediumScattering[size_t(m)], HitContext{Vec2(0.0f), frame, frame, {}, MeshPoint{}, Vec3(0.0f), Vec3(0.0f)});
+}
+
+}  // namespace kasha
