@@ -199,13 +199,6 @@ bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec
   return false;
 }
 
-bool lightTransmittance(const Scene& scene, const Hit& hit, VertexMedium where, const LightSample& ls,
-                        std::span<const float> lambda, float* tr, RayCounter& counter) {
-  const Vec3 origin = offsetPoint(hit.p, hit.ng, ls.wi);
-  const float tMax = std::isinf(ls.dist) ? kInf : ls.dist * (1.0f - 1e-4f) - rayEpsilon(hit.p);
-  return segmentTransmittance(scene, origin, ls.wi, tMax, where.leaving(scene, hit, ls.wi), lambda, tr, counter);
-}
-
 float freeFlightUniform(Sampler& rng, uint32_t firstDimension, int depth) {
   rng.setDimension(kFreeFlightDimensions + firstDimension + uint32_t(depth));
   const float u = rng.uniform();

@@ -4,6 +4,7 @@
 // and transmittance along connections, both across index-matched boundaries (shapes that only
 // separate media), switching media as the shapes' MediumInterfaces say.
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <span>
 
@@ -89,8 +90,13 @@ struct VertexMedium {
 
 // The shadow ray of next-event estimation: the transmittance of every lane from vertex `hit` (a
 // surface hit, or a medium point with ng = 0) to the light point of `ls`; false if a surface blocks it.
-bool lightTransmittance(const Scene& scene, const Hit& hit, VertexMedium where, const LightSample& ls,
-                        std::span<const float> lambda, float* tr, RayCounter& counter);
+inline bool lightTransmittance(const Scene& scene, const Hit& hit, VertexMedium where, const LightSample& ls,
+                               std::span<const float> lambda, float* tr, RayCounter& counter) {
+  const Vec3 origin = offsetPoint(hit.p, hit.ng, ls.wi);
+  const float tMax = std::isinf(ls.dist) ? kInf : ls.dist * (1.0f - 1e-4f) - rayEpsilon(hit.p);
+  const int medium = scene.hasMedia() ? where.leaving(scene, hit, ls.wi) : -1;
+  return segmentTransmittance(scene, origin, ls.wi, tMax, medium, lambda, tr, counter);
+}
 
 // The uniform of the free flight from vertex `depth` of a path whose dimensions start at
 // firstDimension: from a region of the sampler's dimensions of its own, so that the vertex blocks

@@ -152,7 +152,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     const std::optional<Vec3> w = scatterLightLanes(bsdf, wi, e, lanes, depth >= rrDepth_, magnitude0, rng);
     if (!w) break;
     ray = Ray{offsetPoint(vertex.p, vertex.ng, *w), *w};
-    medium = where.leaving(scene, vertex, *w);
+    if (media) medium = where.leaving(scene, vertex, *w);
   }
   return Vec3(0.0f);
 }

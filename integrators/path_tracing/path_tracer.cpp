@@ -164,9 +164,9 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     }
     // A surface, or a point in a medium (no shape, no normal: offsetPoint leaves it where it is).
     const Shape* shape = flight.collided ? nullptr : &scene.shapes[hit->shape];
-    Hit vertex;
-    if (shape) vertex = *hit;
-    else vertex.p = flight.p, vertex.ng = Vec3(0.0f);
+    Hit mediumPoint;
+    if (!shape) mediumPoint.p = flight.p, mediumPoint.ng = Vec3(0.0f);
+    const Hit& vertex = shape ? *hit : mediumPoint;
     if (shape && shape->emission && seesEmitters) {
       float w = 1.0f;
       if (!prevSpecular) {
@@ -273,7 +273,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     prevP = vertex.p;
     const Vec3 wiWorld = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(vertex.p, vertex.ng, wiWorld), wiWorld};
-    medium = where.leaving(scene, vertex, wiWorld);
+    if (media) medium = where.leaving(scene, vertex, wiWorld);
 
     // Russian roulette on the lanes' total throughput (every lane divided by the same q).
     if (depth + 1 >= rrDepth_) {
