@@ -17,6 +17,7 @@
 #include "materials/lambertian.h"
 #include "tests/support.h"
 #include "tests/expect_contains.h"
+#include "tests/volume_grid_files.h"
 
 namespace kasha {
 namespace {
@@ -974,6 +975,19 @@ TEST_F(SceneLoader, BadMediumFields) {
     m["ink"]["type"] = "heterogeneous";
     m["ink"]["density"] = {{"file", "missing.vol"}};
   }), "/media/ink/density/file", "missing.vol");
+  // A grid that reads, but a heterogeneous medium cannot fluoresce yet (docs/media.md §4).
+  write("smoke.vol", test::volBytes({2, 2, 2}, 1, {0, 1, 2, 3, 4, 5, 6, 7}));
+  expectError(media([](json& m) {
+    m["ink"]["type"] = "heterogeneous";
+    m["ink"]["density"] = {{"file", "smoke.vol"}};
+  }), "/media/ink/fluorophores", "a heterogeneous medium cannot fluoresce yet");
+  // Without fluorophores it loads.
+  {
+    json j = withMedia(base);
+    j["media"]["fog"]["type"] = "heterogeneous";
+    j["media"]["fog"]["density"] = {{"file", "smoke.vol"}};
+    EXPECT_TRUE(loadSceneFromString(j.dump(), path)->media[0]->heterogeneous());
+  }
   expectError(media([](json& m) { m["fog"]["sigma_t"] = 1; }), "/media/fog/sigma_t", "unknown field");
   expectError(media([](json& m) { m = json::array(); }), "/media", "expected an object of named media");
 }
