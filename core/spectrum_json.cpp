@@ -70,7 +70,7 @@ Spectrum parseObject(const nlohmann::json& v, const SpectrumContext& ctx, const 
     s = Spectrum::piecewiseLinear(x, y);
   } else if (type == "file") {
     const std::string rel = f.string("file");
-    const std::string path = (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel;
+    const std::string path = ctx.resolve(rel);
     const bool explicitOutside = f.has("outside");
     const std::string outside = f.string("outside", "clamp");
     if (outside != "clamp" && outside != "zero") f.fail("outside", "expected \"clamp\" or \"zero\", got \"" + outside + "\"");

@@ -33,6 +33,8 @@ struct SpectrumContext {
 
   std::string file;     // the scene file, for messages
   std::string baseDir;  // directory that relative paths start from
+  // A file named in the scene: absolute as it is, else relative to baseDir.
+  std::string resolve(const std::string& rel) const { return !rel.empty() && rel[0] == '/' ? rel : baseDir + "/" + rel; }
   const std::map<std::string, Spectrum>* named = nullptr;
   // If set, resolves a name (before `named` and the presets): the scene loader parses named
   // spectra on demand with it. Returns nullptr for an unknown name; `pointer` is where the name

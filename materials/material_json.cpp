@@ -112,7 +112,7 @@ constexpr size_t kMaxMaterialFileDepth = 16;
 // through others, is refused, as is a chain deeper than kMaxMaterialFileDepth.
 std::unique_ptr<Material> parseMaterialFile(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range) {
   const std::string rel = f.string("file");
-  const std::string path = (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel;
+  const std::string path = ctx.resolve(rel);
   std::error_code ec;
   const std::string canonical = std::filesystem::weakly_canonical(path, ec).string();
   const std::string key = ec ? path : canonical;

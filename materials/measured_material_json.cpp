@@ -28,7 +28,7 @@ std::unique_ptr<Material> parseZhdanov(JsonFields& f, const SpectrumContext& ctx
 std::unique_ptr<Material> parseMeasuredReradiation(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range,
                                                    bool allowUnphysical) {
   const std::string rel = f.string("file");
-  const std::string path = (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel;
+  const std::string path = ctx.resolve(rel);
   MeasuredReradiationOptions o;
   o.noiseFloor = f.number("noise_floor", o.noiseFloor);
   if (!(o.noiseFloor >= 0.0f)) f.fail("noise_floor", "must be a number ≥ 0");

@@ -50,7 +50,7 @@ Fluorophore fluorophore(JsonFields& medium, const nlohmann::json& v, const Spect
 std::shared_ptr<const DensityField> densityGrid(JsonFields& f, const SpectrumContext& ctx) {
   JsonFields density(f.get("density"), ctx.file, f.path("density"));
   const std::string rel = density.string("file");
-  const std::string path = (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel;
+  const std::string path = ctx.resolve(rel);
   const glm::mat4 toWorld = density.has("transform") ? density.affine("transform") : glm::mat4(1.0f);
   const bool useGridBox = density.boolean("use_grid_bbox", false);
   density.finish();

@@ -43,7 +43,7 @@ std::shared_ptr<const Texture> imageTexture(JsonFields& parent, const std::strin
     if (!e) f->fail("encoding", "unknown encoding '" + encodingName + "' (linear, srgb)");
     encoding = *e;
   }
-  const std::string path = (!file.empty() && file[0] == '/') ? file : ctx.baseDir + "/" + file;
+  const std::string path = ctx.resolve(file);
   try {
     if (ctx.textures) return ctx.textures->load(path, channel, wrap, filter, encoding);
     return TextureLoader(ctx.memoryLimit).load(path, channel, wrap, filter, encoding);

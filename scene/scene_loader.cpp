@@ -90,7 +90,7 @@ struct Loader {
     return &(named[name] = std::move(s));
   }
 
-  std::string resolve(const std::string& rel) const { return (!rel.empty() && rel[0] == '/') ? rel : ctx.baseDir + "/" + rel; }
+  std::string resolve(const std::string& rel) const { return ctx.resolve(rel); }
 
   // A light's spectrum must put some energy into the scene's range.
   Spectrum emitterSpectrum(JsonFields& f, const std::string& key) {
