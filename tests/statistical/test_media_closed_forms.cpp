@@ -5,6 +5,7 @@
 // so the lanes' free-flight densities differ, and every fluorophore a σ_f varying with λ.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -201,9 +202,12 @@ TEST_P(MediaClosedForm, ScatteringFurnace) {
 
 INSTANTIATE_TEST_SUITE_P(Estimators, MediaClosedForm,
                          ::testing::Values(Estimator{"pt", 1, 1}, Estimator{"pt", 4, 1}, Estimator{"lt", 1, 8},
-                                           Estimator{"lt", 4, 8}),
+                                           Estimator{"lt", 4, 8}, Estimator{"bdpt", 1, 1},
+                                           Estimator{"bdpt-shared", 1, 1}, Estimator{"bdpt-independent", 1, 1}),
                          [](const ::testing::TestParamInfo<Estimator>& info) {
-                           return std::string(info.param.integrator) + "_lanes" + std::to_string(info.param.lanes);
+                           std::string name = std::string(info.param.integrator) + "_lanes" + std::to_string(info.param.lanes);
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
                          });
 
 }  // namespace

@@ -1,0 +1,40 @@
+#include "integrators/bidirectional/path_media.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace kasha::bidir {
+
+int mediumToward(const Scene& scene, const PathVertex& v, const Vec3& w) {
+  if (v.kind == PathVertex::Kind::Medium || v.shape < 0) return v.medium;
+  Hit at;
+  at.shape = uint32_t(v.shape);
+  at.ng = v.n;
+  return scene.mediumBeyond(at, w, v.medium);
+}
+
+double flightFactor(const Scene& scene, TransportMode mode, const SegmentDepth& d, const PathVertex& target,
+                    float lambda) {
+  if (!scene.hasMedia()) return 1.0;
+  const bool mixture = mode == TransportMode::Radiance && scene.hasFluorescentMedia();
+  float rate = 1.0f, seekRate = 1.0f;
+  if (target.kind == PathVertex::Kind::Medium) {
+    // Homogeneous media only (bdpt refuses heterogeneous ones): σ_t does not depend on the point.
+    rate = seekRate = scene.media[size_t(target.medium)]->sigmaT(lambda);
+    if (mixture) seekRate += scene.mediumScattering[size_t(target.medium)]->fluorescentWeight(mode, lambda);
+  }
+  return freeFlightDensity(mixture, d, rate, seekRate);
+}
+
+void requireBidirectionalMedia(const Scene& scene, const RenderSettings& settings) {
+  for (size_t m = 0; m < scene.media.size(); ++m)
+    if (scene.media[m]->heterogeneous())
+      throw std::invalid_argument("bdpt: media: heterogeneous media are not supported by bdpt yet (pt and lt render them)");
+  if (settings.heroWavelengths != kAutoLanes && settings.heroWavelengths > 1)
+    throw std::invalid_argument("bdpt: render/hero_wavelengths " + std::to_string(settings.heroWavelengths) +
+                                ": scenes with media take one wavelength per path in bdpt");
+  if (settings.bdpt.mollify)
+    throw std::invalid_argument("bdpt: render/bdpt/mollify: not supported in scenes with media");
+}
+
+}  // namespace kasha::bidir
