@@ -137,6 +137,9 @@ struct BdptSettings {
 // Vertex connection and merging, render/vcm (integrators "vcm", "vc" and "bpm", docs/bdpt-mis.md §12).
 struct VcmSettings : ProgressiveSettings {
   VcmPaths paths = VcmPaths::Auto;  // vcm's subpaths
+  // Radius of the first pass's merges at collisions in media, scene units; 0: from the scene (a
+  // sphere holds about one light vertex, counted on a pilot; docs/media.md §6).
+  float volumeRadius = 0.0f;
 };
 
 // The ranges of the integrators' own settings, checked in one place for the scene loader and for
@@ -144,6 +147,7 @@ struct VcmSettings : ProgressiveSettings {
 // (key as in the scene file, "alpha") and must not return.
 using SettingFailure = std::function<void(const char* key, const std::string& reason)>;
 void checkProgressiveSettings(const ProgressiveSettings& p, const SettingFailure& fail);
+void checkVcmSettings(const VcmSettings& v, const SettingFailure& fail);
 void checkBdptSettings(const BdptSettings& b, const SettingFailure& fail);
 
 // Thrown when an integrator cannot do what fluorescent_lanes asks (its message says why).

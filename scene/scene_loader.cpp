@@ -209,6 +209,8 @@ struct Loader {
     JsonFields f(render.get("vcm"), file, render.path("vcm"));
     VcmSettings& v = scene.render.vcm;
     progressive(f, v);
+    v.volumeRadius = f.number("volume_radius", v.volumeRadius);
+    checkVcmSettings(v, [&](const char* key, const std::string& why) { f.fail(key, why); });
     const std::string paths = f.string("paths", toString(v.paths));
     if (const auto choice = parseVcmPaths(paths)) v.paths = *choice;
     else f.fail("paths", "'" + paths + "' is not a choice of vcm's subpaths (auto, bidirectional, gather, camera)");

@@ -104,11 +104,11 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {
     const PathVertex& v = (*L)[size_t(i)];
-    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible()};
+    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible(), v.inMedium(), mergeable(v)};
   }
   for (int j = 0; j < t; ++j) {
     const PathVertex& v = C[size_t(j)];
-    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible()};
+    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible(), v.inMedium(), mergeable(v)};
   }
   fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
   fp.v[size_t(k)].pdfLight = 0.0;

@@ -26,14 +26,27 @@ double flightFactor(const Scene& scene, TransportMode mode, const SegmentDepth& 
   return freeFlightDensity(mixture, d, rate, seekRate);
 }
 
-void requireBidirectionalMedia(const Scene& scene, const RenderSettings& settings) {
+bool sphereClearOfSurfaces(const Scene& scene, const Vec3& p, float r, RayCounter& counter) {
+  constexpr float d = 0.57735027f;  // 1/√3
+  static const Vec3 directions[14] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},  {0, -1, 0},  {0, 0, 1},  {0, 0, -1},
+                                      {d, d, d},  {d, d, -d}, {d, -d, d}, {d, -d, -d}, {-d, d, d}, {-d, d, -d},
+                                      {-d, -d, d}, {-d, -d, -d}};
+  for (const Vec3& w : directions) {
+    ++counter.shadow;
+    if (scene.accel->occluded(p, w, r)) return false;
+  }
+  return true;
+}
+
+void requireBidirectionalMedia(const Scene& scene, const RenderSettings& settings, const std::string& integrator) {
   for (size_t m = 0; m < scene.media.size(); ++m)
     if (scene.media[m]->heterogeneous())
-      throw std::invalid_argument("bdpt: media: heterogeneous media are not supported by bdpt yet (pt and lt render them)");
+      throw std::invalid_argument(integrator + ": media: heterogeneous media are not supported by " + integrator +
+                                  " yet (pt and lt render them)");
   if (settings.heroWavelengths != kAutoLanes && settings.heroWavelengths > 1)
-    throw std::invalid_argument("bdpt: render/hero_wavelengths " + std::to_string(settings.heroWavelengths) +
-                                ": scenes with media take one wavelength per path in bdpt");
-  if (settings.bdpt.mollify)
+    throw std::invalid_argument(integrator + ": render/hero_wavelengths " + std::to_string(settings.heroWavelengths) +
+                                ": scenes with media take one wavelength per path in " + integrator);
+  if (integrator == "bdpt" && settings.bdpt.mollify)
     throw std::invalid_argument("bdpt: render/bdpt/mollify: not supported in scenes with media");
 }
 

@@ -2,6 +2,8 @@
 // The media around BDPT's vertices (docs/media.md §5): which medium a direction leaves a vertex
 // into, and the free-flight factor of a vertex's area density. In a scene without media neither
 // does anything (the factor is exactly 1).
+#include <string>
+
 #include "integrators/bidirectional/path_vertex.h"
 #include "scene/render_settings.h"
 #include "scene/scene.h"
@@ -19,10 +21,16 @@ int mediumToward(const Scene& scene, const PathVertex& v, const Vec3& w);
 double flightFactor(const Scene& scene, TransportMode mode, const SegmentDepth& d, const PathVertex& target,
                     float lambda);
 
+// Whether the sphere of radius r around p meets no surface, by 14 segments from p (the axes and the
+// diagonals): a merge's sphere in a medium (docs/media.md §6) that reaches out of it would count the
+// light vertices of a volume it does not fill, a bias of the order of r/(the medium's thickness). A
+// deterministic function of p, so that the merges' weights and the merges agree.
+bool sphereClearOfSurfaces(const Scene& scene, const Vec3& p, float r, RayCounter& counter);
+
 // Throws std::invalid_argument where the bidirectional engine cannot transport the scene's media
 // with these settings: heterogeneous media (the densities of their free flights, which the MIS
 // weights need, have no closed form), more than one wavelength lane (each lane's flights would have
 // densities of their own), or spectral mollification (its connections join two wavelengths).
-void requireBidirectionalMedia(const Scene& scene, const RenderSettings& settings);
+void requireBidirectionalMedia(const Scene& scene, const RenderSettings& settings, const std::string& integrator);
 
 }  // namespace kasha::bidir

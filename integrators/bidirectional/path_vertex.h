@@ -50,6 +50,9 @@ struct PathVertex {
   // The optical depths, at this vertex's wavelength `lambda`, of the segment its subpath reached it
   // along: what the free-flight densities of that segment need (medium_transport.h).
   SegmentDepth arrival;
+  // A collision whose merge sphere (radius MergeEta::volumeRadius) meets no surface: only there do
+  // merges in media happen (docs/media.md §6).
+  bool sphereInMedium = true;
   // Subpath throughput of each lane up to this vertex, its own scattering excluded; 0 for a lane
   // that ended.
   float beta[kMaxLanes] = {};
@@ -99,6 +102,7 @@ struct PathVertex {
   bool onSurface() const { return kind == Kind::Surface; }
   // Whether the vertex scatters (a surface or a medium point), as opposed to a path's end.
   bool scatters() const { return kind == Kind::Surface || kind == Kind::Medium; }
+  bool inMedium() const { return kind == Kind::Medium; }
   // |cos θ| of direction w with the normal; 1 at a vertex without one (a medium point, a point light).
   float cosine(const Vec3& w) const { return glm::dot(n, n) > 0.0f ? std::abs(glm::dot(n, w)) : 1.0f; }
   // Whether several lanes reach this vertex (each at its own wavelength).

@@ -59,13 +59,15 @@ Track startTrack(const Lanes& lanes, std::vector<PathVertex>& path, const float*
 // Appends the scattering vertex v (a surface or medium point: its place, scattering function,
 // light, media and arrival set), reached along `ray`, to the track's subpath.
 void arrive(Track& tr, PathVertex v, const Ray& ray, const Scene& scene, TransportMode mode, const Strategies& st,
-            Sampler& rng) {
+            Sampler& rng, RayCounter& counter) {
   const Lanes& lanes = *tr.lanes;
   std::vector<PathVertex>& path = *tr.path;
   const PathVertex& prev = path.back();
   const Bsdf& bsdf = *v.bsdf;
   v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf);
   v.gather = !prev.scatters() || (prev.gather && !prev.connectible());
+  if (v.inMedium() && st.merge.volume > 0.0)
+    v.sphereInMedium = sphereClearOfSurfaces(scene, v.p, float(st.merge.volumeRadius), counter);
   // Where sampling depends on the wavelength, the lanes end in the hero lane 0, its weight times n
   // (docs/bdpt-mis.md §10): every density on the subpath is then that lane's. Lane 0 is the member
   // of the lane set that the sensor's own number picks, so it is uniform among them, and the
@@ -199,7 +201,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
       const Bsdf& bsdf = *v.bsdf;
       int alive = 0;
       for (int i = 0; i < nTracks; ++i)
-        if (tracks[i].alive) arrive(tracks[i], v, ray, scene, mode, ws.strategies, rng), ++alive;
+        if (tracks[i].alive) arrive(tracks[i], v, ray, scene, mode, ws.strategies, rng, counter), ++alive;
       ++surfaces;
       if (alive > 1 && lambdaDependent(bsdf))
         for (int i = 0; i < nTracks; ++i)

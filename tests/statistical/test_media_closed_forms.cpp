@@ -25,9 +25,19 @@ struct Estimator {
   // Samples per pixel × 64: light tracing spends most of its paths where the small cameras do not
   // look (the slab's light covers the scene's bounding disk; the furnace walls emit outwards too).
   int sppScale;
+  // vcm's first volume radius (0: from the scene). A large one gives the merges in media most of the
+  // weight; in the furnaces the light vertices are spread uniformly, so a sphere inside the medium
+  // (merges happen only there) estimates their density exactly, whatever its size.
+  float volumeRadius = 0.0f;
 };
 
-void PrintTo(const Estimator& e, std::ostream* os) { *os << e.integrator << " lanes=" << e.lanes; }
+void PrintTo(const Estimator& e, std::ostream* os) {
+  *os << e.integrator << " lanes=" << e.lanes;
+  if (e.volumeRadius > 0.0f) *os << " volume_radius=" << e.volumeRadius;
+}
+
+// A light-vertex density that varies across a merge's sphere biases the merge: the slabs' does.
+bool largeMergeSpheres() { return ::testing::TestWithParam<Estimator>::GetParam().volumeRadius > 0.0f; }
 
 class MediaClosedForm : public ::testing::TestWithParam<Estimator> {
  protected:
@@ -37,6 +47,9 @@ class MediaClosedForm : public ::testing::TestWithParam<Estimator> {
     settings.maxDepth = 1000;
     settings.rrDepth = 3;
     settings.heroWavelengths = GetParam().lanes;
+    settings.vcm.volumeRadius = GetParam().volumeRadius;
+    // vcm with every strategy (its pilot would choose per batch between them and pt, tested alone).
+    settings.vcm.paths = VcmPaths::Bidirectional;
     expectXyzAgreement(scene, GetParam().integrator, settings, exact, batches, 64 * GetParam().sppScale);
   }
 };
@@ -120,16 +133,19 @@ constexpr double kThin = 0.1;
 // the lit face 5.4% brighter, at least 6.8σ in Y. (The transmitted face hardly changes with d near
 // d = 0.1: there the yield is the check.)
 TEST_P(MediaClosedForm, SlabLitFace) {
+  if (largeMergeSpheres()) GTEST_SKIP() << "merge spheres of r_v = 0.25 are biased where the light varies";
   auto scene = slab(kThin, 2.0, 0.6, Face::Lit);
   expectAgreement(*scene, slabXyz(*scene, Face::Lit, kThin));
 }
 
 TEST_P(MediaClosedForm, SlabTransmittedFace) {
+  if (largeMergeSpheres()) GTEST_SKIP() << "merge spheres of r_v = 0.25 are biased where the light varies";
   auto scene = slab(kThin, 2.0, 0.7, Face::Transmitted);
   expectAgreement(*scene, slabXyz(*scene, Face::Transmitted, kThin));
 }
 
 TEST_P(MediaClosedForm, SlabSemiInfinite) {
+  if (largeMergeSpheres()) GTEST_SKIP() << "merge spheres of r_v = 0.25 are biased where the light varies";
   // Seen head-on (μ = 1: a camera ray stays where it entered) through a slab 5 deep: e^{−σ_m·d} <
   // e^{−13} with σ_m ≥ 2.75 at the emitted wavelengths, so the finite slab is the semi-infinite one
   // within 1e-5 (checked below).
@@ -203,9 +219,12 @@ TEST_P(MediaClosedForm, ScatteringFurnace) {
 INSTANTIATE_TEST_SUITE_P(Estimators, MediaClosedForm,
                          ::testing::Values(Estimator{"pt", 1, 1}, Estimator{"pt", 4, 1}, Estimator{"lt", 1, 8},
                                            Estimator{"lt", 4, 8}, Estimator{"bdpt", 1, 1},
-                                           Estimator{"bdpt-shared", 1, 1}, Estimator{"bdpt-independent", 1, 1}),
+                                           Estimator{"bdpt-shared", 1, 1}, Estimator{"bdpt-independent", 1, 1},
+                                           Estimator{"vcm", 1, 1}, Estimator{"vc", 1, 1},
+                                           Estimator{"vcm", 1, 1, 0.25f}),
                          [](const ::testing::TestParamInfo<Estimator>& info) {
                            std::string name = std::string(info.param.integrator) + "_lanes" + std::to_string(info.param.lanes);
+                           if (info.param.volumeRadius > 0.0f) name += "_large_volume_merges";
                            std::replace(name.begin(), name.end(), '-', '_');
                            return name;
                          });
