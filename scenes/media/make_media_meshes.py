@@ -5,7 +5,7 @@ docs/media-scenes.md), and prints the energy yields the scenes use.
 
 Every mesh is a closed surface of revolution: a profile (r, y) in a half-plane, from a point on the
 axis back to a point on the axis with the solid on its left (counter-clockwise), turned about the
-y axis in `segments` steps. Four segments turned by 45 degrees make a square prism (cuvette, slab, cell).
+y axis in `segments` steps. Four segments turned by 45 degrees make a square prism (cuvette, slab).
 Triangles face outwards (away from the solid), as kasha's dielectric needs: the inside of a
 dielectric is the side its normals point away from (docs/scene-format.md).
 
