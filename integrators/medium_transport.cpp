@@ -37,6 +37,23 @@ Rng trackingStream(const Ray& ray, float u) {
   return Rng(a, b);
 }
 
+// Points of the midpoint rule over a heterogeneous portion (densityIntegral).
+constexpr int kDepthPoints = 16;
+
+// ∫ d(x) dx over [t0, t1] of a heterogeneous portion of `ray` (t counted from the boundary, which
+// lies `gap` behind ray.o), by the midpoint rule with kDepthPoints points: times σ_t(λ), an estimate
+// of the portion's optical depth. A deterministic function of the segment, as the bidirectional
+// weights need the free flights' densities to be (media.md §5): any such function keeps them a
+// partition of unity, while the estimates themselves use delta and ratio tracking.
+float densityIntegral(const Medium& m, const Ray& ray, float gap, float t0, float t1) {
+  if (!(t1 > t0)) return 0.0f;
+  const float dt = (t1 - t0) / float(kDepthPoints);
+  float sum = 0.0f;
+  for (int i = 0; i < kDepthPoints; ++i)
+    sum += m.density(ray.o + std::max(t0 + (float(i) + 0.5f) * dt - gap, 0.0f) * ray.d);
+  return sum * dt;
+}
+
 }  // namespace
 
 void LaneRatios::reset(int lanes) {
@@ -51,7 +68,7 @@ float LaneRatios::misWeight() const {
 }
 
 FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, std::span<const float> lambda, float u,
-                                       TransportMode mode, RayCounter& counter) {
+                                       TransportMode mode, RayCounter& counter, bool estimateDepth) {
   FreeFlight f;
   const size_t n = lambda.size();
   // A camera path's flight, in a scene with a fluorescent medium, is drawn from the one-sample
@@ -77,6 +94,13 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
   const auto density = [&](size_t k, float analog, float seeking) {
     return nullRatio[k] * freeFlightDensity(mixture, {tau[k] - tau[0], tauSeek[k] - tau[0]}, analog, seeking);
   };
+  // With estimateDepth, FreeFlight::depth counts heterogeneous portions by their estimated optical
+  // depth (densityIntegral) in place of the majorant's: what tau[0] and tauSeek[0] hold of
+  // majorants, and the estimates.
+  float majorantDepth = 0.0f, majorantSeekDepth = 0.0f, estimatedDepth = 0.0f, estimatedSeekDepth = 0.0f;
+  const auto depthOfFlight = [&] {
+    return SegmentDepth{tau[0] - majorantDepth + estimatedDepth, tauSeek[0] - majorantSeekDepth + estimatedSeekDepth};
+  };
   std::optional<Rng> stream;  // created at the first null collision
   float gap = 0.0f;           // of the medium behind ray.o (crossingGap)
   for (int crossing = 0; crossing <= kMaxCrossings; ++crossing) {
@@ -98,6 +122,14 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
       const float rate0 = seek ? seekRate[0] : sigma[0];
       // Beyond its density's extent a heterogeneous medium is empty: the majorant is 0 there.
       const float active = std::min(length, gap + m.densityExtent(ray.o, ray.d));
+      const bool estimate = estimateDepth && m.heterogeneous();
+      const float tauAtBoundary = tau[0], tauSeekAtBoundary = tauSeek[0];
+      // The portion [0, end] of this medium's segment into FreeFlight::depth's estimate.
+      const auto estimatePortion = [&](float end) {
+        const float integral = densityIntegral(m, ray, gap, 0.0f, end);
+        majorantDepth += tau[0] - tauAtBoundary, majorantSeekDepth += tauSeek[0] - tauSeekAtBoundary;
+        estimatedDepth += sigma[0] / dMax * integral, estimatedSeekDepth += seekRate[0] / dMax * integral;
+      };
       float t = 0.0f;  // along this segment, from the boundary
       while (rate0 > 0.0f && remaining < rate0 * (active - t)) {
         const float dt = remaining / rate0;
@@ -125,7 +157,8 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
           f.ratio[k] = density(k, sigma[k] / dMax, seekRate[k] / dMax) / p0;
         }
         f.collided = true;
-        f.depth = {tau[0], tauSeek[0]};
+        if (estimate) estimatePortion(t);
+        f.depth = depthOfFlight();
         f.p = x;
         f.medium = medium;
         return f;
@@ -136,6 +169,7 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
         tau[k] += opticalDepth(sigma[k], rest);
         tauSeek[k] += opticalDepth(seekRate[k], rest);
       }
+      if (estimate) estimatePortion(active);
     }
     if (!hit || !scene.shapes[hit->shape].isMediumBoundary()) {
       // Passed every medium on the way: lane k's probability P_k; the weight T_k/P_0, the ratio P_k/P_0.
@@ -146,7 +180,7 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
       }
       f.hit = hit;
       f.medium = medium;
-      f.depth = {tau[0], tauSeek[0]};
+      f.depth = depthOfFlight();
       return f;
     }
     medium = scene.mediumBeyond(*hit, ray.d, medium);
@@ -175,13 +209,19 @@ bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec
     const float length = hit ? gap + hit->t : tMax;
     if (medium >= 0) {
       const Medium& m = *scene.media[size_t(medium)];
+      // The optical depths for `depths`: exact in a homogeneous medium, estimated in a heterogeneous
+      // one (densityIntegral); its seeking rate is σ_t + A_fl.
+      const float integral = depths && m.heterogeneous()
+                                 ? densityIntegral(m, Ray{origin, d}, gap, 0.0f, std::min(length, gap + m.densityExtent(origin, d)))
+                                 : length;
+      for (size_t k = 0; depths && k < n; ++k) {
+        const float seekRate = m.sigmaT(lambda[k]) + scene.mediumScattering[size_t(medium)]->fluorescentWeight(
+                                                         TransportMode::Radiance, lambda[k]);
+        depths[k].analog += opticalDepth(m.sigmaT(lambda[k]), integral);
+        depths[k].seeking += opticalDepth(seekRate, integral);
+      }
       if (!m.heterogeneous()) {
         for (size_t k = 0; k < n; ++k) tau[k] += opticalDepth(m.sigmaT(lambda[k]), length);
-        for (size_t k = 0; depths && k < n; ++k) {
-          const float seekRate = m.sigmaT(lambda[k]) + scene.mediumScattering[size_t(medium)]->fluorescentWeight(
-                                                           TransportMode::Radiance, lambda[k]);
-          depths[k].seeking += opticalDepth(seekRate, length);
-        }
       } else {
         // Ratio tracking (Novák et al. 2014) with one majorant for every lane, σ̄ = max d·max_k σ_t(λ_k):
         // T_k is the expectation of Π (1 − d(x_i)·σ_t(λ_k)/σ̄) over the tentative collisions x_i.
@@ -200,7 +240,6 @@ bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec
     }
     if (!hit) {
       for (size_t k = 0; k < n; ++k) tr[k] = ratio[k] * std::exp(-tau[k]);
-      for (size_t k = 0; depths && k < n; ++k) depths[k].analog = tau[k];
       return true;
     }
     medium = scene.mediumBeyond(*hit, d, medium);

@@ -51,7 +51,8 @@ struct FreeFlight {
   float ratio[kMaxLanes];
   // Lane 0's optical depths over the flight: with freeFlightDensity, its density at lane 0, and
   // a camera path's density of the same segment (the seeking depth is tracked on light paths too, in
-  // scenes with a fluorescent medium). Homogeneous media; in heterogeneous ones, the majorant's.
+  // scenes with a fluorescent medium). Exact in homogeneous media; in heterogeneous ones the
+  // majorant's, or with estimateDepth an estimate of the true one.
   SegmentDepth depth;
 };
 
@@ -71,11 +72,13 @@ inline float freeFlightDensity(bool mixture, const SegmentDepth& d, float rate, 
 // that fluoresces at λ_o without absorbing it (a Stokes shift) would otherwise never be collided
 // with at λ_o. In a scene without media this is one intersection (inline: the integrators' hot
 // loop), and `weight` and `ratio` are left unset: without media there is nothing to weigh.
+// With estimateDepth, FreeFlight::depth counts heterogeneous media by a deterministic estimate of
+// their optical depth (a midpoint rule over the density) instead of the majorant's.
 FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, std::span<const float> lambda, float u,
-                                       TransportMode mode, RayCounter& counter);
+                                       TransportMode mode, RayCounter& counter, bool estimateDepth = false);
 inline FreeFlight traceFreeFlight(const Scene& scene, const Ray& ray, int medium, std::span<const float> lambda, float u,
-                                  TransportMode mode, RayCounter& counter) {
-  if (scene.hasMedia()) return traceFreeFlightThroughMedia(scene, ray, medium, lambda, u, mode, counter);
+                                  TransportMode mode, RayCounter& counter, bool estimateDepth = false) {
+  if (scene.hasMedia()) return traceFreeFlightThroughMedia(scene, ray, medium, lambda, u, mode, counter, estimateDepth);
   FreeFlight f;
   f.hit = scene.accel->intersect(ray);
   ++counter.closest;
@@ -85,8 +88,9 @@ inline FreeFlight traceFreeFlight(const Scene& scene, const Ray& ray, int medium
 // The transmittance exp(−τ(λ_k)) of every lane along the segment from `origin` (in `medium`) in
 // direction d up to distance tMax, across index-matched boundaries; false (and tr unset) if a
 // surface blocks the segment. With `depths`, also each lane's optical depths, analog and
-// source-seeking (homogeneous media: what freeFlightDensity needs). In a scene without media, one
-// occlusion query (inline).
+// source-seeking, what freeFlightDensity needs (exact in homogeneous media, estimated as
+// traceFreeFlight's estimateDepth in heterogeneous ones). In a scene without media, one occlusion
+// query (inline).
 bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec3& d, float tMax, int medium,
                                       std::span<const float> lambda, float* tr, RayCounter& counter,
                                       SegmentDepth* depths = nullptr);

@@ -63,7 +63,7 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s)
   // In scenes with media (docs/media.md §5) every free flight's density depends on the wavelength:
   // each path carries one, and the families trace light subpaths of their own.
   const bool media = scene.hasMedia();
-  if (media) bidir::requireBidirectionalMedia(scene, s, name());
+  if (media) bidir::requireBidirectionalMedia(s, name());
   // Wavelength lanes (docs/bdpt-mis.md §10), in every family.
   // The unified estimator carries both families on one light subpath (docs/bdpt-mis.md §11).
   if (mode_ == bidir::WavelengthMode::Unified && families_.independent && !media) {

@@ -19,7 +19,8 @@ double flightFactor(const Scene& scene, TransportMode mode, const SegmentDepth& 
   const bool mixture = mode == TransportMode::Radiance && scene.hasFluorescentMedia();
   float rate = 1.0f, seekRate = 1.0f;
   if (target.kind == PathVertex::Kind::Medium) {
-    // Homogeneous media only (bdpt refuses heterogeneous ones): σ_t does not depend on the point.
+    // σ_t(λ) without a heterogeneous medium's density d(x): every strategy that makes the path
+    // samples x by one free flight, from one side or the other, so d(x) is a factor of all of them.
     rate = seekRate = scene.media[size_t(target.medium)]->sigmaT(lambda);
     if (mixture) seekRate += scene.mediumScattering[size_t(target.medium)]->fluorescentWeight(mode, lambda);
   }
@@ -38,11 +39,7 @@ bool sphereClearOfSurfaces(const Scene& scene, const Vec3& p, float r, RayCounte
   return true;
 }
 
-void requireBidirectionalMedia(const Scene& scene, const RenderSettings& settings, const std::string& integrator) {
-  for (size_t m = 0; m < scene.media.size(); ++m)
-    if (scene.media[m]->heterogeneous())
-      throw std::invalid_argument(integrator + ": media: heterogeneous media are not supported by " + integrator +
-                                  " yet (pt and lt render them)");
+void requireBidirectionalMedia(const RenderSettings& settings, const std::string& integrator) {
   if (settings.heroWavelengths != kAutoLanes && settings.heroWavelengths > 1)
     throw std::invalid_argument(integrator + ": render/hero_wavelengths " + std::to_string(settings.heroWavelengths) +
                                 ": scenes with media take one wavelength per path in " + integrator);

@@ -27,10 +27,9 @@ double flightFactor(const Scene& scene, TransportMode mode, const SegmentDepth& 
 // deterministic function of p, so that the merges' weights and the merges agree.
 bool sphereClearOfSurfaces(const Scene& scene, const Vec3& p, float r, RayCounter& counter);
 
-// Throws std::invalid_argument where the bidirectional engine cannot transport the scene's media
-// with these settings: heterogeneous media (the densities of their free flights, which the MIS
-// weights need, have no closed form), more than one wavelength lane (each lane's flights would have
-// densities of their own), or spectral mollification (its connections join two wavelengths).
-void requireBidirectionalMedia(const Scene& scene, const RenderSettings& settings, const std::string& integrator);
+// Throws std::invalid_argument where the bidirectional engine cannot transport media
+// with these settings: more than one wavelength lane (each lane's flights would have densities of
+// their own), or spectral mollification (its connections join two wavelengths).
+void requireBidirectionalMedia(const RenderSettings& settings, const std::string& integrator);
 
 }  // namespace kasha::bidir

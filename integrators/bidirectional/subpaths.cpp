@@ -165,7 +165,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
       // bdpt.cpp; docs/media.md §5): the flight's weight T/p goes into the throughput.
       Track& lead = tracks[0];
       const float uFlight = media ? rng.uniform() : 0.0f;
-      const FreeFlight flight = traceFreeFlight(scene, ray, lead.medium, {&lead.lambda, 1}, uFlight, mode, counter);
+      const FreeFlight flight = traceFreeFlight(scene, ray, lead.medium, {&lead.lambda, 1}, uFlight, mode, counter, true);
       if (media) lead.beta[0] *= flight.weight[0];
       if (!flight.hit && !flight.collided) {
         if (camera && scene.environment()) {  // the camera path escapes to the environment

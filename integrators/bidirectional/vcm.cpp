@@ -118,7 +118,7 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
   // (docs/media.md §5).
   const bool media = scene.hasMedia();
   if (media) {
-    bidir::requireBidirectionalMedia(scene, s, name());
+    bidir::requireBidirectionalMedia(s, name());
     if (s.heroWavelengths == kAutoLanes) lanes_ = 1;
   }
   if (lanes_ < 1 || lanes_ > bidir::kLightVertexLanes)

@@ -4,8 +4,8 @@
 // elsewhere in a sphere of radius R renders as two nested homogeneous spheres (exact transmittance
 // and collisions by optical depth) of the full and the quartered coefficients. The medium is
 // chromatic (σ_t depends on λ, so the lanes' ratios differ; heterogeneous media do not fluoresce
-// yet). pt with 4 lanes, pt with one and lt must each agree with pt on the nested spheres within
-// 4σ per region.
+// yet). pt with 4 lanes, pt with one, lt, bdpt and vcm (their weights with the flights' estimated
+// optical depths, media.md §5) must each agree with pt on the nested spheres within 4σ per region.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -85,7 +85,7 @@ TEST(HeterogeneousMedia, DeltaAndRatioTrackingAgreeWithNestedHomogeneousMedia) {
     const char* name;
     int lanes, spp;
   };
-  for (const Case& c : {Case{"pt", 4, 64}, Case{"pt", 1, 96}, Case{"lt", 4, 64}}) {
+  for (const Case& c : {Case{"pt", 4, 64}, Case{"pt", 1, 96}, Case{"lt", 4, 64}, Case{"bdpt", 1, 64}, Case{"vcm", 1, 64}}) {
     SCOPED_TRACE(std::string(c.name) + " with " + std::to_string(c.lanes) + " lanes");
     // Power: a combined standard error below 6% of a region, or 2% of the brightest.
     test::expectRegionsAgree(reference, regions(*tracked, c.name, c.lanes, c.spp), 4.0, 0.06, 0.02);

@@ -4,9 +4,9 @@
 //     recorded optical depths give the mixture's density in closed form, at the collision and past
 //     the medium. This was a bias: light paths recorded no seeking depth, and bdpt's own family
 //     rendered the fluorescent equilibrium furnace 3% dark, 5σ;
-//   - what the bidirectional engine cannot weigh yet is refused in one line: heterogeneous media,
-//     several wavelength lanes, mollification; bpm refuses media (its merges alone cannot reach
-//     collisions near a surface).
+//   - what the bidirectional engine cannot weigh yet is refused in one line: several wavelength
+//     lanes, mollification; bpm refuses media (its merges alone cannot reach collisions near a
+//     surface). Heterogeneous media are accepted.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -45,7 +45,9 @@ TEST(BidirectionalMedia, LightPathFlightsKnowTheCameraPathsDensity) {
   for (const float lambda : {450.0f, 520.0f, 600.0f}) {
     const double sigma = scene->media[0]->sigmaT(lambda);
     const double seek = sigma + scene->mediumScattering[0]->fluorescentWeight(TransportMode::Radiance, lambda);
-    if (lambda == 600.0f) ASSERT_GT(seek, 2.0 * sigma);  // at the emission peak the mixture differs
+    if (lambda == 600.0f) {
+      ASSERT_GT(seek, 2.0 * sigma);  // at the emission peak the mixture differs
+    }
     for (int i = 0; i < 64; ++i) {
       const float u = (float(i) + 0.5f) / 64.0f;
       const FreeFlight f = traceFreeFlight(*scene, Ray{Vec3(0, 0, -5), Vec3(0, 0, 1)}, -1, {&lambda, 1}, u,
@@ -106,8 +108,8 @@ TEST_F(BidirectionalMediaRefusals, WhatItCannotWeighYet) {
   writeFile("smoke.vol", test::volBytes({2, 2, 2}, 1, {0.1f, 0.5f, 1, 0.2f, 0.3f, 0.9f, 0.4f, 0.6f}));
   json smoke = ink;
   smoke["media"]["ink"] = {{"type", "heterogeneous"}, {"sigma_a", 0.1}, {"sigma_s", 0.5}, {"density", {{"file", "smoke.vol"}}}};
-  EXPECT_EQ(refusal(smoke, "pt"), "(accepted)");
-  EXPECT_EQ(refusal(smoke, "bdpt"), "bdpt: media: heterogeneous media are not supported by bdpt yet (pt and lt render them)");
+  EXPECT_EQ(refusal(smoke, "bdpt"), "(accepted)");  // heterogeneous media: test_heterogeneous_media.cpp
+  EXPECT_EQ(refusal(smoke, "vcm"), "(accepted)");
 }
 
 }  // namespace
