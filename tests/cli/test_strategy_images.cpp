@@ -41,6 +41,21 @@ bidir::StrategyImages renderWithStrategies(const Scene& scene, const std::string
   return images;
 }
 
+// The MIS-weighted strategy images sum to the render, pixel by pixel.
+void expectSumToTheRender(const bidir::StrategyImages& images, const Film& film) {
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x) {
+      double sum[3] = {0, 0, 0}, magnitude = 0.0;
+      for (const auto& [strategy, img] : images.images()) {
+        const Vec3 v = img->weighted.xyz(x, y);
+        for (int c = 0; c < 3; ++c) sum[c] += v[c], magnitude += std::abs(v[c]);
+      }
+      const Vec3 full = film.xyz(x, y);
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(sum[c], full[c], 1e-5 * magnitude + 1e-7) << "pixel " << x << ", " << y << " channel " << c;
+    }
+}
+
 TEST(StrategyImages, WeightedImagesSumToTheRender) {
   // The furnace with images up to 2 scattering events (longer paths go to "deeper"); the mirror
   // room (glass, floor, wall, mirror) up to 4, where only mollified connections (and merges) render it.
@@ -55,18 +70,22 @@ TEST(StrategyImages, WeightedImagesSumToTheRender) {
       if (depth == 4 && std::string(integrator) == "bdpt-mollified") EXPECT_TRUE(images.images().count("s3_t3_mollified"));
       if (depth == 2 && (std::string(integrator) == "vcm.bidirectional" || std::string(integrator) == "bpm"))  // all merges per camera vertex
         EXPECT_TRUE(images.images().count("merge_t2") && images.images().count("merge_t3"));
-      for (int y = 0; y < film.height(); ++y)
-        for (int x = 0; x < film.width(); ++x) {
-          double sum[3] = {0, 0, 0}, magnitude = 0.0;
-          for (const auto& [strategy, img] : images.images()) {
-            const Vec3 v = img->weighted.xyz(x, y);
-            for (int c = 0; c < 3; ++c) sum[c] += v[c], magnitude += std::abs(v[c]);
-          }
-          const Vec3 full = film.xyz(x, y);
-          for (int c = 0; c < 3; ++c)
-            ASSERT_NEAR(sum[c], full[c], 1e-5 * magnitude + 1e-7) << "pixel " << x << ", " << y << " channel " << c;
-        }
+      expectSumToTheRender(images, film);
     }
+}
+
+// Medium vertices (docs/media.md §5, §6): a scattering, fluorescent medium around the camera, with
+// bdpt's both families and vcm's merges in the volume.
+TEST(StrategyImages, WeightedImagesSumToTheRenderInMedia) {
+  for (const char* integrator : {"bdpt", "vcm.bidirectional"}) {
+    SCOPED_TRACE(integrator);
+    auto scene = load("media_fluorescent_furnace.json");
+    Film film(scene->camera.width(), scene->camera.height());
+    const bidir::StrategyImages images = renderWithStrategies(*scene, integrator, 6, 3, 8, 13, film);
+    EXPECT_TRUE(images.images().count("s2_t2_own"));  // a join through a fluorescent collision
+    if (std::string(integrator) != "bdpt") EXPECT_TRUE(images.images().count("merge_t2"));
+    expectSumToTheRender(images, film);
+  }
 }
 
 TEST(StrategyImages, UnweightedCameraPathsAloneEstimateTheImage) {
