@@ -100,8 +100,8 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& alias, const Scene
     requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
     return std::make_unique<PathTracer>(scene, s);  // checks its strategies and lanes
   }
-  if (scene.hasMedia() && name != "lt")
-    throw std::invalid_argument(name + " does not transport participating media yet (the scene has /media; pt and lt do)");
+  if (scene.hasMedia() && name != "lt" && name != "ppm")
+    throw std::invalid_argument(name + " does not transport participating media yet (the scene has /media; pt, lt and ppm do)");
   if (name == "ppm") return std::make_unique<PpmIntegrator>(scene, s);  // checks its strategies and lanes
   if (name != "lt" && !bdpt) throw std::invalid_argument(integratorNameError(name));
   // Only the camera paths of pt and ppm override the material's sampling at fluorescent events

@@ -5,9 +5,10 @@
 
 namespace kasha {
 
-float progressiveRadiusSquared(float r1, float alpha, int iteration) {
+float progressiveRadius(float r1, float alpha, int iteration, int dimension) {
   const double i = iteration;
-  return float(double(r1) * r1 * std::exp(std::lgamma(i + alpha) - std::lgamma(1.0 + alpha) - std::lgamma(i + 1.0)));
+  const double logShrink = std::lgamma(i + alpha) - std::lgamma(1.0 + alpha) - std::lgamma(i + 1.0);  // ln (r_i/r_1)^d
+  return float(double(r1) * std::exp(logShrink / dimension));
 }
 
 float wavelengthKernel(float x, float h) {

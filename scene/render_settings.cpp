@@ -11,6 +11,11 @@ void checkProgressiveSettings(const ProgressiveSettings& p, const SettingFailure
   if (!(p.bandwidth >= 0.0f)) fail("bandwidth", "must not be negative (0: 1% of the wavelength range)");
 }
 
+void checkPhotonMappingSettings(const PhotonMappingSettings& p, const SettingFailure& fail) {
+  checkProgressiveSettings(p, fail);
+  if (!(p.volumeRadius >= 0.0f)) fail("volume_radius", "must not be negative (0: the surface radius)");
+}
+
 void checkBdptSettings(const BdptSettings& b, const SettingFailure& fail) {
   if (b.mollify && b.families != BdptFamilies::Own)
     fail("mollify", "mollifies the own family's connections: needs render/bdpt/families \"own\"");

@@ -33,6 +33,7 @@ struct ProgressiveSettings {
 
 // Progressive photon mapping, render/ppm (integrator "ppm", docs/photon-mapping.md).
 struct PhotonMappingSettings : ProgressiveSettings {
+  float volumeRadius = 0.0f;   // radius r_v,1 of the volume photons' balls in the first pass, scene units; 0: radius r_1
   bool alwaysKernel = false;   // elastic lobe through the kernel even where the sensor is evaluated exactly
   PpmDirectLight direct = PpmDirectLight::NeeElastic;
   // The wavelengths of next-event estimation's elastic lobe at the first camera vertex, where the
@@ -144,6 +145,8 @@ struct VcmSettings : ProgressiveSettings {
 // (key as in the scene file, "alpha") and must not return.
 using SettingFailure = std::function<void(const char* key, const std::string& reason)>;
 void checkProgressiveSettings(const ProgressiveSettings& p, const SettingFailure& fail);
+// The same, and photon mapping's own numbers.
+void checkPhotonMappingSettings(const PhotonMappingSettings& p, const SettingFailure& fail);
 void checkBdptSettings(const BdptSettings& b, const SettingFailure& fail);
 
 // Thrown when an integrator cannot do what fluorescent_lanes asks (its message says why).

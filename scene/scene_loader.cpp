@@ -192,6 +192,8 @@ struct Loader {
     JsonFields f(render.get("ppm"), file, render.path("ppm"));
     PhotonMappingSettings& p = scene.render.ppm;
     progressive(f, p);
+    p.volumeRadius = f.number("volume_radius", p.volumeRadius);
+    checkPhotonMappingSettings(p, [&](const char* key, const std::string& why) { f.fail(key, why); });
     p.alwaysKernel = f.boolean("always_wavelength_kernel", p.alwaysKernel);
     const std::string direct = f.string("direct", "nee-elastic");
     if (direct == "nee-elastic") p.direct = PpmDirectLight::NeeElastic;
