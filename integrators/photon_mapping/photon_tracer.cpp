@@ -57,9 +57,14 @@ void tracePath(const Scene& scene, const PhotonTracing& s, Sampler& rng, std::ve
     // At a surface, stored as flux times |ω_i·n_s|/|ω_i·n_g| of this vertex, so that the gather's
     // f·Φ is Veach's shading-normal f_s·Φ (Veach97 §5.3): Φ is flux through the surface, not about
     // n_s. At a collision, beta is the flux times the free flight's T/p: its sum over a ball
-    // estimates ∫∫ L(x, ω) dω dV (docs/photon-mapping.md §9).
-    if (depth >= s.firstStoredDepth && !bsdf.has(BsdfFlags::DeltaDirection))
-      store(vertex.p, wi, lanes, mis * (inMedium ? 1.0f : bsdf.incidentShadingRatio(wi)), depth, inMedium, out);
+    // estimates ∫∫ L(x, ω) dω dV (docs/photon-mapping.md §9). In a heterogeneous medium the
+    // flight's p and the collision's kernel both leave out the density d(x) (medium_transport.h),
+    // which cancels along one path; the gather meets this photon with the kernel of another point,
+    // so the photon divides its own d(x_p) out.
+    if (depth >= s.firstStoredDepth && !bsdf.has(BsdfFlags::DeltaDirection)) {
+      const float scale = inMedium ? 1.0f / scene.media[size_t(where.medium)]->density(vertex.p) : bsdf.incidentShadingRatio(wi);
+      store(vertex.p, wi, lanes, mis * scale, depth, inMedium, out);
+    }
     if (depth == s.maxDepth) break;
     // The spectral event of every lane (Importance: the lobe and the wavelengths leaving here).
     const float uLobe = rng.uniform(), uLane = rng.uniform();
