@@ -138,7 +138,7 @@ nlohmann::json RenderJob::settingsRecord() const {
   vcm["paths"] = toString(r.vcm.paths);
   record("vcm", vcm);
   nlohmann::json ppm = progressive(r.ppm);
-  ppm.update({{"always_wavelength_kernel", r.ppm.alwaysKernel}, {"direct", toString(r.ppm.direct)},
+  ppm.update({{"volume_radius", r.ppm.volumeRadius}, {"always_wavelength_kernel", r.ppm.alwaysKernel}, {"direct", toString(r.ppm.direct)},
               {"nee_wavelengths", r.ppm.neeWavelengths}});
   record("ppm", ppm);
   return j;
