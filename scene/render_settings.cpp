@@ -13,7 +13,7 @@ void checkProgressiveSettings(const ProgressiveSettings& p, const SettingFailure
 
 void checkPhotonMappingSettings(const PhotonMappingSettings& p, const SettingFailure& fail) {
   checkProgressiveSettings(p, fail);
-  if (!(p.volumeRadius >= 0.0f)) fail("volume_radius", "must not be negative (0: the surface radius)");
+  if (!(p.volumeRadius >= 0.0f)) fail("volume_radius", "must not be negative (0: a quarter of the surface radius)");
 }
 
 void checkBdptSettings(const BdptSettings& b, const SettingFailure& fail) {

@@ -33,7 +33,7 @@ struct ProgressiveSettings {
 
 // Progressive photon mapping, render/ppm (integrator "ppm", docs/photon-mapping.md).
 struct PhotonMappingSettings : ProgressiveSettings {
-  float volumeRadius = 0.0f;   // radius r_v,1 of the volume photons' balls in the first pass, scene units; 0: radius r_1
+  float volumeRadius = 0.0f;   // radius r_v,1 of the volume photons' balls in the first pass, scene units; 0: r_1/4
   bool alwaysKernel = false;   // elastic lobe through the kernel even where the sensor is evaluated exactly
   PpmDirectLight direct = PpmDirectLight::NeeElastic;
   // The wavelengths of next-event estimation's elastic lobe at the first camera vertex, where the

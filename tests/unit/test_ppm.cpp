@@ -57,12 +57,12 @@ TEST(Ppm, RadiusOfAnyDimensionFollowsKnausZwickerRecurrence) {
                   1.0, 1e-3);
     }
   }
-  // ppm's balls follow d = 3, its discs d = 2; the balls start at the discs' radius by default
-  // and at render/ppm/volume_radius if given.
+  // ppm's balls follow d = 3, its discs d = 2; the balls start at a quarter of the discs' radius
+  // by default and at render/ppm/volume_radius if given.
   auto scene = load("furnace_fluorescent.json");
   RenderSettings s = scene->render;
   const PpmIntegrator derived(*scene, s);
-  EXPECT_EQ(derived.volumeRadius(0), derived.radius(0));
+  EXPECT_FLOAT_EQ(derived.volumeRadius(0), 0.25f * derived.radius(0));
   s.ppm.volumeRadius = 0.25f;
   const PpmIntegrator given(*scene, s);
   EXPECT_EQ(given.volumeRadius(0), 0.25f);
