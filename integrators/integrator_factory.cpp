@@ -100,8 +100,11 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& alias, const Scene
     requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
     return std::make_unique<PathTracer>(scene, s);  // checks its strategies and lanes
   }
-  if (scene.hasMedia() && name != "lt" && name != "ppm")
-    throw std::invalid_argument(name + " does not transport participating media yet (the scene has /media; pt, lt and ppm do)");
+  // Merges in media happen only where their sphere meets no surface (docs/media.md §6): merges
+  // alone miss the light of collisions near a surface.
+  if (scene.hasMedia() && name == "bpm")
+    throw std::invalid_argument("bpm does not transport participating media (merges alone cannot reach collisions "
+                                "near a surface; vcm and vc do)");
   if (name == "ppm") return std::make_unique<PpmIntegrator>(scene, s);  // checks its strategies and lanes
   if (name != "lt" && !bdpt) throw std::invalid_argument(integratorNameError(name));
   // Only the camera paths of pt and ppm override the material's sampling at fluorescent events

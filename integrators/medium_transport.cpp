@@ -61,7 +61,8 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
   // would otherwise never be collided with at λ_o. Fluorescent media are homogeneous (media.md §4),
   // so in a heterogeneous medium both components are the same delta tracking against the majorant
   // σ̄(λ) = max d·σ_t(λ) (media.md eq. 8).
-  const bool mixture = mode == TransportMode::Radiance && scene.hasFluorescentMedia();
+  const bool fluorescent = scene.hasFluorescentMedia();
+  const bool mixture = mode == TransportMode::Radiance && fluorescent;
   const bool seek = mixture && u >= 0.5f;
   if (mixture) u = seek ? 2.0f * u - 1.0f : 2.0f * u;
   // The drawn component's optical depth at λ_0 left until its next (tentative) collision.
@@ -74,8 +75,7 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
   // Lane k's density of the flight's end over exp(−τ_0), with end factors `analog` and `seeking`
   // (the rates at a collision, 1 past the media): the value, times nullRatio_k, is p_k/exp(−τ_0).
   const auto density = [&](size_t k, float analog, float seeking) {
-    const float a = analog * std::exp(tau[0] - tau[k]);
-    return nullRatio[k] * (mixture ? 0.5f * (a + seeking * std::exp(tau[0] - tauSeek[k])) : a);
+    return nullRatio[k] * freeFlightDensity(mixture, {tau[k] - tau[0], tauSeek[k] - tau[0]}, analog, seeking);
   };
   std::optional<Rng> stream;  // created at the first null collision
   float gap = 0.0f;           // of the medium behind ray.o (crossingGap)
@@ -89,7 +89,10 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
       float sigma[kMaxLanes], seekRate[kMaxLanes];  // σ_t (times max d: the majorant) and σ_t + A_fl
       for (size_t k = 0; k < n; ++k) {
         sigma[k] = m.sigmaT(lambda[k]);
-        seekRate[k] = sigma[k] + (mixture ? scene.mediumScattering[size_t(medium)]->fluorescentWeight(mode, lambda[k]) : 0.0f);
+        // Tracked on light paths too: their flights are also camera paths' (FreeFlight::depth, BDPT's MIS).
+        seekRate[k] = sigma[k] + (fluorescent ? scene.mediumScattering[size_t(medium)]->fluorescentWeight(
+                                                    TransportMode::Radiance, lambda[k])
+                                              : 0.0f);
         sigma[k] *= dMax, seekRate[k] *= dMax;
       }
       const float rate0 = seek ? seekRate[0] : sigma[0];
@@ -122,6 +125,7 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
           f.ratio[k] = density(k, sigma[k] / dMax, seekRate[k] / dMax) / p0;
         }
         f.collided = true;
+        f.depth = {tau[0], tauSeek[0]};
         f.p = x;
         f.medium = medium;
         return f;
@@ -142,6 +146,7 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
       }
       f.hit = hit;
       f.medium = medium;
+      f.depth = {tau[0], tauSeek[0]};
       return f;
     }
     medium = scene.mediumBeyond(*hit, ray.d, medium);
@@ -155,9 +160,10 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
 }
 
 bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec3& d, float tMax, int medium,
-                                      std::span<const float> lambda, float* tr, RayCounter& counter) {
+                                      std::span<const float> lambda, float* tr, RayCounter& counter, SegmentDepth* depths) {
   const size_t n = lambda.size();
   float tau[kMaxLanes] = {};  // homogeneous segments' optical depth
+  if (depths) std::fill(depths, depths + n, SegmentDepth{});
   float ratio[kMaxLanes];     // heterogeneous segments' ratio-tracking estimates
   std::fill(ratio, ratio + n, 1.0f);
   std::optional<Rng> stream;
@@ -171,6 +177,11 @@ bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec
       const Medium& m = *scene.media[size_t(medium)];
       if (!m.heterogeneous()) {
         for (size_t k = 0; k < n; ++k) tau[k] += opticalDepth(m.sigmaT(lambda[k]), length);
+        for (size_t k = 0; depths && k < n; ++k) {
+          const float seekRate = m.sigmaT(lambda[k]) + scene.mediumScattering[size_t(medium)]->fluorescentWeight(
+                                                           TransportMode::Radiance, lambda[k]);
+          depths[k].seeking += opticalDepth(seekRate, length);
+        }
       } else {
         // Ratio tracking (Novák et al. 2014) with one majorant for every lane, σ̄ = max d·max_k σ_t(λ_k):
         // T_k is the expectation of Π (1 − d(x_i)·σ_t(λ_k)/σ̄) over the tentative collisions x_i.
@@ -189,6 +200,7 @@ bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec
     }
     if (!hit) {
       for (size_t k = 0; k < n; ++k) tr[k] = ratio[k] * std::exp(-tau[k]);
+      for (size_t k = 0; depths && k < n; ++k) depths[k].analog = tau[k];
       return true;
     }
     medium = scene.mediumBeyond(*hit, d, medium);

@@ -31,6 +31,12 @@ struct LaneRatios {
   float misWeight() const;
 };
 
+// The optical depths of a segment at one wavelength: under the analog rate σ_t, and under the
+// camera paths' source-seeking rate σ_t + A_fl (docs/media.md eq. 6b).
+struct SegmentDepth {
+  float analog = 0.0f, seeking = 0.0f;
+};
+
 // What a ray from a vertex reaches through the media: a collision in a medium, a surface, or
 // nothing.
 struct FreeFlight {
@@ -43,7 +49,20 @@ struct FreeFlight {
   // 1 if the ray crossed no medium.
   float weight[kMaxLanes];
   float ratio[kMaxLanes];
+  // Lane 0's optical depths over the flight: with freeFlightDensity, its density at lane 0, and
+  // a camera path's density of the same segment (the seeking depth is tracked on light paths too, in
+  // scenes with a fluorescent medium). Homogeneous media; in heterogeneous ones, the majorant's.
+  SegmentDepth depth;
 };
+
+// The density with which a free flight over optical depths `d` ends where it does (docs/media.md
+// eqs. 6, 6b): at a collision, with the rates there (`rate` σ_t, `seekRate` σ_t + A_fl), or past the
+// media (both 1: the probability of passing). `mixture`: a camera path's flight in a scene with a
+// fluorescent medium, the ½/½ mixture of both rates.
+inline float freeFlightDensity(bool mixture, const SegmentDepth& d, float rate, float seekRate) {
+  const float analog = std::exp(-d.analog) * rate;
+  return mixture ? 0.5f * (analog + std::exp(-d.seeking) * seekRate) : analog;
+}
 
 // Follows `ray` from a vertex in `medium` (−1: vacuum) with the lanes' wavelengths, colliding where
 // the optical depth at lambda[0] reaches −ln(1 − u) (docs/media.md eq. 6), by delta tracking in
@@ -65,15 +84,20 @@ inline FreeFlight traceFreeFlight(const Scene& scene, const Ray& ray, int medium
 
 // The transmittance exp(−τ(λ_k)) of every lane along the segment from `origin` (in `medium`) in
 // direction d up to distance tMax, across index-matched boundaries; false (and tr unset) if a
-// surface blocks the segment. In a scene without media, one occlusion query (inline).
+// surface blocks the segment. With `depths`, also each lane's optical depths, analog and
+// source-seeking (homogeneous media: what freeFlightDensity needs). In a scene without media, one
+// occlusion query (inline).
 bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec3& d, float tMax, int medium,
-                                      std::span<const float> lambda, float* tr, RayCounter& counter);
+                                      std::span<const float> lambda, float* tr, RayCounter& counter,
+                                      SegmentDepth* depths = nullptr);
 inline bool segmentTransmittance(const Scene& scene, const Vec3& origin, const Vec3& d, float tMax, int medium,
-                                 std::span<const float> lambda, float* tr, RayCounter& counter) {
-  if (scene.hasMedia()) return segmentTransmittanceThroughMedia(scene, origin, d, tMax, medium, lambda, tr, counter);
+                                 std::span<const float> lambda, float* tr, RayCounter& counter,
+                                 SegmentDepth* depths = nullptr) {
+  if (scene.hasMedia()) return segmentTransmittanceThroughMedia(scene, origin, d, tMax, medium, lambda, tr, counter, depths);
   ++counter.shadow;
   if (scene.accel->occluded(origin, d, tMax)) return false;
   std::fill(tr, tr + lambda.size(), 1.0f);
+  if (depths) std::fill(depths, depths + lambda.size(), SegmentDepth{});
   return true;
 }
 

@@ -132,13 +132,13 @@ nlohmann::json RenderJob::settingsRecord() const {
                   {"mollify_alpha", b.mollifyAlpha}});
   const auto progressive = [](const ProgressiveSettings& p) {
     return nlohmann::json{{"photons_per_pass", p.photonsPerPass}, {"radius", p.radius}, {"alpha", p.alpha},
-                          {"bandwidth", p.bandwidth}};
+                          {"bandwidth", p.bandwidth}, {"volume_radius", p.volumeRadius}};
   };
   nlohmann::json vcm = progressive(r.vcm);
   vcm["paths"] = toString(r.vcm.paths);
   record("vcm", vcm);
   nlohmann::json ppm = progressive(r.ppm);
-  ppm.update({{"volume_radius", r.ppm.volumeRadius}, {"always_wavelength_kernel", r.ppm.alwaysKernel}, {"direct", toString(r.ppm.direct)},
+  ppm.update({{"always_wavelength_kernel", r.ppm.alwaysKernel}, {"direct", toString(r.ppm.direct)},
               {"nee_wavelengths", r.ppm.neeWavelengths}});
   record("ppm", ppm);
   return j;

@@ -29,11 +29,14 @@ struct ProgressiveSettings {
   float radius = 0.0f;         // gather radius r_1 of the first pass, scene units; 0: from the scene
   float alpha = 2.0f / 3.0f;   // radius reduction (Knaus & Zwicker 2011 eq. 15), in (1/3, 1)
   float bandwidth = 0.0f;      // half-width h_1 of the elastic wavelength kernel, nm; 0: 1% of the range
+  // Radius of the first pass's merges or gathers at collisions in media, scene units; 0: from the
+  // scene (ppm: r_1/4, docs/photon-mapping.md §9; vcm: a sphere holds about one light vertex,
+  // counted on a pilot, docs/media.md §6). It shrinks by the three-dimensional schedule.
+  float volumeRadius = 0.0f;
 };
 
 // Progressive photon mapping, render/ppm (integrator "ppm", docs/photon-mapping.md).
 struct PhotonMappingSettings : ProgressiveSettings {
-  float volumeRadius = 0.0f;   // radius r_v,1 of the volume photons' balls in the first pass, scene units; 0: r_1/4
   bool alwaysKernel = false;   // elastic lobe through the kernel even where the sensor is evaluated exactly
   PpmDirectLight direct = PpmDirectLight::NeeElastic;
   // The wavelengths of next-event estimation's elastic lobe at the first camera vertex, where the
@@ -145,8 +148,8 @@ struct VcmSettings : ProgressiveSettings {
 // (key as in the scene file, "alpha") and must not return.
 using SettingFailure = std::function<void(const char* key, const std::string& reason)>;
 void checkProgressiveSettings(const ProgressiveSettings& p, const SettingFailure& fail);
-// The same, and photon mapping's own numbers.
-void checkPhotonMappingSettings(const PhotonMappingSettings& p, const SettingFailure& fail);
+// vcm's numbers are the progressive ones.
+inline void checkVcmSettings(const VcmSettings& v, const SettingFailure& fail) { checkProgressiveSettings(v, fail); }
 void checkBdptSettings(const BdptSettings& b, const SettingFailure& fail);
 
 // Thrown when an integrator cannot do what fluorescent_lanes asks (its message says why).

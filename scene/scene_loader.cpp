@@ -177,12 +177,13 @@ struct Loader {
     }
   }
 
-  // The light-vertex pass and the radius of /render/ppm and /render/vcm.
+  // The light-vertex pass and the radii of /render/ppm and /render/vcm.
   static void progressive(JsonFields& f, ProgressiveSettings& p) {
     p.photonsPerPass = f.integer("photons_per_pass", p.photonsPerPass);
     p.radius = f.number("radius", p.radius);
     p.alpha = f.number("alpha", p.alpha);
     p.bandwidth = f.number("bandwidth", p.bandwidth);
+    p.volumeRadius = f.number("volume_radius", p.volumeRadius);
     checkProgressiveSettings(p, [&](const char* key, const std::string& why) { f.fail(key, why); });
   }
 
@@ -192,8 +193,6 @@ struct Loader {
     JsonFields f(render.get("ppm"), file, render.path("ppm"));
     PhotonMappingSettings& p = scene.render.ppm;
     progressive(f, p);
-    p.volumeRadius = f.number("volume_radius", p.volumeRadius);
-    checkPhotonMappingSettings(p, [&](const char* key, const std::string& why) { f.fail(key, why); });
     p.alwaysKernel = f.boolean("always_wavelength_kernel", p.alwaysKernel);
     const std::string direct = f.string("direct", "nee-elastic");
     if (direct == "nee-elastic") p.direct = PpmDirectLight::NeeElastic;

@@ -8,6 +8,7 @@
 #include "core/color.h"
 #include "integrators/bidirectional/connect.h"
 #include "integrators/bidirectional/family_pilot.h"
+#include "integrators/bidirectional/path_media.h"
 #include "integrators/bidirectional/pilot_observer.h"
 #include "integrators/bidirectional/strategy_images.h"
 #include "integrators/direct_emission.h"
@@ -59,16 +60,20 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s)
   checkBdptSettings(s.bdpt, [](const char* key, const std::string& why) {
     throw std::invalid_argument(std::string("bdpt: render/bdpt/") + key + " " + why);
   });
+  // In scenes with media (docs/media.md §5) every free flight's density depends on the wavelength:
+  // each path carries one, and the families trace light subpaths of their own.
+  const bool media = scene.hasMedia();
+  if (media) bidir::requireBidirectionalMedia(scene, s, name());
   // Wavelength lanes (docs/bdpt-mis.md §10), in every family.
   // The unified estimator carries both families on one light subpath (docs/bdpt-mis.md §11).
-  if (mode_ == bidir::WavelengthMode::Unified && families_.independent) {
+  if (mode_ == bidir::WavelengthMode::Unified && families_.independent && !media) {
     lightFirst_ = std::make_unique<bidir::LightFirstStart>(scene, s.wavelengths.light);
     ws_.lightFirst = lightFirst_.get();
     wsAlone_ = ws_;
     wsAlone_.lightFirst = nullptr;
     familyChoice_ = s.bdpt.families;
   }
-  lanes_ = s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths;
+  lanes_ = s.heroWavelengths == kAutoLanes ? (media ? 1 : kDefaultLanes) : s.heroWavelengths;
   if (lanes_ < 1 || lanes_ > kMaxLanes)
     throw std::invalid_argument("bdpt: hero wavelengths " + std::to_string(lanes_) + " is outside [1, " +
                                 std::to_string(kMaxLanes) + "]");

@@ -4,6 +4,7 @@
 
 #include "core/color.h"
 #include "integrators/bidirectional/connect_parts.h"
+#include "integrators/bidirectional/path_media.h"
 #include "integrators/progressive_schedule.h"
 
 namespace kasha::bidir {
@@ -30,7 +31,7 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
     any = any || Le[k] > 0.0f;
   }
   if (!any) return;
-  const LightEnd end = lightEnd(c, e.light, e, next);
+  const LightEnd end = lightEnd(c, e.light, e, next, e.arrival, e.lambda);
   const int k = t - 1;
   // The strategies with one light vertex: next-event estimation and the light vertex at x_1, or
   // for k = 1 the light seen by the camera.
@@ -99,14 +100,17 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
                            : x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda0, x1.lambda, x1.lobe);
     // The light's geometry does not depend on λ: the same point at every lane's wavelength.
     const float Li = lanes ? light.Li(*ls, lambda) : ls->Li;
-    value[k] = fx > 0.0f ? x1.beta[k] * fx * std::abs(wi.z) / x1.spectralPdf * Li / (pSel * ls->pdf) : 0.0f;
+    value[k] = fx > 0.0f ? x1.beta[k] * fx * f.cosineFactor(wi) / x1.spectralPdf * Li / (pSel * ls->pdf) : 0.0f;
     any = any || value[k] > 0.0f;
   }
-  if (!any || !visible(c, x1, x0)) return;
+  SegmentDepth toLight;  // through the media from x_1 to x_0, at λ_0
+  if (!any || !visible(c, x1, x0, lambda0, &toLight)) return;
+  for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) value[k] *= transmittance(toLight);
   const int lightIndex = int(li);  // a structured binding cannot be captured (clang 14)
-  const LightEnd end = lightEnd(c, lightIndex, x0, x1);
-  const double pCam0 = cameraSide(c.scene, x1, wo, wi, x0, x1.lobe, lambda0, x1.lambda);
-  const double pLight2 = x2.kind != Kind::Camera ? lightSide(c.scene, x1, wi, wo, x2, x1.lobe, lambda0, x1.lambda) : 0.0;
+  const LightEnd end = lightEnd(c, lightIndex, x0, x1, toLight, lambda0);
+  const double pCam0 = cameraSide(c.scene, x1, wo, wi, x0, x1.lobe, lambda0, x1.lambda, toLight);
+  const double pLight2 =
+      x2.kind != Kind::Camera ? lightSide(c.scene, x1, wi, wo, x2, x1.lobe, lambda0, x1.lambda, x1.arrival) : 0.0;
   const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite, c.walk.strategies);
   MisSums own;
   own.nee = x1.spectralPdf * double(x1.spectralPdf);
@@ -139,7 +143,7 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
                         float* out) {
   const PathVertex& a = L[0];
   const PathVertex& b = C[size_t(t - 1)];
-  if (a.kind != Kind::Light || b.kind != Kind::Surface || !b.connectible() || !b.bsdf->has(BsdfFlags::Fluorescent)) return;
+  if (a.kind != Kind::Light || !b.scatters() || !b.connectible() || !b.bsdf->has(BsdfFlags::Fluorescent)) return;
   const PathVertex& bNext = C[size_t(t - 2)];
   const Vec3 d = b.p - a.p;
   const float dist2 = glm::dot(d, d);
@@ -153,12 +157,16 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   constexpr SpectralLobe F = SpectralLobe::Fluorescent;
   const float f = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, a.lambda, b.lambda, F);
   if (!(f > 0.0f)) return;
+  // In a scene with media the segment is traced first: its densities need its optical depths.
+  const bool media = c.scene.hasMedia();
+  SegmentDepth segment;
+  if (media && !visible(c, b, a, a.lambda, &segment)) return;
   const int lane = b.firstLane();
-  const float cosA = glm::dot(a.n, a.n) > 0.0f ? std::abs(glm::dot(a.n, w)) : 1.0f;
-  const float G = cosA * std::abs(bWi.z) / dist2;
-  const LightEnd end = lightEnd(c, a.light, a, b);
-  const double pCam0 = cameraSide(c.scene, b, bWo, bWi, a, F, a.lambda, b.lambda);
-  const double pLight2 = bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, F, a.lambda, b.lambda) : 0.0;
+  const float G = a.cosine(w) * fb.cosineFactor(bWi) / dist2;
+  const LightEnd end = lightEnd(c, a.light, a, b, segment, a.lambda);
+  const double pCam0 = cameraSide(c.scene, b, bWo, bWi, a, F, a.lambda, b.lambda, segment);
+  const double pLight2 =
+      bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, F, a.lambda, b.lambda, b.arrival) : 0.0;
   const double specCam1 = specCamera(b, F, a.lambda, b.lambda);
   MisSums own;
   own.own = 1.0;
@@ -177,8 +185,8 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
     return fp;
   });
   if (c.observer) c.observer->onLaneKept(lane);
-  if (!(weight > 0.0f) || !visible(c, b, a)) return;
-  const float value = Le * G * f * b.beta[lane] / (a.pdfFwd * a.choicePdf);
+  if (!(weight > 0.0f) || (!media && !visible(c, b, a))) return;
+  const float value = Le * G * f * b.beta[lane] * transmittance(segment) / (a.pdfFwd * a.choicePdf);
   record(c, 1, t, Variant::kLightVertex, lane, value, weight);
   out[lane] += value * weight;
 }
@@ -187,7 +195,7 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
              const std::vector<PathVertex>& C, int t, float* out, VisibilityMemo* memo) {
   const PathVertex& a = L[size_t(s - 1)];
   const PathVertex& b = C[size_t(t - 1)];
-  if (a.kind != Kind::Surface || b.kind != Kind::Surface || !a.connectible() || !b.connectible()) return;
+  if (!a.scatters() || !b.scatters() || !a.connectible() || !b.connectible()) return;
   // An own join needs a fluorescent end, or two elastic ones and the mollifying kernel (below).
   if (family == LightFamily::Own && !(c.bandwidth > 0.0f) && !a.bsdf->has(BsdfFlags::Fluorescent) &&
       !b.bsdf->has(BsdfFlags::Fluorescent))
@@ -213,7 +221,7 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
   const Bsdf &fa = *a.bsdf, &fb = *b.bsdf;
   const Vec3 aWi = fa.toLocal(towards(a, aPrev)), aWo = fa.toLocal(w);
   const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
-  const float G = std::abs(aWo.z) * std::abs(bWi.z) / dist2;
+  const float G = fa.cosineFactor(aWo) * fb.cosineFactor(bWi) / dist2;
   // b's wavelength: an own join serves lane k0 only.
   const float lambdaB = family == LightFamily::Own ? b.lambdaOf(c.lanes, k0) : b.lambda;
 
@@ -240,7 +248,10 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
       pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, lambdaB, Variant::kMollified};
   }
   const LightEnd end = storedLightEnd(L, s);
-  bool checked = false, unoccluded = false;
+  // In a scene with media each pair's segment is traced before its weights, which need its optical
+  // depths at the pair's wavelength (mollification, whose ends see two, is refused with media).
+  const bool media = c.scene.hasMedia();
+  bool checked = media, unoccluded = media;
   for (int i = 0; i < n; ++i) {
     const Pair& p = pairs[i];
     // f at both ends for each lane: the shared family's elastic pair at every lane's own wavelength.
@@ -256,11 +267,14 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
       any = any || (fA[k] > 0.0f && fB[k] > 0.0f);
     }
     if (!any) continue;
+    SegmentDepth segment;
+    if (media && !visible(c, a, b, p.lambdaA, &segment)) return;
     // The four densities next to the connection, for its lobes and wavelengths.
-    const double pLightB = lightSide(c.scene, a, aWi, aWo, b, p.la, a.lambda, p.lambdaA);
-    const double pLightBNext = bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, p.lb, p.lambdaB, lambdaB) : 0.0;
-    const double pCamA = cameraSide(c.scene, b, bWo, bWi, a, p.lb, p.lambdaB, lambdaB);
-    const double pCamAPrev = cameraSide(c.scene, a, aWo, aWi, aPrev, p.la, a.lambda, p.lambdaA);
+    const double pLightB = lightSide(c.scene, a, aWi, aWo, b, p.la, a.lambda, p.lambdaA, segment);
+    const double pLightBNext =
+        bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, p.lb, p.lambdaB, lambdaB, b.arrival) : 0.0;
+    const double pCamA = cameraSide(c.scene, b, bWo, bWi, a, p.lb, p.lambdaB, lambdaB, segment);
+    const double pCamAPrev = cameraSide(c.scene, a, aWo, aWi, aPrev, p.la, a.lambda, p.lambdaA, a.arrival);
     const Strategies& st = c.walk.strategies;
     const MisSums sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st), pCamAPrev) +
                           cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st), pLightBNext);
@@ -305,7 +319,8 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
                                    wavelengthKernelMass(r.min - lambdaB, r.max - lambdaB, c.bandwidth)
                              : 1.0f;
     for (int k = k0; k < k1; ++k) {
-      const float value = a.beta[family == LightFamily::Shared ? k : 0] * fA[k] * G * fB[k] * b.beta[k] * kernel * laneScale;
+      const float value = a.beta[family == LightFamily::Shared ? k : 0] * fA[k] * G * fB[k] * b.beta[k] * kernel *
+                          laneScale * transmittance(segment);
       record(c, s, t, p.variant, k, value, weight[k]);
       out[k] += value * weight[k];
     }
@@ -344,7 +359,12 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   const bool lanes = a.allLanes(c.lanes);
   const bool shared = family == LightFamily::Shared;
   const Variant variant = shared ? Variant::kStandard : Variant::kOwn;
-  const double pCamA = link.pdfCam;
+  // In a scene with media the segment to the lens is traced first: the camera's density of a needs
+  // its optical depths.
+  const bool media = c.scene.hasMedia();
+  SegmentDepth segment;
+  if (media && !visible(c, a, cam, lambda, &segment)) return;
+  const double pCamA = link.pdfCam * flightFactor(c.scene, TransportMode::Radiance, segment, a, lambda);
   const LightEnd end = storedLightEnd(L, s);
   float value[kMaxLanes];
   bool any = false;
@@ -374,16 +394,17 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
       const float fa = lanes ? a.bsdf->eval(TransportMode::Importance, wi, wo, c.lanes.lambda[k], c.lanes.lambda[k], a.lobe)
                              : a.bsdf->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, a.lobe);
-      value[k] = a.beta[k] * fa * std::abs(wo.z) / a.spectralPdf;
+      value[k] = a.beta[k] * fa * f.cosineFactor(wo) / a.spectralPdf;
       any = any || fa > 0.0f;
     }
-    pCamAPrev = cameraSide(c.scene, a, wo, wi, aPrev, a.lobe, a.lambda, lambda);
+    pCamAPrev = cameraSide(c.scene, a, wo, wi, aPrev, a.lobe, a.lambda, lambda, a.arrival);
     here = lightTracingMultiplicity(true, a.spectralPdf, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
     // a, next to the camera, is the path's first gather vertex.
     sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, c.walk.strategies, true), pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
+  for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) value[k] *= transmittance(segment);
   if (!any) return;
   const int k0 = a.firstLane(), k1 = a.endLane(c.lanes);
   float weight[kMaxLanes];
@@ -411,7 +432,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     });
   });
   if (std::none_of(weight + k0, weight + k1, [](float w) { return w > 0.0f; })) return;
-  if (!(memo ? memo->get(s, 1, [&] { return visible(c, a, cam); }) : visible(c, a, cam))) return;
+  if (!media && !(memo ? memo->get(s, 1, [&] { return visible(c, a, cam); }) : visible(c, a, cam))) return;
   // Importance W_j·cosθ/d² of the pixel, per light subpath (w·h of them per sample per pixel); a
   // shared lane's wavelength was the sensor's sample, one of n.
   const float perPath = 1.0f / (float(c.scene.camera.width()) * float(c.scene.camera.height()));
@@ -448,7 +469,7 @@ void connectSubpaths(const Context& c, const std::vector<PathVertex>& C, const s
   const int fewest = c.walk.hideEmitters ? 2 : 1;
   for (int t = 2; t <= int(C.size()); ++t) {
     if (t > fewest) emitterHit(c, C, t, out, xyz);
-    if (C[size_t(t - 1)].kind != Kind::Surface) continue;
+    if (!C[size_t(t - 1)].scatters()) continue;
     if (t - 1 <= maxDepth) {
       nextEvent(c, C, t, rng, out);
       if (!LO.empty()) connectLightVertex(c, LO, C, t, out);

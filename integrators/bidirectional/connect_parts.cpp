@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "integrators/bidirectional/path_media.h"
 #include "integrators/progressive_schedule.h"
 
 namespace kasha::bidir {
@@ -17,20 +18,23 @@ double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathV
 }
 
 double cameraSide(const Scene& scene, const PathVertex& at, const Vec3& wCam, const Vec3& wTarget,
-                  const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut) {
+                  const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut,
+                  const SegmentDepth& segment) {
   const float pdf = at.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe) *
                     at.bsdf->directionPdf(TransportMode::Radiance, wCam, wTarget, lobe, lambdaIn, lambdaOut);
-  return toArea(scene, pdf, at, target);
+  return toArea(scene, pdf, at, target) * flightFactor(scene, TransportMode::Radiance, segment, target, lambdaIn);
 }
 
 double lightSide(const Scene& scene, const PathVertex& at, const Vec3& wLight, const Vec3& wTarget,
-                 const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut) {
+                 const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut,
+                 const SegmentDepth& segment) {
   const float pdf = at.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe) *
                     at.bsdf->directionPdf(TransportMode::Importance, wLight, wTarget, lobe, lambdaIn, lambdaOut);
-  return toArea(scene, pdf, at, target);
+  return toArea(scene, pdf, at, target) * flightFactor(scene, TransportMode::Importance, segment, target, lambdaOut);
 }
 
-LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathVertex& x1) {
+LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathVertex& x1, const SegmentDepth& segment,
+                  float lambda) {
   const Light& L = *c.scene.lights[size_t(light)];
   const Vec3 w = L.atInfinity() ? x0.dir : glm::normalize(x1.p - x0.p);
   float pdfPos = 0.0f, pdfDir = 0.0f;
@@ -38,7 +42,8 @@ LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathV
   LightEnd e;
   e.pdf0 = L.atInfinity() ? pdfDir : pdfPos;
   if (x1.kind != Kind::Camera)
-    e.pdf1 = L.atInfinity() ? double(pdfPos) * std::abs(glm::dot(x1.n, w)) : toAreaDensity(pdfDir, x0, x1);
+    e.pdf1 = (L.atInfinity() ? double(pdfPos) * x1.cosine(w) : toAreaDensity(pdfDir, x0, x1)) *
+             flightFactor(c.scene, TransportMode::Importance, segment, x1, lambda);
   e.finite = !L.atInfinity();
   return e;
 }
@@ -99,11 +104,11 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {
     const PathVertex& v = (*L)[size_t(i)];
-    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible()};
+    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible(), v.inMedium(), mergeable(v)};
   }
   for (int j = 0; j < t; ++j) {
     const PathVertex& v = C[size_t(j)];
-    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible()};
+    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible(), v.inMedium(), mergeable(v)};
   }
   fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
   fp.v[size_t(k)].pdfLight = 0.0;
@@ -153,15 +158,29 @@ float emitted(const Context& c, const PathVertex& e, const PathVertex& next, flo
                                                                                                 towards(e, next));
 }
 
-bool visible(const Context& c, const PathVertex& a, const PathVertex& b) {
-  ++c.counter.shadow;
-  if (b.kind == Kind::Infinite) return !c.scene.accel->occluded(offsetPoint(a.p, a.n, -b.dir), -b.dir, kInf);
-  const Vec3 d = b.p - a.p;
-  const float dist = glm::length(d);
-  const Vec3 w = d / dist;
-  const Vec3 o = glm::dot(a.n, a.n) > 0.0f ? offsetPoint(a.p, a.n, w) : a.p;
-  const float shorten = glm::dot(b.n, b.n) > 0.0f ? rayEpsilon(b.p) : 0.0f;
-  return !c.scene.accel->occluded(o, w, dist * (1.0f - 1e-4f) - shorten - rayEpsilon(a.p));
+bool visible(const Context& c, const PathVertex& a, const PathVertex& b, float lambda, SegmentDepth* depth) {
+  Vec3 o, w;
+  float tMax = kInf;
+  if (b.kind == Kind::Infinite) {
+    w = -b.dir;
+    o = offsetPoint(a.p, a.n, w);
+  } else {
+    const Vec3 d = b.p - a.p;
+    const float dist = glm::length(d);
+    w = d / dist;
+    o = glm::dot(a.n, a.n) > 0.0f ? offsetPoint(a.p, a.n, w) : a.p;
+    const float shorten = glm::dot(b.n, b.n) > 0.0f ? rayEpsilon(b.p) : 0.0f;
+    tMax = dist * (1.0f - 1e-4f) - shorten - rayEpsilon(a.p);
+  }
+  if (!c.scene.hasMedia()) {
+    ++c.counter.shadow;
+    return !c.scene.accel->occluded(o, w, tMax);
+  }
+  float tr;
+  SegmentDepth d;
+  if (!segmentTransmittance(c.scene, o, w, tMax, mediumToward(c.scene, a, w), {&lambda, 1}, &tr, c.counter, &d)) return false;
+  if (depth) *depth = d;
+  return true;
 }
 
 namespace {

@@ -20,15 +20,18 @@ Vec3 towards(const PathVertex& from, const PathVertex& to);
 double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathVertex& target);
 
 // Camera-side (Radiance) density of `target` sampled at `at`: the spectral event (lobe, λ_in given
-// λ_out) and the direction from wCam (towards at's camera-side neighbour) to wTarget (towards
-// target), both in at's shading frame (the caller's, which it has for its own f).
+// λ_out), the direction from wCam (towards at's camera-side neighbour) to wTarget (towards
+// target), both in at's shading frame (the caller's, which it has for its own f), and the free
+// flight over `segment` (the optical depths between at and target at λ_in; path_media.h).
 double cameraSide(const Scene& scene, const PathVertex& at, const Vec3& wCam, const Vec3& wTarget,
-                  const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut);
+                  const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut,
+                  const SegmentDepth& segment);
 
 // Light-side (Importance) density of `target` sampled at `at`, wLight towards at's light-side
-// neighbour (shading frame).
+// neighbour (shading frame); `segment` at λ_out.
 double lightSide(const Scene& scene, const PathVertex& at, const Vec3& wLight, const Vec3& wTarget,
-                 const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut);
+                 const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut,
+                 const SegmentDepth& segment);
 
 // The light end x_0 seen from its neighbour x_1: its positional densities.
 struct LightEnd {
@@ -37,7 +40,9 @@ struct LightEnd {
   bool finite = false;  // x_0 is at a finite position
 };
 
-LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathVertex& x1);
+// `segment`: the optical depths between x_0 and x_1 at the wavelength lambda light leaves x_0 with.
+LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathVertex& x1, const SegmentDepth& segment,
+                  float lambda);
 
 // The light end of a light subpath whose first s vertices a strategy uses, from what the subpath
 // stored (x_1 is the camera when s = 1).
@@ -122,7 +127,13 @@ void recordXyz(const Context& c, int s, int t, Variant v, int k, const Vec3& xyz
 // The radiance an emitter vertex e sends towards `next` at wavelength lambda.
 float emitted(const Context& c, const PathVertex& e, const PathVertex& next, float lambda);
 
-bool visible(const Context& c, const PathVertex& a, const PathVertex& b);
+// Whether no surface blocks the segment between a and b; in a scene with media, also its optical
+// depths at lambda (through the media it crosses, from the one a leaves into).
+bool visible(const Context& c, const PathVertex& a, const PathVertex& b, float lambda = 0.0f,
+             SegmentDepth* depth = nullptr);
+
+// The transmittance of a segment of optical depths d (1 where it crosses no medium).
+inline float transmittance(const SegmentDepth& d) { return std::exp(-d.analog); }
 
 // The camera side's sum at a connection through C[t−1] (docs/bdpt-mis.md eq. 10): C[t−1] with the
 // light side's density pLast and `mLast` the M of the strategy with t − 1 camera vertices; C[t−2]

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "integrators/bidirectional/connect_parts.h"
+#include "integrators/bidirectional/path_media.h"
 
 namespace kasha::bidir {
 
@@ -24,7 +25,7 @@ void keepLightVertices(const std::vector<PathVertex>& L, bool own, const Scene& 
     r.ownStart = own ? L[0].choicePdf : 0.0f;
     r.pdfFwd = v.pdfFwd;
     r.pdfPrev = prev.pdfFwd;
-    r.prevGeometry = float(toArea(scene, 1.0f, v, prev));
+    r.prevGeometry = float(toArea(scene, 1.0f, v, prev) * flightFactor(scene, TransportMode::Radiance, v.arrival, prev, v.lambda));
     r.sums = lightMultiplicity(L, int(m) - 1, st) + v.sums;
     r.light = int16_t(L[0].light);
     r.depth = uint8_t(m);
@@ -32,7 +33,8 @@ void keepLightVertices(const std::vector<PathVertex>& L, bool own, const Scene& 
     r.flags = uint8_t((own ? LightVertex::kOwn : 0) | (v.elasticBefore ? LightVertex::kElasticBefore : 0) |
                       (v.lanesKept ? LightVertex::kLanesKept : 0) | (prev.connectible() ? LightVertex::kPrevConnectible : 0) |
                       (prev.lobe == SpectralLobe::Fluorescent ? LightVertex::kPrevFluorescent : 0) |
-                      (L[0].kind == Kind::Light ? LightVertex::kFiniteLight : 0));
+                      (L[0].kind == Kind::Light ? LightVertex::kFiniteLight : 0) |
+                      (v.inMedium() ? LightVertex::kMedium : 0));
     out.push_back(r);
   }
 }

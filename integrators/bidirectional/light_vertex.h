@@ -27,16 +27,18 @@ struct LightVertex {
   float pdfFwd;     // pL_m: this vertex's density on its subpath
   float pdfPrev;    // pL_{m−1}: the previous vertex's
   // The previous vertex's density per unit solid angle at this vertex: |cos θ_{m−1}|/d² (1 at
-  // infinity, 0 for a vertex no other strategy samples: a delta light).
+  // infinity, 0 for a vertex no other strategy samples: a delta light), times a camera path's free
+  // flight to it (docs/media.md eq. 9).
   float prevGeometry;
   MisSums sums;     // M_{m−1} + R_m: the light side's sum before the two vertices a merge recomputes
   int16_t light;    // the subpath's light
   uint8_t depth;    // m, this vertex's index on its subpath (1: the first surface)
   int8_t lane;      // PathVertex::lane: −1 every lane, else the one that reaches here
-  uint8_t flags;    // kOwn | kElasticBefore | kLanesKept | kPrevConnectible | kPrevFluorescent | kFiniteLight
+  // kOwn | kElasticBefore | kLanesKept | kPrevConnectible | kPrevFluorescent | kFiniteLight | kMedium
+  uint8_t flags;
 
   static constexpr uint8_t kOwn = 1, kElasticBefore = 2, kLanesKept = 4, kPrevConnectible = 8, kPrevFluorescent = 16,
-                           kFiniteLight = 32;
+                           kFiniteLight = 32, kMedium = 64;  // kMedium: a collision in a medium
   bool has(uint8_t flag) const { return (flags & flag) != 0; }
 };
 
@@ -44,7 +46,7 @@ inline constexpr size_t kLightVertexBytes = sizeof(LightVertex);
 static_assert(kLightVertexBytes == 120);
 
 // Appends a LightVertex for every vertex of light subpath L from index 1 on where a merge can happen
-// (a surface without a delta lobe) and a lane carries light; `own` for an own-family subpath.
+// (mergeable) and a lane carries light; `own` for an own-family subpath.
 void keepLightVertices(const std::vector<PathVertex>& L, bool own, const Scene& scene, const Strategies& st,
                        std::vector<LightVertex>& out);
 

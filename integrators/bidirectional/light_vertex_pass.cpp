@@ -17,10 +17,12 @@ std::vector<bidir::LightVertex> traceLightVertices(const Scene& scene, const bid
                                       thread_local std::vector<PathVertex> LS, LO;
                                       Sampler rng(t.sampler, seed, 0, uint32_t(j));
                                       LS.clear(), LO.clear();
-                                      if (ws.lightFirst)
+                                      if (ws.lightFirst) {
                                         traceMergedLightSubpath(scene, lanes, ws, rng, rays, LS, LO);
-                                      else
+                                      } else {
                                         traceLightSubpath(scene, LightFamily::Shared, lanes, ws, rng, rays, LS);
+                                        if (t.ownFamily) traceLightSubpath(scene, LightFamily::Own, lanes, ws, rng, rays, LO);
+                                      }
                                       keepLightVertices(LS, false, scene, ws.strategies, out);
                                       keepLightVertices(LO, true, scene, ws.strategies, out);
                                     });

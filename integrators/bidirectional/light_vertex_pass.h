@@ -20,6 +20,9 @@ struct LightVertexTracing {
   size_t paths = 0;          // light subpaths to trace (N)
   SamplerKind sampler = SamplerKind::Sobol;  // subpath j is sample j of the pass's sequence
   uint64_t memoryLimit = 0;  // bytes: kept vertices × kBytesPerLightVertex must stay within it
+  // Without ws.lightFirst, trace an own-family subpath besides the shared one (scenes with media,
+  // where the two families cannot share one walk: docs/media.md §5).
+  bool ownFamily = false;
 };
 
 // Memory per kept light vertex: the record and its share of the k-d tree (point_map.h), or two
@@ -27,7 +30,7 @@ struct LightVertexTracing {
 inline constexpr size_t kBytesPerLightVertex = 2 * bidir::kLightVertexBytes;
 
 // Traces the subpaths (ws.lightFirst set: the merged subpath of both families; else the shared
-// family's) at `lanes` and returns their kept vertices in subpath order, whatever the number of
+// family's, and the own family's where t.ownFamily) at `lanes` and returns their kept vertices in subpath order, whatever the number of
 // threads; subpath j draws from stream j of `seed`. Throws MemoryLimitError as soon as the vertices
 // kept so far exceed the memory limit.
 std::vector<bidir::LightVertex> traceLightVertices(const Scene& scene, const bidir::Lanes& lanes,

@@ -35,7 +35,7 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   // connection ends at x_m, with the merges at x_m.
   const SpectralLobe prevLobe =
       v.has(LightVertex::kPrevFluorescent) ? SpectralLobe::Fluorescent : SpectralLobe::Elastic;
-  const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, t == 2, st) +
+  const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, t == 2, st, b.inMedium()) +
                         (m == 1 ? firstVertexMultiplicity(true, lobe, r.specCam, v.has(LightVertex::kFiniteLight), st)
                                 : joinMultiplicity(v.has(LightVertex::kPrevConnectible), prevLobe, lobe, st));
   const double rPrev = densityRatio(r.pCamPrev, v.pdfPrev);
@@ -102,7 +102,7 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
   for (int i = 0; i < n; ++i) {
     const SpectralLobe lobe = kinds[i].lobe;
     const Variant variant = kinds[i].variant;
-    const double etaMerge = etaOf(c.walk.strategies.merge, variant, gather);
+    const double etaMerge = etaOf(c.walk.strategies.merge, variant, gather, b.inMedium());
     const float scale = fb.incidentShadingRatio(bWi) * laneFactor / float(etaMerge);
     // The wavelengths of the densities at x_m: the light arriving and the camera's leaving, the
     // same through the elastic lobe (the camera's, one that scatters there, §10).
@@ -159,7 +159,7 @@ void mergeSplat(const Context& c, const std::vector<PathVertex>& C, const LightV
   const Vec3 bWi(v.wi[0], v.wi[1], v.wi[2]), bWo = fb.toLocal(towards(b, C[0]));
   const SpectralLobe lobe = SpectralLobe::Elastic;
   const float lambda = v.lambda;
-  const double etaMerge = c.walk.strategies.merge.gather;
+  const double etaMerge = etaOf(c.walk.strategies.merge, Variant::kMergeSplat, true, b.inMedium());
   const float value = betaB * fb.eval(TransportMode::Radiance, bWi, bWo, lambda, lambda, lobe) * v.beta[0] *
                       fb.incidentShadingRatio(bWi) / float(etaMerge);
   if (!(value > 0.0f)) return;
@@ -185,7 +185,9 @@ void mergeSplat(const Context& c, const std::vector<PathVertex>& C, const LightV
 void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
            float* out, std::vector<SpectralSample>& atLight, const std::vector<PathVertex>* lightPath) {
   const PathVertex& b = C[size_t(t - 1)];
-  const bool gather = b.gather;
+  // A collision in a medium merges within the volume radius alone (η_v for every variant, MergeEta):
+  // no wider gather there.
+  const bool gather = b.gather && !b.inMedium();
   const bool own = v.has(LightVertex::kOwn);
   if (!mergeable(b) || (!withinRadius && !(gather && own))) return;
   // b's lanes as the light arriving there sees them: where b ended the lanes on arrival, every lane
@@ -193,7 +195,8 @@ void merge(const Context& c, const std::vector<PathVertex>& C, int t, const Ligh
   const bool ended = b.lanesEndHere;
   const float* beta = ended ? b.betaArriving : b.beta;
   const int bLane = ended ? -1 : b.lane;
-  if (own && t == 2 && c.walk.strategies.merge.gather > 0.0) mergeSplat(c, C, v, beta[0], atLight, lightPath);
+  if (own && t == 2 && etaOf(c.walk.strategies.merge, Variant::kMergeSplat, true, b.inMedium()) > 0.0)
+    mergeSplat(c, C, v, beta[0], atLight, lightPath);
   // The lanes served: on a shared vertex (it carries the camera sample's lanes) those both reach; on
   // an own one every lane that reaches b, each a merge of its own (an own join keeps one of them at
   // random, ownJoinLane: the merge sums them all, that choice's expectation).

@@ -20,7 +20,8 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
   const int k = int(p.v.size()) - 1;
   if (s < 0 || s > k) return false;
   if (isMerge(variant)) {  // both sides sample x_s
-    if (s < 1 || s > k - 1 || !p.v[size_t(s)].connectible || !(etaOf(p.mergeEta, variant, gatherVertex(p, s)) > 0.0))
+    const FullVertex& x = p.v[size_t(s)];
+    if (s < 1 || s > k - 1 || !x.connectible || !x.mergeable || !(etaOf(p.mergeEta, variant, gatherVertex(p, s), x.volume) > 0.0))
       return false;
     if (variant == Variant::kMerge) return p.families.shared && elastic;
     const bool fluorescent = p.v[size_t(s)].lobe == SpectralLobe::Fluorescent;
@@ -80,7 +81,7 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
     // Both sides sample x_s; the kernel accepts a disc of area π r² around it, one of N light
     // subpaths (η = N·π r², each kind's), and through an elastic x_s an own light vertex's wavelength within a
     // window ε_h of the camera's (as a mollified join, eq. 6).
-    double d = etaOf(p.mergeEta, variant, gatherVertex(p, s));
+    double d = etaOf(p.mergeEta, variant, gatherVertex(p, s), p.v[size_t(s)].volume);
     for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
     for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
     if (variant == Variant::kMerge) return d * p.sensorPdf * p.sharedChoice * p.laneGain;

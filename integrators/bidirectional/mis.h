@@ -19,6 +19,8 @@ struct FullVertex {
   double pdfCam = 0.0;
   SpectralLobe lobe = SpectralLobe::Elastic;  // interior vertices: the lobe the path uses here
   bool connectible = true;                    // a connection may end here (no delta lobe)
+  bool volume = false;                        // a collision in a medium: merges there use MergeEta::volume
+  bool mergeable = true;  // connectible, and not a collision whose merge sphere meets a surface (subpath_mis.h)
 };
 
 // Which light subpaths a camera sample is combined with (each at most one per camera sample).
@@ -30,10 +32,13 @@ struct Families {
 // η = N·π r² of the merges (docs/bdpt-mis.md §12), N the light subpaths a camera vertex merges
 // against within radius r (0: no merges); `gather`, N·π r_g², that of own merges through a
 // fluorescent lobe at the path's first gather vertex (the first non-specular one from the camera),
-// which reach light vertices within a radius of their own, r_g, as photon mapping's final gather.
+// which reach light vertices within a radius of their own, r_g, as photon mapping's final gather;
+// `volume`, N·(4/3)π r_v³, that of every merge at a collision in a medium, with light vertices in
+// media within a sphere of radius r_v (`volumeRadius`), where that sphere meets no surface
+// (docs/media.md §6).
 struct MergeEta {
-  double eta = 0.0, gather = 0.0;
-  bool any() const { return eta > 0.0 || gather > 0.0; }
+  double eta = 0.0, gather = 0.0, volume = 0.0, volumeRadius = 0.0;
+  bool any() const { return eta > 0.0 || gather > 0.0 || volume > 0.0; }
 };
 
 struct FullPath {
@@ -91,8 +96,10 @@ inline bool isMerge(Variant v) {
   return v == Variant::kMerge || v == Variant::kMergeOwn || v == Variant::kMergeMollified || v == Variant::kMergeSplat;
 }
 
-// η of a merge variant, at the first gather vertex or not (kMergeSplat's x_{k−1} always is one).
-inline double etaOf(const MergeEta& eta, Variant v, bool gather) {
+// η of a merge variant, at the first gather vertex or not (kMergeSplat's x_{k−1} always is one), on a
+// surface or at a collision in a medium (`volume`: one η for every variant).
+inline double etaOf(const MergeEta& eta, Variant v, bool gather, bool volume) {
+  if (volume) return eta.volume;
   return v == Variant::kMergeSplat || (v == Variant::kMergeOwn && gather) ? eta.gather : eta.eta;
 }
 

@@ -51,16 +51,19 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st) {
 }
 
 MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,
-                          const Strategies& st) {
+                          const Strategies& st, bool volume) {
   if (!mergeable || !st.merge.any()) return {};
-  auto squared = [density](double eta) { return (eta * density) * (eta * density); };
+  auto squared = [&](Variant v, bool atGather) {
+    const double eta = etaOf(st.merge, v, atGather, volume);
+    return (eta * density) * (eta * density);
+  };
   MisSums m;
-  m.shared = squared(st.merge.eta);
+  m.shared = squared(Variant::kMerge, gather);
   if (lobe == SpectralLobe::Fluorescent) {
-    m.own = squared(gather ? st.merge.gather : st.merge.eta);
+    m.own = squared(Variant::kMergeOwn, gather);
   } else {
-    m.mollified = squared(st.merge.eta);
-    if (first) m.ownSplat = squared(st.merge.gather);  // Variant::kMergeSplat
+    m.mollified = squared(Variant::kMergeMollified, gather);
+    if (first) m.ownSplat = squared(Variant::kMergeSplat, true);
   }
   return m;
 }

@@ -95,8 +95,8 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st);
 // mollified part) for an elastic one, and at x_{k−1} also exact at the light vertex's wavelength
 // (Variant::kMergeSplat, η_g, in the part whose last wavelength the sensor does not draw).
 // `gather`: x_m is the path's first gather vertex (MergeEta); `first`: x_m is x_{k−1}, the camera
-// ray's hit.
+// ray's hit; `volume`: x_m is a collision in a medium (every merge there with η_v).
 MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,
-                          const Strategies& st);
+                          const Strategies& st, bool volume = false);
 
 }  // namespace kasha::bidir

@@ -10,6 +10,7 @@
 
 #include "core/math.h"
 #include "integrators/bidirectional/mis_sums.h"
+#include "integrators/medium_transport.h"
 #include "integrators/wavelength_lanes.h"
 #include "materials/bsdf.h"
 
@@ -33,12 +34,25 @@ struct Lanes {
 };
 
 struct PathVertex {
-  enum class Kind : uint8_t { Camera, Light, Surface, Infinite } kind = Kind::Surface;
+  // Medium: a collision inside a participating medium (docs/media.md §5).
+  enum class Kind : uint8_t { Camera, Light, Surface, Medium, Infinite } kind = Kind::Surface;
   Vec3 p{0.0f};
-  Vec3 n{0.0f};            // geometric normal; zero for the camera and point/spot lights
+  Vec3 n{0.0f};            // geometric normal; zero for the camera, point/spot lights and medium points
   Vec3 dir{0.0f};          // Infinite vertices: the direction light travels
-  std::optional<Bsdf> bsdf;  // surface vertices: the scattering function there
+  std::optional<Bsdf> bsdf;  // surface and medium vertices: the scattering function there
   int light = -1;          // index of the light this vertex lies on (light vertex, or an emitter hit)
+  // Media (scenes with media only): a medium vertex's medium; any other vertex's, the medium around
+  // it as its subpath found it (arrived in, or the camera's and the light's own); and the shape a
+  // surface or area-light vertex lies on, whose MediumInterface says which medium a direction
+  // leaves into (mediumToward).
+  int medium = -1;
+  int shape = -1;
+  // The optical depths, at this vertex's wavelength `lambda`, of the segment its subpath reached it
+  // along: what the free-flight densities of that segment need (medium_transport.h).
+  SegmentDepth arrival;
+  // A collision whose merge sphere (radius MergeEta::volumeRadius) meets no surface: only there do
+  // merges in media happen (docs/media.md §6).
+  bool sphereInMedium = true;
   // Subpath throughput of each lane up to this vertex, its own scattering excluded; 0 for a lane
   // that ended.
   float beta[kMaxLanes] = {};
@@ -86,6 +100,11 @@ struct PathVertex {
   bool gather = true;
 
   bool onSurface() const { return kind == Kind::Surface; }
+  // Whether the vertex scatters (a surface or a medium point), as opposed to a path's end.
+  bool scatters() const { return kind == Kind::Surface || kind == Kind::Medium; }
+  bool inMedium() const { return kind == Kind::Medium; }
+  // |cos θ| of direction w with the normal; 1 at a vertex without one (a medium point, a point light).
+  float cosine(const Vec3& w) const { return glm::dot(n, n) > 0.0f ? std::abs(glm::dot(n, w)) : 1.0f; }
   // Whether several lanes reach this vertex (each at its own wavelength).
   bool allLanes(const Lanes& lanes) const { return lane < 0 && lanes.n > 1; }
   // The lanes that reach this vertex, [first, last).
@@ -94,7 +113,7 @@ struct PathVertex {
   // Lane k's wavelength here (k one of the lanes that reach it).
   float lambdaOf(const Lanes& lanes, int k) const { return allLanes(lanes) ? lanes.lambda[k] : lambda; }
   // Whether a connection can end here: surfaces with a non-delta lobe, lights, the camera.
-  bool connectible() const { return kind != Kind::Surface || !bsdf->has(BsdfFlags::DeltaDirection); }
+  bool connectible() const { return !scatters() || !bsdf->has(BsdfFlags::DeltaDirection); }
 };
 
 // Area density at `to` of a solid-angle density at `from` (|cos| at `to` / d²); a vertex without a

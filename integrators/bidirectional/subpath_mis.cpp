@@ -8,7 +8,7 @@ MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe 
   if (j == 0) return hitMultiplicity();  // the camera subpath hits the light (0 where pC_0 is)
   const PathVertex& v = L[size_t(j)];
   // x_j next to the camera (gather, t = 1) is x_{k−1}.
-  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, gather, gather, st);
+  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, gather, gather, st, v.inMedium());
   if (j == 1) {  // x_1: next-event estimation, and the light vertex through a fluorescent x_1
     const double specCam1 = v.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, v.lambda, lobe);
     return merges + firstVertexMultiplicity(v.connectible(), lobe, specCam1, L[0].kind == PathVertex::Kind::Light, st);
@@ -26,7 +26,7 @@ MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe
                            const Strategies& st) {
   if (j < 1) return {};
   const PathVertex& v = C[size_t(j)];
-  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, v.gather, j == 1, st);
+  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, v.gather, j == 1, st, v.inMedium());
   if (j == 1) {  // t = 1: the light side samples x_{k−1}'s event
     const double specLight = v.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, v.lambda, lobe);
     return merges + lightTracingMultiplicity(v.connectible(), specLight, st);

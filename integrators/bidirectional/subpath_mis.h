@@ -29,8 +29,9 @@ MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe
 // The same with C[j]'s own sampled event.
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st);
 
-// Whether a merge can happen at v: a surface without a delta lobe.
-inline bool mergeable(const PathVertex& v) { return v.onSurface() && v.connectible(); }
+// Whether a merge can happen at v: a surface without a delta lobe, or a collision in a medium whose
+// merge sphere meets no surface.
+inline bool mergeable(const PathVertex& v) { return v.scatters() && v.connectible() && v.sphereInMedium; }
 
 // Sets the running sum and the elastic flag of the subpath's newest vertex (Radiance: a camera
 // subpath, Importance: a light subpath). Called once per vertex, in order, once the vertex two

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/color.h"
+#include "integrators/bidirectional/path_media.h"
 #include "integrators/bidirectional/subpath_mis.h"
 
 namespace kasha::bidir {
@@ -25,6 +26,7 @@ struct Track {
   float lambda = 0.0f;
   int lane = 0;        // -1 every lane alive, else the one kept (a one-lane subpath: its only lane)
   float pdfSA = 0.0f;  // density of the ray's direction at the last vertex, its spectral event included
+  int medium = -1;     // the medium the ray travels in (scenes with media)
   bool alive = true;
   bool stopAtFluorescence = false;  // the shared family: ends at its first fluorescent event
   // The merged subpath's shared lanes (docs/bdpt-mis.md §11): where sampling depends on the
@@ -41,8 +43,9 @@ bool lambdaDependent(const Bsdf& bsdf) {
   return bsdf.has(BsdfFlags::Fluorescent) || bsdf.has(BsdfFlags::WavelengthDependentDirection);
 }
 
-Track startTrack(const Lanes& lanes, std::vector<PathVertex>& path, const float* betaStart, float pdfSA) {
+Track startTrack(const Lanes& lanes, std::vector<PathVertex>& path, const float* betaStart, float pdfSA, int medium) {
   Track tr;
+  tr.medium = medium;
   tr.lanes = &lanes;
   tr.path = &path;
   std::copy(betaStart, betaStart + lanes.n, tr.beta);
@@ -53,20 +56,18 @@ Track startTrack(const Lanes& lanes, std::vector<PathVertex>& path, const float*
   return tr;
 }
 
-// Appends the surface vertex at `hit`, reached along `ray`, to the track's subpath.
-void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int light, TransportMode mode,
-            const Strategies& st, Sampler& rng) {
+// Appends the scattering vertex v (a surface or medium point: its place, scattering function,
+// light, media and arrival set), reached along `ray`, to the track's subpath.
+void arrive(Track& tr, PathVertex v, const Ray& ray, const Scene& scene, TransportMode mode, const Strategies& st,
+            Sampler& rng, RayCounter& counter) {
   const Lanes& lanes = *tr.lanes;
   std::vector<PathVertex>& path = *tr.path;
   const PathVertex& prev = path.back();
-  PathVertex v;
-  v.kind = PathVertex::Kind::Surface;
-  v.p = hit.p;
-  v.n = hit.ng;
-  v.bsdf = bsdf;
-  v.light = light;
+  const Bsdf& bsdf = *v.bsdf;
   v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf);
-  v.gather = !prev.onSurface() || (prev.gather && !prev.connectible());
+  v.gather = !prev.scatters() || (prev.gather && !prev.connectible());
+  if (v.inMedium() && st.merge.volume > 0.0)
+    v.sphereInMedium = sphereClearOfSurfaces(scene, v.p, float(st.merge.volumeRadius), counter);
   // Where sampling depends on the wavelength, the lanes end in the hero lane 0, its weight times n
   // (docs/bdpt-mis.md §10): every density on the subpath is then that lane's. Lane 0 is the member
   // of the lane set that the sensor's own number picks, so it is uniform among them, and the
@@ -93,8 +94,9 @@ void arrive(Track& tr, const Hit& hit, const Ray& ray, const Bsdf& bsdf, int lig
   std::copy(tr.beta, tr.beta + lanes.n, v.beta);
   v.lane = int8_t(tr.lane);
   v.lambda = tr.lambda;
-  v.pdfFwd = prev.kind == PathVertex::Kind::Infinite ? tr.pdfSA * std::abs(glm::dot(v.n, ray.d))  // disk → surface
-                                                      : toAreaDensity(tr.pdfSA, prev, v);
+  v.pdfFwd = (prev.kind == PathVertex::Kind::Infinite ? tr.pdfSA * v.cosine(ray.d)  // disk → surface
+                                                       : toAreaDensity(tr.pdfSA, prev, v)) *
+             flightFactor(scene, mode, v.arrival, v, v.lambda);
   path.push_back(v);
   updateSums(path, mode, st);
 }
@@ -134,12 +136,12 @@ bool scatter(Track& tr, const Scene& scene, TransportMode mode, const Vec3& wKno
       (before.kind == PathVertex::Kind::Infinite && scene.lights[size_t(before.light)]->isDelta()))
     before.pdfRev = 0.0f;
   else
-    before.pdfRev = toAreaDensity(pdfRev, cur, before);
+    before.pdfRev = toAreaDensity(pdfRev, cur, before) * flightFactor(scene, flip(mode), cur.arrival, before, cur.lambda);
   // Every lane alive here scatters elastically through a wavelength-independent density.
   for (int k = cur.firstLane(); k < cur.endLane(lanes); ++k) {
     const float f = cur.allLanes(lanes) ? bsdf.eval(mode, wi, wo, lanes.lambda[k], lanes.lambda[k], sc.lobe)
                                         : bsdf.eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
-    tr.beta[k] *= f * std::abs(ds.w.z) / pdfFwd;
+    tr.beta[k] *= f * bsdf.cosineFactor(ds.w) / pdfFwd;
   }
   tr.lambda = sc.lambda;
   tr.pdfSA = pdfFwd;
@@ -155,32 +157,51 @@ bool scatter(Track& tr, const Scene& scene, TransportMode mode, const Vec3& wKno
 void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, TransportMode mode, const WalkSettings& ws,
                 Sampler& rng, RayCounter& counter, int surfaces = 0, bool atVertex = false) {
   const bool camera = mode == TransportMode::Radiance;
+  const bool media = scene.hasMedia();
   auto live = [&] { return std::find_if(tracks, tracks + nTracks, [](const Track& t) { return t.alive; }); };
   for (bool arrived = atVertex;; arrived = false) {
     if (!arrived) {
-      const std::optional<Hit> hit = scene.accel->intersect(ray);
-      ++counter.closest;
-      if (!hit) {
-        Track& tr = tracks[0];
+      // Through the media at the track's wavelength (one track and one lane in scenes with media,
+      // bdpt.cpp; docs/media.md §5): the flight's weight T/p goes into the throughput.
+      Track& lead = tracks[0];
+      const float uFlight = media ? rng.uniform() : 0.0f;
+      const FreeFlight flight = traceFreeFlight(scene, ray, lead.medium, {&lead.lambda, 1}, uFlight, mode, counter);
+      if (media) lead.beta[0] *= flight.weight[0];
+      if (!flight.hit && !flight.collided) {
         if (camera && scene.environment()) {  // the camera path escapes to the environment
           PathVertex v;
           v.kind = PathVertex::Kind::Infinite;
           v.dir = -ray.d;
           v.light = scene.environmentLight;
-          std::copy(tr.beta, tr.beta + tr.lanes->n, v.beta);
-          v.lane = int8_t(tr.lane);
-          v.lambda = tr.lambda;
-          v.pdfFwd = tr.pdfSA;
-          tr.path->push_back(v);
-          updateSums(*tr.path, mode, ws.strategies);
+          std::copy(lead.beta, lead.beta + lead.lanes->n, v.beta);
+          v.lane = int8_t(lead.lane);
+          v.lambda = lead.lambda;
+          v.arrival = flight.depth;
+          v.pdfFwd = lead.pdfSA * flightFactor(scene, mode, v.arrival, v, v.lambda);
+          lead.path->push_back(v);
+          updateSums(*lead.path, mode, ws.strategies);
         }
         return;
       }
-      const Bsdf bsdf = scene.bsdf(*hit, {tracks[0].lanes->lambda, size_t(tracks[0].lanes->n)});
-      const int light = scene.shapeLight[hit->shape];
+      PathVertex v;
+      if (flight.collided) {
+        v.kind = PathVertex::Kind::Medium;
+        v.p = flight.p;
+        v.bsdf = scene.mediumBsdf(flight.medium);
+      } else {
+        const Hit& hit = *flight.hit;
+        v.p = hit.p;
+        v.n = hit.ng;
+        v.bsdf = scene.bsdf(hit, {lead.lanes->lambda, size_t(lead.lanes->n)});
+        v.light = scene.shapeLight[hit.shape];
+        v.shape = int(hit.shape);
+      }
+      v.medium = flight.medium;
+      v.arrival = flight.depth;
+      const Bsdf& bsdf = *v.bsdf;
       int alive = 0;
       for (int i = 0; i < nTracks; ++i)
-        if (tracks[i].alive) arrive(tracks[i], *hit, ray, bsdf, light, mode, ws.strategies, rng), ++alive;
+        if (tracks[i].alive) arrive(tracks[i], v, ray, scene, mode, ws.strategies, rng, counter), ++alive;
       ++surfaces;
       if (alive > 1 && lambdaDependent(bsdf))
         for (int i = 0; i < nTracks; ++i)
@@ -219,6 +240,8 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
     if (live() == tracks + nTracks) return;
     const Vec3 w = bsdf.toWorld(ds->w);
     ray = Ray{offsetPoint(at.p, at.n, w), w};
+    if (media)
+      for (int i = 0; i < nTracks; ++i) tracks[i].medium = mediumToward(scene, at, w);
     if (surfaces >= ws.rrDepth) {  // Russian roulette against the starting throughput
       q = std::min(1.0f, q);
       if (rng.uniform() >= q) return;
@@ -233,7 +256,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
 
 Families familiesFor(const Scene& scene, WavelengthMode mode) {
   using M = WavelengthMode;
-  bool fluoresces = false;
+  bool fluoresces = scene.hasFluorescentMedia();
   for (const auto& m : scene.materials) fluoresces = fluoresces || has(m->flags(), BsdfFlags::Fluorescent);
   return {mode != M::Independent, mode == M::Independent || (mode == M::Unified && fluoresces)};
 }
@@ -277,6 +300,7 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
   c.kind = PathVertex::Kind::Camera;
   const Ray ray = scene.camera.generateRay(filmPos, scene.camera.sampleLens(rng));
   c.p = ray.o;
+  c.medium = scene.cameraMedium;
   std::fill(c.beta, c.beta + lanes.n, 1.0f);
   c.lambda = lanes.lambda[0];
   // The lens point's density is the same in every strategy (each samples the lens alike): a
@@ -291,7 +315,7 @@ void traceCameraSubpath(const Scene& scene, Vec2 filmPos, const Lanes& lanes, co
   const PixelFilter& filter = scene.pixelFilter;
   const float pdfRay = scene.camera.rayPdf(ray, filter.filmMargin()) *
                        filter.coverage(filmPos, scene.camera.width(), scene.camera.height());
-  Track tr = startTrack(lanes, out, c.beta, pdfRay);
+  Track tr = startTrack(lanes, out, c.beta, pdfRay, c.medium);
   randomWalk(scene, ray, &tr, 1, TransportMode::Radiance, ws, rng, counter);
 }
 
@@ -300,13 +324,16 @@ namespace {
 // A light subpath's first vertex L[0] on light `light` from its emission sample (taken at
 // sampledLambda), with its lanes' throughput Le/(choice·pL_0) and the throughput leaving along the
 // sample's direction (betaOut); false if no lane carries light.
-bool startLightVertex(const Light& L, size_t light, const EmissionSample& es, float sampledLambda, const Lanes& lanes,
-                      float choice, PathVertex& v, float* betaOut) {
+bool startLightVertex(const Scene& scene, const Light& L, size_t light, const EmissionSample& es, float sampledLambda,
+                      const Lanes& lanes, float choice, PathVertex& v, float* betaOut) {
   v.kind = L.atInfinity() ? PathVertex::Kind::Infinite : PathVertex::Kind::Light;
   v.p = es.p;
   v.n = es.n;
   v.dir = es.w;
   v.light = int(light);
+  v.medium = scene.lightMedium[light];
+  // An area light's sample has a normal: the vertex lies on its shape, whose MediumInterface counts.
+  if (glm::dot(es.n, es.n) > 0.0f) v.shape = int(&static_cast<const AreaLight&>(L).shape() - scene.shapes.data());
   v.lambda = lanes.lambda[0];
   if (lanes.n == 1) v.lane = 0;
   v.deltaPosition = es.deltaPos;
@@ -356,10 +383,10 @@ void traceLightSubpath(const Scene& scene, LightFamily family, const Lanes& shar
   if (!es || es->pdfPos <= 0.0f || es->pdfDir <= 0.0f) return;
   PathVertex v;
   float beta[kMaxLanes];
-  if (!startLightVertex(L, light, *es, lanes.lambda[0], lanes, choice, v, beta)) return;
+  if (!startLightVertex(scene, L, light, *es, lanes.lambda[0], lanes, choice, v, beta)) return;
   out.push_back(v);
   updateSums(out, TransportMode::Importance, ws.strategies);
-  Track tr = startTrack(lanes, out, beta, emissionDirectionPdf(L, *es));
+  Track tr = startTrack(lanes, out, beta, emissionDirectionPdf(L, *es), mediumToward(scene, v, es->w));
   tr.stopAtFluorescence = family == LightFamily::Shared;
   randomWalk(scene, emissionRay(*es), &tr, 1, TransportMode::Importance, ws, rng, counter);
 }
@@ -382,16 +409,17 @@ int traceMergedLightSubpath(const Scene& scene, const Lanes& shared, const WalkS
   PathVertex v;
   float beta[kMaxLanes];
   const float pdfDir = emissionDirectionPdf(L, *es);
-  if (startLightVertex(L, d.light, *es, d.lambda, own, d.lightPdf * d.wavelengthPdf, v, beta)) {
+  // Scenes with media do not merge the light subpaths (bdpt.cpp): no medium here.
+  if (startLightVertex(scene, L, d.light, *es, d.lambda, own, d.lightPdf * d.wavelengthPdf, v, beta)) {
     LO.push_back(v);
     updateSums(LO, TransportMode::Importance, ws.strategies);
-    tracks[n++] = startTrack(own, LO, beta, pdfDir);
+    tracks[n++] = startTrack(own, LO, beta, pdfDir, -1);
   }
   v = PathVertex{};
-  if (startLightVertex(L, d.light, *es, d.lambda, shared, d.lightPdf, v, beta)) {
+  if (startLightVertex(scene, L, d.light, *es, d.lambda, shared, d.lightPdf, v, beta)) {
     LS.push_back(v);
     updateSums(LS, TransportMode::Importance, ws.strategies);
-    tracks[n] = startTrack(shared, LS, beta, pdfDir);
+    tracks[n] = startTrack(shared, LS, beta, pdfDir, -1);
     tracks[n].stopAtFluorescence = true;
     tracks[n++].forkWhereLambdaDependent = true;
   }

@@ -1,5 +1,6 @@
 #include "integrators/bidirectional/vcm.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include "integrators/bidirectional/connect.h"
 #include "integrators/bidirectional/family_pilot.h"
 #include "integrators/bidirectional/merge.h"
+#include "integrators/bidirectional/path_media.h"
 #include "integrators/bidirectional/pilot_observer.h"
 #include "integrators/bidirectional/strategy_images.h"
 #include "integrators/bidirectional/subpath_mis.h"
@@ -26,6 +28,9 @@ namespace {
 // large) and their noise with it, so vcm's holds one, as small as SmallVCM's (0.3% of the scene's
 // radius): merges then carry mostly the paths that connections cannot make, such as caustics.
 constexpr float kVerticesPerDisc = 1.0f;
+// The default volume radius r_v,1: a sphere around a light vertex in a medium holds this many others
+// (docs/media.md §6), as the disc of a surface merge holds kVerticesPerDisc.
+constexpr double kVerticesPerSphere = 1.0;
 // The wide gather's radius over the pass's (VcmPaths::Gather): its disc holds 16 times the light
 // vertices, as many as photon mapping's (docs/photon-mapping.md).
 constexpr float kGatherScale = 4.0f;
@@ -42,6 +47,33 @@ constexpr size_t kPilotLightPaths = 8192;
 // gain from stratified random numbers (docs/bdpt-mis.md §14).
 constexpr size_t kGainPixels = 512;
 constexpr int kGainSpp = 16;
+
+// The radius of a sphere around a light vertex in a medium that holds `count` other such vertices
+// of `vertices` on average, by bisection on the counts (it adapts to thin media, where the count
+// grows as the area of a slab's cross-section); `fallback` where fewer than two lie in media.
+float sphereHolding(const std::vector<bidir::LightVertex>& vertices, double count, float fallback) {
+  std::vector<bidir::LightVertex> inMedia;
+  for (const bidir::LightVertex& v : vertices)
+    if (v.has(bidir::LightVertex::kMedium)) inMedia.push_back(v);
+  if (inMedia.size() < 2) return fallback;
+  Vec3 lo(kInf), hi(-kInf);
+  for (const bidir::LightVertex& v : inMedia) {
+    lo = glm::min(lo, Vec3(v.p[0], v.p[1], v.p[2]));
+    hi = glm::max(hi, Vec3(v.p[0], v.p[1], v.p[2]));
+  }
+  const LightVertexMap map(std::move(inMedia));
+  double small = 0.0, large = double(glm::length(hi - lo)) + 1e-6;
+  for (int i = 0; i < 32; ++i) {
+    const double r = 0.5 * (small + large);
+    size_t others = 0;
+    for (size_t j = 0; j < map.size(); ++j) {
+      const bidir::LightVertex& v = map[j];
+      others += map.within(Vec3(v.p[0], v.p[1], v.p[2]), float(r)).size() - 1;
+    }
+    (double(others) / double(map.size()) < count ? small : large) = r;
+  }
+  return float(large);
+}
 
 }  // namespace
 
@@ -60,6 +92,7 @@ struct VcmPass final : PassData {
   bidir::Lanes lanes;
   bidir::WalkSettings walk;
   float radius = 0.0f;
+  float radiusVolume = 0.0f;  // merges at collisions in media (0: the scene has none)
   float radiusGather = 0.0f;  // own merges through a fluorescent lobe at the first gather vertex (MergeEta)
   float bandwidth = 0.0f;  // the wavelength kernel's half-width (own merges through an elastic lobe); 0: none
   std::unique_ptr<LightVertexMap> vertices;  // null without merges
@@ -81,15 +114,22 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by " + name() + " (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart,
                  "by " + name() + " (its MIS weights need the light-start density)");
+  // In scenes with media, one wavelength per path and separate light subpaths per family, as bdpt's
+  // (docs/media.md §5).
+  const bool media = scene.hasMedia();
+  if (media) {
+    bidir::requireBidirectionalMedia(scene, s, name());
+    if (s.heroWavelengths == kAutoLanes) lanes_ = 1;
+  }
   if (lanes_ < 1 || lanes_ > bidir::kLightVertexLanes)
     throw std::invalid_argument(name() + ": hero wavelengths " + std::to_string(lanes_) + " is outside [1, " +
                                 std::to_string(bidir::kLightVertexLanes) + "] (the lanes a light vertex keeps)");
-  if (families_.independent) {
+  if (families_.independent && !media) {
     lightFirst_ = std::make_unique<bidir::LightFirstStart>(scene, s.wavelengths.light);
     ws_.lightFirst = lightFirst_.get();
   }
   const VcmSettings& p = s.vcm;
-  checkProgressiveSettings(p, [&](const char* key, const std::string& why) {
+  checkVcmSettings(p, [&](const char* key, const std::string& why) {
     throw std::invalid_argument(name() + ": render/vcm/" + key + " " + why);
   });
   // SmallVCM's choice: as many light subpaths per pass as pixels.
@@ -98,19 +138,31 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
   for (const Shape& shape : scene.shapes) area += shape.area;
   // A subpath keeps several vertices in a closed, bright scene: count them on a pilot of subpaths
   // (at the lanes of the first pass), so that the default radius holds kVerticesPerDisc of them.
+  // In media the same pilot sets the volume radius: a sphere holds kVerticesPerSphere of the pass's
+  // light vertices in media.
   double kept = double(paths_);
-  if (p.radius <= 0.0f && parts_ != Parts::Connections) {
+  const bool mergesInMedia = media && parts_ != Parts::Connections;
+  std::vector<bidir::LightVertex> pilotVertices;
+  LightVertexTracing pilot;
+  pilot.paths = std::min(kPilotPaths, paths_);
+  if ((p.radius <= 0.0f || (mergesInMedia && p.volumeRadius <= 0.0f)) && parts_ != Parts::Connections) {
     bidir::LaneTables tables;
     const bidir::Lanes lanes = bidir::sensorLanes(scene, sensor_.density(), 0.5f, lanes_, tables, nullptr, lightFirst_.get());
-    LightVertexTracing pilot;
-    pilot.paths = std::min(kPilotPaths, paths_);
     pilot.sampler = sampler_;
     pilot.memoryLimit = UINT64_MAX;  // at most kPilotPaths·max_depth·2 vertices
+    pilot.ownFamily = families_.independent && !lightFirst_;
     RayCounter rays;
-    const size_t n = traceLightVertices(scene, lanes, ws_, pilot, 0x9e3779b97f4a7c15ULL, rays).size();
-    kept = std::max(1.0, double(n) * double(paths_) / double(pilot.paths));
+    pilotVertices = traceLightVertices(scene, lanes, ws_, pilot, 0x9e3779b97f4a7c15ULL, rays);
+    const auto onSurfaces = std::count_if(pilotVertices.begin(), pilotVertices.end(), [](const bidir::LightVertex& v) {
+      return !v.has(bidir::LightVertex::kMedium);
+    });
+    kept = std::max(1.0, double(onSurfaces) * double(paths_) / double(pilot.paths));
   }
   radius1_ = p.radius > 0.0f ? p.radius : float(std::sqrt(kVerticesPerDisc * area / (kPi * kept)));
+  if (mergesInMedia)
+    volumeRadius1_ = p.volumeRadius > 0.0f ? p.volumeRadius
+                                           : sphereHolding(pilotVertices, kVerticesPerSphere * double(pilot.paths) / double(paths_),
+                                                           radius1_);
   // Own light vertices merge through an elastic lobe with a wavelength kernel, as photon mapping's
   // (render/vcm/bandwidth, by default 1% of the range), shrinking with the radius.
   if (parts_ != Parts::Connections && families_.independent)
@@ -133,6 +185,12 @@ std::string Vcm::name() const {
 }
 
 float Vcm::radius(int sample) const { return std::sqrt(progressiveRadiusSquared(radius1_, alpha_, sample + 1)); }
+
+// Knaus & Zwicker 2011 in three dimensions, r_i³ = r_{i−1}³·(i − 1 + α)/i: the two-dimensional
+// schedule's product, r_i²/r_1², is the same.
+float Vcm::volumeRadius(int sample) const {
+  return volumeRadius1_ * std::cbrt(progressiveRadiusSquared(1.0f, alpha_, sample + 1));
+}
 
 std::unique_ptr<const PassData> Vcm::beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                                RayCounter& counter) const {
@@ -274,12 +332,17 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   paths = paths == 0 ? paths_ : std::min(paths, paths_);
   pass->radius = r * float(std::sqrt(double(paths_) / double(paths)));
   const double eta = double(paths_) * kPi * double(r) * r;
-  pass->walk.strategies.merge = {eta, eta};
+  // Merges at collisions in media: a sphere of radius r_v, η_v = N·(4/3)π r_v³ (docs/media.md §6).
+  const float rv = volumeRadius(firstSample);
+  pass->radiusVolume = rv * float(std::cbrt(double(paths_) / double(paths)));
+  const double etaVolume = double(paths_) * (4.0 / 3.0) * kPi * double(rv) * rv * rv;
+  pass->walk.strategies.merge = {eta, eta, etaVolume, pass->radiusVolume};
   pass->setGather(gather);
   LightVertexTracing t;
   t.paths = paths;
   t.sampler = sampler_;
   t.memoryLimit = memoryLimit_;
+  t.ownFamily = families_.independent && !lightFirst_;
   // A stream family per pass, apart from the camera samples' (render_loop.cpp) and the lanes'.
   const uint64_t passSeed = mixBits(mixBits(seed ^ 0x5851f42d4c957f2dULL) + uint64_t(firstSample));
   pass->vertices = std::make_unique<LightVertexMap>(
@@ -318,10 +381,12 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
   if (parts_ != Parts::Merges) {
     // The connections: one light subpath per camera sample, as the unified bdpt's.
     LS.clear(), LO.clear();
-    if (lightFirst_)
+    if (lightFirst_) {
       c.sharedLightVertices = traceMergedLightSubpath(scene, lanes, pass.walk, rng, ctx.counter, LS, LO);
-    else
+    } else {
       traceLightSubpath(scene, LightFamily::Shared, lanes, pass.walk, rng, ctx.counter, LS);
+      if (families_.independent) traceLightSubpath(scene, LightFamily::Own, lanes, pass.walk, rng, ctx.counter, LO);
+    }
     connectSubpaths(c, C, LS, LO, rng, ctx.splats, radiance, xyz);
   } else {
     std::fill(radiance, radiance + lanes_, 0.0f);
@@ -331,14 +396,19 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
     thread_local std::vector<SpectralSample> atLight;  // merges at the light vertices' own wavelengths
     atLight.clear();
     const int maxDepth = pass.walk.maxDepth;
-    const float r2 = pass.radius * pass.radius;
     for (int t = 2; t <= int(C.size()) && t - 1 <= maxDepth; ++t) {
       const PathVertex& b = C[size_t(t - 1)];
       if (!mergeable(b)) continue;
-      const float reach = b.gather ? std::max(pass.radius, pass.radiusGather) : pass.radius;
+      // A collision merges with the light vertices in media within r_v, a surface point with those on
+      // surfaces within r (own ones through a fluorescent first gather vertex within the gather's).
+      const bool volume = b.inMedium();
+      const float r = volume ? pass.radiusVolume : pass.radius;
+      const float r2 = r * r;
+      const float reach = !volume && b.gather ? std::max(pass.radius, pass.radiusGather) : r;
       const std::vector<size_t>& near = pass.vertices->within(b.p, reach);
       for (size_t i : near) {
         const LightVertex& v = (*pass.vertices)[i];
+        if (v.has(LightVertex::kMedium) != volume) continue;
         const Vec3 d = Vec3(v.p[0], v.p[1], v.p[2]) - b.p;
         if (v.depth + t - 2 <= maxDepth) merge(c, C, t, v, glm::dot(d, d) <= r2, radiance, atLight);
       }

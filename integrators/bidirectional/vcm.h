@@ -12,7 +12,8 @@
 // kernel), `bpm` the merges alone (with the camera subpath reaching the light), as SmallVCM's
 // algorithm list. `vcm` without light subpaths is path tracing with next-event estimation: a pilot
 // chooses per render between it, every strategy, and every strategy with the wide final gather
-// (docs/bdpt-mis.md §12, §14, render/vcm/paths).
+// (docs/bdpt-mis.md §12, §14, render/vcm/paths). In scenes with media, collisions merge with the
+// light vertices in media within a sphere (docs/media.md §6).
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -57,6 +58,9 @@ class Vcm final : public Integrator {
 
   // The merge radius of the pass that takes sample `sample` (iteration sample + 1).
   float radius(int sample) const;
+  // The radius of merges at collisions in media (docs/media.md §6), shrinking by Knaus and Zwicker's
+  // schedule for three dimensions; 0 in a scene without media.
+  float volumeRadius(int sample) const;
   size_t lightPathsPerPass() const { return paths_; }
 
  private:
@@ -78,6 +82,7 @@ class Vcm final : public Integrator {
   int lanes_;
   size_t paths_;
   float radius1_, alpha_;
+  float volumeRadius1_ = 0.0f;  // render/vcm/volume_radius, or from a pilot; 0 without media
   float bandwidth1_ = 0.0f;  // the first pass's wavelength kernel half-width (0: no kernel)
   uint64_t memoryLimit_;
   SamplerKind sampler_;

@@ -86,7 +86,7 @@ PpmIntegrator::PpmIntegrator(const Scene& scene, const RenderSettings& s)
                                   "fluorescence_sampling '" + s.wavelengths.fluorescence.text +
                                       "' applies to ppm only with render/ppm/direct \"nee\" (leave it at 'material')");
   const PhotonMappingSettings& p = s.ppm;
-  checkPhotonMappingSettings(p, [](const char* key, const std::string& why) {
+  checkProgressiveSettings(p, [](const char* key, const std::string& why) {
     throw std::invalid_argument(std::string("ppm: render/ppm/") + key + " " + why);
   });
   // SmallVCM's choice: as many light subpaths per iteration as pixels.

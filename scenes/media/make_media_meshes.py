@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the closed meshes and the Lumogen spectrum of the participating-media scenes
-(scenes/tonic_water.json, fluorescein_cuvette.json, lsc_slab.json; docs/media-scenes.md), and
-prints the energy yields the scenes use.
+(scenes/tonic_water.json, fluorescein_cuvette.json, lsc_slab.json, uv_dye_caustic.json;
+docs/media-scenes.md), and prints the energy yields the scenes use.
 
 Every mesh is a closed surface of revolution: a profile (r, y) in a half-plane, from a point on the
 axis back to a point on the axis with the solid on its left (counter-clockwise), turned about the
@@ -80,6 +80,17 @@ def block(radius, y0, y1):
     return [(0.0, y0), (radius, y0), (radius, y1), (0.0, y1)]
 
 
+def biconvex_lens(aperture, radius, edge, steps):
+    """A symmetric biconvex lens about the y axis: two spherical caps of curvature radius `radius`
+    over a rim of radius `aperture` and thickness `edge`, the optical centre at y = 0."""
+    sag = lambda r: radius - math.sqrt(radius * radius - r * r)  # noqa: E731  (cap height at r)
+    half = edge / 2.0 + sag(aperture)  # half the centre thickness
+    rs = [aperture * i / steps for i in range(steps + 1)]
+    lower = [(r, -half + sag(r)) for r in rs]
+    upper = [(r, half - sag(r)) for r in reversed(rs)]
+    return lower + upper
+
+
 SQUARE = math.sqrt(2.0)  # a square of half-side s has its corners at radius s·√2
 
 
@@ -156,11 +167,24 @@ def main():
     write_obj('lsc_stand.obj', 'Stand under the sheet (lsc_slab.json)',
               *revolve(block(3.0 * SQUARE, 0.0, 1.5 - GAP), 4, 45.0))
 
+    # UV caustic in a dye (uv_dye_caustic.json): the solution, filling a black cell of 30 mm inner
+    # side to 28 mm above its 3 mm base, as an index-matched block (the camera looks into it from
+    # above without meeting glass: light tracing, the scene's reference, cannot see through a
+    # dielectric); the cell's entrance window, a fused-silica disc 14 mm across and 1.5 mm thick;
+    # and a BK7 biconvex lens (16 mm across, curvature radius 22 mm, 1 mm rim: paraxial f = 2.1 cm
+    # at 365 nm). The window's and the lens's axes are y here; the scene turns them onto x.
+    write_obj('dye_cell_liquid.obj', 'Quinine solution in the black cell, index-matched (uv_dye_caustic.json)',
+              *revolve(block((1.5 - GAP) * SQUARE, 0.3 + GAP, 2.8), 4, 45.0))
+    write_obj('dye_cell_window.obj', 'Fused-silica entrance window, 14 x 1.5 mm (uv_dye_caustic.json)',
+              *revolve(block(0.7, -0.075, 0.075), 64))
+    write_obj('dye_cell_lens.obj', 'BK7 biconvex lens, 16 mm, R = 22 mm (uv_dye_caustic.json)',
+              *revolve(biconvex_lens(0.8, 2.2, 0.1, 16), 64))
+
     lam, lumogen_em, lumogen_peak = lumogen_csv()
     fl, fe = fitc_emission()
     print('energy yields Y = phi * lambda_x / <lambda_m>:')
-    print(f'  quinine, phi 0.546 (Melhuish 1961), 365 nm LED, Gaussian emission at 450 nm: '
-          f'{energy_yield(0.546, 365.0, 450.0):.3f}')
+    print(f'  quinine, phi 0.546 (Melhuish 1961), 365 nm LED, Gaussian emission at 450 nm '
+          f'(tonic_water.json, uv_dye_caustic.json): {energy_yield(0.546, 365.0, 450.0):.3f}')
     print(f'  fluorescein, phi 0.925 (Magde et al. 2002), 470 nm LED, FITC emission '
           f'<lambda> = {mean_wavelength(fl, fe, 360, 830):.1f} nm: '
           f'{energy_yield(0.925, 470.0, mean_wavelength(fl, fe, 360, 830)):.3f}')

@@ -129,7 +129,13 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/validation/single_sphere_environment.json", kBoth, 0.0f, 4, true},
                       // Cameras with a lens point of their own per connection, and parallel rays.
                       Case{"scenes/cornell_glossy.json", kBoth, 0.0f, 4, false, CameraKind::ThinLens},
-                      Case{"scenes/cornell_glossy.json", kBoth, 0.0f, 4, true, CameraKind::Orthographic}),
+                      Case{"scenes/cornell_glossy.json", kBoth, 0.0f, 4, true, CameraKind::Orthographic},
+                      // Medium vertices (docs/media.md §5): a fluorescent, scattering medium around
+                      // the camera; a fluorescent dye behind glass walls.
+                      Case{"scenes/validation/media_fluorescent_furnace.json", kBoth, 0.0f},
+                      Case{"scenes/validation/media_fluorescent_furnace.json", kOwn, 0.0f},
+                      Case{"scenes/validation/media_fluorescent_furnace.json", kShared, 0.0f},
+                      Case{"scenes/fluorescein_cuvette.json", kBoth, 0.0f}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string name = describe(info.param);
       for (char& ch : name)

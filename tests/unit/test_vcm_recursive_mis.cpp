@@ -41,9 +41,11 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
   const Families families = familiesFor(*scene, WavelengthMode::Unified);
   const LightFirstStart lightFirst(*scene, scene->render.wavelengths.light);
   // η comparable with the other strategies' densities, so that merge weights fall inside (0, 1);
-  // another at the first gather vertex.
-  const Strategies strategies{param.connections, {3.0, 11.0}};
-  const WalkSettings ws{6, 3, &light.density(), families.independent ? &lightFirst : nullptr, strategies};
+  // another at the first gather vertex, and one at collisions in media. With media the families
+  // trace separate light subpaths (docs/media.md §5).
+  const bool media = scene->hasMedia();
+  const Strategies strategies{param.connections, {3.0, 11.0, 5.0, 0.01}};
+  const WalkSettings ws{6, 3, &light.density(), families.independent && !media ? &lightFirst : nullptr, strategies};
   std::vector<PathVertex> C, LS, LO;
   test::WeightOracle oracle;
   LaneTables tables;
@@ -65,6 +67,7 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
       sharedLightVertices = traceMergedLightSubpath(*scene, lanes, ws, rng, counter, LS, LO);
     else
       traceLightSubpath(*scene, LightFamily::Shared, lanes, ws, rng, counter, LS);
+    if (media && families.independent) traceLightSubpath(*scene, LightFamily::Own, lanes, ws, rng, counter, LO);
     Context c{*scene, ws, families, lanes, sensor.density(), counter};
     c.sharedLightVertices = sharedLightVertices;
     c.bandwidth = param.bandwidth;
@@ -75,14 +78,15 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
     std::vector<SpectralSample> atLight;
     Vec3 xyz;
     if (param.connections) connectSubpaths(c, C, LS, LO, rng, splats, radiance, xyz);
-    // Every light vertex merged with every camera vertex: the weights' algebra does not need them
-    // to be near each other.
+    // Every light vertex merged with every camera vertex of its kind (surface, or collision in a
+    // medium): the weights' algebra does not need them to be near each other.
     for (const std::vector<PathVertex>* L : {&LS, &LO}) {
       kept.clear();
       keepLightVertices(*L, L == &LO, *scene, strategies, kept);
       for (const LightVertex& v : kept)
         for (int t = 2; t <= int(C.size()) && v.depth + t - 2 <= ws.maxDepth; ++t)
-          if (mergeable(C[size_t(t - 1)])) merge(c, C, t, v, true, radiance, atLight, L);
+          if (mergeable(C[size_t(t - 1)]) && C[size_t(t - 1)].inMedium() == v.has(LightVertex::kMedium))
+            merge(c, C, t, v, true, radiance, atLight, L);
     }
     for (const test::WeightCheck& k : oracle.checks) merges += isMerge(Variant(k.variant));
     ASSERT_TRUE(tally.add(oracle.checks, sample)) << describe(param);
@@ -105,7 +109,13 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/validation/furnace_fluorescent.json", true, 4},  // a fluorescent emitter
                       Case{"scenes/validation/furnace_fluorescent.json", false, 4},
                       Case{"scenes/validation/smooth_sphere_distant.json", true, 4},  // a distant light
-                      Case{"scenes/validation/single_sphere_environment.json", true, 4}),  // environment
+                      Case{"scenes/validation/single_sphere_environment.json", true, 4},  // environment
+                      // Collisions in media (docs/media.md §6): a fluorescent slab under a distant
+                      // light, a scattering fluorescent medium, a dye behind glass.
+                      Case{"scenes/validation/media_slab.json", true, 1},
+                      Case{"scenes/validation/media_fluorescent_furnace.json", true, 1},
+                      Case{"scenes/validation/media_fluorescent_furnace.json", false, 1},  // the merges' algebra alone
+                      Case{"scenes/fluorescein_cuvette.json", true, 1}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string name = describe(info.param);
       for (char& ch : name)

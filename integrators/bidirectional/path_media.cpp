@@ -1,0 +1,53 @@
+#include "integrators/bidirectional/path_media.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace kasha::bidir {
+
+int mediumToward(const Scene& scene, const PathVertex& v, const Vec3& w) {
+  if (v.kind == PathVertex::Kind::Medium || v.shape < 0) return v.medium;
+  Hit at;
+  at.shape = uint32_t(v.shape);
+  at.ng = v.n;
+  return scene.mediumBeyond(at, w, v.medium);
+}
+
+double flightFactor(const Scene& scene, TransportMode mode, const SegmentDepth& d, const PathVertex& target,
+                    float lambda) {
+  if (!scene.hasMedia()) return 1.0;
+  const bool mixture = mode == TransportMode::Radiance && scene.hasFluorescentMedia();
+  float rate = 1.0f, seekRate = 1.0f;
+  if (target.kind == PathVertex::Kind::Medium) {
+    // Homogeneous media only (bdpt refuses heterogeneous ones): σ_t does not depend on the point.
+    rate = seekRate = scene.media[size_t(target.medium)]->sigmaT(lambda);
+    if (mixture) seekRate += scene.mediumScattering[size_t(target.medium)]->fluorescentWeight(mode, lambda);
+  }
+  return freeFlightDensity(mixture, d, rate, seekRate);
+}
+
+bool sphereClearOfSurfaces(const Scene& scene, const Vec3& p, float r, RayCounter& counter) {
+  constexpr float d = 0.57735027f;  // 1/√3
+  static const Vec3 directions[14] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},  {0, -1, 0},  {0, 0, 1},  {0, 0, -1},
+                                      {d, d, d},  {d, d, -d}, {d, -d, d}, {d, -d, -d}, {-d, d, d}, {-d, d, -d},
+                                      {-d, -d, d}, {-d, -d, -d}};
+  for (const Vec3& w : directions) {
+    ++counter.shadow;
+    if (scene.accel->occluded(p, w, r)) return false;
+  }
+  return true;
+}
+
+void requireBidirectionalMedia(const Scene& scene, const RenderSettings& settings, const std::string& integrator) {
+  for (size_t m = 0; m < scene.media.size(); ++m)
+    if (scene.media[m]->heterogeneous())
+      throw std::invalid_argument(integrator + ": media: heterogeneous media are not supported by " + integrator +
+                                  " yet (pt and lt render them)");
+  if (settings.heroWavelengths != kAutoLanes && settings.heroWavelengths > 1)
+    throw std::invalid_argument(integrator + ": render/hero_wavelengths " + std::to_string(settings.heroWavelengths) +
+                                ": scenes with media take one wavelength per path in " + integrator);
+  if (integrator == "bdpt" && settings.bdpt.mollify)
+    throw std::invalid_argument("bdpt: render/bdpt/mollify: not supported in scenes with media");
+}
+
+}  // namespace kasha::bidir

@@ -1,0 +1,36 @@
+#pragma once
+// The media around BDPT's vertices (docs/media.md §5): which medium a direction leaves a vertex
+// into, and the free-flight factor of a vertex's area density. In a scene without media neither
+// does anything (the factor is exactly 1).
+#include <string>
+
+#include "integrators/bidirectional/path_vertex.h"
+#include "scene/render_settings.h"
+#include "scene/scene.h"
+
+namespace kasha::bidir {
+
+// The medium a ray from v in world direction w travels in: a medium vertex's own; from a shape with
+// a MediumInterface the side w points into; else the medium around v.
+int mediumToward(const Scene& scene, const PathVertex& v, const Vec3& w);
+
+// The factor a free flight drawn in `mode` at wavelength lambda, over a segment of optical depths d,
+// contributes to the area density of `target` at its end (docs/media.md eq. 9): the density per
+// unit length of colliding there (σ_t·T, or the camera mixture's, eq. 6b) at a medium vertex, the
+// probability of passing the media at any other (a surface, a light, the camera, infinity).
+double flightFactor(const Scene& scene, TransportMode mode, const SegmentDepth& d, const PathVertex& target,
+                    float lambda);
+
+// Whether the sphere of radius r around p meets no surface, by 14 segments from p (the axes and the
+// diagonals): a merge's sphere in a medium (docs/media.md §6) that reaches out of it would count the
+// light vertices of a volume it does not fill, a bias of the order of r/(the medium's thickness). A
+// deterministic function of p, so that the merges' weights and the merges agree.
+bool sphereClearOfSurfaces(const Scene& scene, const Vec3& p, float r, RayCounter& counter);
+
+// Throws std::invalid_argument where the bidirectional engine cannot transport the scene's media
+// with these settings: heterogeneous media (the densities of their free flights, which the MIS
+// weights need, have no closed form), more than one wavelength lane (each lane's flights would have
+// densities of their own), or spectral mollification (its connections join two wavelengths).
+void requireBidirectionalMedia(const Scene& scene, const RenderSettings& settings, const std::string& integrator);
+
+}  // namespace kasha::bidir
