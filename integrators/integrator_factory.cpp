@@ -100,8 +100,6 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& alias, const Scene
     requireUnused(w.light, defaults.light, WavelengthSite::LightStart, name);
     return std::make_unique<PathTracer>(scene, s);  // checks its strategies and lanes
   }
-  if (scene.hasMedia() && name == "ppm")
-    throw std::invalid_argument(name + " does not transport participating media yet (the scene has /media; pt, lt, bdpt, vcm and vc do)");
   // Merges in media happen only where their sphere meets no surface (docs/media.md §6): merges
   // alone miss the light of collisions near a surface.
   if (scene.hasMedia() && name == "bpm")

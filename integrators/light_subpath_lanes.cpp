@@ -37,6 +37,40 @@ LightStartLanes startLightLanes(const Scene& scene, const WavelengthDensity& den
   return s;
 }
 
+LightOrigin lightOrigin(const Scene& scene, const LightStartLanes& start) {
+  LightOrigin o;
+  o.hit.p = start.es.p;
+  o.hit.ng = start.es.n;
+  const bool onShape = glm::dot(start.es.n, start.es.n) > 0.0f;  // only area lights' samples have a normal
+  if (onShape) o.hit.shape = uint32_t(&static_cast<const AreaLight&>(*start.light).shape() - scene.shapes.data());
+  o.where = VertexMedium{scene.lightMedium[start.lightIndex], onShape};
+  return o;
+}
+
+std::optional<LightSubpathVertex> nextLightVertex(const Scene& scene, const Ray& ray, int medium, LightLanes& lanes,
+                                                  LaneRatios& ratios, Sampler& rng, uint32_t firstDimension, int depth,
+                                                  RayCounter& counter) {
+  rng.startVertex(firstDimension, depth - 1);
+  const bool media = scene.hasMedia();
+  const float uFlight = media ? freeFlightUniform(rng, firstDimension, depth - 1) : 0.0f;
+  const std::span<const float> lambda(lanes.lambda, size_t(lanes.n));
+  const FreeFlight flight = traceFreeFlight(scene, ray, medium, lambda, uFlight, TransportMode::Importance, counter);
+  float mis = 1.0f;
+  if (media) {
+    for (int k = 0; k < lanes.n; ++k) {
+      lanes.beta[k] *= flight.weight[k];
+      ratios.r[k] *= flight.ratio[k];
+    }
+    mis = ratios.misWeight();
+  }
+  if (!flight.hit && !flight.collided) return std::nullopt;
+  Hit vertex;
+  if (flight.hit) vertex = *flight.hit;
+  else vertex.p = flight.p, vertex.ng = Vec3(0.0f);
+  const Bsdf bsdf = flight.hit ? scene.bsdf(vertex, lambda) : scene.mediumBsdf(flight.medium);
+  return LightSubpathVertex{vertex, VertexMedium{flight.medium, flight.hit.has_value()}, bsdf, mis};
+}
+
 std::optional<Vec3> scatterLightLanes(const Bsdf& bsdf, const Vec3& wi, const LaneEvent& e, LightLanes& lanes,
                                       bool roulette, float beta0, Sampler& rng) {
   const float lambdaIn0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lanes.lambda[0];

@@ -9,6 +9,7 @@
 #include "core/light.h"
 #include "core/sampler.h"
 #include "core/wavelength_density.h"
+#include "integrators/medium_transport.h"
 #include "integrators/wavelength_lanes.h"
 #include "scene/scene.h"
 
@@ -30,6 +31,34 @@ struct LightStartLanes {
   float start[kMaxLanes];  // 1/(N·p(λ_j)·P(light)): lane j's weight, the balance heuristic over the lanes;
                            // lanes.beta[j] = L_e(λ_j)·start_j·cos/(p_pos·p_dir)
 };
+
+// The light's point of a started subpath as a path vertex (docs/media.md §3): on an area light's
+// shape (whose MediumInterface, if any, names the medium on each side), else a point in the light's
+// medium.
+struct LightOrigin {
+  Hit hit;
+  VertexMedium where;
+};
+LightOrigin lightOrigin(const Scene& scene, const LightStartLanes& start);
+
+// A vertex of a light subpath reached through the media (docs/media.md §3): a surface, or a point
+// in a medium (no shape, ng = 0: offsetPoint leaves it where it is) whose Bsdf is the medium's
+// collision kernel (BsdfFlags::Volume).
+struct LightSubpathVertex {
+  Hit hit;
+  VertexMedium where;
+  Bsdf bsdf;
+  float mis;  // every contribution's share of the lanes' spectral MIS of free flights (LaneRatios); 1 without media
+};
+
+// Vertex `depth` (≥ 1) of a light subpath whose dimensions start at firstDimension: the free flight
+// along `ray` from the previous vertex in `medium` (Importance mode, its uniform from
+// freeFlightUniform), whose per-lane weights T_k/p_0 multiply the lanes' beta and whose density
+// ratios p_k/p_0 multiply `ratios`. Leaves the sampler at the vertex's block; nullopt if the ray
+// leaves the scene.
+std::optional<LightSubpathVertex> nextLightVertex(const Scene& scene, const Ray& ray, int medium, LightLanes& lanes,
+                                                  LaneRatios& ratios, Sampler& rng, uint32_t firstDimension, int depth,
+                                                  RayCounter& counter);
 
 // Lane j at the stratum (uLambda + j/n) of `density`'s inverse CDF, the light from uLight, the
 // emission's point and direction from uPos and uDir.

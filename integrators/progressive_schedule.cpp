@@ -5,9 +5,22 @@
 
 namespace kasha {
 
-float progressiveRadiusSquared(float r1, float alpha, int iteration) {
+namespace {
+
+// ln (r_i/r_1)^d = ln Γ(i + α) − ln Γ(1 + α) − ln Γ(i + 1), whatever the dimension d.
+double logVolumeShrink(float alpha, int iteration) {
   const double i = iteration;
-  return float(double(r1) * r1 * std::exp(std::lgamma(i + alpha) - std::lgamma(1.0 + alpha) - std::lgamma(i + 1.0)));
+  return std::lgamma(i + alpha) - std::lgamma(1.0 + alpha) - std::lgamma(i + 1.0);
+}
+
+}  // namespace
+
+float progressiveRadius(float r1, float alpha, int iteration, int dimension) {
+  return float(double(r1) * std::exp(logVolumeShrink(alpha, iteration) / dimension));
+}
+
+float progressiveRadiusSquared(float r1, float alpha, int iteration) {
+  return float(double(r1) * r1 * std::exp(logVolumeShrink(alpha, iteration)));
 }
 
 float wavelengthKernel(float x, float h) {

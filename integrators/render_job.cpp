@@ -132,7 +132,7 @@ nlohmann::json RenderJob::settingsRecord() const {
                   {"mollify_alpha", b.mollifyAlpha}});
   const auto progressive = [](const ProgressiveSettings& p) {
     return nlohmann::json{{"photons_per_pass", p.photonsPerPass}, {"radius", p.radius}, {"alpha", p.alpha},
-                          {"bandwidth", p.bandwidth}};
+                          {"bandwidth", p.bandwidth}, {"volume_radius", p.volumeRadius}};
   };
   nlohmann::json vcm = progressive(r.vcm);
   vcm["paths"] = toString(r.vcm.paths);

@@ -9,11 +9,7 @@ void checkProgressiveSettings(const ProgressiveSettings& p, const SettingFailure
   // wavelength) needs α > 1/3.
   if (!(p.alpha > 1.0f / 3.0f && p.alpha < 1.0f)) fail("alpha", "must be in (1/3, 1)");
   if (!(p.bandwidth >= 0.0f)) fail("bandwidth", "must not be negative (0: 1% of the wavelength range)");
-}
-
-void checkVcmSettings(const VcmSettings& v, const SettingFailure& fail) {
-  checkProgressiveSettings(v, fail);
-  if (!(v.volumeRadius >= 0.0f)) fail("volume_radius", "must not be negative (0: from the scene)");
+  if (!(p.volumeRadius >= 0.0f)) fail("volume_radius", "must not be negative (0: from the scene)");
 }
 
 void checkBdptSettings(const BdptSettings& b, const SettingFailure& fail) {

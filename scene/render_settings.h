@@ -29,6 +29,10 @@ struct ProgressiveSettings {
   float radius = 0.0f;         // gather radius r_1 of the first pass, scene units; 0: from the scene
   float alpha = 2.0f / 3.0f;   // radius reduction (Knaus & Zwicker 2011 eq. 15), in (1/3, 1)
   float bandwidth = 0.0f;      // half-width h_1 of the elastic wavelength kernel, nm; 0: 1% of the range
+  // Radius of the first pass's merges or gathers at collisions in media, scene units; 0: from the
+  // scene (ppm: r_1/4, docs/photon-mapping.md §9; vcm: a sphere holds about one light vertex,
+  // counted on a pilot, docs/media.md §6). It shrinks by the three-dimensional schedule.
+  float volumeRadius = 0.0f;
 };
 
 // Progressive photon mapping, render/ppm (integrator "ppm", docs/photon-mapping.md).
@@ -137,9 +141,6 @@ struct BdptSettings {
 // Vertex connection and merging, render/vcm (integrators "vcm", "vc" and "bpm", docs/bdpt-mis.md §12).
 struct VcmSettings : ProgressiveSettings {
   VcmPaths paths = VcmPaths::Auto;  // vcm's subpaths
-  // Radius of the first pass's merges at collisions in media, scene units; 0: from the scene (a
-  // sphere holds about one light vertex, counted on a pilot; docs/media.md §6).
-  float volumeRadius = 0.0f;
 };
 
 // The ranges of the integrators' own settings, checked in one place for the scene loader and for
@@ -147,7 +148,6 @@ struct VcmSettings : ProgressiveSettings {
 // (key as in the scene file, "alpha") and must not return.
 using SettingFailure = std::function<void(const char* key, const std::string& reason)>;
 void checkProgressiveSettings(const ProgressiveSettings& p, const SettingFailure& fail);
-void checkVcmSettings(const VcmSettings& v, const SettingFailure& fail);
 void checkBdptSettings(const BdptSettings& b, const SettingFailure& fail);
 
 // Thrown when an integrator cannot do what fluorescent_lanes asks (its message says why).

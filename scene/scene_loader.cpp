@@ -177,12 +177,13 @@ struct Loader {
     }
   }
 
-  // The light-vertex pass and the radius of /render/ppm and /render/vcm.
+  // The light-vertex pass and the radii of /render/ppm and /render/vcm.
   static void progressive(JsonFields& f, ProgressiveSettings& p) {
     p.photonsPerPass = f.integer("photons_per_pass", p.photonsPerPass);
     p.radius = f.number("radius", p.radius);
     p.alpha = f.number("alpha", p.alpha);
     p.bandwidth = f.number("bandwidth", p.bandwidth);
+    p.volumeRadius = f.number("volume_radius", p.volumeRadius);
     checkProgressiveSettings(p, [&](const char* key, const std::string& why) { f.fail(key, why); });
   }
 
@@ -209,8 +210,6 @@ struct Loader {
     JsonFields f(render.get("vcm"), file, render.path("vcm"));
     VcmSettings& v = scene.render.vcm;
     progressive(f, v);
-    v.volumeRadius = f.number("volume_radius", v.volumeRadius);
-    checkVcmSettings(v, [&](const char* key, const std::string& why) { f.fail(key, why); });
     const std::string paths = f.string("paths", toString(v.paths));
     if (const auto choice = parseVcmPaths(paths)) v.paths = *choice;
     else f.fail("paths", "'" + paths + "' is not a choice of vcm's subpaths (auto, bidirectional, gather, camera)");

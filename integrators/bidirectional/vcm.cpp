@@ -129,7 +129,7 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
     ws_.lightFirst = lightFirst_.get();
   }
   const VcmSettings& p = s.vcm;
-  checkVcmSettings(p, [&](const char* key, const std::string& why) {
+  checkProgressiveSettings(p, [&](const char* key, const std::string& why) {
     throw std::invalid_argument(name() + ": render/vcm/" + key + " " + why);
   });
   // SmallVCM's choice: as many light subpaths per pass as pixels.
@@ -186,11 +186,7 @@ std::string Vcm::name() const {
 
 float Vcm::radius(int sample) const { return std::sqrt(progressiveRadiusSquared(radius1_, alpha_, sample + 1)); }
 
-// Knaus & Zwicker 2011 in three dimensions, r_i³ = r_{i−1}³·(i − 1 + α)/i: the two-dimensional
-// schedule's product, r_i²/r_1², is the same.
-float Vcm::volumeRadius(int sample) const {
-  return volumeRadius1_ * std::cbrt(progressiveRadiusSquared(1.0f, alpha_, sample + 1));
-}
+float Vcm::volumeRadius(int sample) const { return progressiveRadius(volumeRadius1_, alpha_, sample + 1, 3); }
 
 std::unique_ptr<const PassData> Vcm::beginPass(const Scene& scene, int firstSample, int count, uint64_t seed,
                                                RayCounter& counter) const {

@@ -70,14 +70,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
   if (st.lanes.n == 0) return Vec3(0.0f);
   const EmissionSample& es = st.es;
   LightLanes& lanes = st.lanes;
-  // The light's point as a vertex: on an area light's shape (whose MediumInterface, if any, names
-  // the medium on each side), else a point in the light's medium.
-  Hit origin;
-  origin.p = es.p;
-  origin.ng = es.n;
-  const bool onShape = glm::dot(es.n, es.n) > 0.0f;  // only area lights' samples have a normal
-  if (onShape) origin.shape = uint32_t(&static_cast<const AreaLight&>(*st.light).shape() - scene.shapes.data());
-  const VertexMedium atLight{scene.lightMedium[st.lightIndex], onShape};
+  const auto [origin, atLight] = lightOrigin(scene, st);
 
   // The emitter seen directly (area lights; delta lights have no area the camera could see).
   if (!es.deltaPos && !es.deltaDir && glm::dot(es.n, es.n) > 0.0f && !hideEmitters_) {
@@ -103,24 +96,9 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
   ratios.reset(lanes.n);
   const uint32_t firstDimension = rng.dimension();
   for (int depth = 1; depth <= maxDepth_; ++depth) {
-    rng.startVertex(firstDimension, depth - 1);
-    const float uFlight = media ? freeFlightUniform(rng, firstDimension, depth - 1) : 0.0f;
-    const FreeFlight flight = traceFreeFlight(scene, ray, medium, {lanes.lambda, size_t(lanes.n)}, uFlight, TransportMode::Importance, ctx.counter);
-    float mis = 1.0f;  // every contribution's share of the lanes' spectral MIS (LaneRatios)
-    if (media) {
-      for (int k = 0; k < lanes.n; ++k) {
-        lanes.beta[k] *= flight.weight[k];
-        ratios.r[k] *= flight.ratio[k];
-      }
-      mis = ratios.misWeight();
-    }
-    if (!flight.hit && !flight.collided) break;
-    // A surface, or a point in a medium (no shape, no normal: offsetPoint leaves it where it is).
-    Hit vertex;
-    if (flight.hit) vertex = *flight.hit;
-    else vertex.p = flight.p, vertex.ng = Vec3(0.0f);
-    const VertexMedium where{flight.medium, flight.hit.has_value()};
-    const Bsdf bsdf = flight.hit ? scene.bsdf(vertex, {lanes.lambda, size_t(lanes.n)}) : scene.mediumBsdf(flight.medium);
+    const std::optional<LightSubpathVertex> v = nextLightVertex(scene, ray, medium, lanes, ratios, rng, firstDimension, depth, ctx.counter);
+    if (!v) break;
+    const auto& [vertex, where, bsdf, mis] = *v;
     const Vec3 wi = bsdf.toLocal(-ray.d);
     // Spectral stage (Importance) of every lane: the lobe and the wavelengths leaving this vertex.
     const std::span<const float> known(lanes.lambda, size_t(lanes.n));

@@ -17,14 +17,16 @@ inline constexpr int kPhotonLanes = 4;
 struct alignas(64) Photon {
   float p[3];      // position; first, so that FLANN reads positions in place with stride sizeof(Photon)
   float wi[3];     // unit direction towards where the light came from, in the frame of the surface the
-                   // photon landed on (its Bsdf's local, shading frame)
+                   // photon landed on (its Bsdf's local, shading frame); in world space for a volume photon
   uint16_t lanes;  // lanes held, 1 to kPhotonLanes
-  uint16_t depth;  // index of this vertex on its light subpath: 1 for the first surface hit
+  uint16_t depth;  // index of this vertex on its light subpath: 1 for its first surface hit or collision
+  bool inMedium;   // a collision in a medium (the volume photon map's), not a surface
   float lambda[kPhotonLanes];  // each lane's wavelength of the light arriving here, nm
   float power[kPhotonLanes];   // each lane's throughput: flux per emitted subpath, per nm of wavelength
                                // density already divided out, with the lane's hero weight (the light
-                               // tracer's beta), times |ω_i·n_s|/|ω_i·n_g| here (1 without a shading
-                               // normal: Veach's f_s, docs/photon-mapping.md §3)
+                               // tracer's beta, times the free flights' lane MIS), times |ω_i·n_s|/|ω_i·n_g|
+                               // here (1 without a shading normal and in a medium: Veach's f_s,
+                               // docs/photon-mapping.md §3)
 };
 static_assert(sizeof(Photon) == 64);
 

@@ -4,14 +4,15 @@
 
 namespace kasha {
 
-void gatherPhotons(const PhotonPass& pass, const Bsdf& bsdf, const Vec3& p, const Vec3& wo, const CameraLanes& lanes,
-                   int bounces, int maxDepth, int elasticFromDepth, bool exactElastic, SampleContext& ctx, SensorShares& L, Vec3& xyz) {
+void gatherPhotons(const KernelPhotons& photons, float bandwidth, const Bsdf& bsdf, const Vec3& p, const Vec3& wo,
+                   const CameraLanes& lanes, int bounces, int maxDepth, int elasticFromDepth, bool exactElastic,
+                   SampleContext& ctx, SensorShares& L, Vec3& xyz) {
   float sum[kMaxLanes] = {};  // Σ f·Φ_p arriving at each lane's wavelength
   const bool fluorescent = bsdf.has(BsdfFlags::Fluorescent);
-  for (const size_t i : pass.map.within(p, pass.radius)) {
-    const Photon& ph = pass.map[i];
+  for (const size_t i : photons.map.within(p, photons.radius)) {
+    const Photon& ph = photons.map[i];
     if (int(ph.depth) + bounces > maxDepth) continue;
-    const Vec3 wi(ph.wi[0], ph.wi[1], ph.wi[2]);  // the photon's direction in its own surface frame
+    const Vec3 wi(ph.wi[0], ph.wi[1], ph.wi[2]);  // in the photon's own surface frame (world in a medium)
     const bool elastic = int(ph.depth) >= elasticFromDepth;
     for (int l = 0; l < ph.lanes; ++l) {
       const float lambda = ph.lambda[l], power = ph.power[l];
@@ -23,14 +24,14 @@ void gatherPhotons(const PhotonPass& pass, const Bsdf& bsdf, const Vec3& p, cons
       const float fe = bsdf.eval(TransportMode::Radiance, wi, wo, lambda, lambda, SpectralLobe::Elastic) * power;
       if (fe <= 0.0f) continue;
       if (exactElastic) {
-        xyz += sensorResponse(ctx, lambda, fe * pass.density);  // the sensor at the lane's own wavelength
+        xyz += sensorResponse(ctx, lambda, fe * photons.density);  // the sensor at the lane's own wavelength
         continue;
       }
-      for (int k = 0; k < lanes.n; ++k) sum[k] += fe * wavelengthKernel(lambda - lanes.lambda[k], pass.bandwidth);
+      for (int k = 0; k < lanes.n; ++k) sum[k] += fe * wavelengthKernel(lambda - lanes.lambda[k], bandwidth);
     }
   }
   for (int k = 0; k < lanes.n; ++k)
-    if (sum[k] > 0.0f) L += lanes.T[k] * (sum[k] * pass.density);
+    if (sum[k] > 0.0f) L += lanes.T[k] * (sum[k] * photons.density);
 }
 
 }  // namespace kasha

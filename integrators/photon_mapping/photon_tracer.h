@@ -3,8 +3,8 @@
 // tracer's do (light_start_lanes.h: lanes at the strata of the light-start strategy, the light
 // symmetric in them; at each vertex one spectral event for every lane, wavelength_lanes.h: each lane
 // keeps its wavelength through the elastic lobe, a fluorescent event gives fresh lanes ∝ e, Jung18
-// eq. 6, and a direction that depends on λ keeps one lane). Each photon holds the lanes that arrive
-// at its vertex.
+// eq. 6, and a direction that depends on λ keeps one lane), through media by the light tracer's free
+// flights. Each photon holds the lanes that arrive at its vertex.
 #include <cstdint>
 #include <vector>
 
@@ -26,11 +26,16 @@ struct PhotonTracing {
   SamplerKind sampler = SamplerKind::Sobol;        // path j is sample j of the pass's sequence
 };
 
+// The photons of one pass: at surface vertices and at collisions in media (the volume photon map).
+struct PassPhotons {
+  std::vector<Photon> surface, volume;
+};
+
 // Traces the subpaths and returns a photon for every vertex from firstStoredDepth on that has a
-// non-specular lobe and a lane of positive power (only those lanes are kept, kPhotonLanes to a
-// photon). Path j draws from its own stream of `seed`, and the photons come in path order, so the
-// result does not depend on the number of threads. Throws MemoryLimitError as soon as the photons
-// stored so far exceed the memory limit.
-std::vector<Photon> tracePhotons(const Scene& scene, const PhotonTracing& settings, uint64_t seed, RayCounter& counter);
+// non-specular lobe (every collision in a medium has) and a lane of positive power (only those
+// lanes are kept, kPhotonLanes to a photon). Path j draws from its own stream of `seed`, and the
+// photons of each map come in path order, so the result does not depend on the number of threads.
+// Throws MemoryLimitError as soon as the photons stored so far exceed the memory limit.
+PassPhotons tracePhotons(const Scene& scene, const PhotonTracing& settings, uint64_t seed, RayCounter& counter);
 
 }  // namespace kasha

@@ -18,6 +18,11 @@
 // first vertex) the sensor is evaluated at the photon's own wavelength, which is exact; behind
 // specular vertices (or always, if asked) an Epanechnikov kernel of half-width h_i = h_1·r_i/r_1
 // in wavelength stands in for the delta. Emission seen along the camera path is added exactly.
+//
+// Media (docs/photon-mapping.md §9): photons and camera paths take the free flights of the light
+// tracer and the path tracer; photons at collisions form a volume photon map, and a camera path
+// that collides gathers there, Σ f·Φ_p / ((4/3)π r_v,i³ N) with the medium's collision kernel f,
+// r_v,i from the three-dimensional schedule, and ends, as at a surface with a non-specular lobe.
 #include <optional>
 
 #include "scene/wavelength_strategy.h"
@@ -42,6 +47,8 @@ class PpmIntegrator final : public Integrator {
   size_t photonsPerPass() const { return photonsPerPass_; }
   // Gather radius and elastic kernel half-width of the pass that takes sample `sample` (iteration sample + 1).
   float radius(int sample) const;
+  // Radius of the volume photons' balls in that pass (the three-dimensional schedule).
+  float volumeRadius(int sample) const;
   float bandwidth(int sample) const;
 
  private:
@@ -57,7 +64,7 @@ class PpmIntegrator final : public Integrator {
   int n_, maxDepth_, rrDepth_;
   bool hideEmitters_;  // RenderSettings::hideEmitters
   size_t photonsPerPass_;
-  float radius1_, alpha_, bandwidth1_;
+  float radius1_, volumeRadius1_, alpha_, bandwidth1_;
   bool alwaysKernel_;
   PpmDirectLight direct_;
   int firstStoredDepth_;  // the photon pass stores photons from this vertex of their subpaths on

@@ -1,5 +1,6 @@
 // The closed forms of participating media (docs/validation.md §5) against pt and lt, each with one
-// wavelength lane and with four (the free flights' spectral MIS, LaneRatios), within 4 standard
+// wavelength lane and with four (the free flights' spectral MIS, LaneRatios), the bidirectional
+// integrators, and ppm's volume photons (the furnaces; docs/photon-mapping.md §9), within 4 standard
 // errors from independent batches (tests/closed_form_support.h). The expected values are computed here by
 // quadrature of the formulas from the spectra the scenes load. Every medium has σ_t depending on λ,
 // so the lanes' free-flight densities differ, and every fluorophore a σ_f varying with λ.
@@ -22,9 +23,10 @@ using nlohmann::json;
 struct Estimator {
   const char* integrator;
   int lanes;
-  // Samples per pixel × 64: light tracing spends most of its paths where the small cameras do not
-  // look (the slab's light covers the scene's bounding disk; the furnace walls emit outwards too).
-  int sppScale;
+  // Samples per pixel of a batch: light tracing takes 8 times pt's, as it spends most of its paths
+  // where the small cameras do not look (the slab's light covers the scene's bounding disk; the
+  // furnace walls emit outwards too); ppm's passes are one sample each, with many photons.
+  int spp;
   // vcm's first volume radius (0: from the scene). A large one gives the merges in media most of the
   // weight; in the furnaces the light vertices are spread uniformly, so a sphere inside the medium
   // (merges happen only there) estimates their density exactly, whatever its size.
@@ -39,10 +41,24 @@ void PrintTo(const Estimator& e, std::ostream* os) {
 // A light-vertex density that varies across a merge's sphere biases the merge: the slabs' does.
 bool largeMergeSpheres() { return ::testing::TestWithParam<Estimator>::GetParam().volumeRadius > 0.0f; }
 
+bool photonMapping() { return std::string(::testing::TestWithParam<Estimator>::GetParam().integrator) == "ppm"; }
+
+// ppm's photons per pass and first radius of the volume photons' balls, per scene.
+struct PhotonSetup {
+  int photonsPerPass = 0;
+  float volumeRadius = 0.0f;
+};
+
+// ppm's elastic wavelength kernel, nm: a scene with media goes through it everywhere (§9). The
+// elastic spectra here are smooth (σ_s and ρ piecewise linear), so its bias, O(h²) in their
+// curvature, stays far below the tolerance, while 40 nm lets a lane meet many more photons.
+constexpr float kPhotonBandwidth = 40.0f;
+
 class MediaClosedForm : public ::testing::TestWithParam<Estimator> {
  protected:
-  // Mean image XYZ over `batches` renders within 4σ of `exact`, every order of scattering.
-  void expectAgreement(Scene& scene, const Vec3& exact, int batches = 16) const {
+  // Mean image XYZ over 16 batch renders within 4σ of `exact`, every order of scattering; ppm
+  // with `photons`.
+  void expectAgreement(Scene& scene, const Vec3& exact, const PhotonSetup& photons = {}) const {
     RenderSettings settings = scene.render;
     settings.maxDepth = 1000;
     settings.rrDepth = 3;
@@ -50,7 +66,10 @@ class MediaClosedForm : public ::testing::TestWithParam<Estimator> {
     settings.vcm.volumeRadius = GetParam().volumeRadius;
     // vcm with every strategy (its pilot would choose per batch between them and pt, tested alone).
     settings.vcm.paths = VcmPaths::Bidirectional;
-    expectXyzAgreement(scene, GetParam().integrator, settings, exact, batches, 64 * GetParam().sppScale);
+    settings.ppm.photonsPerPass = photons.photonsPerPass;
+    settings.ppm.volumeRadius = photons.volumeRadius;
+    settings.ppm.bandwidth = kPhotonBandwidth;
+    expectXyzAgreement(scene, GetParam().integrator, settings, exact, 16, GetParam().spp);
   }
 };
 
@@ -132,19 +151,29 @@ constexpr double kThin = 0.1;
 // yield 10% off would be at least 7σ away in every channel (12σ in Y); a slab 20% thicker makes
 // the lit face 5.4% brighter, at least 6.8σ in Y. (The transmitted face hardly changes with d near
 // d = 0.1: there the yield is the check.)
+// ppm is not run on the slabs: their radiance changes over 0.05 (σ_x up to 19) and is largest at
+// the lit face, where a ball reaching out of the slab finds no photons beyond it (the boundary bias
+// of docs/photon-mapping.md §9, first order in r_v). Measured with 16384 photons per pass and 16 × 16
+// passes (6 s each): r_v = 0.02 renders the faces 5–8% dark (3–4.5σ), r_v = 0.01 is within 2σ
+// but with standard errors of 3–10%; the furnaces below test the same estimator at a cost CI affords.
+constexpr const char* kSlabPhotonBias = "ppm's boundary bias at the slab's faces (see above)";
+
 TEST_P(MediaClosedForm, SlabLitFace) {
+  if (photonMapping()) GTEST_SKIP() << kSlabPhotonBias;
   if (largeMergeSpheres()) GTEST_SKIP() << "merge spheres of r_v = 0.25 are biased where the light varies";
   auto scene = slab(kThin, 2.0, 0.6, Face::Lit);
   expectAgreement(*scene, slabXyz(*scene, Face::Lit, kThin));
 }
 
 TEST_P(MediaClosedForm, SlabTransmittedFace) {
+  if (photonMapping()) GTEST_SKIP() << kSlabPhotonBias;
   if (largeMergeSpheres()) GTEST_SKIP() << "merge spheres of r_v = 0.25 are biased where the light varies";
   auto scene = slab(kThin, 2.0, 0.7, Face::Transmitted);
   expectAgreement(*scene, slabXyz(*scene, Face::Transmitted, kThin));
 }
 
 TEST_P(MediaClosedForm, SlabSemiInfinite) {
+  if (photonMapping()) GTEST_SKIP() << kSlabPhotonBias;
   if (largeMergeSpheres()) GTEST_SKIP() << "merge spheres of r_v = 0.25 are biased where the light varies";
   // Seen head-on (μ = 1: a camera ray stays where it entered) through a slab 5 deep: e^{−σ_m·d} <
   // e^{−13} with σ_m ≥ 2.75 at the emitted wavelengths, so the finite slab is the semi-infinite one
@@ -162,9 +191,13 @@ TEST_P(MediaClosedForm, SlabSemiInfinite) {
 // (an index-matched sphere of radius 0.3) around its camera instead: a medium point at distance r
 // from a pinhole reaches it with importance ∝ 1/r², and collisions near the camera then give its
 // connections an infinite variance (∫ r⁻⁴·r² dr). The bubble leaves the uniform isotropic radiance
-// as it is: it lets through the radiance arriving at its boundary, L from every side.
+// as it is: it lets through the radiance arriving at its boundary, L from every side. Photon mapping
+// gets a furnace of radius 2 instead of 1 (the closed forms hold for any radius): the camera's
+// collisions then lie far from the wall, where a ball reaching out of the medium would find no
+// photons beyond it (docs/photon-mapping.md §9), so that balls of r_v = 0.15 stay unbiased.
 std::unique_ptr<Scene> furnace(const std::string& name) {
   json j = sceneJson(name);
+  if (photonMapping()) j["shapes"][0]["radius"] = 2.0;
   if (std::string(MediaClosedForm::GetParam().integrator) == "lt") {
     j["shapes"].push_back({{"name", "bubble"}, {"type", "sphere"}, {"center", j["camera"]["position"]},
                            {"radius", 0.3}, {"exterior", j["camera"]["medium"]}});
@@ -193,7 +226,7 @@ TEST_P(MediaClosedForm, FluorescentEquilibriumFurnace) {
   // not be the equilibrium.
   const Fn wall = emissionOf(*scene);
   for (size_t i = 0; i < g.x.size(); ++i) ASSERT_NEAR(wall(g.x[i]), L[i], 1e-4 * L[i]) << g.x[i] << " nm";
-  expectAgreement(*scene, toXyz(g, L));
+  expectAgreement(*scene, toXyz(g, L), {4096, 0.15f});
 }
 
 // ---- §5c: the scattering furnace ----------------------------------------------------------------
@@ -213,15 +246,15 @@ TEST_P(MediaClosedForm, ScatteringFurnace) {
     EXPECT_EQ(m.sigmaA(float(l)), 0.0f);
     return Le(l) / (1.0 - wall.reflectance()(float(l)));
   });
-  expectAgreement(*scene, toXyz(g, L));
+  expectAgreement(*scene, toXyz(g, L), {8192, 0.15f});
 }
 
 INSTANTIATE_TEST_SUITE_P(Estimators, MediaClosedForm,
-                         ::testing::Values(Estimator{"pt", 1, 1}, Estimator{"pt", 4, 1}, Estimator{"lt", 1, 8},
-                                           Estimator{"lt", 4, 8}, Estimator{"bdpt", 1, 1},
-                                           Estimator{"bdpt-shared", 1, 1}, Estimator{"bdpt-independent", 1, 1},
-                                           Estimator{"vcm", 1, 1}, Estimator{"vc", 1, 1},
-                                           Estimator{"vcm", 1, 1, 0.25f}),
+                         ::testing::Values(Estimator{"pt", 1, 64}, Estimator{"pt", 4, 64}, Estimator{"lt", 1, 512},
+                                           Estimator{"lt", 4, 512}, Estimator{"bdpt", 1, 64},
+                                           Estimator{"bdpt-shared", 1, 64}, Estimator{"bdpt-independent", 1, 64},
+                                           Estimator{"vcm", 1, 64}, Estimator{"vc", 1, 64},
+                                           Estimator{"vcm", 1, 64, 0.25f}, Estimator{"ppm", 4, 16}),
                          [](const ::testing::TestParamInfo<Estimator>& info) {
                            std::string name = std::string(info.param.integrator) + "_lanes" + std::to_string(info.param.lanes);
                            if (info.param.volumeRadius > 0.0f) name += "_large_volume_merges";

@@ -24,7 +24,7 @@ TEST(PpmLanes, LanesBeyondARecordAreSplitAtTheSameVertex) {
   t.memoryLimit = uint64_t(1) << 30;
   t.wavelengths = &light.density();
   RayCounter counter;
-  const std::vector<Photon> photons = tracePhotons(*scene, t, 7, counter);
+  const std::vector<Photon> photons = tracePhotons(*scene, t, 7, counter).surface;
   ASSERT_FALSE(photons.empty());
   size_t split = 0;
   for (size_t i = 0; i < photons.size(); ++i) {

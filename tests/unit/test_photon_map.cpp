@@ -19,7 +19,7 @@ std::vector<Photon> randomPhotons(size_t n, Rng& rng, bool onSphere) {
     const Vec3 p = onSphere ? sampleUniformSphere(Vec2(rng.uniform(), rng.uniform()))
                             : Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f;
     // The first lane's wavelength is the photon's name here (exact in a float below 2^24).
-    v[i] = {{p.x, p.y, p.z}, {0.0f, 0.0f, 1.0f}, 1, 1, {float(i)}, {1.0f}};
+    v[i] = {{p.x, p.y, p.z}, {0.0f, 0.0f, 1.0f}, 1, 1, false, {float(i)}, {1.0f}};
   }
   return v;
 }

@@ -1,5 +1,5 @@
 // Progressive photon mapping (integrators/photon_mapping/, docs/photon-mapping.md): the radius
-// schedule, the wavelength kernel, derived defaults, the memory limit, thread independence, and two
+// schedules (discs and balls), the wavelength kernel, derived defaults, the memory limit, thread independence, and two
 // renders that exercise the elastic wavelength kernel against expectations derived here: a
 // fluorescent furnace with the kernel forced everywhere (its bias computed by quadrature) and a
 // glass sphere in a white furnace, whose walls are seen through specular chains. The exact
@@ -39,6 +39,38 @@ TEST(Ppm, RadiusFollowsKnausZwickerRecurrence) {
     // r_i² ~ r_1²·i^(α−1)/Γ(1 + α) for large i.
     EXPECT_NEAR(progressiveRadiusSquared(2.0f, alpha, 5000) * std::tgamma(1.0 + alpha) / std::pow(5000.0, alpha - 1.0), 4.0, 4e-3);
   }
+}
+
+// The schedule of a kernel over d dimensions (Knaus & Zwicker 2011: r^d shrinks by (i − 1 + α)/i)
+// against the recurrence in double, r_i = r_1·(Π (j − 1 + α)/j)^{1/d}, and its asymptote
+// r_i^d ~ r_1^d·i^(α−1)/Γ(1 + α).
+TEST(Ppm, RadiusOfAnyDimensionFollowsKnausZwickerRecurrence) {
+  for (const int d : {1, 2, 3}) {
+    for (const float alpha : {0.4f, 2.0f / 3.0f, 0.9f}) {
+      double shrink = 1.0;  // (r_i/r_1)^d
+      for (int i = 1; i <= 5000; ++i) {
+        if (i > 1) shrink *= (i - 1 + double(alpha)) / i;
+        const double r = 0.5 * std::pow(shrink, 1.0 / d);  // r_1 = 0.5
+        ASSERT_NEAR(progressiveRadius(0.5f, alpha, i, d), r, 1e-5 * r) << "d " << d << " alpha " << alpha << " iteration " << i;
+      }
+      EXPECT_NEAR(std::pow(progressiveRadius(0.5f, alpha, 5000, d) / 0.5, d) * std::tgamma(1.0 + alpha) / std::pow(5000.0, alpha - 1.0),
+                  1.0, 1e-3);
+    }
+  }
+  // ppm's balls follow d = 3, its discs d = 2; the balls start at a quarter of the discs' radius
+  // by default and at render/ppm/volume_radius if given.
+  auto scene = load("furnace_fluorescent.json");
+  RenderSettings s = scene->render;
+  const PpmIntegrator derived(*scene, s);
+  EXPECT_FLOAT_EQ(derived.volumeRadius(0), 0.25f * derived.radius(0));
+  s.ppm.volumeRadius = 0.25f;
+  const PpmIntegrator given(*scene, s);
+  EXPECT_EQ(given.volumeRadius(0), 0.25f);
+  const double shrink = std::exp(std::lgamma(100.0 + 2.0 / 3.0) - std::lgamma(1.0 + 2.0 / 3.0) - std::lgamma(101.0));
+  EXPECT_NEAR(given.volumeRadius(99), 0.25 * std::cbrt(shrink), 1e-6);
+  EXPECT_NEAR(given.radius(99), double(given.radius(0)) * std::sqrt(shrink), 1e-6);
+  s.ppm.volumeRadius = -1.0f;
+  EXPECT_THROW(PpmIntegrator(*scene, s), std::invalid_argument);
 }
 
 TEST(Ppm, WavelengthKernelIsNormalised) {

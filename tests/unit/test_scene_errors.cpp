@@ -433,6 +433,8 @@ TEST_F(SceneLoader, UnknownTypes) {
               "expected \"cmf*light\", \"camera\" or a wavelength strategy");
   expectError([](json& j) { j["render"] = {{"ppm", {{"nee_wavelengths", "ms-power:cmf,light"}}}}; },
               "/render/ppm/nee_wavelengths", "'ms-power:cmf,light' is not one density");
+  expectError([](json& j) { j["render"] = {{"ppm", {{"volume_radius", -0.1}}}}; }, "/render/ppm/volume_radius",
+              "must not be negative");
   expectError([](json& j) { j["render"] = {{"fluorescence_sampling", "mix:light"}}; }, "/render/fluorescence_sampling",
               "a combination needs at least two components");
   expectError([](json& j) { j["render"] = {{"light_sampling", "yamamoto=2"}}; }, "/render/light_sampling",
