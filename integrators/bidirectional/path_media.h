@@ -1,7 +1,8 @@
 #pragma once
-// The media around BDPT's vertices (docs/media.md §5): which medium a direction leaves a vertex
-// into, and the free-flight factor of a vertex's area density. In a scene without media neither
-// does anything (the factor is exactly 1).
+// The media around the bidirectional engine's vertices (docs/media.md §5–6): which medium a
+// direction leaves a vertex into, the free-flight factor of a vertex's area density (exactly 1 in a
+// scene without media), whether a merge's sphere stays inside its medium, and what the engine
+// refuses in media.
 #include <string>
 
 #include "integrators/bidirectional/path_vertex.h"
