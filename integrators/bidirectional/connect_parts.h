@@ -132,8 +132,9 @@ float emitted(const Context& c, const PathVertex& e, const PathVertex& next, flo
 bool visible(const Context& c, const PathVertex& a, const PathVertex& b, float lambda = 0.0f,
              SegmentDepth* depth = nullptr);
 
-// The transmittance of a segment of optical depths d (1 where it crosses no medium).
-inline float transmittance(const SegmentDepth& d) { return std::exp(-d.analog); }
+// The transmittance of a segment of optical depths d (1 where it crosses no medium, without a call
+// to exp: connections in scenes without media multiply by it too).
+inline float transmittance(const SegmentDepth& d) { return d.analog > 0.0f ? std::exp(-d.analog) : 1.0f; }
 
 // The camera side's sum at a connection through C[t−1] (docs/bdpt-mis.md eq. 10): C[t−1] with the
 // light side's density pLast and `mLast` the M of the strategy with t − 1 camera vertices; C[t−2]

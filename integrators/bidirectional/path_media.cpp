@@ -13,9 +13,8 @@ int mediumToward(const Scene& scene, const PathVertex& v, const Vec3& w) {
   return scene.mediumBeyond(at, w, v.medium);
 }
 
-double flightFactor(const Scene& scene, TransportMode mode, const SegmentDepth& d, const PathVertex& target,
-                    float lambda) {
-  if (!scene.hasMedia()) return 1.0;
+double flightFactorInMedia(const Scene& scene, TransportMode mode, const SegmentDepth& d, const PathVertex& target,
+                           float lambda) {
   const bool mixture = mode == TransportMode::Radiance && scene.hasFluorescentMedia();
   float rate = 1.0f, seekRate = 1.0f;
   if (target.kind == PathVertex::Kind::Medium) {

@@ -19,8 +19,13 @@ int mediumToward(const Scene& scene, const PathVertex& v, const Vec3& w);
 // contributes to the area density of `target` at its end (docs/media.md eq. 9): the density per
 // unit length of colliding there (σ_t·T, or the camera mixture's, eq. 6b) at a medium vertex, the
 // probability of passing the media at any other (a surface, a light, the camera, infinity).
-double flightFactor(const Scene& scene, TransportMode mode, const SegmentDepth& d, const PathVertex& target,
-                    float lambda);
+// Inline: every density of every scene asks, and in one without media the answer is 1.
+double flightFactorInMedia(const Scene& scene, TransportMode mode, const SegmentDepth& d, const PathVertex& target,
+                           float lambda);
+inline double flightFactor(const Scene& scene, TransportMode mode, const SegmentDepth& d, const PathVertex& target,
+                           float lambda) {
+  return scene.hasMedia() ? flightFactorInMedia(scene, mode, d, target, lambda) : 1.0;
+}
 
 // Whether the sphere of radius r around p meets no surface, by 14 segments from p (the axes and the
 // diagonals): a merge's sphere in a medium (docs/media.md §6) that reaches out of it would count the
