@@ -41,9 +41,9 @@ LightOrigin lightOrigin(const Scene& scene, const LightStartLanes& start) {
   LightOrigin o;
   o.hit.p = start.es.p;
   o.hit.ng = start.es.n;
-  const bool onShape = glm::dot(start.es.n, start.es.n) > 0.0f;  // only area lights' samples have a normal
-  if (onShape) o.hit.shape = uint32_t(&static_cast<const AreaLight&>(*start.light).shape() - scene.shapes.data());
-  o.where = VertexMedium{scene.lightMedium[start.lightIndex], onShape};
+  const int shape = scene.emittingShape(*start.light, start.es);
+  if (shape >= 0) o.hit.shape = uint32_t(shape);
+  o.where = VertexMedium{scene.lightMedium[start.lightIndex], shape >= 0};
   return o;
 }
 

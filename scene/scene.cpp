@@ -7,4 +7,9 @@ Bsdf Scene::mediumBsdf(int m) const {
   return Bsdf(*mediumScattering[size_t(m)], HitContext{Vec2(0.0f), frame, frame, {}, MeshPoint{}, Vec3(0.0f), Vec3(0.0f)});
 }
 
+int Scene::emittingShape(const Light& l, const EmissionSample& es) const {
+  if (!(glm::dot(es.n, es.n) > 0.0f)) return -1;
+  return int(&static_cast<const AreaLight&>(l).shape() - shapes.data());
+}
+
 }  // namespace kasha

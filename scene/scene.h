@@ -79,6 +79,9 @@ struct Scene {
   // a medium point has no normal, and its phase function depends on angles between directions only.
   // (Out of line, scene/scene.cpp: it stays out of the integrators' hot loops in scenes without media.)
   Bsdf mediumBsdf(int m) const;
+  // The shape an emission sample of light l lies on (its MediumInterface names the medium on each
+  // side): an area light's, whose samples alone have a normal; −1 for any other light.
+  int emittingShape(const Light& l, const EmissionSample& es) const;
   const EnvironmentLight* environment() const {
     return environmentLight < 0 ? nullptr : static_cast<const EnvironmentLight*>(lights[size_t(environmentLight)].get());
   }

@@ -334,8 +334,7 @@ bool startLightVertex(const Scene& scene, const Light& L, size_t light, const Em
   v.dir = es.w;
   v.light = int(light);
   v.medium = scene.lightMedium[light];
-  // An area light's sample has a normal: the vertex lies on its shape, whose MediumInterface counts.
-  if (glm::dot(es.n, es.n) > 0.0f) v.shape = int(&static_cast<const AreaLight&>(L).shape() - scene.shapes.data());
+  v.shape = scene.emittingShape(L, es);
   v.lambda = lanes.lambda[0];
   if (lanes.n == 1) v.lane = 0;
   v.deltaPosition = es.deltaPos;
