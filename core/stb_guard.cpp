@@ -20,10 +20,17 @@ void checkPngChunks(const std::string& bytes, const std::string& path) {
 }
 
 void checkHdrRuns(const std::string& bytes, uint64_t width, uint64_t height, const std::string& path) {
-  // stb's header: lines up to an empty one, then the resolution line ("-Y h +X w"), then the pixels.
-  const size_t headerEnd = bytes.find("\n\n");
-  if (headerEnd == std::string::npos) return;  // stb refuses it
-  const size_t resolutionEnd = bytes.find('\n', headerEnd + 2);
+  // stb's header (stbi__hdr_gettoken): the signature line, then lines up to one that is empty or
+  // begins with a NUL byte (stb keeps each line as a C string), then the resolution line
+  // ("-Y h +X w"), then the pixels.
+  size_t lineEnd = bytes.find('\n');
+  for (;;) {
+    if (lineEnd == std::string::npos) return;  // stb refuses it
+    const size_t lineStart = lineEnd + 1;
+    lineEnd = bytes.find('\n', lineStart);
+    if (lineStart < bytes.size() && (lineStart == lineEnd || bytes[lineStart] == '\0')) break;
+  }
+  const size_t resolutionEnd = lineEnd == std::string::npos ? lineEnd : bytes.find('\n', lineEnd + 1);
   if (resolutionEnd == std::string::npos) return;
   // stb decodes widths outside [8, 32768) flat, and a scanline without the RLE header flat from
   // there on: neither loops.

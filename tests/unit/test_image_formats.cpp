@@ -233,6 +233,19 @@ TEST_F(ImageFormats, RunLengthEncodedHdrThatEndsEarlyIsRefusedBeforeStbLoopsOnIt
   }
   EXPECT_NO_THROW(TextureLoader(kDefaultMemoryLimit).load(path("full.hdr"), TextureChannel::Mean, TextureWrap::Repeat,
                                                           TextureFilter::Bilinear));
+  // stb ends the header at a line that begins with a NUL byte as at an empty one (a fuzzer's find).
+  std::string nulLine = full.substr(0, full.size() - 5);
+  const size_t emptyLine = nulLine.find("\n\n");
+  ASSERT_NE(emptyLine, std::string::npos);
+  nulLine.replace(emptyLine, 2, std::string("\n\0\0\n", 4));
+  writeBytes("nul.hdr", nulLine);
+  try {
+    TextureLoader(kDefaultMemoryLimit).load(path("nul.hdr"), TextureChannel::Mean, TextureWrap::Repeat, TextureFilter::Bilinear);
+    ADD_FAILURE() << "nul.hdr accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), path("nul.hdr") + ": cannot read Radiance HDR: a run-length encoded scanline (1) "
+                                                       "holds a run of length 0, or the data ends early");
+  }
 }
 
 }  // namespace
