@@ -91,4 +91,8 @@ void flipMeshNormals(Shape& s) {
   }
 }
 
+void flipMeshTexCoords(Shape& s) {
+  for (Vec2& uv : s.cornerUvs) uv.y = 1.0f - uv.y;
+}
+
 }  // namespace kasha

@@ -31,4 +31,7 @@ void transformMesh(Shape& s, const glm::mat4& m);
 // Reverses every triangle's winding, so its geometric normal (b − a) × (c − a) flips.
 void flipMeshNormals(Shape& s);
 
+// v ← 1 − v for every corner's texture coordinates: an image's rows read from the other end.
+void flipMeshTexCoords(Shape& s);
+
 }  // namespace kasha

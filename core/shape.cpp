@@ -141,6 +141,10 @@ SurfaceSample Shape::sampleUniform(Vec2 u) const {
 bool Shape::closed() const {
   if (kind == Kind::Sphere) return true;
   if (kind == Kind::Cylinder) return false;
+  return openEdges() == 0;
+}
+
+size_t Shape::openEdges() const {
   // Edges by their end positions (meshes may repeat a position under several indices).
   const auto key = [](const Vec3& a, const Vec3& b) {
     const auto less = [](const Vec3& x, const Vec3& y) { return std::tie(x.x, x.y, x.z) < std::tie(y.x, y.y, y.z); };
@@ -149,7 +153,7 @@ bool Shape::closed() const {
   std::map<std::array<float, 6>, int> uses;
   for (size_t t = 0; t + 2 < indices.size(); t += 3)
     for (int e = 0; e < 3; ++e) ++uses[key(positions[indices[t + size_t(e)]], positions[indices[t + size_t((e + 1) % 3)]])];
-  return std::all_of(uses.begin(), uses.end(), [](const auto& u) { return u.second == 2; });
+  return size_t(std::count_if(uses.begin(), uses.end(), [](const auto& u) { return u.second != 2; }));
 }
 
 }  // namespace kasha

@@ -105,9 +105,10 @@ struct Shape {
   // barycentrics (b1, b2) of corners 1 and 2, as surfaceUv; a face attribute's triangle value.
   Vec3 attributeAt(const MeshAttribute& a, uint32_t prim, Vec2 bary) const;
   SurfaceSample sampleUniform(Vec2 u) const;
-  // Whether the surface encloses a volume: spheres; meshes whose every edge (a pair of vertex
-  // positions) is shared by exactly two triangles; never an open cylinder.
+  // Whether the surface encloses a volume: spheres; meshes without open edges; never an open cylinder.
   bool closed() const;
+  // A mesh's edges (pairs of vertex positions) that are not shared by exactly two triangles.
+  size_t openEdges() const;
 };
 
 }  // namespace kasha

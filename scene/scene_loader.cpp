@@ -455,10 +455,12 @@ struct Loader {
     return faceNormals;
   }
 
-  // Placement of triangle shapes: "transform" (after any scale/translate), then "flip_normals".
+  // Placement of triangle shapes: "transform" (after any scale/translate), then "flip_normals";
+  // "flip_tex_coords" reads v as 1 − v.
   void meshPlacement(JsonFields& f, Shape& s) {
     if (f.has("transform")) transformMesh(s, f.affine("transform"));
     if (f.boolean("flip_normals", false)) flipMeshNormals(s);
+    if (f.boolean("flip_tex_coords", false)) flipMeshTexCoords(s);
   }
 
   void rectangle(JsonFields& f, Shape& s) {
@@ -586,12 +588,23 @@ struct Loader {
           throw InputError(file, ptr, type + " has a vertex beyond the range of a 32-bit float");
       if (!(s.area > 0.0f)) throw InputError(file, ptr, "degenerate " + type + ": total area is zero");
       if (!std::isfinite(s.area)) throw InputError(file, ptr, type + " is too large: its area overflows a 32-bit float");
-      // Different media on the two sides need a surface that separates them: a closed one.
-      if (s.media && s.media->interior != s.media->exterior && !s.closed())
-        throw InputError(file, ptr + (f.has("interior") ? "/interior" : "/exterior"),
-                         "shape '" + s.name + "' is not closed (" + type +
-                             " with an edge that is not shared by exactly two triangles), so it cannot separate "
-                             "its interior medium from its exterior");
+      // Different media on the two sides need a surface that separates them: a closed one. A
+      // mesh file with openings (scanned models often have some) is taken as Mitsuba takes it, with
+      // a note: a path changes medium where it crosses a triangle, by the side it leaves
+      // (Scene::mediumBeyond), and keeps its medium through an opening.
+      if (s.media && s.media->interior != s.media->exterior && !s.closed()) {
+        const std::string field = ptr + (f.has("interior") ? "/interior" : "/exterior");
+        if (type != "mesh")
+          throw InputError(file, field,
+                           "shape '" + s.name + "' is not closed (" + type +
+                               " with an edge that is not shared by exactly two triangles), so it cannot separate "
+                               "its interior medium from its exterior");
+        if (options.notes)
+          *options.notes << "kasha: note: " << file << ": " << field << ": shape '" << s.name << "' is not closed ("
+                         << s.openEdges()
+                         << " edges are not shared by exactly two triangles): a path changes medium where it "
+                            "crosses a triangle, and keeps its medium through an opening\n";
+      }
       scene.shapes.push_back(std::move(s));
     }
   }

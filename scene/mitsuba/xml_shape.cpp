@@ -15,17 +15,21 @@ namespace {
 
 using nlohmann::json;
 
-// Four transformed corners of a planar face, ordered so that kasha's normal (p1 − p0) × (p2 − p0)
-// points where Mitsuba's does: the local normal transformed by the inverse transpose (flipped by
-// flip_normals).
-json faceCorners(const Mat4& m, std::array<Vec3, 4> local, Vec3 localNormal, bool flip) {
+// A planar face as kasha's rectangle: its four corners transformed, in the order that gives them
+// kasha's texture coordinates (0, 0), (1, 0), (1, 1), (0, 1), and flip_normals where kasha's normal
+// (p1 − p0) × (p2 − p0) would point against Mitsuba's: the local normal transformed by the inverse
+// transpose (flipped by flip_normals). flipTexCoords: the corners' uv are Mitsuba's (u, v), which
+// kasha, counting v from an image's bottom, reads as (u, 1 − v) (docs/mitsuba-import.md).
+json face(const Mat4& m, std::array<Vec3, 4> local, Vec3 localNormal, bool flip, bool flipTexCoords) {
   std::array<Vec3, 4> w;
   for (size_t i = 0; i < 4; ++i) w[i] = transformPoint(m, local[i]);
   const Vec3 mitsubaNormal = glm::transpose(glm::inverse(glm::mat3(m))) * localNormal * (flip ? -1.0f : 1.0f);
-  if (glm::dot(glm::cross(w[1] - w[0], w[2] - w[0]), mitsubaNormal) < 0.0f) std::swap(w[1], w[3]);
   json c = json::array();
   for (const Vec3& p : w) c.push_back({p.x, p.y, p.z});
-  return c;
+  return {{"type", "rectangle"},
+          {"corners", c},
+          {"flip_normals", glm::dot(glm::cross(w[1] - w[0], w[2] - w[0]), mitsubaNormal) < 0.0f},
+          {"flip_tex_coords", flipTexCoords}};
 }
 
 // A shape's unnamed <ref>s split by what they name: a <bsdf> or a top-level area <emitter>.
@@ -104,7 +108,9 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
                  {"transform", matrixJson(m)}, {"flip_normals", flip}};
     if (!s.boolean("face_normals", false))
       s.note("shaded with the triangles' own normals (kasha has no vertex normals): Mitsuba's face_normals = true");
-    s.boolean("flip_tex_coords", true);  // kasha reads OBJ's vt as Mitsuba's flipped default does
+    // kasha reads the file's (u, v) as they are and counts v from an image's bottom; Mitsuba
+    // counts it from the top, and flips v by default for OBJ files only.
+    mesh["flip_tex_coords"] = !s.boolean("flip_tex_coords", t == "obj");
     return {mesh};
   }
   if (t == "serialized") {
@@ -116,26 +122,24 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     if (s.has("face_normals")) mesh["face_normals"] = s.boolean("face_normals", false);  // else the file's flag
     return {mesh};
   }
+  // Mitsuba's rectangle: uv = ((x + 1)/2, (y + 1)/2) on [−1, 1]² (src/shapes/rectangle.cpp).
   if (t == "rectangle")
-    return {{{"type", "rectangle"},
-             {"corners", faceCorners(m, {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}, Vec3(0, 0, 1), flip)}}};
+    return {face(m, {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}, Vec3(0, 0, 1), flip, true)};
   if (t == "cube") {
+    // Mitsuba's cube (src/shapes/cube.cpp): per face, its normal and its four corners, whose uv
+    // are (0, 1), (1, 1), (1, 0), (0, 0), so kasha's (u, 1 − v) in that order; corner c sits at
+    // (±1, ±1, ±1) with bit k of c choosing the sign of axis k.
+    const Vec3 normals[6] = {{0, -1, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {-1, 0, 0}, {0, 0, -1}};
+    const int corners[6][4] = {{1, 5, 4, 0}, {3, 2, 6, 7}, {1, 3, 7, 5}, {5, 7, 6, 4}, {4, 6, 2, 0}, {3, 1, 0, 2}};
     std::vector<json> faces;
-    for (int axis = 0; axis < 3; ++axis)
-      for (float side : {-1.0f, 1.0f}) {
-        // The face at x_axis = side; (u, v) span the other two axes, in order around the face.
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        std::array<Vec3, 4> c;
-        const float uv[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-        for (int i = 0; i < 4; ++i) {
-          c[size_t(i)][axis] = side;
-          c[size_t(i)][u] = uv[i][0];
-          c[size_t(i)][v] = uv[i][1];
-        }
-        Vec3 n(0.0f);
-        n[axis] = side;
-        faces.push_back({{"type", "rectangle"}, {"corners", faceCorners(m, c, n, flip)}});
+    for (int side = 0; side < 6; ++side) {
+      std::array<Vec3, 4> c;
+      for (size_t k = 0; k < 4; ++k) {
+        const int bits = corners[side][k];
+        c[k] = Vec3(bits & 1 ? 1 : -1, bits & 2 ? 1 : -1, bits & 4 ? 1 : -1);
       }
+      faces.push_back(face(m, c, normals[side], flip, false));
+    }
     return faces;
   }
   if (t == "sphere") {
@@ -155,7 +159,10 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
   }
   if (t == "disk") {
     s.note("disk tessellated into a polygon of 256 triangles (area 0.01% below the disk's)");
-    return {{{"type", "disk"}, {"transform", matrixJson(m)}, {"flip_normals", flip}}};
+    // Mitsuba's disk normal is the transformed local +z, which a mirroring to_world does not turn
+    // as it turns kasha's winding; its uv = (r, φ/2π) is kasha's disk's with v counted from the top.
+    const bool mirrors = glm::determinant(glm::mat3(m)) < 0.0f;
+    return {{{"type", "disk"}, {"transform", matrixJson(m)}, {"flip_normals", flip != mirrors}, {"flip_tex_coords", true}}};
   }
   s.fail("unsupported shape plugin (obj, ply, serialized, rectangle, cube, sphere, disk, cylinder)");
 }

@@ -49,12 +49,15 @@ json checkerboard(Plugin& t, TextureUse use) {
   json out = {{"type", "checkerboard"},
               {"color0", checkerColour(t, swap ? "color1" : "color0", swap ? 0.2f : 0.4f, use)},
               {"color1", checkerColour(t, swap ? "color0" : "color1", swap ? 0.4f : 0.2f, use)}};
+  // Mitsuba's 4×4 to_uv → 2×3: the upper-left 2×2 and the translation column's first two rows.
+  Mat4 m(1.0f);
   if (const pugi::xml_node uv = t.property("to_uv")) {
     if (std::string(uv.name()) != "transform") t.fail(uv, "to_uv must be a <transform>");
-    // Mitsuba's 4×4 → 3×3: the upper-left 2×2 and the translation column's first two rows.
-    const Mat4 m = parseTransform(t.xml(), uv);
-    out["to_uv"] = {{m[0][0], m[1][0], m[3][0]}, {m[0][1], m[1][1], m[3][1]}};
+    m = parseTransform(t.xml(), uv);
   }
+  // The imported shapes give kasha (u, 1 − v) where Mitsuba has (u, v) (docs/mitsuba-import.md),
+  // so kasha's to_uv is Mitsuba's after v ← 1 − v: (a, b, c) · (u, 1 − v, 1) = (a, −b, b + c) · (u, v, 1).
+  out["to_uv"] = {{m[0][0], -m[1][0], m[1][0] + m[3][0]}, {m[0][1], -m[1][1], m[1][1] + m[3][1]}};
   return out;
 }
 

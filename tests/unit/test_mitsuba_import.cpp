@@ -614,6 +614,64 @@ TEST_F(MitsubaImport, BitmapTextures) {
       <texture type="noise" name="reflectance"/></bsdf></shape>)"), "texture 'noise': unsupported texture plugin (bitmap, checkerboard, mesh_attribute)"));
 }
 
+// Every imported shape gives kasha (u, 1 − v) where Mitsuba has (u, v): kasha counts v from an
+// image's bottom, Mitsuba from its top, so images and checkerboards land where Mitsuba puts them.
+// Mitsuba's (u, v) at each point below is worked out by hand from its shape definitions (src/shapes).
+TEST_F(MitsubaImport, TextureCoordinatesAreMitsubasWithVCountedFromTheBottom) {
+  write("tri.obj", "v -1 -1 0\nv 1 -1 0\nv -1 1 0\nvt 0.1 0.2\nvt 0.9 0.2\nvt 0.1 0.6\nf 1/1 2/2 3/3\n");
+  write("tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "property float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                   "-1 -1 0 0.1 0.2\n1 -1 0 0.9 0.2\n-1 1 0 0.1 0.6\n3 0 1 2\n");
+  // kasha's (u, v) and geometric normal where a ray from z = −5 along +z meets the shape at (x, y).
+  struct Seen {
+    Vec2 uv;
+    Vec3 ng;
+  };
+  const auto seen = [&](const std::string& shape, float x, float y) {
+    const auto s = load(std::string(kLight) + shape);
+    const std::optional<Hit> h = s->accel->intersect(Ray{Vec3(x, y, -5), Vec3(0, 0, 1)});
+    if (!h) {
+      ADD_FAILURE() << "no hit on " << shape;
+      return Seen{};
+    }
+    return Seen{s->shapes[h->shape].surfaceUv(h->prim, h->bary, h->ng), h->ng};
+  };
+  const auto expectUv = [](const Seen& k, Vec2 mitsuba, const std::string& what, float tolerance = 1e-5f) {
+    EXPECT_NEAR(k.uv.x, mitsuba.x, tolerance) << what;
+    EXPECT_NEAR(k.uv.y, 1.0f - mitsuba.y, tolerance) << what;
+  };
+  // rectangle: uv = ((x + 1)/2, (y + 1)/2); normal +z, turned by the inverse transpose.
+  const Seen rect = seen(R"(<shape type="rectangle"><bsdf type="diffuse"/></shape>)", 0.5f, -0.5f);
+  expectUv(rect, Vec2(0.75f, 0.25f), "rectangle");
+  EXPECT_NEAR(rect.ng.z, 1.0f, 1e-6f);
+  // Mirrored in x: the point at world (0.5, −0.5) is local (−0.5, −0.5), and the normal stays +z.
+  const Seen mirrored = seen(R"(<shape type="rectangle"><transform name="to_world"><scale x="-1"/></transform>
+      <bsdf type="diffuse"/></shape>)", 0.5f, -0.5f);
+  expectUv(mirrored, Vec2(0.25f, 0.25f), "mirrored rectangle");
+  EXPECT_NEAR(mirrored.ng.z, 1.0f, 1e-6f);
+  // cube, face z = −1 (normal −z; corners 3, 1, 0, 2 with uv (0, 1), (1, 1), (1, 0), (0, 0)):
+  // corner 3 = (1, 1), 1 = (1, −1), 0 = (−1, −1), 2 = (−1, 1), so u = (1 − y)/2, v = (x + 1)/2.
+  const Seen cube = seen(R"(<shape type="cube"><bsdf type="diffuse"/></shape>)", 0.5f, -0.5f);
+  expectUv(cube, Vec2(0.75f, 0.75f), "cube");
+  EXPECT_NEAR(cube.ng.z, -1.0f, 1e-6f);
+  // disk: uv = (r, φ/2π), at r = 0.5 on the middle of kasha's 65th triangle of 256, where its
+  // linear uv differs from the disk's by r·(1/cos(π/256) − 1) in u only.
+  const float phi = 2.0f * kPi * 64.5f / 256.0f;
+  expectUv(seen(R"(<shape type="disk"><bsdf type="diffuse"/></shape>)", 0.5f * std::cos(phi), 0.5f * std::sin(phi)),
+           Vec2(0.5f, 64.5f / 256.0f), "disk", 1e-4f);
+  // OBJ: Mitsuba reads vt as (u, 1 − v) unless flip_tex_coords is false. At (−0.5, −0.5) the
+  // barycentrics are (0.5, 0.25, 0.25): vt = (0.3, 0.3).
+  expectUv(seen(R"(<shape type="obj"><string name="filename" value="tri.obj"/><bsdf type="diffuse"/></shape>)", -0.5f, -0.5f),
+           Vec2(0.3f, 0.7f), "obj");
+  expectUv(seen(R"(<shape type="obj"><string name="filename" value="tri.obj"/><boolean name="flip_tex_coords" value="false"/>
+      <bsdf type="diffuse"/></shape>)", -0.5f, -0.5f), Vec2(0.3f, 0.3f), "obj without flip");
+  // PLY: Mitsuba reads (u, v) as they are unless flip_tex_coords is true.
+  expectUv(seen(R"(<shape type="ply"><string name="filename" value="tri.ply"/><bsdf type="diffuse"/></shape>)", -0.5f, -0.5f),
+           Vec2(0.3f, 0.3f), "ply");
+  expectUv(seen(R"(<shape type="ply"><string name="filename" value="tri.ply"/><boolean name="flip_tex_coords" value="true"/>
+      <bsdf type="diffuse"/></shape>)", -0.5f, -0.5f), Vec2(0.3f, 0.7f), "ply with flip");
+}
+
 // <texture type="checkerboard"> declared at the top level and referred to by <ref>, nested on a
 // roughness (Mitsuba's eval_1 reads the colours the other way round), on one axis, and
 // mesh_attribute; errors in one line naming the element.
@@ -638,8 +696,9 @@ TEST_F(MitsubaImport, CheckerboardAndMeshAttributeTextures) {
   EXPECT_FLOAT_EQ(floor["color0"].get<float>(), 0.2f);
   ASSERT_EQ(floor["color1"].size(), 3u);
   EXPECT_FLOAT_EQ(floor["color1"][2].get<float>(), 0.3f);
-  // to_uv = translate · scale: u' = 8u + 0.5, v' = 4v + 0.25.
-  const std::vector<std::vector<float>> toUv = {{8, 0, 0.5f}, {0, 4, 0.25f}};
+  // Mitsuba's to_uv = translate · scale: u' = 8u + 0.5, v' = 4v + 0.25, at Mitsuba's v, which is
+  // 1 − kasha's v: v' = 4(1 − v) + 0.25 = −4v + 4.25.
+  const std::vector<std::vector<float>> toUv = {{8, 0, 0.5f}, {0, -4, 4.25f}};
   for (int r = 0; r < 2; ++r)
     for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(floor["to_uv"][r][c].get<float>(), toUv[r][c]) << r << c;
   EXPECT_EQ(m["glass"]["alpha"], 1.0);
@@ -660,8 +719,8 @@ TEST_F(MitsubaImport, CheckerboardAndMeshAttributeTextures) {
                                                                                  lambda, SpectralLobe::Elastic) * kPi;
   };
   ASSERT_EQ(s->materialNames[0], "floor");
-  EXPECT_NEAR(at(Vec2(0.01f, 0.1f)), rgbToSigmoid(Vec3(0.2f))(lambda), 1e-6f);  // (0.58, 0.65): color0
-  EXPECT_NEAR(at(Vec2(0.01f, 0.01f)), rgbToSigmoid(Vec3(0.1f, 0.2f, 0.3f))(lambda), 1e-6f);  // (0.58, 0.29): color1
+  EXPECT_NEAR(at(Vec2(0.01f, 0.1f)), rgbToSigmoid(Vec3(0.2f))(lambda), 1e-6f);  // (0.58, 3.85): color0
+  EXPECT_NEAR(at(Vec2(0.01f, 0.01f)), rgbToSigmoid(Vec3(0.1f, 0.2f, 0.3f))(lambda), 1e-6f);  // (0.58, 4.21): color1
   // Errors.
   EXPECT_TRUE(contains(error(std::string(kLight) + R"(<bsdf type="diffuse" id="d"><ref name="reflectance" id="nope"/></bsdf>)" + kFloor),
                        "no <texture id=\"nope\"> before this reference"));
