@@ -36,16 +36,6 @@ json blendJson(const json& first, const json& second, double weight) {
   return {{"type", "blend"}, {"weight", weight}, {"materials", {first, second}}};
 }
 
-// The physical order of (wKnown, λ_known) and (wOther, λ_other) in `mode`.
-struct Pair {
-  Vec3 wi, wo;
-  float li, lo;
-};
-Pair physical(TransportMode mode, const Vec3& wKnown, float lKnown, const Vec3& wOther, float lOther) {
-  if (mode == TransportMode::Radiance) return {wOther, wKnown, lOther, lKnown};
-  return {wKnown, wOther, lKnown, lOther};
-}
-
 // f = (1 − w)·f_0 + w·f_1 per lobe; the spectral stage's probability and density are the
 // weighted sums of the components'; the direction density is Σ π_c·p_c with π_c ∝ a_c over the
 // components having the lobe; and for two elastic components the event density is Mitsuba's
@@ -68,9 +58,9 @@ TEST(Blend, ValueAndDensitiesAreTheWeightedSumsOfTheComponents) {
         EXPECT_NEAR(b.fluorescenceProbability(mode, lKnown),
                     (1 - w) * b0.fluorescenceProbability(mode, lKnown) + w * b1.fluorescenceProbability(mode, lKnown), 1e-6f);
         for (const SpectralLobe lobe : {SpectralLobe::Elastic, SpectralLobe::Fluorescent}) {
-          const Pair e = physical(mode, wKnown, lKnown, wOther, lobe == SpectralLobe::Elastic ? lKnown : lOther);
-          const float f0 = b0.eval(mode, e.wi, e.wo, e.li, e.lo, lobe), f1 = b1.eval(mode, e.wi, e.wo, e.li, e.lo, lobe);
-          const float f = b.eval(mode, e.wi, e.wo, e.li, e.lo, lobe);
+          const test::Event e = test::physical(mode, wKnown, lKnown, wOther, lobe == SpectralLobe::Elastic ? lKnown : lOther);
+          const float f0 = b0.eval(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe), f1 = b1.eval(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe);
+          const float f = b.eval(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe);
           EXPECT_TRUE(test::close(f, (1 - w) * f0 + w * f1, 1e-5, 1e-7));
           positive += f > 0.0f;
           const float lOth = lobe == SpectralLobe::Elastic ? lKnown : lOther;
@@ -78,14 +68,14 @@ TEST(Blend, ValueAndDensitiesAreTheWeightedSumsOfTheComponents) {
           EXPECT_TRUE(test::close(b.spectralPdf(mode, lKnown, lOth, lobe), (1 - w) * s0 + w * s1, 1e-5, 1e-8));
           // π_c: both components for the elastic lobe, the fluorescent one alone for the fluorescent lobe.
           const float pi0 = lobe == SpectralLobe::Elastic ? 1 - w : (fluorescent0 ? 1.0f : 0.0f);
-          const float d0 = b0.directionPdf(mode, wKnown, wOther, lobe, e.li, e.lo);
-          const float d1 = b1.directionPdf(mode, wKnown, wOther, lobe, e.li, e.lo);
+          const float d0 = b0.directionPdf(mode, wKnown, wOther, lobe, e.lambdaIn, e.lambdaOut);
+          const float d1 = b1.directionPdf(mode, wKnown, wOther, lobe, e.lambdaIn, e.lambdaOut);
           const float direction = pi0 * d0 + (1 - pi0) * d1;
-          EXPECT_TRUE(test::close(b.directionPdf(mode, wKnown, wOther, lobe, e.li, e.lo), direction, 1e-5, 1e-8));
-          const ScatterDensity d = b.pdf(mode, e.wi, e.wo, e.li, e.lo, lobe);
+          EXPECT_TRUE(test::close(b.directionPdf(mode, wKnown, wOther, lobe, e.lambdaIn, e.lambdaOut), direction, 1e-5, 1e-8));
+          const ScatterDensity d = b.pdf(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe);
           EXPECT_TRUE(test::close(d.pdf, ((1 - w) * s0 + w * s1) * direction, 1e-4, 1e-8));
           if (!fluorescent0 && lobe == SpectralLobe::Elastic) {
-            const ScatterDensity p0 = b0.pdf(mode, e.wi, e.wo, e.li, e.lo, lobe), p1 = b1.pdf(mode, e.wi, e.wo, e.li, e.lo, lobe);
+            const ScatterDensity p0 = b0.pdf(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe), p1 = b1.pdf(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe);
             EXPECT_TRUE(test::close(d.pdf, (1 - w) * p0.pdf + w * p1.pdf, 1e-5, 1e-8));
             EXPECT_TRUE(test::close(d.pdfRev, (1 - w) * p0.pdfRev + w * p1.pdfRev, 1e-5, 1e-8));
           }
