@@ -10,13 +10,14 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "integrators/render_loop.h"
 #include "materials/opacity_mask.h"
-#include "scene/scene_loader.h"
-#include "tests/integrator_names.h"
+#include "tests/pixel_relations.h"
 
 namespace kasha {
 namespace {
+
+using test::mean;
+using test::renderY;
 
 // The sheet z = 0 (|x|, |y| ≤ 1, facing +z) made of `sheet`, seen from z = 2; `rest`: the
 // remaining lights and shapes.
@@ -39,34 +40,6 @@ std::string mask(float opacity, const std::string& nested) {
   return R"({"type": "mask", "opacity": )" + std::to_string(opacity) + R"(, "material": )" + nested + "}";
 }
 
-// Y of every pixel of the scene rendered by `integrator` at `spp`.
-std::vector<double> renderY(const std::string& json, const std::string& integrator, int spp) {
-  const auto scene = loadSceneFromString(json, "mask.json");
-  const std::unique_ptr<Integrator> integ = test::makeTestIntegrator(integrator, *scene, scene->render);
-  Film film(scene->camera.width(), scene->camera.height());
-  RenderOptions opt;
-  opt.spp = spp;
-  opt.seed = 5;
-  render(*scene, *integ, film, opt);
-  std::vector<double> y;
-  for (int py = 0; py < film.height(); ++py)
-    for (int px = 0; px < film.width(); ++px) y.push_back(film.xyz(px, py).y);
-  return y;
-}
-
-double mean(const std::vector<double>& v) {
-  double s = 0.0;
-  for (const double x : v) s += x;
-  return s / double(v.size());
-}
-// The standard error of the mean of independent values.
-double standardError(const std::vector<double>& v) {
-  const double m = mean(v);
-  double s2 = 0.0;
-  for (const double x : v) s2 += (x - m) * (x - m);
-  return std::sqrt(s2 / double(v.size() - 1) / double(v.size()));
-}
-
 const char* kIntegrators[] = {"pt", "lt", "bdpt", "ppm", "vcm"};
 
 TEST(OpacityMask, OpaqueMaskIsTheNestedMaterial) {
@@ -78,18 +51,10 @@ TEST(OpacityMask, OpaqueMaskIsTheNestedMaterial) {
     }
 }
 
-// got ≈ ratio·reference pixel by pixel: the mean over pixels of d = got − ratio·reference is 0
-// within 4 standard errors (the spread of d is the two images' noise, the scene's structure
-// cancels), and the test can tell a wrong ratio: its error below `resolution` of the expectation.
+// got ≈ ratio·reference pixel by pixel (tests/pixel_relations.h).
 void expectRatio(const std::vector<double>& got, const std::vector<double>& reference, double ratio,
                  const std::string& what, double resolution) {
-  std::vector<double> d;
-  for (size_t i = 0; i < got.size(); ++i) d.push_back(got[i] - ratio * reference[i]);
-  const double expect = ratio * mean(reference), se = standardError(d);
-  ASSERT_GT(expect, 0.0) << what;
-  EXPECT_NEAR(mean(d), 0.0, 4.0 * se) << what << ": " << mean(got) / mean(reference) << " of the reference (expected "
-                                      << ratio << ", ± " << se / mean(reference) << ")";
-  EXPECT_LT(se, resolution * expect) << what << ": the test resolves the ratio";
+  test::expectCombination(got, {{ratio, &reference}}, what, resolution);
 }
 
 TEST(OpacityMask, MaskedSheetReflectsOpacityTimesTheNestedMaterial) {
