@@ -1,5 +1,6 @@
 #pragma once
-// Renders compared pixel by pixel (the wrapper materials' statistical tests: a mask, a blend):
+// Renders compared pixel by pixel (the wrapper materials' statistical tests: a mask, a blend, on
+// one sheet scene):
 // an image that should be a linear combination Σ k_j·reference_j of others, judged by the mean
 // over pixels of the difference, whose spread is the images' noise (the scene's structure
 // cancels), within 4 standard errors.
@@ -15,6 +16,20 @@
 #include "tests/integrator_names.h"
 
 namespace kasha::test {
+
+// The scene of the wrapper materials' tests: the sheet z = 0 (|x|, |y| ≤ 1, facing +z) made of
+// `sheet`, seen from z = 2 at 12 × 12 pixels; `rest`: the remaining shapes and the lights,
+// closing the shapes' array (kSheetPointLight, or further shapes with material "black").
+inline std::string sheetScene(const std::string& sheet, const std::string& rest) {
+  return R"({
+  "camera": {"position": [0, 0, 2], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 30, "resolution": [12, 12]},
+  "render": {"max_depth": 4, "seed": 7},
+  "materials": {"sheet": )" + sheet + R"(, "black": {"type": "lambertian", "reflectance": 0}},
+  "shapes": [{"type": "rectangle", "corners": [[-1,-1,0], [1,-1,0], [1,1,0], [-1,1,0]], "material": "sheet"})" + rest + "}";
+}
+// A point light in front of the sheet, off its axis.
+inline const std::string kSheetPointLight =
+    R"(], "lights": [{"type": "point", "position": [0.3, 0.2, 1.5], "intensity": 1, "scale": 3}])";
 
 // Y of every pixel of the JSON scene rendered by `integrator` at `spp` (seed 5).
 inline std::vector<double> renderY(const std::string& json, const std::string& integrator, int spp) {

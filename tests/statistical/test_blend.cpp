@@ -20,16 +20,9 @@
 namespace kasha {
 namespace {
 
-// The sheet z = 0 (|x|, |y| ≤ 1, facing +z) made of `sheet`, seen from z = 2; `rest`: the
-// remaining lights and shapes.
-std::string sheetScene(const std::string& sheet, const std::string& rest) {
-  return R"({
-  "camera": {"position": [0, 0, 2], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 30, "resolution": [12, 12]},
-  "render": {"max_depth": 4, "seed": 7},
-  "materials": {"sheet": )" + sheet + R"(, "black": {"type": "lambertian", "reflectance": 0}},
-  "shapes": [{"type": "rectangle", "corners": [[-1,-1,0], [1,-1,0], [1,1,0], [-1,1,0]], "material": "sheet"})" + rest + "}";
-}
-const std::string kPointLight = R"(], "lights": [{"type": "point", "position": [0.3, 0.2, 1.5], "intensity": 1, "scale": 3}])";
+using test::kSheetPointLight;
+using test::sheetScene;
+
 // An emitter at z = 3 (behind the camera) facing the sheet, which the mirror reflects into view.
 const std::string kEmitterAbove =
     R"(, {"type": "rectangle", "corners": [[-3,-3,3], [-3,3,3], [3,3,3], [3,-3,3]], "material": "black",
@@ -53,7 +46,7 @@ void expectBlendOfSheets(const std::string& first, const std::string& second, do
 
 TEST(Blend, DiffuseAndGlossySheet) {
   for (const std::string integrator : {"pt", "lt", "bdpt", "ppm", "vcm"})
-    expectBlendOfSheets(kWhite, kGlossy, 0.3, kPointLight, integrator, integrator == "lt" ? 256 : 32);
+    expectBlendOfSheets(kWhite, kGlossy, 0.3, kSheetPointLight, integrator, integrator == "lt" ? 256 : 32);
 }
 
 TEST(Blend, MirrorAndDiffuseSheet) {

@@ -16,19 +16,11 @@
 namespace kasha {
 namespace {
 
+using test::kSheetPointLight;
 using test::mean;
 using test::renderY;
+using test::sheetScene;
 
-// The sheet z = 0 (|x|, |y| ≤ 1, facing +z) made of `sheet`, seen from z = 2; `rest`: the
-// remaining lights and shapes.
-std::string sheetScene(const std::string& sheet, const std::string& rest) {
-  return R"({
-  "camera": {"position": [0, 0, 2], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 30, "resolution": [12, 12]},
-  "render": {"max_depth": 4, "seed": 7},
-  "materials": {"sheet": )" + sheet + R"(, "black": {"type": "lambertian", "reflectance": 0}},
-  "shapes": [{"type": "rectangle", "corners": [[-1,-1,0], [1,-1,0], [1,1,0], [-1,1,0]], "material": "sheet"})" + rest + "}";
-}
-const std::string kPointLight = R"(], "lights": [{"type": "point", "position": [0.3, 0.2, 1.5], "intensity": 1, "scale": 3}])";
 // An emitter at z = −1 facing the camera, filling the view behind the sheet.
 const std::string kEmitterBehind =
     R"(, {"type": "rectangle", "corners": [[-3,-3,-1], [3,-3,-1], [3,3,-1], [-3,3,-1]], "material": "black",
@@ -45,9 +37,9 @@ const char* kIntegrators[] = {"pt", "lt", "bdpt", "ppm", "vcm"};
 TEST(OpacityMask, OpaqueMaskIsTheNestedMaterial) {
   for (const std::string& nested : {kGlossy, kWhite})
     for (const char* integ : {"pt", "lt", "bdpt"}) {
-      const std::vector<double> plain = renderY(sheetScene(nested, kPointLight), integ, 2);
+      const std::vector<double> plain = renderY(sheetScene(nested, kSheetPointLight), integ, 2);
       EXPECT_GT(mean(plain), 0.0) << integ << ": the scene is lit";
-      EXPECT_EQ(renderY(sheetScene(mask(1.0f, nested), kPointLight), integ, 2), plain) << integ << " " << nested;
+      EXPECT_EQ(renderY(sheetScene(mask(1.0f, nested), kSheetPointLight), integ, 2), plain) << integ << " " << nested;
     }
 }
 
@@ -61,8 +53,8 @@ TEST(OpacityMask, MaskedSheetReflectsOpacityTimesTheNestedMaterial) {
   const float alpha = 0.375f;
   for (const std::string integ : kIntegrators) {
     const int spp = integ == "lt" ? 512 : 64;  // light tracing splats each subpath into one pixel
-    expectRatio(renderY(sheetScene(mask(alpha, kWhite), kPointLight), integ, spp),
-                renderY(sheetScene(kWhite, kPointLight), integ, spp), alpha, integ, 0.05);
+    expectRatio(renderY(sheetScene(mask(alpha, kWhite), kSheetPointLight), integ, spp),
+                renderY(sheetScene(kWhite, kSheetPointLight), integ, spp), alpha, integ, 0.05);
   }
 }
 
@@ -76,7 +68,7 @@ TEST(OpacityMask, EmitterSeenThroughTheMask) {
 TEST(OpacityMask, ClearErrors) {
   const auto error = [](const std::string& sheet) -> std::string {
     try {
-      loadSceneFromString(sheetScene(sheet, kPointLight), "mask.json");
+      loadSceneFromString(sheetScene(sheet, kSheetPointLight), "mask.json");
     } catch (const InputError& e) {
       return e.what();
     }
