@@ -61,7 +61,8 @@ SpectralChoice BlendModel::sampleSpectral(TransportMode mode, float lambdaKnown,
   if (u < fluorescent) {
     // The component's own fluorescent draw, u rescaled into [0, P_fl,c).
     const int c = u < fluorescent0 ? 0 : 1;
-    SpectralChoice choice = components_[c]->sampleSpectral(mode, lambdaKnown, c == 0 ? u / share(0) : (u - fluorescent0) / share(1));
+    const float uc = c == 0 ? u / share(0) : (u - fluorescent0) / share(1);
+    SpectralChoice choice = components_[c]->sampleSpectral(mode, lambdaKnown, uc);
     if (choice.pdf > 0.0f) choice.pdf = spectralPdf(mode, lambdaKnown, choice.lambda, choice.lobe);
     return choice;
   }

@@ -208,8 +208,8 @@ json opacityMask(Plugin& b, bool insideTwosided) {
 json blend(Plugin& b, bool insideTwosided) {
   const std::vector<pugi::xml_node> inner = b.nested("bsdf");
   if (inner.size() != 2) b.fail("expected exactly two nested <bsdf>s, found " + std::to_string(inner.size()));
-  json m = {{"type", "blend"},
-            {"materials", json::array({translate(b.xml(), inner[0], insideTwosided), translate(b.xml(), inner[1], insideTwosided)})}};
+  json m = {{"type", "blend"}, {"materials", json::array()}};
+  for (const pugi::xml_node component : inner) m["materials"].push_back(translate(b.xml(), component, insideTwosided));
   setScalar(b, "weight", 0.5f, m);
   return m;
 }
