@@ -8,6 +8,7 @@
 #include "core/input_file.h"
 #include "core/json_fields.h"
 #include "core/json_parse.h"
+#include "materials/blend.h"
 #include "materials/coated_fluorescent.h"
 #include "materials/dielectric.h"
 #include "materials/jung_bbrrdf.h"
@@ -197,6 +198,25 @@ std::unique_ptr<Material> parseMask(JsonFields& f, const SpectrumContext& ctx, W
   return std::make_unique<OpacityMask>(std::move(nested), opacity, parseScalarTexture(f, "opacity_texture", ctx));
 }
 
+// {"type": "blend", "weight": w, "weight_texture": <texture>, "materials": [{...}, {...}]}
+// (blend.h): (1 − w)·the first + w·the second.
+std::unique_ptr<Material> parseBlend(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range) {
+  const nlohmann::json& list = f.get("materials");
+  if (!list.is_array() || list.size() != 2)
+    f.fail("materials", "expected an array of two materials, got " +
+                            (list.is_array() ? std::to_string(list.size()) + " materials" : jsonTypeName(list)));
+  std::unique_ptr<Material> first = parseMaterial(list[0], ctx, f.path("materials") + "/0", range);
+  std::unique_ptr<Material> second = parseMaterial(list[1], ctx, f.path("materials") + "/1", range);
+  const float weight = f.number("weight");
+  if (!(weight >= 0.0f && weight <= 1.0f)) f.fail("weight", "must lie in [0, 1]");
+  try {
+    return std::make_unique<BlendMaterial>(std::move(first), std::move(second), weight,
+                                           parseScalarTexture(f, "weight_texture", ctx));
+  } catch (const std::invalid_argument& e) {
+    f.fail("materials", e.what());
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumContext& ctx, const std::string& ptr,
@@ -246,6 +266,8 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
     }
   } else if (type == "mask") {
     m = parseMask(f, ctx, range);
+  } else if (type == "blend") {
+    m = parseBlend(f, ctx, range);
   } else if (type == "normal_map" || type == "bump_map") {
     m = parsePerturbedNormal(f, type, ctx, range);
   } else if (type == "coated_fluorescent") {
@@ -258,7 +280,7 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
   } else {
     f.fail("type", "unknown material type '" + type +
                        "' (lambertian, jung_fluorescent, mirror, dielectric, thin_dielectric, rough_conductor, rough_dielectric, "
-                       "coated_fluorescent, zhdanov, measured_reradiation, normal_map, bump_map, mask, file)");
+                       "coated_fluorescent, zhdanov, measured_reradiation, normal_map, bump_map, mask, blend, file)");
   }
   f.finish();
   return m;

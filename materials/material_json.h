@@ -18,6 +18,8 @@
 //    tilted by a tangent-space normal map or a height map's gradient (normal_perturbation.h)
 //   {"type": "mask", "opacity": α, "opacity_texture": <texture>, "material": <untextured material>}:
 //    light passes straight on with probability 1 − α (opacity_mask.h)
+//   {"type": "blend", "weight": w, "weight_texture": <texture>, "materials": [<untextured material>,
+//    <untextured material>]}: (1 − w)·the first + w·the second (blend.h)
 // Every parameter named above except the indices of refraction may be textured by a
 // "<parameter>_texture" field (texture_json.h, docs/scene-format.md "Textures").
 #include <memory>

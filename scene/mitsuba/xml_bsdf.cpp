@@ -130,6 +130,18 @@ void setReflectance(Plugin& b, const std::string& key, json& m) {
   }
 }
 
+// Sets m[key] from the scalar property `key`: a number (`fallback` if absent), or a texture
+// (1 times the texture's mean of R, G, B in m[key + "_texture"], xml_texture.h).
+void setScalar(Plugin& b, const std::string& key, float fallback, json& m) {
+  const pugi::xml_node p = b.property(key);
+  if (p && isTexture(p)) {
+    m[key] = 1.0;
+    m[key + "_texture"] = textureField(b.xml(), p, TextureUse::Scalar);
+  } else {
+    m[key] = b.number(key, fallback);
+  }
+}
+
 // The kasha material types a scene may use directly; each property becomes the JSON field of
 // its name.
 json kashaMaterial(Plugin& b) {
@@ -187,13 +199,18 @@ json opacityMask(Plugin& b, bool insideTwosided) {
   const std::vector<pugi::xml_node> inner = b.nested("bsdf");
   if (inner.size() != 1) b.fail("expected exactly one nested <bsdf>");
   json m = {{"type", "mask"}, {"material", translate(b.xml(), inner.front(), insideTwosided)}};
-  const pugi::xml_node opacity = b.property("opacity");
-  if (opacity && isTexture(opacity)) {
-    m["opacity"] = 1.0;
-    m["opacity_texture"] = textureField(b.xml(), opacity, TextureUse::Scalar);
-  } else {
-    m["opacity"] = b.number("opacity", 0.5f);
-  }
+  setScalar(b, "opacity", 0.5f, m);
+  return m;
+}
+
+// blendbsdf (weight: a number, default 0.5, or a <texture> whose mean of R, G, B is the weight)
+// of two nested <bsdf>s, in order: kasha's blend (materials/blend.h).
+json blend(Plugin& b, bool insideTwosided) {
+  const std::vector<pugi::xml_node> inner = b.nested("bsdf");
+  if (inner.size() != 2) b.fail("expected exactly two nested <bsdf>s, found " + std::to_string(inner.size()));
+  json m = {{"type", "blend"}, {"materials", json::array()}};
+  for (const pugi::xml_node component : inner) m["materials"].push_back(translate(b.xml(), component, insideTwosided));
+  setScalar(b, "weight", 0.5f, m);
   return m;
 }
 
@@ -249,6 +266,8 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
     m = kashaMaterial(b);
   } else if (t == "mask") {
     m = opacityMask(b, insideTwosided);
+  } else if (t == "blendbsdf") {
+    m = blend(b, insideTwosided);
   } else if (t == "normalmap" || t == "bumpmap") {
     m = perturbedNormal(b, insideTwosided);
   } else if (t == "thindielectric") {
@@ -257,7 +276,7 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
     m = {{"type", "thin_dielectric"}, {"ior", relativeIor(b, "int_ior", "bk7")}};
   } else {
     b.fail("unsupported BSDF plugin (diffuse, conductor, roughconductor, dielectric, thindielectric, roughdielectric, plastic, "
-           "roughplastic, twosided, normalmap, bumpmap, mask; kasha's jung_fluorescent, zhdanov, coated_fluorescent, measured_reradiation)");
+           "roughplastic, twosided, normalmap, bumpmap, mask, blendbsdf; kasha's jung_fluorescent, zhdanov, coated_fluorescent, measured_reradiation)");
   }
   b.finish();
   return m;

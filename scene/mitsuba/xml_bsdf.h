@@ -3,7 +3,7 @@
 // conductor / roughconductor → mirror / rough_conductor with the normal-incidence reflectance of
 // the given η, k; dielectric / roughdielectric → dielectric / rough_dielectric; plastic /
 // roughplastic → coated_fluorescent without fluorescence; twosided → its nested BSDF (kasha's
-// opaque materials reflect on both sides). kasha's own materials (jung_fluorescent, zhdanov,
+// opaque materials reflect on both sides); mask → mask; blendbsdf → blend. kasha's own materials (jung_fluorescent, zhdanov,
 // coated_fluorescent, measured_reradiation) are an extension whose properties are the JSON
 // fields of docs/scene-format.md. Approximations are recorded as notes.
 #include <nlohmann/json.hpp>

@@ -10,24 +10,17 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "integrators/render_loop.h"
 #include "materials/opacity_mask.h"
-#include "scene/scene_loader.h"
-#include "tests/integrator_names.h"
+#include "tests/pixel_relations.h"
 
 namespace kasha {
 namespace {
 
-// The sheet z = 0 (|x|, |y| ≤ 1, facing +z) made of `sheet`, seen from z = 2; `rest`: the
-// remaining lights and shapes.
-std::string sheetScene(const std::string& sheet, const std::string& rest) {
-  return R"({
-  "camera": {"position": [0, 0, 2], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 30, "resolution": [12, 12]},
-  "render": {"max_depth": 4, "seed": 7},
-  "materials": {"sheet": )" + sheet + R"(, "black": {"type": "lambertian", "reflectance": 0}},
-  "shapes": [{"type": "rectangle", "corners": [[-1,-1,0], [1,-1,0], [1,1,0], [-1,1,0]], "material": "sheet"})" + rest + "}";
-}
-const std::string kPointLight = R"(], "lights": [{"type": "point", "position": [0.3, 0.2, 1.5], "intensity": 1, "scale": 3}])";
+using test::kSheetPointLight;
+using test::mean;
+using test::renderY;
+using test::sheetScene;
+
 // An emitter at z = −1 facing the camera, filling the view behind the sheet.
 const std::string kEmitterBehind =
     R"(, {"type": "rectangle", "corners": [[-3,-3,-1], [3,-3,-1], [3,3,-1], [-3,3,-1]], "material": "black",
@@ -39,65 +32,29 @@ std::string mask(float opacity, const std::string& nested) {
   return R"({"type": "mask", "opacity": )" + std::to_string(opacity) + R"(, "material": )" + nested + "}";
 }
 
-// Y of every pixel of the scene rendered by `integrator` at `spp`.
-std::vector<double> renderY(const std::string& json, const std::string& integrator, int spp) {
-  const auto scene = loadSceneFromString(json, "mask.json");
-  const std::unique_ptr<Integrator> integ = test::makeTestIntegrator(integrator, *scene, scene->render);
-  Film film(scene->camera.width(), scene->camera.height());
-  RenderOptions opt;
-  opt.spp = spp;
-  opt.seed = 5;
-  render(*scene, *integ, film, opt);
-  std::vector<double> y;
-  for (int py = 0; py < film.height(); ++py)
-    for (int px = 0; px < film.width(); ++px) y.push_back(film.xyz(px, py).y);
-  return y;
-}
-
-double mean(const std::vector<double>& v) {
-  double s = 0.0;
-  for (const double x : v) s += x;
-  return s / double(v.size());
-}
-// The standard error of the mean of independent values.
-double standardError(const std::vector<double>& v) {
-  const double m = mean(v);
-  double s2 = 0.0;
-  for (const double x : v) s2 += (x - m) * (x - m);
-  return std::sqrt(s2 / double(v.size() - 1) / double(v.size()));
-}
-
 const char* kIntegrators[] = {"pt", "lt", "bdpt", "ppm", "vcm"};
 
 TEST(OpacityMask, OpaqueMaskIsTheNestedMaterial) {
   for (const std::string& nested : {kGlossy, kWhite})
     for (const char* integ : {"pt", "lt", "bdpt"}) {
-      const std::vector<double> plain = renderY(sheetScene(nested, kPointLight), integ, 2);
+      const std::vector<double> plain = renderY(sheetScene(nested, kSheetPointLight), integ, 2);
       EXPECT_GT(mean(plain), 0.0) << integ << ": the scene is lit";
-      EXPECT_EQ(renderY(sheetScene(mask(1.0f, nested), kPointLight), integ, 2), plain) << integ << " " << nested;
+      EXPECT_EQ(renderY(sheetScene(mask(1.0f, nested), kSheetPointLight), integ, 2), plain) << integ << " " << nested;
     }
 }
 
-// got ≈ ratio·reference pixel by pixel: the mean over pixels of d = got − ratio·reference is 0
-// within 4 standard errors (the spread of d is the two images' noise, the scene's structure
-// cancels), and the test can tell a wrong ratio: its error below `resolution` of the expectation.
+// got ≈ ratio·reference pixel by pixel (tests/pixel_relations.h).
 void expectRatio(const std::vector<double>& got, const std::vector<double>& reference, double ratio,
                  const std::string& what, double resolution) {
-  std::vector<double> d;
-  for (size_t i = 0; i < got.size(); ++i) d.push_back(got[i] - ratio * reference[i]);
-  const double expect = ratio * mean(reference), se = standardError(d);
-  ASSERT_GT(expect, 0.0) << what;
-  EXPECT_NEAR(mean(d), 0.0, 4.0 * se) << what << ": " << mean(got) / mean(reference) << " of the reference (expected "
-                                      << ratio << ", ± " << se / mean(reference) << ")";
-  EXPECT_LT(se, resolution * expect) << what << ": the test resolves the ratio";
+  test::expectCombination(got, {{ratio, &reference}}, what, resolution);
 }
 
 TEST(OpacityMask, MaskedSheetReflectsOpacityTimesTheNestedMaterial) {
   const float alpha = 0.375f;
   for (const std::string integ : kIntegrators) {
     const int spp = integ == "lt" ? 512 : 64;  // light tracing splats each subpath into one pixel
-    expectRatio(renderY(sheetScene(mask(alpha, kWhite), kPointLight), integ, spp),
-                renderY(sheetScene(kWhite, kPointLight), integ, spp), alpha, integ, 0.05);
+    expectRatio(renderY(sheetScene(mask(alpha, kWhite), kSheetPointLight), integ, spp),
+                renderY(sheetScene(kWhite, kSheetPointLight), integ, spp), alpha, integ, 0.05);
   }
 }
 
@@ -111,7 +68,7 @@ TEST(OpacityMask, EmitterSeenThroughTheMask) {
 TEST(OpacityMask, ClearErrors) {
   const auto error = [](const std::string& sheet) -> std::string {
     try {
-      loadSceneFromString(sheetScene(sheet, kPointLight), "mask.json");
+      loadSceneFromString(sheetScene(sheet, kSheetPointLight), "mask.json");
     } catch (const InputError& e) {
       return e.what();
     }

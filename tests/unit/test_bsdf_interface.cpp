@@ -46,6 +46,12 @@ const char* kAnalytic = R"({
                     "absorption": {"type": "gaussian", "center": 420, "fwhm": 60, "peak": 0.9},
                     "emission": {"type": "gaussian", "center": 520, "fwhm": 40}, "reflectance": 0.7, "c": 0.6, "Q": 0.8}},
     "masked_metal": {"type": "mask", "opacity": 0.3, "material": {"type": "rough_conductor", "reflectance": 0.8, "alpha": 0.3}},
+    "blend_jung_metal": {"type": "blend", "weight": 0.4, "materials": [{"type": "jung_fluorescent",
+                         "absorption": {"type": "gaussian", "center": 420, "fwhm": 60, "peak": 0.9},
+                         "emission": {"type": "gaussian", "center": 520, "fwhm": 40}, "reflectance": 0.7, "c": 0.6, "Q": 0.8},
+                         {"type": "rough_conductor", "reflectance": 0.8, "alpha": 0.3}]},
+    "blend_mirror_glass": {"type": "blend", "weight": 1, "weight_texture": {"type": "checkerboard", "color0": 0.7, "color1": 0.1},
+                           "materials": [{"type": "mirror", "reflectance": 0.9}, {"type": "rough_dielectric", "ior": "BK7", "alpha": 0.3}]},
     "zhdanov_matte": {"type": "zhdanov", "gloss": 0, "passive": 0.4,
                       "excitation": {"type": "gaussian", "center": 400, "fwhm": 50, "peak": 0.3},
                       "emission": {"type": "gaussian", "center": 560, "fwhm": 60}}
@@ -55,7 +61,7 @@ const char* kAnalytic = R"({
 })";
 
 // Materials whose direction sampling depends on λ (the flag must be set and true).
-const std::set<std::string> kWavelengthDependent = {"rough_glass", "coated", "zhdanov", "masked_jung"};
+const std::set<std::string> kWavelengthDependent = {"rough_glass", "coated", "zhdanov", "masked_jung", "blend_mirror_glass"};
 
 struct Subject {
   std::string name;
@@ -93,7 +99,8 @@ TEST(BsdfInterface, EveryMaterialTypeIsCovered) {
   std::set<std::string> types;
   for (const Subject& s : subjects()) types.insert(s.material->describe().substr(0, s.material->describe().find(' ')));
   for (const char* t : {"lambertian", "mirror", "dielectric", "thin_dielectric", "rough_conductor", "rough_dielectric", "jung_fluorescent",
-                        "coated_fluorescent", "zhdanov", "measured_reradiation", "mask(jung_fluorescent)"})
+                        "coated_fluorescent", "zhdanov", "measured_reradiation", "mask(jung_fluorescent)",
+                        "blend(jung_fluorescent,"})
     EXPECT_TRUE(types.count(t)) << t;
   std::set<std::string> textured;
   for (const Subject& s : subjects())

@@ -16,6 +16,7 @@
 #include "core/envmap_light.h"
 #include "core/error.h"
 #include "core/rgb_spectrum.h"
+#include "materials/material_json.h"
 #include "scene/scene_loader.h"
 #include "scene/mitsuba/mitsuba_scene.h"
 #include "scene/mitsuba/xml_sensor.h"
@@ -789,6 +790,67 @@ TEST_F(MitsubaImport, OpacityMask) {
 }
 
 
+// blendbsdf (bsdf_blendbsdf.xml): kasha's blend, weight a number (default 0.5) or a texture's
+// mean, the two nested BSDFs in order. The XML blend scatters exactly as its JSON twin written by
+// hand (a checkerboard read as a scalar swaps its colours, xml_texture.cpp).
+TEST_F(MitsubaImport, BlendScattersAsItsJsonTwin) {
+  const auto t = translate(std::string(kLight) + R"(
+    <bsdf type="blendbsdf" id="streaks"><texture name="weight" type="checkerboard">
+        <float name="color0" value="0.8"/><float name="color1" value="0.3"/></texture>
+      <bsdf type="diffuse"><spectrum name="reflectance" value="0.6"/></bsdf>
+      <bsdf type="roughconductor"><string name="distribution" value="ggx"/><float name="alpha" value="0.2"/></bsdf></bsdf>
+    <bsdf type="blendbsdf" id="half"><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>
+    <shape type="rectangle"><ref id="streaks"/></shape><shape type="rectangle"><ref id="half"/></shape>)");
+  const json& m = t.scene["materials"];
+  ASSERT_TRUE(m.contains("streaks") && m.contains("half")) << m.dump();
+  EXPECT_EQ(m["streaks"]["type"], "blend");
+  EXPECT_EQ(m["streaks"]["weight_texture"]["type"], "checkerboard");
+  EXPECT_FLOAT_EQ(m["half"]["weight"].get<float>(), 0.5f);
+  EXPECT_EQ(m["half"]["materials"][1]["type"], "mirror");
+  const auto s = loadScene(file());
+  ASSERT_EQ(s->materials.size(), 2u);
+  const auto named = [&](const std::string& name) -> const Material& {
+    const auto it = std::find(s->materialNames.begin(), s->materialNames.end(), name);
+    return *s->materials[size_t(it - s->materialNames.begin())];
+  };
+  EXPECT_EQ(named("half").describe(), "blend(lambertian, mirror)");
+  const json twin = json::parse(R"({"type": "blend", "weight": 1,
+    "weight_texture": {"type": "checkerboard", "color0": 0.3, "color1": 0.8},
+    "materials": [{"type": "lambertian", "reflectance": 0.6}, {"type": "rough_conductor", "reflectance": 1, "alpha": 0.2}]})");
+  const auto expected = parseMaterial(twin, SpectrumContext("twin.json", "."), "/materials/twin", s->range);
+  const Material& imported = named("streaks");
+  ASSERT_TRUE(imported.textured());
+  const Frame world{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  const float lambda = 550.0f;
+  int compared = 0;
+  for (const Vec2 uv : {Vec2(0.25f, 0.25f), Vec2(0.75f, 0.25f)}) {
+    const HitContext hit{uv, world, world, {&lambda, 1}};
+    const Bsdf a = imported.bsdf(hit), b = expected->bsdf(hit);
+    for (float c = -0.95f; c < 1.0f; c += 0.1f) {
+      const Vec3 wo = glm::normalize(Vec3(0.3f, -0.2f, 0.7f)), wi = glm::normalize(Vec3(std::sqrt(1 - c * c), 0.1f, c));
+      for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
+        EXPECT_EQ(a.eval(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic),
+                  b.eval(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic));
+        EXPECT_EQ(a.pdf(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic).pdf,
+                  b.pdf(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic).pdf);
+        compared += a.eval(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic) > 0.0f;
+      }
+    }
+  }
+  EXPECT_GT(compared, 20);
+  // The twin's weight matters: the two colours give different values.
+  const Vec3 wo(0.0f, 0.0f, 1.0f), wi = glm::normalize(Vec3(0.1f, 0.0f, 1.0f));
+  const auto at = [&](Vec2 uv) {
+    return imported.bsdf(HitContext{uv, world, world, {&lambda, 1}}).eval(TransportMode::Radiance, wi, wo, lambda, lambda, SpectralLobe::Elastic);
+  };
+  EXPECT_NE(at(Vec2(0.25f, 0.25f)), at(Vec2(0.75f, 0.25f)));
+  // Not two nested BSDFs, or a weight outside [0, 1]: errors.
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="rectangle"><bsdf type="blendbsdf"><bsdf type="diffuse"/></bsdf></shape>)"),
+                       "bsdf 'blendbsdf': expected exactly two nested <bsdf>s, found 1"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="rectangle"><bsdf type="blendbsdf">
+      <float name="weight" value="1.5"/><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf></shape>)"), "weight: must lie in [0, 1]"));
+}
+
 TEST_F(MitsubaImport, DefaultsRefsAndIncludes) {
   write("materials.xml", R"(<scene version="3.0.0"><bsdf type="diffuse" id="grey"><float name="reflectance" value="$refl"/></bsdf></scene>)");
   const auto t = translate(std::string(R"(<default name="refl" value="0.7"/><default name="w" value="2"/>)") + kLight + R"(
@@ -837,7 +899,7 @@ TEST_F(MitsubaImport, ExampleSceneLoads) {
 TEST_F(MitsubaImport, UnsupportedPluginsAndPropertiesAreErrorsWithFileLineAndPlugin) {
   // kSensor spans lines 1–6 of the file; the element under test starts on line 7.
   const std::string prefix = "\n";
-  EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"blendbsdf\" id=\"h\"/>"), file() + ":7: bsdf 'blendbsdf': unsupported BSDF plugin"));
+  EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"measured\" id=\"h\"/>"), file() + ":7: bsdf 'measured': unsupported BSDF plugin"));
   // Outside kasha's scope, said as such.
   EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"hair\" id=\"h\"/>"), file() + ":7: bsdf 'hair': outside kasha's scope (hair)"));
   EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"pplastic\" id=\"p\"/>"), file() + ":7: bsdf 'pplastic': outside kasha's scope (polarisation)"));

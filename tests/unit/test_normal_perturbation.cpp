@@ -204,7 +204,7 @@ TEST_F(NormalPerturbation, ClearErrors) {
   EXPECT_EQ(error(R"({"type": "bump_map", "height": "n.exr", "material": {"type": "glass"}})"),
             at + "material/type: unknown material type 'glass' (lambertian, jung_fluorescent, mirror, dielectric, "
                  "thin_dielectric, rough_conductor, rough_dielectric, coated_fluorescent, zhdanov, measured_reradiation, "
-                 "normal_map, bump_map, mask, file)");
+                 "normal_map, bump_map, mask, blend, file)");
   EXPECT_EQ(error(R"({"type": "bump_map", "height": "n.exr"})"), at + "material: missing required field");
   EXPECT_EQ(error(R"({"type": "normal_map", "normals": {"type": "checkerboard"}, "material": )" + kGlossy + "}"),
             at + "normals: a normal map needs three channels (a colour)");
