@@ -2,14 +2,15 @@
 
 #include <stdexcept>
 
-#include "materials/opacity_mask.h"
 
 namespace kasha {
 
 BsdfFlags BlendModel::blendFlags(BsdfFlags first, BsdfFlags second) {
   const bool fluorescent0 = has(first, BsdfFlags::Fluorescent), fluorescent1 = has(second, BsdfFlags::Fluorescent);
   const bool factorised = fluorescent0 != fluorescent1 && has(fluorescent0 ? first : second, BsdfFlags::FactorisedFluorescence);
-  return flagIf(has(first, BsdfFlags::DeltaDirection) && has(second, BsdfFlags::DeltaDirection), BsdfFlags::DeltaDirection) |
+  const bool delta0 = has(first, BsdfFlags::DeltaDirection), delta1 = has(second, BsdfFlags::DeltaDirection);
+  const bool someDeltas = delta0 != delta1 || has(first, BsdfFlags::DeltaLobe) || has(second, BsdfFlags::DeltaLobe);
+  return flagIf(delta0 && delta1, BsdfFlags::DeltaDirection) | flagIf(someDeltas, BsdfFlags::DeltaLobe) |
          flagIf(fluorescent0 || fluorescent1, BsdfFlags::Fluorescent) |
          flagIf(factorised, BsdfFlags::FactorisedFluorescence) |
          flagIf(has(first, BsdfFlags::WavelengthDependentDirection) || has(second, BsdfFlags::WavelengthDependentDirection),
@@ -95,30 +96,15 @@ float BlendModel::directionPdf(TransportMode mode, const Vec3& wKnown, const Vec
   return pdf;
 }
 
-namespace {
-
-// Whether a material has delta and smooth lobes both: a blend of the two kinds, or a mask (whose
-// pass-through is a delta) around a material that is not all deltas.
-bool mixesDeltaAndSmooth(const Material& m) {
-  if (const auto* blend = dynamic_cast<const BlendMaterial*>(&m)) return blend->mixesDeltaAndSmooth();
-  return dynamic_cast<const OpacityMask*>(&m) != nullptr && !has(m.flags(), BsdfFlags::DeltaDirection);
-}
-
-}  // namespace
-
 BlendMaterial::BlendMaterial(std::unique_ptr<Material> first, std::unique_ptr<Material> second, float weight,
                              ScalarTexture texture)
     : first_(std::move(first)), second_(std::move(second)), weight_(weight), texture_(std::move(texture)) {
   for (const Material* c : {first_.get(), second_.get()}) {
     if (c->textured()) throw std::invalid_argument("a blend of a textured material is not supported");
-    if (kasha::mixesDeltaAndSmooth(*c))
+    if (has(c->flags(), BsdfFlags::DeltaLobe))
       throw std::invalid_argument("a blend of a material with both delta and smooth lobes (" + c->describe() +
                                   ") is not supported");
   }
-}
-
-bool BlendMaterial::mixesDeltaAndSmooth() const {
-  return has(first_->flags(), BsdfFlags::DeltaDirection) != has(second_->flags(), BsdfFlags::DeltaDirection);
 }
 
 Bsdf BlendMaterial::bsdf(const HitContext& ctx) const {

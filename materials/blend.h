@@ -98,8 +98,6 @@ class BlendMaterial final : public Material {
   bool textured() const override { return texture_.texture != nullptr; }
   std::vector<const Texture*> textures() const override { return setTextures(texture_); }
   std::string describe() const override { return "blend(" + first_->describe() + ", " + second_->describe() + ")"; }
-  // Whether it has both delta and smooth lobes (one component all deltas, the other not).
-  bool mixesDeltaAndSmooth() const;
 
  private:
   std::unique_ptr<Material> first_, second_;

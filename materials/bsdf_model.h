@@ -55,6 +55,10 @@ enum class BsdfFlags : uint8_t {
   // scattering kernel per unit length, directions range over the whole sphere, and no cosine
   // projects it (Bsdf::cosineFactor).
   Volume = 1 << 4,
+  // Some lobes, not all, are Dirac deltas in direction (an opacity mask's pass-through, a blend
+  // with a mirror): the bidirectional engine neither connects nor merges at such a point, since a
+  // connection there could not make a path through its delta (integrators/bidirectional/path_vertex.h).
+  DeltaLobe = 1 << 5,
 };
 constexpr BsdfFlags operator|(BsdfFlags a, BsdfFlags b) { return BsdfFlags(uint8_t(a) | uint8_t(b)); }
 constexpr bool has(BsdfFlags set, BsdfFlags f) { return (uint8_t(set) & uint8_t(f)) != 0; }

@@ -13,7 +13,8 @@ bool isPassThrough(const Vec3& a, const Vec3& b) { return a == -b; }
 
 BsdfFlags MaskModel::maskFlags(BsdfFlags nested) {
   const bool fluorescent = has(nested, BsdfFlags::Fluorescent);
-  return flagIf(has(nested, BsdfFlags::DeltaDirection), BsdfFlags::DeltaDirection) |
+  const bool allDeltas = has(nested, BsdfFlags::DeltaDirection);  // the pass-through is a delta too
+  return flagIf(allDeltas, BsdfFlags::DeltaDirection) | flagIf(!allDeltas, BsdfFlags::DeltaLobe) |
          flagIf(fluorescent, BsdfFlags::Fluorescent) |
          flagIf(has(nested, BsdfFlags::FactorisedFluorescence), BsdfFlags::FactorisedFluorescence) |
          BsdfFlags::WavelengthDependentDirection;

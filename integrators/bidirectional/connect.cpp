@@ -36,7 +36,7 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
   // The strategies with one light vertex: next-event estimation and the light vertex at x_1, or
   // for k = 1 the light seen by the camera.
   const Strategies& st = c.walk.strategies;
-  const MisSums m1 = k >= 2 ? firstVertexMultiplicity(next.connectible(), next.lobe, next.spectralPdf, end.finite, st)
+  const MisSums m1 = k >= 2 ? firstVertexMultiplicity(next.joinable(false), next.lobe, next.spectralPdf, end.finite, st)
                             : directLightMultiplicity(e.kind == Kind::Surface, st);
   const MisSums own = hitMultiplicity();
   const MisSums total = own + cameraSum(c, C, t, end.pdf0, m1, end.pdf1);
@@ -45,7 +45,7 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
     const MisFactors f = factors(c, e.light, e.lambdaOf(c.lanes, j), e.elasticBefore ? j : -1, c.lanes.sensorPdf[j],
                                  e.elasticBefore, next.lanesKept);
     return weigh(c, 0, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
-      FullPath fp = layout(c, nullptr, 0, C, t, end, g);
+      FullPath fp = layout(c, nullptr, 0, C, t, end, g, true);
       if (k >= 2) {
         fp.specCam1 = next.spectralPdf;
         fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
@@ -114,7 +114,7 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
   const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite, c.walk.strategies);
   MisSums own;
   own.nee = x1.spectralPdf * double(x1.spectralPdf);
-  const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, c.walk.strategies), pLight2);
+  const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, c.walk.strategies, true), pLight2);
   float weight[kMaxLanes];
   laneWeights(c, x1.firstLane(), x1.endLane(c.lanes), weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     const MisFactors f = factors(c, lightIndex, lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
@@ -124,7 +124,7 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
       lightVertex.pdfFwd = float(end.pdf0);
       lightVertex.pdfRev = float(pCam0);
       const std::vector<PathVertex> L1{lightVertex};
-      FullPath fp = layout(c, &L1, 1, C, t, end, g);
+      FullPath fp = layout(c, &L1, 1, C, t, end, g, true);
       if (x2.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
       fp.specCam1 = x1.spectralPdf;
       fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
@@ -172,11 +172,11 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   own.own = 1.0;
   const Strategies& st = c.walk.strategies;
   const MisSums total = firstVertexMultiplicity(true, F, specCam1, true, st) + lightEndSum(pCam0, a.pdfFwd) +
-                        cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, st), pLight2);
+                        cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, st, true), pLight2);
   const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false, false,
                                 c.walk.lightFirst ? a.choicePdf : 0.0f);
   const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, mf, [&](const MisFactors& g) {
-    FullPath fp = layout(c, &L, 1, C, t, end, g);
+    FullPath fp = layout(c, &L, 1, C, t, end, g, true);
     fp.v[1].lobe = F;
     fp.v[0].pdfCam = pCam0;
     if (bNext.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
@@ -276,8 +276,8 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     const double pCamA = cameraSide(c.scene, b, bWo, bWi, a, p.lb, p.lambdaB, lambdaB, segment);
     const double pCamAPrev = cameraSide(c.scene, a, aWo, aWi, aPrev, p.la, a.lambda, p.lambdaA, a.arrival);
     const Strategies& st = c.walk.strategies;
-    const MisSums sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st), pCamAPrev) +
-                          cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st), pLightBNext);
+    const MisSums sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st, false, true), pCamAPrev) +
+                          cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st, true), pLightBNext);
     const MisSums here = joinMultiplicity(true, p.la, p.lb, st);
     MisSums own;
     (p.variant == Variant::kStandard ? own.shared : p.variant == Variant::kOwn ? own.own : own.mollified) = 1.0;
@@ -292,7 +292,7 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
                                : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup, lanesKept,
                                          c.walk.lightFirst ? L[0].choicePdf : 0.0f);
       return weigh(c, s, t, p.variant, own, here + sides, f, [&](const MisFactors& g) {
-        FullPath fp = layout(c, &L, s, C, t, end, g);
+        FullPath fp = layout(c, &L, s, C, t, end, g, true);
         fp.v[size_t(s - 1)].lobe = p.la;
         fp.v[size_t(s)].lobe = p.lb;
         fp.v[size_t(s)].pdfLight = pLightB;
@@ -401,7 +401,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     here = lightTracingMultiplicity(true, a.spectralPdf, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
     // a, next to the camera, is the path's first gather vertex.
-    sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, c.walk.strategies, true), pCamAPrev);
+    sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, c.walk.strategies, true, true), pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
   for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) value[k] *= transmittance(segment);
@@ -417,7 +417,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
                                            c.walk.lightFirst ? L[0].choicePdf : 0.0f);
     return weigh(c, s, 1, variant, own, here + sides, mf, [&](const MisFactors& g) {
       const std::vector<PathVertex> camOnly{cam};
-      FullPath fp = layout(c, &L, s, camOnly, 1, end, g);
+      FullPath fp = layout(c, &L, s, camOnly, 1, end, g, true);
       const int last = s;
       fp.v[size_t(last - 1)].pdfCam = pCamA;
       if (s == 1) {

@@ -89,7 +89,7 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
 }
 
 FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t,
-                const LightEnd& end, const MisFactors& f) {
+                const LightEnd& end, const MisFactors& f, bool connection) {
   FullPath fp;
   fp.families = c.families;
   fp.sensorPdf = f.sensorPdf;
@@ -104,11 +104,13 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   fp.v.resize(size_t(k + 1));
   for (int i = 0; i < s; ++i) {
     const PathVertex& v = (*L)[size_t(i)];
-    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.connectible(), v.inMedium(), mergeable(v)};
+    const bool ends = i == s - 1;
+    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.joinable(ends), v.inMedium(), mergeable(v, ends)};
   }
   for (int j = 0; j < t; ++j) {
     const PathVertex& v = C[size_t(j)];
-    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.connectible(), v.inMedium(), mergeable(v)};
+    const bool ends = connection && j == t - 1;
+    fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.joinable(ends), v.inMedium(), mergeable(v, ends)};
   }
   fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
   fp.v[size_t(k)].pdfLight = 0.0;
@@ -196,13 +198,13 @@ MisSums endSum(const PathVertex& end, const PathVertex& before, const MisSums& m
 
 MisSums cameraSum(const Context& c, const std::vector<PathVertex>& C, int t, double pLast, const MisSums& mLast,
                   double pBefore) {
-  return endSum(C[size_t(t - 1)], C[size_t(t - 2)], cameraMultiplicity(C, t - 2, c.walk.strategies), pLast, mLast,
+  return endSum(C[size_t(t - 1)], C[size_t(t - 2)], cameraMultiplicity(C, t - 2, c.walk.strategies, false), pLast, mLast,
                 pBefore);
 }
 
 MisSums lightSum(const Context& c, const std::vector<PathVertex>& L, int s, double pLast, const MisSums& mLast,
                  double pBefore) {
-  return endSum(L[size_t(s - 1)], L[size_t(s - 2)], lightMultiplicity(L, s - 2, c.walk.strategies), pLast, mLast,
+  return endSum(L[size_t(s - 1)], L[size_t(s - 2)], lightMultiplicity(L, s - 2, c.walk.strategies, false, false), pLast, mLast,
                 pBefore);
 }
 

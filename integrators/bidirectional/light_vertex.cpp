@@ -13,7 +13,7 @@ void keepLightVertices(const std::vector<PathVertex>& L, bool own, const Scene& 
     const PathVertex& v = L[m];
     const PathVertex& prev = L[m - 1];
     const float* beta = v.lanesEndHere ? v.betaArriving : v.beta;
-    if (!mergeable(v) || std::none_of(beta, beta + kLightVertexLanes, [](float b) { return b > 0.0f; })) continue;
+    if (!mergeable(v, true) || std::none_of(beta, beta + kLightVertexLanes, [](float b) { return b > 0.0f; })) continue;
     LightVertex r{};
     std::copy(&v.p.x, &v.p.x + 3, r.p);
     const Vec3 wi = v.bsdf->toLocal(towards(v, prev));
@@ -26,12 +26,12 @@ void keepLightVertices(const std::vector<PathVertex>& L, bool own, const Scene& 
     r.pdfFwd = v.pdfFwd;
     r.pdfPrev = prev.pdfFwd;
     r.prevGeometry = float(toArea(scene, 1.0f, v, prev) * flightFactor(scene, TransportMode::Radiance, v.arrival, prev, v.lambda));
-    r.sums = lightMultiplicity(L, int(m) - 1, st) + v.sums;
+    r.sums = lightMultiplicity(L, int(m) - 1, st, false, false) + v.sums;
     r.light = int16_t(L[0].light);
     r.depth = uint8_t(m);
     r.lane = v.lanesEndHere ? int8_t(-1) : v.lane;
     r.flags = uint8_t((own ? LightVertex::kOwn : 0) | (v.elasticBefore ? LightVertex::kElasticBefore : 0) |
-                      (v.lanesKept ? LightVertex::kLanesKept : 0) | (prev.connectible() ? LightVertex::kPrevConnectible : 0) |
+                      (v.lanesKept ? LightVertex::kLanesKept : 0) | (prev.joinable(false) ? LightVertex::kPrevConnectible : 0) |
                       (prev.lobe == SpectralLobe::Fluorescent ? LightVertex::kPrevFluorescent : 0) |
                       (L[0].kind == Kind::Light ? LightVertex::kFiniteLight : 0) |
                       (v.inMedium() ? LightVertex::kMedium : 0));

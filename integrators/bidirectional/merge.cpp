@@ -46,8 +46,8 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   } else {
     const double pdf = r.specLight * fb.directionPdf(TransportMode::Importance, bWi, bWo, lobe, lambdaIn, lambdaOut);
     r.pLightNext = toArea(c.scene, float(pdf), b, bNext);
-    r.total = r.total + joinMultiplicity(bNext.connectible(), lobe, bNext.lobe, st) +
-              cameraSum(c, C, t - 1, r.pLightNext, cameraMultiplicity(C, t - 2, st), C[size_t(t - 3)].pdfRev);
+    r.total = r.total + joinMultiplicity(bNext.joinable(false), lobe, bNext.lobe, st) +
+              cameraSum(c, C, t - 1, r.pLightNext, cameraMultiplicity(C, t - 2, st, false), C[size_t(t - 3)].pdfRev);
   }
   return r;
 }
@@ -57,7 +57,7 @@ FullPath fullPath(const Context& c, const std::vector<PathVertex>& C, int t, con
                   const std::vector<PathVertex>* lightPath, SpectralLobe lobe, const MergeSums& r, const MisFactors& g) {
   const std::vector<PathVertex>& L = *lightPath;
   const int m = v.depth;
-  FullPath fp = layout(c, &L, m + 1, C, t - 1, storedLightEnd(L, m + 1), g);
+  FullPath fp = layout(c, &L, m + 1, C, t - 1, storedLightEnd(L, m + 1), g, false);
   fp.v[size_t(m)].lobe = lobe;
   fp.v[size_t(m)].pdfCam = C[size_t(t - 1)].pdfFwd;
   fp.v[size_t(m - 1)].pdfCam = r.pCamPrev;
@@ -189,7 +189,7 @@ void merge(const Context& c, const std::vector<PathVertex>& C, int t, const Ligh
   // no wider gather there.
   const bool gather = b.gather && !b.inMedium();
   const bool own = v.has(LightVertex::kOwn);
-  if (!mergeable(b) || (!withinRadius && !(gather && own))) return;
+  if (!mergeable(b, true) || (!withinRadius && !(gather && own))) return;
   // b's lanes as the light arriving there sees them: where b ended the lanes on arrival, every lane
   // that arrived (the merge evaluates b's event itself, docs/bdpt-mis.md §12).
   const bool ended = b.lanesEndHere;

@@ -112,8 +112,14 @@ struct PathVertex {
   int endLane(const Lanes& lanes) const { return lane < 0 ? lanes.n : lane + 1; }
   // Lane k's wavelength here (k one of the lanes that reach it).
   float lambdaOf(const Lanes& lanes, int k) const { return allLanes(lanes) ? lanes.lambda[k] : lambda; }
-  // Whether a connection can end here: surfaces with a non-delta lobe, lights, the camera.
+  // Whether a connection can end here: lights, the camera, scattering points with a smooth lobe.
   bool connectible() const { return !scatters() || !bsdf->has(BsdfFlags::DeltaDirection); }
+  // Whether another strategy could end a connection or a merge here on the path being weighed
+  // (docs/bdpt-mis.md §9). Where the path `ends` a connection or a merge here, as connectible.
+  // Where it goes on through this vertex's own sampled event, not if that event was a delta, even
+  // at a point with smooth lobes too (an opacity mask's pass-through, BsdfFlags::DeltaLobe): a
+  // connection cannot make a path through a delta. Per event, as pbrt-v4's Vertex::delta.
+  bool joinable(bool ends) const { return ends ? connectible() : !scatters() || !specular; }
 };
 
 // Area density at `to` of a solid-angle density at `from` (|cos| at `to` / d²); a vertex without a

@@ -3,41 +3,41 @@
 namespace kasha::bidir {
 
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
-                          const Strategies& st, bool gather) {
+                          const Strategies& st, bool gather, bool ends) {
   if (j < 0) return {};
   if (j == 0) return hitMultiplicity();  // the camera subpath hits the light (0 where pC_0 is)
   const PathVertex& v = L[size_t(j)];
   // x_j next to the camera (gather, t = 1) is x_{k−1}.
-  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, gather, gather, st, v.inMedium());
+  const MisSums merges = mergeMultiplicity(mergeable(v, ends), lobe, v.pdfFwd, gather, gather, st, v.inMedium());
   if (j == 1) {  // x_1: next-event estimation, and the light vertex through a fluorescent x_1
     const double specCam1 = v.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, v.lambda, lobe);
-    return merges + firstVertexMultiplicity(v.connectible(), lobe, specCam1, L[0].kind == PathVertex::Kind::Light, st);
+    return merges + firstVertexMultiplicity(v.joinable(ends), lobe, specCam1, L[0].kind == PathVertex::Kind::Light, st);
   }
   const PathVertex& u = L[size_t(j - 1)];
-  return merges + joinMultiplicity(u.connectible() && v.connectible(), u.lobe, lobe, st);
+  return merges + joinMultiplicity(u.joinable(false) && v.joinable(ends), u.lobe, lobe, st);
 }
 
-MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st, bool gather) {
-  if (j < 1) return lightMultiplicity(L, j, SpectralLobe::Elastic, 0.0f, st);
-  return lightMultiplicity(L, j, L[size_t(j)].lobe, L[size_t(j)].lambdaNext, st, gather);
+MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st, bool gather, bool ends) {
+  if (j < 1) return lightMultiplicity(L, j, SpectralLobe::Elastic, 0.0f, st, false, ends);
+  return lightMultiplicity(L, j, L[size_t(j)].lobe, L[size_t(j)].lambdaNext, st, gather, ends);
 }
 
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn,
-                           const Strategies& st) {
+                           const Strategies& st, bool ends) {
   if (j < 1) return {};
   const PathVertex& v = C[size_t(j)];
-  const MisSums merges = mergeMultiplicity(mergeable(v), lobe, v.pdfFwd, v.gather, j == 1, st, v.inMedium());
+  const MisSums merges = mergeMultiplicity(mergeable(v, ends), lobe, v.pdfFwd, v.gather, j == 1, st, v.inMedium());
   if (j == 1) {  // t = 1: the light side samples x_{k−1}'s event
     const double specLight = v.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, v.lambda, lobe);
-    return merges + lightTracingMultiplicity(v.connectible(), specLight, st);
+    return merges + lightTracingMultiplicity(v.joinable(ends), specLight, st);
   }
   const PathVertex& u = C[size_t(j - 1)];
-  return merges + joinMultiplicity(u.connectible() && v.connectible(), lobe, u.lobe, st);
+  return merges + joinMultiplicity(u.joinable(false) && v.joinable(ends), lobe, u.lobe, st);
 }
 
-MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st) {
+MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st, bool ends) {
   if (j < 1) return {};
-  return cameraMultiplicity(C, j, C[size_t(j)].lobe, C[size_t(j)].lambdaNext, st);
+  return cameraMultiplicity(C, j, C[size_t(j)].lobe, C[size_t(j)].lambdaNext, st, ends);
 }
 
 void updateSums(std::vector<PathVertex>& path, TransportMode mode, const Strategies& st) {
@@ -51,8 +51,8 @@ void updateSums(std::vector<PathVertex>& path, TransportMode mode, const Strateg
   const PathVertex& back2 = path[j - 2];
   const PathVertex& back1 = path[j - 1];
   const double r = densityRatio(back2.pdfRev, back2.pdfFwd);
-  const MisSums m = mode == TransportMode::Radiance ? cameraMultiplicity(path, int(j - 2), st)
-                                                    : lightMultiplicity(path, int(j - 2), st);
+  const MisSums m = mode == TransportMode::Radiance ? cameraMultiplicity(path, int(j - 2), st, false)
+                                                    : lightMultiplicity(path, int(j - 2), st, false, false);
   v.sums = extend(back1.sums, r, m);
   v.elasticBefore = back1.elasticBefore && back1.lobe == SpectralLobe::Elastic;
 }

@@ -17,21 +17,24 @@ inline double densityRatio(double other, double own) { return own > 0.0 ? other 
 // together with the merges at L[j] (docs/bdpt-mis.md §12: a side's strategy s' carries the merges at
 // the vertex that side sampled last). `gather`: L[j] connects to the camera (t = 1), so it is
 // x_{k−1}, the path's first gather vertex (MergeEta) and the camera ray's hit (Variant::kMergeSplat).
+// `ends`: the path being weighed ends a connection at L[j] (PathVertex::joinable); L[j − 1] is
+// always inside it.
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
-                          const Strategies& st, bool gather = false);
+                          const Strategies& st, bool gather, bool ends);
 // The same with L[j]'s own sampled event.
-MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st, bool gather = false);
+MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st, bool gather, bool ends);
 
 // M of the strategy with j vertices on the camera subpath C (t' = j, s' = k + 1 − j), C[j] using
-// `lobe` with `lambdaIn` arriving from the light side, together with the merges at C[j].
+// `lobe` with `lambdaIn` arriving from the light side, together with the merges at C[j]; `ends` as
+// for lightMultiplicity.
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn,
-                           const Strategies& st);
+                           const Strategies& st, bool ends);
 // The same with C[j]'s own sampled event.
-MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st);
+MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st, bool ends);
 
-// Whether a merge can happen at v: a surface without a delta lobe, or a collision in a medium whose
-// merge sphere meets no surface.
-inline bool mergeable(const PathVertex& v) { return v.scatters() && v.connectible() && v.sphereInMedium; }
+// Whether a merge can happen at v on the path being weighed: a surface without a delta lobe, or a
+// collision in a medium whose merge sphere meets no surface; `ends` as for PathVertex::joinable.
+inline bool mergeable(const PathVertex& v, bool ends) { return v.scatters() && v.joinable(ends) && v.sphereInMedium; }
 
 // Sets the running sum and the elastic flag of the subpath's newest vertex (Radiance: a camera
 // subpath, Importance: a light subpath). Called once per vertex, in order, once the vertex two

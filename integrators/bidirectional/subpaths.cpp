@@ -68,7 +68,7 @@ void arrive(Track& tr, const PathVertex& reached, const Ray& ray, const Scene& s
   const PathVertex& prev = path[path.size() - 2];
   const Bsdf& bsdf = *v.bsdf;
   v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf);
-  v.gather = !prev.scatters() || (prev.gather && !prev.connectible());
+  v.gather = !prev.scatters() || (prev.gather && !prev.joinable(false));
   if (v.inMedium() && st.merge.volume > 0.0)
     v.sphereInMedium = sphereClearOfSurfaces(scene, v.p, float(st.merge.volumeRadius), counter);
   // Where sampling depends on the wavelength, the lanes end in the hero lane 0, its weight times n

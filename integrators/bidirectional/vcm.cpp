@@ -394,7 +394,7 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
     const int maxDepth = pass.walk.maxDepth;
     for (int t = 2; t <= int(C.size()) && t - 1 <= maxDepth; ++t) {
       const PathVertex& b = C[size_t(t - 1)];
-      if (!mergeable(b)) continue;
+      if (!mergeable(b, true)) continue;
       // A collision merges with the light vertices in media within r_v, a surface point with those on
       // surfaces within r (own ones through a fluorescent first gather vertex within the gather's).
       const bool volume = b.inMedium();

@@ -50,7 +50,7 @@ TEST(Blend, DiffuseAndGlossySheet) {
 }
 
 TEST(Blend, MirrorAndDiffuseSheet) {
-  for (const std::string integrator : {"pt", "ppm", "vcm"})
+  for (const std::string integrator : {"pt", "bdpt", "vc", "ppm", "vcm"})
     expectBlendOfSheets(kMirror, kWhite, 0.4, kEmitterAbove, integrator, 32);
 }
 

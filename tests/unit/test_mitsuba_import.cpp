@@ -792,7 +792,7 @@ TEST_F(MitsubaImport, OpacityMask) {
 
 // blendbsdf (bsdf_blendbsdf.xml): kasha's blend, weight a number (default 0.5) or a texture's
 // mean, the two nested BSDFs in order. The XML blend scatters exactly as its JSON twin written by
-// hand (a checkerboard read as a scalar swaps its colours, xml_texture.cpp).
+// hand (a checkerboard read as a scalar swaps its colours, and reads v as 1 − v: xml_texture.cpp).
 TEST_F(MitsubaImport, BlendScattersAsItsJsonTwin) {
   const auto t = translate(std::string(kLight) + R"(
     <bsdf type="blendbsdf" id="streaks"><texture name="weight" type="checkerboard">
@@ -815,7 +815,7 @@ TEST_F(MitsubaImport, BlendScattersAsItsJsonTwin) {
   };
   EXPECT_EQ(named("half").describe(), "blend(lambertian, mirror)");
   const json twin = json::parse(R"({"type": "blend", "weight": 1,
-    "weight_texture": {"type": "checkerboard", "color0": 0.3, "color1": 0.8},
+    "weight_texture": {"type": "checkerboard", "color0": 0.3, "color1": 0.8, "to_uv": [[1, 0, 0], [0, -1, 1]]},
     "materials": [{"type": "lambertian", "reflectance": 0.6}, {"type": "rough_conductor", "reflectance": 1, "alpha": 0.2}]})");
   const auto expected = parseMaterial(twin, SpectrumContext("twin.json", "."), "/materials/twin", s->range);
   const Material& imported = named("streaks");

@@ -85,7 +85,7 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
       keepLightVertices(*L, L == &LO, *scene, strategies, kept);
       for (const LightVertex& v : kept)
         for (int t = 2; t <= int(C.size()) && v.depth + t - 2 <= ws.maxDepth; ++t)
-          if (mergeable(C[size_t(t - 1)]) && C[size_t(t - 1)].inMedium() == v.has(LightVertex::kMedium))
+          if (mergeable(C[size_t(t - 1)], true) && C[size_t(t - 1)].inMedium() == v.has(LightVertex::kMedium))
             merge(c, C, t, v, true, radiance, atLight, L);
     }
     for (const test::WeightCheck& k : oracle.checks) merges += isMerge(Variant(k.variant));
