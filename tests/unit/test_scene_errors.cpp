@@ -10,6 +10,7 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
+#include <stb/stb_image_write.h>
 
 #include "core/error.h"
 #include "core/medium.h"
@@ -707,6 +708,23 @@ TEST_F(SceneLoader, BadLights) {
   expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "environment", "radiance": 1}, {"type": "environment", "radiance": 2}])"); },
               "/lights/1/type", "only one environment light is allowed");
   expectError([](json& j) { j["lights"] = json::array({5}); }, "/lights/0", "expected an object, got number");
+}
+
+TEST_F(SceneLoader, BadSpotTexture) {
+  auto spot = [](json extra) {
+    json l = {{"type", "spot"}, {"position", {0, 1, 0}}, {"look_at", {1, 0, 0}}, {"cone_angle", 30}, {"intensity", 1}};
+    l.update(extra);
+    return [l](json& j) { j["lights"] = json::array({l}); };
+  };
+  const unsigned char black[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const std::string blackPng = dir + "/black.png";
+  ASSERT_TRUE(stbi_write_png(blackPng.c_str(), 2, 2, 3, black, 6));
+  expectError(spot({{"texture", dir + "/missing.png"}}), "/lights/0/texture", "missing.png");
+  expectError(spot({{"texture", blackPng}}), "/lights/0/texture", "black where it is cast");
+  expectError(spot({{"texture", blackPng}, {"encoding", "gamma"}}), "/lights/0/encoding", "is not srgb or linear");
+  expectError(spot({{"texture", blackPng}, {"cone_angle", 90}}), "/lights/0/cone_angle", "narrower than 90 degrees");
+  expectError(spot({{"texture", blackPng}, {"up", {-2, 2, 0}}}), "/lights/0/up", "parallel to the spot's axis");
+  expectError(spot({{"up", {0, 0, 1}}}), "/lights/0/up", "give it with a \"texture\"");
 }
 
 TEST_F(SceneLoader, SceneWithoutLight) {
