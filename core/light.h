@@ -1,8 +1,8 @@
 #pragma once
-// Light sources: area (an emissive shape), point, spot (textured or not), distant and a uniform environment. Each
-// has a spectrum and a scale; every quantity is evaluated at one wavelength. Lights are sampled
-// from a receiving point (next-event estimation: sampleLi) and as the start of light subpaths
-// (sampleEmission), with the densities both need for MIS.
+// Light sources: area (an emissive shape), point, spot (textured or not), distant and a uniform
+// environment. Each has a spectrum and a scale; every quantity is evaluated at one wavelength.
+// Lights are sampled from a receiving point (next-event estimation: sampleLi) and as the start of
+// light subpaths (sampleEmission), with the densities both need for MIS.
 #include <memory>
 #include <cmath>
 #include <optional>

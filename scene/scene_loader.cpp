@@ -603,8 +603,12 @@ struct Loader {
     if (encoding != "srgb" && encoding != "linear") f.fail("encoding", "'" + encoding + "' is not srgb or linear");
     RgbImage image;
     try {
-      const auto t = textures.load(resolve(f.string(key)), TextureChannel::Rgb, TextureWrap::Clamp, TextureFilter::Nearest,
+      const std::string path = resolve(f.string(key));
+      const auto t = textures.load(path, TextureChannel::Rgb, TextureWrap::Clamp, TextureFilter::Nearest,
                                    encoding == "srgb" ? TextureEncoding::Srgb : TextureEncoding::Linear);
+      requireMemory(saturatingMul(uint64_t(t->width()) * uint64_t(t->height()), kEmittingImageBytesPerPixel),
+                    "'" + path + "' (" + std::to_string(t->width()) + " x " + std::to_string(t->height()) + "): the light's image",
+                    options.memoryLimit);
       image.width = t->width();
       image.height = t->height();
       for (int y = 0; y < image.height; ++y)  // row 0 at the top; texture v counts from the bottom

@@ -725,6 +725,21 @@ TEST_F(SceneLoader, BadSpotTexture) {
   expectError(spot({{"texture", blackPng}, {"cone_angle", 90}}), "/lights/0/cone_angle", "narrower than 90 degrees");
   expectError(spot({{"texture", blackPng}, {"up", {-2, 2, 0}}}), "/lights/0/up", "parallel to the spot's axis");
   expectError(spot({{"up", {0, 0, 1}}}), "/lights/0/up", "give it with a \"texture\"");
+  // The light's texels, spectra and density (64 bytes a pixel) are checked against the memory
+  // limit before they are built: a 16×16 texture decodes within 10 000 bytes, its light does not.
+  const std::vector<unsigned char> white(16 * 16 * 3, 255);
+  const std::string whitePng = dir + "/white.png";
+  ASSERT_TRUE(stbi_write_png(whitePng.c_str(), 16, 16, 3, white.data(), 48));
+  json j = base;
+  spot({{"texture", whitePng}})(j);
+  SceneLoadOptions small;
+  small.memoryLimit = 10000;
+  try {
+    loadSceneFromString(j.dump(), path, small);
+    ADD_FAILURE() << "loaded within the memory limit";
+  } catch (const InputError& e) {
+    EXPECT_CONTAINS(e.what(), "/lights/0/texture: '" + whitePng + "' (16 x 16): the light's image needs 16.0 KiB");
+  }
 }
 
 TEST_F(SceneLoader, SceneWithoutLight) {
