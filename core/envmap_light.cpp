@@ -52,7 +52,7 @@ RgbImage loadEnvironmentImage(const std::string& path, uint64_t memoryLimit) {
     Imf::RgbaInputFile file(*stream);
     const Imath::Box2i dw = file.dataWindow();
     const int64_t w = int64_t(in.width()), h = int64_t(in.height());
-    requireMemory(saturatingMul(uint64_t(w) * uint64_t(h), kEnvMapBytesPerPixel),
+    requireMemory(saturatingMul(uint64_t(w) * uint64_t(h), kEmittingImageBytesPerPixel),
                   "'" + path + "' (" + std::to_string(w) + " x " + std::to_string(h) + "): the environment light",
                   memoryLimit);
     Imf::Array2D<Imf::Rgba> px(h, w);

@@ -19,13 +19,9 @@
 namespace kasha {
 
 
-// Bytes an environment light holds per image pixel while it is built (the decoded image, the
-// texels' spectra, the sampling density).
-constexpr uint64_t kEnvMapBytesPerPixel = 64;
-
 // Reads an OpenEXR image's R, G, B (missing channels are 0). Throws std::runtime_error naming
 // the file for an unreadable file, a negative or non-finite value (with its pixel), or an image
-// whose kEnvMapBytesPerPixel per pixel exceed `memoryLimit` (checked from the header, before
+// whose kEmittingImageBytesPerPixel per pixel exceed `memoryLimit` (checked from the header, before
 // decoding).
 RgbImage loadEnvironmentImage(const std::string& path, uint64_t memoryLimit);
 

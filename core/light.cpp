@@ -113,15 +113,27 @@ void PointLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3&, float& pdfP
 
 // ---- spot ----------------------------------------------------------------------------------
 
-SpotLight::SpotLight(Vec3 position, Vec3 direction, float coneDeg, float falloffDeg, Spectrum intensity, float scale)
+SpotLight::SpotLight(Vec3 position, Vec3 direction, float coneDeg, float falloffDeg, Spectrum intensity, float scale,
+                     const RgbImage* texture, Vec3 up)
     : Light(std::move(intensity), scale, 0.0f),
       pos_(position),
       dir_(glm::normalize(direction)),
       cosTotal_(std::cos(coneDeg * kPi / 180.0f)),
       cosStart_(std::cos(std::min(falloffDeg, coneDeg) * kPi / 180.0f)) {
-  // ∫ falloff dω ≈ 2π(1 − (cosStart + cosTotal)/2): exact for a linear ramp, close for the cubic;
-  // it only steers light selection.
-  powerFactor_ = 2.0f * kPi * (1.0f - 0.5f * (cosStart_ + cosTotal_));
+  if (texture) {
+    // Mitsuba's (u, v) above is the projected image's (core/projected_image.h) in the look-at frame
+    // turned by 180° about the axis: (−left, −up, forward).
+    const Frame f = lookAtFrame(position, position + direction, up);
+    const float tanCone = std::tan(coneDeg * kPi / 180.0f);
+    texture_.emplace(*texture, Frame{-f.s, -f.t, f.n}, tanCone, tanCone,
+                     [this](const Vec3& local) { return falloff(local.z) * local.z * local.z * local.z; });
+    // ∫ T_Y·falloff dω over the cone, from above at each texel's nearest point (steers light selection).
+    powerFactor_ = float(texture_->weightIntegral());
+  } else {
+    // ∫ falloff dω ≈ 2π(1 − (cosStart + cosTotal)/2): exact for a linear ramp, close for the cubic;
+    // it only steers light selection.
+    powerFactor_ = 2.0f * kPi * (1.0f - 0.5f * (cosStart_ + cosTotal_));
+  }
 }
 
 float SpotLight::falloff(float cosTheta) const {
@@ -129,6 +141,19 @@ float SpotLight::falloff(float cosTheta) const {
   if (cosTheta <= cosTotal_) return 0.0f;
   const float t = (cosTheta - cosTotal_) / (cosStart_ - cosTotal_);
   return t * t * (3.0f - 2.0f * t);
+}
+
+std::optional<Vec2> SpotLight::directionToUv(const Vec3& w) const {
+  return texture_ ? texture_->directionToUv(w) : std::nullopt;
+}
+
+float SpotLight::emittedTowards(float lambda, const Vec3&, const Vec3& w) const {
+  const float f = falloff(glm::dot(w, dir_));
+  if (!(f > 0.0f)) return 0.0f;
+  const float I = scale_ * spectrum_(lambda) * f;
+  if (!texture_) return I;
+  const std::optional<Vec2> uv = texture_->directionToUv(w);  // inside the cone, inside the image
+  return uv ? I * texture_->texel(*uv).modulation(lambda) : 0.0f;
 }
 
 std::optional<LightSample> SpotLight::sampleLi(const Vec3& p, float lambda, Vec2) const {
@@ -140,14 +165,21 @@ float SpotLight::Li(const LightSample& s, float lambda) const {
 }
 
 std::optional<EmissionSample> SpotLight::sampleEmission(float lambda, Vec2, Vec2 uDir) const {
-  const Vec3 local = sampleUniformCone(uDir, cosTotal_);
   EmissionSample es;
   es.p = pos_;
-  es.w = Frame::fromNormal(dir_).toWorld(local);
-  es.Le = scale_ * spectrum_(lambda) * falloff(local.z);
   es.pdfPos = 1.0f;
-  es.pdfDir = 1.0f / (2.0f * kPi * (1.0f - cosTotal_));
   es.deltaPos = true;
+  if (texture_) {
+    const std::optional<ProjectedImage::Sample> s = texture_->sample(uDir);
+    // A texel across the cone's edge: its part outside emits nothing at any λ.
+    if (!s || !(falloff(s->cosTheta) > 0.0f)) return std::nullopt;
+    es.w = s->w;
+    es.pdfDir = s->pdf;
+  } else {
+    es.w = Frame::fromNormal(dir_).toWorld(sampleUniformCone(uDir, cosTotal_));
+    es.pdfDir = 1.0f / (2.0f * kPi * (1.0f - cosTotal_));
+  }
+  es.Le = emittedTowards(lambda, Vec3(0.0f), es.w);
   return es;
 }
 
@@ -155,7 +187,10 @@ float SpotLight::emitted(const EmissionSample& s, float lambda) const { return e
 
 void SpotLight::emissionPdfs(const Vec3&, const Vec3&, const Vec3& w, float& pdfPos, float& pdfDir) const {
   pdfPos = 1.0f;
-  pdfDir = glm::dot(w, dir_) >= cosTotal_ ? 1.0f / (2.0f * kPi * (1.0f - cosTotal_)) : 0.0f;
+  if (texture_)
+    pdfDir = texture_->pdf(w);
+  else
+    pdfDir = glm::dot(w, dir_) >= cosTotal_ ? 1.0f / (2.0f * kPi * (1.0f - cosTotal_)) : 0.0f;
 }
 
 // ---- distant -------------------------------------------------------------------------------

@@ -1,13 +1,14 @@
 #pragma once
-// Light sources: area (an emissive shape), point, spot, distant and a uniform environment. Each
-// has a spectrum and a scale; every quantity is evaluated at one wavelength. Lights are sampled
-// from a receiving point (next-event estimation: sampleLi) and as the start of light subpaths
-// (sampleEmission), with the densities both need for MIS.
+// Light sources: area (an emissive shape), point, spot (textured or not), distant and a uniform
+// environment. Each has a spectrum and a scale; every quantity is evaluated at one wavelength.
+// Lights are sampled from a receiving point (next-event estimation: sampleLi) and as the start of
+// light subpaths (sampleEmission), with the densities both need for MIS.
 #include <memory>
 #include <cmath>
 #include <optional>
 #include <vector>
 
+#include "core/projected_image.h"
 #include "core/shape.h"
 #include "core/spectral_distribution.h"
 
@@ -129,10 +130,22 @@ class PointLight final : public Light {
   Vec3 pos_;
 };
 
-// Intensity I inside falloffStart, smoothly to zero at the cone angle (cubic Hermite in cos θ).
+// A spot light (Mitsuba 3's `spot`): intensity I(λ) inside falloffStart, falling smoothly to zero at
+// the cone angle (cubic Hermite in cos θ; Mitsuba's is linear in θ). With a texture, as Mitsuba's
+// `texture`, the intensity is modulated by the image cast over the cone: the local direction ω maps to
+//   u = ½ + ½·ω_x/(ω_z·tan θ_c),   v = ½ + ½·ω_y/(ω_z·tan θ_c)       (Mitsuba 3, src/emitters/spot.cpp)
+// in Mitsuba's look-at frame (x left, y up, z along the spot), row 0 of the image at v = 0, so the
+// cone's circle is inscribed in the image, whose top-left corner lies towards −x, −y: seen from the
+// light, the image is turned by 180°. I(ω, λ) = scale·I(λ)·T(u, v, λ)·falloff(ω_z), with T the
+// texel's colour as an unbounded reflectance (RgbIlluminant::modulation). Emission directions are
+// sampled from the image (core/projected_image.h) by luminance × falloff × cos³θ, ∝ I up to the
+// texel's variation of falloff·cos³θ; without a texture, uniformly in the cone.
 class SpotLight final : public Light {
  public:
-  SpotLight(Vec3 position, Vec3 direction, float coneDeg, float falloffDeg, Spectrum intensity, float scale);
+  // `texture` (linear sRGB, row 0 at the top; coneDeg < 90) oriented by `up`; throws
+  // std::runtime_error if it is black inside the cone.
+  SpotLight(Vec3 position, Vec3 direction, float coneDeg, float falloffDeg, Spectrum intensity, float scale,
+            const RgbImage* texture = nullptr, Vec3 up = Vec3(0, 1, 0));
   std::optional<LightSample> sampleLi(const Vec3& p, float lambda, Vec2 u) const override;
   float Li(const LightSample& s, float lambda) const override;
   std::optional<EmissionSample> sampleEmission(float lambda, Vec2 uPos, Vec2 uDir) const override;
@@ -140,13 +153,14 @@ class SpotLight final : public Light {
   void emissionPdfs(const Vec3& p, const Vec3& n, const Vec3& w, float& pdfPos, float& pdfDir) const override;
   bool isDelta() const override { return true; }
   float falloff(float cosTheta) const;
-  float emittedTowards(float lambda, const Vec3&, const Vec3& w) const override {
-    return scale_ * spectrum_(lambda) * falloff(glm::dot(w, dir_));
-  }
+  float emittedTowards(float lambda, const Vec3&, const Vec3& w) const override;
+  // The texture's (u, v) of a world direction leaving the light (nullopt: no texture, or outside it).
+  std::optional<Vec2> directionToUv(const Vec3& w) const;
 
  private:
   Vec3 pos_, dir_;
   float cosTotal_, cosStart_;
+  std::optional<ProjectedImage> texture_;
 };
 
 // Parallel light travelling along `direction`, irradiance E on a perpendicular plane.

@@ -25,7 +25,7 @@ const Spectrum& unitD65Spectrum() {
 
 float unitD65(float lambda) { return unitD65Spectrum()(lambda); }
 
-float RgbIlluminant::operator()(float lambda) const { return m > 0.0f ? m * s(lambda) * unitD65(lambda) : 0.0f; }
+float RgbIlluminant::operator()(float lambda) const { return modulation(lambda) * unitD65(lambda); }
 
 RgbIlluminant rgbIlluminant(Vec3 rgb) {
   const float m = 2.0f * std::max({rgb.x, rgb.y, rgb.z});

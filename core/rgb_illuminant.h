@@ -13,6 +13,9 @@ struct RgbIlluminant {
   RgbSigmoid s;
   // L(λ), W·m⁻²·sr⁻¹·nm⁻¹ up to the scene's unit.
   float operator()(float lambda) const;
+  // m·s(λ), L without D65: the colour as an unbounded reflectance (pbrt-v4's RGBUnboundedSpectrum),
+  // which modulates another emitter's spectrum (a textured spot light's).
+  float modulation(float lambda) const { return m > 0.0f ? m * s(lambda) : 0.0f; }
 };
 
 // From the coefficient table (fast; within the table's tolerance of the colour). Components must

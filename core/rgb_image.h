@@ -1,6 +1,7 @@
 #pragma once
-// An RGB image that emits (environment maps, projectors): linear sRGB texels, each upsampled to an
+// An RGB image that emits (environment maps, projectors, textured spots): linear sRGB texels, each upsampled to an
 // emission spectrum (core/rgb_illuminant.h) and sampled in proportion to its luminance.
+#include <cstdint>
 #include <vector>
 
 #include "core/math.h"
@@ -8,6 +9,10 @@
 #include "core/spectrum.h"
 
 namespace kasha {
+
+// Bytes a light casting or surrounding the scene with an image (envmap, projector, textured spot)
+// holds per pixel while it is built: the decoded image, the texels' spectra, the sampling density.
+constexpr uint64_t kEmittingImageBytesPerPixel = 64;
 
 struct RgbImage {
   int width = 0, height = 0;

@@ -609,6 +609,58 @@ struct Loader {
     }
   }
 
+  // The image file a light casts (a projector's "image", a spot's "texture"), in linear sRGB with row
+  // 0 at the top; "encoding" "srgb" (the default) or "linear".
+  RgbImage lightImage(JsonFields& f, const std::string& key) {
+    const std::string encoding = f.string("encoding", "srgb");
+    if (encoding != "srgb" && encoding != "linear") f.fail("encoding", "'" + encoding + "' is not srgb or linear");
+    RgbImage image;
+    try {
+      const std::string path = resolve(f.string(key));
+      const auto t = textures.load(path, TextureChannel::Rgb, TextureWrap::Clamp, TextureFilter::Nearest,
+                                   encoding == "srgb" ? TextureEncoding::Srgb : TextureEncoding::Linear);
+      requireMemory(saturatingMul(uint64_t(t->width()) * uint64_t(t->height()), kEmittingImageBytesPerPixel),
+                    "'" + path + "' (" + std::to_string(t->width()) + " x " + std::to_string(t->height()) + "): the light's image",
+                    options.memoryLimit);
+      image.width = t->width();
+      image.height = t->height();
+      for (int y = 0; y < image.height; ++y)  // row 0 at the top; texture v counts from the bottom
+        for (int x = 0; x < image.width; ++x)
+          image.pixels.push_back(t->rgb(Vec2((float(x) + 0.5f) / float(image.width), 1.0f - (float(y) + 0.5f) / float(image.height))));
+    } catch (const std::runtime_error& e) {
+      f.fail(key, e.what());
+    }
+    return image;
+  }
+
+  // A spot light (core/light.h): "cone_angle", "falloff_start", "intensity", "scale", and optionally
+  // a "texture" (an image file, "encoding" as a projector's) oriented by "up" (default [0, 1, 0]).
+  std::unique_ptr<Light> spot(JsonFields& f) {
+    const Vec3 p = f.vec3("position");
+    const Vec3 at = f.vec3("look_at");
+    if (!(glm::length(at - p) > 0.0f)) f.fail("look_at", "equals the position");
+    const float cone = f.number("cone_angle");
+    if (!(cone > 0.0f && cone <= 90.0f)) f.fail("cone_angle", "must be in (0, 90] degrees");
+    const float falloff = f.number("falloff_start", cone);
+    if (!(falloff > 0.0f && falloff <= cone)) f.fail("falloff_start", "must be in (0, cone_angle] degrees");
+    Spectrum I = emitterSpectrum(f, "intensity");
+    const float scale = scaleField(f, I);
+    if (!f.has("texture")) {
+      for (const char* key : {"up", "encoding"})
+        if (f.has(key)) f.fail(key, "orients or decodes a spot's texture; give it with a \"texture\"");
+      return std::make_unique<SpotLight>(p, at - p, cone, falloff, std::move(I), scale);
+    }
+    if (!(cone < 90.0f)) f.fail("cone_angle", "a textured spot's cone must be narrower than 90 degrees");
+    const Vec3 up = f.vec3("up", Vec3(0, 1, 0));
+    if (!(glm::length(glm::cross(up, glm::normalize(at - p))) > 1e-6f)) f.fail("up", "is parallel to the spot's axis");
+    const RgbImage image = lightImage(f, "texture");
+    try {
+      return std::make_unique<SpotLight>(p, at - p, cone, falloff, std::move(I), scale, &image, up);
+    } catch (const std::runtime_error& e) {
+      f.fail("texture", e.what());
+    }
+  }
+
   // A projector (core/projector_light.h): "image" (a file; "encoding" "srgb", the default, or
   // "linear") or "irradiance" (an RGB colour), "fov" across the image's width, "scale".
   std::unique_ptr<Light> projector(JsonFields& f) {
@@ -631,19 +683,7 @@ struct Loader {
       }
       image = RgbImage{1, 1, {rgb}};
     } else {
-      const std::string encoding = f.string("encoding", "srgb");
-      if (encoding != "srgb" && encoding != "linear") f.fail("encoding", "'" + encoding + "' is not srgb or linear");
-      try {
-        const auto t = textures.load(resolve(f.string("image")), TextureChannel::Rgb, TextureWrap::Clamp, TextureFilter::Nearest,
-                                     encoding == "srgb" ? TextureEncoding::Srgb : TextureEncoding::Linear);
-        image.width = t->width();
-        image.height = t->height();
-        for (int y = 0; y < image.height; ++y)  // row 0 at the top; texture v counts from the bottom
-          for (int x = 0; x < image.width; ++x)
-            image.pixels.push_back(t->rgb(Vec2((float(x) + 0.5f) / float(image.width), 1.0f - (float(y) + 0.5f) / float(image.height))));
-      } catch (const std::runtime_error& e) {
-        f.fail("image", e.what());
-      }
+      image = lightImage(f, "image");
     }
     try {
       return std::make_unique<ProjectorLight>(p, at, up, fov, image, scale, scene.range);
@@ -671,16 +711,7 @@ struct Loader {
           const float scale = scaleField(f, I);
           l = std::make_unique<PointLight>(p, std::move(I), scale);
         } else if (type == "spot") {
-          const Vec3 p = f.vec3("position");
-          const Vec3 at = f.vec3("look_at");
-          if (!(glm::length(at - p) > 0.0f)) f.fail("look_at", "equals the position");
-          const float cone = f.number("cone_angle");
-          if (!(cone > 0.0f && cone <= 90.0f)) f.fail("cone_angle", "must be in (0, 90] degrees");
-          const float falloff = f.number("falloff_start", cone);
-          if (!(falloff > 0.0f && falloff <= cone)) f.fail("falloff_start", "must be in (0, cone_angle] degrees");
-          Spectrum I = emitterSpectrum(f, "intensity");
-          const float scale = scaleField(f, I);
-          l = std::make_unique<SpotLight>(p, at - p, cone, falloff, std::move(I), scale);
+          l = spot(f);
         } else if (type == "projector") {
           l = projector(f);
         } else if (type == "distant") {

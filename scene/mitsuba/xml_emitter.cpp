@@ -13,6 +13,39 @@ using nlohmann::json;
 
 json vec(const Vec3& v) { return {v.x, v.y, v.z}; }
 
+// A bitmap <texture> that a light casts (a projector's irradiance, a spot's texture): its file as
+// the light's `field`, decoded from sRGB unless `raw`.
+void castBitmap(Plugin& e, pugi::xml_node texture, const std::string& field, json& light) {
+  Plugin t(e.xml(), texture);
+  if (t.type() != "bitmap")
+    t.fail("the " + e.type() + " emitter's '" + texture.attribute("name").as_string() + "' must be a bitmap texture");
+  const pugi::xml_node file = t.property("filename");
+  if (!file) t.fail("missing property 'filename'");
+  light[field] = e.xml().resolve(file, e.xml().attribute(file, "value"));
+  light["encoding"] = t.boolean("raw", false) ? "linear" : "srgb";
+  if (t.string("filter_type", "bilinear") != "nearest") t.note("kasha casts the image's texels without filtering");
+  t.string("wrap_mode", "");
+  t.finish();
+}
+
+// Mitsuba's spot (core/light.h): its axis from to_world; a "texture" also takes the frame's up.
+json spot(Plugin& e) {
+  const Mat4 m = toWorld(e);
+  const float cutoff = e.number("cutoff_angle", 20.0f);
+  const float beam = e.number("beam_width", cutoff * 0.75f);
+  const Vec3 p = transformPoint(m, Vec3(0.0f));
+  json light = {{"type", "spot"}, {"position", vec(p)}, {"look_at", vec(p + transformVector(m, Vec3(0, 0, 1)))},
+                {"cone_angle", cutoff}, {"falloff_start", beam},
+                {"intensity", spectrumProperty(e, "intensity", 1.0, SpectrumUse::Emission)}};
+  e.note("falloff from beam_width to cutoff_angle is kasha's smooth cubic in cos θ, not Mitsuba's linear one in θ");
+  if (const pugi::xml_node texture = e.property("texture")) {
+    if (std::string(texture.name()) != "texture") e.fail(texture, "a spot's texture must be a bitmap <texture>");
+    castBitmap(e, texture, "texture", light);
+    light["up"] = vec(transformVector(m, Vec3(0, 1, 0)));
+  }
+  return light;
+}
+
 // Mitsuba's projector (core/projector_light.h): its frame from to_world (x left, y up, z forward),
 // "fov" across the image's width (fov_axis x, Mitsuba's default), "irradiance" an <rgb> or a
 // bitmap <texture>.
@@ -29,15 +62,7 @@ json projector(Plugin& e) {
   if (!irradiance) {
     light["irradiance"] = {1.0, 1.0, 1.0};
   } else if (tag == "texture") {
-    Plugin t(e.xml(), irradiance);
-    if (t.type() != "bitmap") t.fail("a projector's irradiance texture must be a bitmap");
-    const pugi::xml_node file = t.property("filename");
-    if (!file) t.fail("missing property 'filename'");
-    light["image"] = e.xml().resolve(file, e.xml().attribute(file, "value"));
-    light["encoding"] = t.boolean("raw", false) ? "linear" : "srgb";
-    if (t.string("filter_type", "bilinear") != "nearest") t.note("kasha projects the image's texels without filtering");
-    t.string("wrap_mode", "");
-    t.finish();
+    castBitmap(e, irradiance, "image", light);
   } else if (tag == "rgb" || tag == "float") {
     const std::string value = e.xml().attribute(irradiance, "value");
     const auto v = parseNumbers(value);
@@ -60,13 +85,7 @@ void addEmitter(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     const Vec3 p = transformPoint(toWorld(e), pos ? parsePointProperty(xml, pos) : Vec3(0.0f));
     light = {{"type", "point"}, {"position", vec(p)}, {"intensity", spectrumProperty(e, "intensity", 1.0, SpectrumUse::Emission)}};
   } else if (t == "spot") {
-    const Mat4 m = toWorld(e);
-    const float cutoff = e.number("cutoff_angle", 20.0f);
-    const float beam = e.number("beam_width", cutoff * 0.75f);
-    const Vec3 p = transformPoint(m, Vec3(0.0f));
-    light = {{"type", "spot"}, {"position", vec(p)}, {"look_at", vec(p + transformVector(m, Vec3(0, 0, 1)))},
-             {"cone_angle", cutoff}, {"falloff_start", beam}, {"intensity", spectrumProperty(e, "intensity", 1.0, SpectrumUse::Emission)}};
-    e.note("falloff from beam_width to cutoff_angle is kasha's smooth cubic in cos θ, not Mitsuba's linear one in θ");
+    light = spot(e);
   } else if (t == "directional") {
     const pugi::xml_node d = e.property("direction");
     const Vec3 dir = d ? parsePointProperty(xml, d) : transformVector(toWorld(e), Vec3(0, 0, 1));

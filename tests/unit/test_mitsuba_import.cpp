@@ -446,6 +446,40 @@ TEST_F(MitsubaImport, Emitters) {
   EXPECT_FLOAT_EQ(s->environment()->Le(500.0f, Vec3(0, 1, 0)), 0.5f);
 }
 
+// A spot's <texture>: the bitmap file, its encoding and the look-at's up go to kasha's spot, which
+// casts it as Mitsuba's src/emitters/spot.cpp does: u = ½ + ½·x/(z·tan θc), v likewise in y, in
+// the look-at frame (x = up × forward, y up, z forward), row 0 at v = 0.
+TEST_F(MitsubaImport, TexturedSpot) {
+  Imf::Rgba black(0.0f, 0.0f, 0.0f, 1.0f);
+  writeExr("corner.exr", 2, 2, {Imf::Rgba(1.0f, 1.0f, 1.0f, 1.0f), black, black, black});
+  const std::string spot = R"(<emitter type="spot"><float name="cutoff_angle" value="30"/><spectrum name="intensity" value="1"/>
+      <texture name="texture" type="bitmap"><string name="filename" value="corner.exr"/></texture>
+      <transform name="to_world"><lookat origin="0, 4, 0" target="0, 0, 0" up="0, 0, 1"/></transform></emitter>)";
+  const auto t = translate(std::string(kFloor) + spot);
+  const json& light = t.scene["lights"][0];
+  EXPECT_EQ(light["texture"], (dir / "corner.exr").string());
+  EXPECT_EQ(light["encoding"], "srgb");
+  EXPECT_EQ(light["up"], json({0.0, 0.0, 1.0}));
+  const auto s = load(std::string(kFloor) + spot);
+  const auto* l = dynamic_cast<const SpotLight*>(s->lights.at(0).get());
+  ASSERT_NE(l, nullptr);
+  // Forward −y, up +z, so x = up × forward = +x: world (x, −1, z) has u = ½ + ½·x/tan 30°, v = ½ + ½·z/tan 30°.
+  const float tan30 = std::tan(30.0f * kPi / 180.0f);
+  const std::optional<Vec2> uv = l->directionToUv(glm::normalize(Vec3(0.2f, -1.0f, -0.1f)));
+  ASSERT_TRUE(uv.has_value());
+  EXPECT_NEAR(uv->x, 0.5f + 0.1f / tan30, 1e-5f);
+  EXPECT_NEAR(uv->y, 0.5f - 0.05f / tan30, 1e-5f);
+  // The top-left texel (u, v < ½) lights −x, −z alone.
+  EXPECT_GT(l->emittedTowards(550.0f, Vec3(0.0f), glm::normalize(Vec3(-0.1f, -1.0f, -0.1f))), 0.0f);
+  for (const Vec3 w : {Vec3(0.1f, -1.0f, -0.1f), Vec3(-0.1f, -1.0f, 0.1f), Vec3(0.1f, -1.0f, 0.1f)})
+    EXPECT_EQ(l->emittedTowards(550.0f, Vec3(0.0f), glm::normalize(w)), 0.0f);
+  // A texture other than a bitmap is refused.
+  EXPECT_TRUE(contains(error(std::string(kFloor) + R"(<emitter type="spot"><rgb name="texture" value="1, 0, 0"/></emitter>)"),
+                       "emitter 'spot': a spot's texture must be a bitmap <texture>"));
+  EXPECT_TRUE(contains(error(std::string(kFloor) + R"(<emitter type="spot"><texture name="texture" type="checkerboard"/></emitter>)"),
+                       "texture 'checkerboard': the spot emitter's 'texture' must be a bitmap texture"));
+}
+
 TEST_F(MitsubaImport, Bsdfs) {
   const auto t = translate(std::string(kLight) + R"(
     <bsdf type="diffuse" id="d"><spectrum name="reflectance" value="0.25"/></bsdf>

@@ -11,6 +11,7 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
+#include <stb/stb_image_write.h>
 
 #include "core/error.h"
 #include "core/medium.h"
@@ -708,6 +709,38 @@ TEST_F(SceneLoader, BadLights) {
   expectError([](json& j) { j["lights"] = json::parse(R"([{"type": "environment", "radiance": 1}, {"type": "environment", "radiance": 2}])"); },
               "/lights/1/type", "only one environment light is allowed");
   expectError([](json& j) { j["lights"] = json::array({5}); }, "/lights/0", "expected an object, got number");
+}
+
+TEST_F(SceneLoader, BadSpotTexture) {
+  auto spot = [](json extra) {
+    json l = {{"type", "spot"}, {"position", {0, 1, 0}}, {"look_at", {1, 0, 0}}, {"cone_angle", 30}, {"intensity", 1}};
+    l.update(extra);
+    return [l](json& j) { j["lights"] = json::array({l}); };
+  };
+  const unsigned char black[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const std::string blackPng = dir + "/black.png";
+  ASSERT_TRUE(stbi_write_png(blackPng.c_str(), 2, 2, 3, black, 6));
+  expectError(spot({{"texture", dir + "/missing.png"}}), "/lights/0/texture", "missing.png");
+  expectError(spot({{"texture", blackPng}}), "/lights/0/texture", "black where it is cast");
+  expectError(spot({{"texture", blackPng}, {"encoding", "gamma"}}), "/lights/0/encoding", "is not srgb or linear");
+  expectError(spot({{"texture", blackPng}, {"cone_angle", 90}}), "/lights/0/cone_angle", "narrower than 90 degrees");
+  expectError(spot({{"texture", blackPng}, {"up", {-2, 2, 0}}}), "/lights/0/up", "parallel to the spot's axis");
+  expectError(spot({{"up", {0, 0, 1}}}), "/lights/0/up", "give it with a \"texture\"");
+  // The light's texels, spectra and density (64 bytes a pixel) are checked against the memory
+  // limit before they are built: a 16×16 texture decodes within 10 000 bytes, its light does not.
+  const std::vector<unsigned char> white(16 * 16 * 3, 255);
+  const std::string whitePng = dir + "/white.png";
+  ASSERT_TRUE(stbi_write_png(whitePng.c_str(), 16, 16, 3, white.data(), 48));
+  json j = base;
+  spot({{"texture", whitePng}})(j);
+  SceneLoadOptions small;
+  small.memoryLimit = 10000;
+  try {
+    loadSceneFromString(j.dump(), path, small);
+    ADD_FAILURE() << "loaded within the memory limit";
+  } catch (const InputError& e) {
+    EXPECT_CONTAINS(e.what(), "/lights/0/texture: '" + whitePng + "' (16 x 16): the light's image needs 16.0 KiB");
+  }
 }
 
 TEST_F(SceneLoader, SceneWithoutLight) {
