@@ -175,11 +175,13 @@ std::optional<EmissionSample> SpotLight::sampleEmission(float lambda, Vec2, Vec2
     if (!s || !(falloff(s->cosTheta) > 0.0f)) return std::nullopt;
     es.w = s->w;
     es.pdfDir = s->pdf;
+    es.Le = emittedTowards(lambda, Vec3(0.0f), es.w);
   } else {
-    es.w = Frame::fromNormal(dir_).toWorld(sampleUniformCone(uDir, cosTotal_));
+    const Vec3 local = sampleUniformCone(uDir, cosTotal_);
+    es.w = Frame::fromNormal(dir_).toWorld(local);
     es.pdfDir = 1.0f / (2.0f * kPi * (1.0f - cosTotal_));
+    es.Le = scale_ * spectrum_(lambda) * falloff(local.z);  // the cone's own cosine
   }
-  es.Le = emittedTowards(lambda, Vec3(0.0f), es.w);
   return es;
 }
 
