@@ -6,11 +6,9 @@
 // - a mirror and a Lambertian under a large emitter that the mirror shows to the camera (the
 //   mirror's delta, sampled as a specular direction of a Bsdf that is not all deltas, with its own
 //   path weight; the Lambertian by next-event estimation and photons). Light tracing has no
-//   camera-path strategy and cannot see a delta reflection, so it is left out there; so is bdpt,
-//   whose MIS takes a vertex to be connectible by its Bsdf's flags (PathVertex::connectible), not
-//   by the lobe sampled there, and so weighs a sampled delta of a Bsdf that also has smooth lobes
-//   against a connection that cannot make it: 0.88 of the expectation here (an opacity mask's
-//   pass-through loses the same way; docs/scene-format.md, "blend").
+//   camera-path strategy and cannot see a delta reflection, so it is left out there. bdpt and vc
+//   weigh the sampled delta only against strategies that can make it (PathVertex::joinable): when
+//   they took connectibility from the Bsdf's flags, they rendered 0.88 of the expectation here.
 #include <gtest/gtest.h>
 
 #include <string>
