@@ -89,7 +89,7 @@ TEST(SpotTexture, SampledIntensityIntegratesOverTheCone) {
   constexpr int kSamples = 200000;
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < kSamples; ++i) {
-    const std::optional<EmissionSample> s = l.sampleEmission(lambda, Vec2(0.5f), Vec2(rng.uniform(), rng.uniform()));
+    const std::optional<EmissionSample> s = l.sampleEmission(lambda, Vec2(0.5f), Vec2{rng.uniform(), rng.uniform()});
     double x = 0.0;
     if (s) {
       float pdfPos, pdfDir;
