@@ -5,6 +5,9 @@
 
 namespace kasha {
 
+// The luminance Y of a linear sRGB colour (ITU-R BT.709 primaries).
+inline float luminance(const Vec3& rgb) { return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z; }
+
 // x̄, ȳ, z̄ (CIE 018:2019 tables, 360–830 nm, 1 nm), zero outside their table.
 struct Observer {
   Spectrum xbar, ybar, zbar;

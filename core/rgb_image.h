@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/color.h"
 #include "core/math.h"
 #include "core/rgb_illuminant.h"
 #include "core/spectrum.h"
@@ -18,9 +19,6 @@ struct RgbImage {
   int width = 0, height = 0;
   std::vector<Vec3> pixels;  // linear RGB, row-major, row 0 at the top
 };
-
-// The luminance Y of a linear sRGB colour (ITU-R BT.709 primaries).
-inline float luminance(const Vec3& rgb) { return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z; }
 
 // Each texel's emission spectrum, row-major.
 std::vector<RgbIlluminant> upsampleTexels(const RgbImage& image);

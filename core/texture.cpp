@@ -61,6 +61,7 @@ void pick(TextureChannel c, float r, float g, float b, float a, std::vector<floa
     case TextureChannel::B: out.push_back(b); return;
     case TextureChannel::A: out.push_back(a); return;
     case TextureChannel::Rgb: out.insert(out.end(), {r, g, b}); return;
+    case TextureChannel::Luminance: out.push_back(luminance(Vec3(r, g, b))); return;
     case TextureChannel::Mean: break;
   }
   out.push_back((r + g + b) / 3.0f);
@@ -115,6 +116,7 @@ Decoded decodeExr(const std::string& path, TextureChannel channel, const SizeChe
 
 std::optional<TextureChannel> parseTextureChannel(const std::string& name) {
   if (name == "mean") return TextureChannel::Mean;
+  if (name == "luminance") return TextureChannel::Luminance;
   if (name == "r") return TextureChannel::R;
   if (name == "g") return TextureChannel::G;
   if (name == "b") return TextureChannel::B;

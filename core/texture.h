@@ -80,15 +80,16 @@ struct UvTransform {
   Vec2 operator()(Vec2 uv) const { return linear * uv + offset; }
 };
 
-// Which channels of the image a texture holds: one of them (or the mean of R, G, B) or all of R, G, B.
-enum class TextureChannel { Mean, R, G, B, A, Rgb };
+// Which channels of the image a texture holds: one of them (or the mean of R, G, B, or their
+// luminance Y = 0.2126 R + 0.7152 G + 0.0722 B, Rec. 709) or all of R, G, B.
+enum class TextureChannel { Mean, Luminance, R, G, B, A, Rgb };
 enum class TextureWrap { Repeat, Clamp, Mirror };
 enum class TextureFilter { Bilinear, Nearest };
 // What an integer-coded image's R, G, B codes are: data (linear) or sRGB-encoded colours (IEC
 // 61966-2-1; Mitsuba's bitmap without raw = true). Float images are linear either way.
 enum class TextureEncoding { Linear, Srgb };
 
-// "mean", "r", "g", "b", "a"; nullopt otherwise (Rgb is chosen by the field, not by name).
+// "mean", "luminance", "r", "g", "b", "a"; nullopt otherwise (Rgb is chosen by the field, not by name).
 std::optional<TextureChannel> parseTextureChannel(const std::string& name);
 // "repeat", "clamp", "mirror"; nullopt otherwise.
 std::optional<TextureWrap> parseTextureWrap(const std::string& name);

@@ -28,7 +28,7 @@ std::shared_ptr<const Texture> imageTexture(JsonFields& parent, const std::strin
     const std::string name = f->string("channel", use == TextureUse::Normals ? "rgb" : "mean");
     const std::optional<TextureChannel> c = rgb && name == "rgb" ? TextureChannel::Rgb : parseTextureChannel(name);
     if (use == TextureUse::Normals && name != "rgb") f->fail("channel", "a normal map's channel is rgb");
-    if (!c) f->fail("channel", "unknown channel '" + name + (rgb ? "' (mean, r, g, b, a, rgb)" : "' (mean, r, g, b, a)"));
+    if (!c) f->fail("channel", "unknown channel '" + name + (rgb ? "' (mean, luminance, r, g, b, a, rgb)" : "' (mean, luminance, r, g, b, a)"));
     channel = *c;
     const std::string wrapName = f->string("wrap", "repeat");
     const std::optional<TextureWrap> w = parseTextureWrap(wrapName);

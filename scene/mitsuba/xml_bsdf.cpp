@@ -131,7 +131,7 @@ void setReflectance(Plugin& b, const std::string& key, json& m) {
 }
 
 // Sets m[key] from the scalar property `key`: a number (`fallback` if absent), or a texture
-// (1 times the texture's mean of R, G, B in m[key + "_texture"], xml_texture.h).
+// (1 times the texture's luminance in m[key + "_texture"], xml_texture.h).
 void setScalar(Plugin& b, const std::string& key, float fallback, json& m) {
   const pugi::xml_node p = b.property(key);
   if (p && isTexture(p)) {
@@ -168,7 +168,7 @@ json kashaMaterial(Plugin& b) {
 json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided);
 
 // normalmap (<texture name="normalmap">, a tangent-space RGB image) and bumpmap (one <texture> of
-// any name, its mean of R, G, B as the height, times scale) around one nested <bsdf>: kasha's
+// any name, its luminance as the height, times scale) around one nested <bsdf>: kasha's
 // normal_map and bump_map (materials/normal_perturbation.h). Mitsuba flips a normal facing away
 // from the incident direction (flip_invalid_normals) and dims grazing light by a shadowing
 // function (use_shadowing_function); kasha uses Veach's shading-normal correction for both, noted.
@@ -193,7 +193,7 @@ json perturbedNormal(Plugin& b, bool insideTwosided) {
   return m;
 }
 
-// mask (opacity: a number, default 0.5, or a <texture> whose mean of R, G, B is the opacity)
+// mask (opacity: a number, default 0.5, or a <texture> whose luminance is the opacity)
 // around one nested <bsdf>: kasha's mask (materials/opacity_mask.h).
 json opacityMask(Plugin& b, bool insideTwosided) {
   const std::vector<pugi::xml_node> inner = b.nested("bsdf");
@@ -203,7 +203,7 @@ json opacityMask(Plugin& b, bool insideTwosided) {
   return m;
 }
 
-// blendbsdf (weight: a number, default 0.5, or a <texture> whose mean of R, G, B is the weight)
+// blendbsdf (weight: a number, default 0.5, or a <texture> whose luminance is the weight)
 // of two nested <bsdf>s, in order: kasha's blend (materials/blend.h).
 json blend(Plugin& b, bool insideTwosided) {
   const std::vector<pugi::xml_node> inner = b.nested("bsdf");

@@ -11,8 +11,8 @@ json bitmap(Plugin& t, TextureUse use) {
   const pugi::xml_node file = t.property("filename");
   if (!file) t.fail("missing property 'filename'");
   const std::string name = t.xml().attribute(file, "value");
-  // A scalar reads the mean of R, G, B.
-  json out = {{"file", t.xml().resolve(file, name)}, {"channel", use == TextureUse::Scalar ? "mean" : "rgb"}};
+  // A scalar reads the luminance of R, G, B, as Mitsuba's eval_1 does (src/textures/bitmap.cpp).
+  json out = {{"file", t.xml().resolve(file, name)}, {"channel", use == TextureUse::Scalar ? "luminance" : "rgb"}};
   const std::string filter = t.string("filter_type", "bilinear");
   if (filter != "bilinear" && filter != "nearest") t.fail("filter_type '" + filter + "' is not bilinear or nearest");
   out["filter"] = filter;

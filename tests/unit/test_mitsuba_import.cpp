@@ -761,10 +761,10 @@ TEST_F(MitsubaImport, CheckerboardAndMeshAttributeTextures) {
                        "no <texture id=\"nope\"> before this reference"));
   EXPECT_TRUE(contains(error(std::string(kLight) + R"(<texture type="checkerboard"/>)" + kFloor),
                        "a top-level <texture> needs an id to be referred to"));
-  // A bitmap on a scalar (a roughness) reads the mean of R, G, B.
+  // A bitmap on a scalar (a roughness) reads the luminance of R, G, B, as Mitsuba's eval_1 does.
   const auto bitmapAlpha = translate(std::string(kLight) + R"(<bsdf type="roughconductor" id="d"><texture name="alpha" type="bitmap">
       <string name="filename" value="x.exr"/></texture></bsdf>)" + kFloor);
-  EXPECT_EQ(bitmapAlpha.scene["materials"]["d"]["alpha_texture"]["channel"], "mean");
+  EXPECT_EQ(bitmapAlpha.scene["materials"]["d"]["alpha_texture"]["channel"], "luminance");
   EXPECT_TRUE(contains(error(std::string(kLight) + R"(<bsdf type="diffuse" id="d"><texture name="reflectance" type="checkerboard">
       <texture name="color0" type="checkerboard"/></texture></bsdf>)" + kFloor),
                        "a checkerboard colour must be a <float>, an <rgb> or a constant <spectrum>, not <texture>"));
@@ -794,7 +794,7 @@ TEST_F(MitsubaImport, NormalAndBumpMaps) {
                                       {"wrap", "repeat"}, {"encoding", "linear"}}));
   EXPECT_EQ(m["bm"]["type"], "bump_map");
   EXPECT_EQ(m["bm"]["material"]["type"], "lambertian");
-  EXPECT_EQ(m["bm"]["height"]["channel"], "mean");
+  EXPECT_EQ(m["bm"]["height"]["channel"], "luminance");
   EXPECT_FLOAT_EQ(m["bm"]["scale"].get<float>(), 0.02f);
   const auto s = loadScene(file());
   ASSERT_EQ(s->materials.size(), 2u);
@@ -815,7 +815,7 @@ TEST_F(MitsubaImport, OpacityMask) {
   ASSERT_TRUE(m.contains("leaf") && m.contains("half")) << m.dump();
   EXPECT_EQ(m["leaf"]["type"], "mask");
   EXPECT_EQ(m["leaf"]["opacity"], 1.0);
-  EXPECT_EQ(m["leaf"]["opacity_texture"]["channel"], "mean");
+  EXPECT_EQ(m["leaf"]["opacity_texture"]["channel"], "luminance");
   EXPECT_EQ(m["leaf"]["material"]["type"], "lambertian");
   EXPECT_FLOAT_EQ(m["half"]["opacity"].get<float>(), 0.5f);
   const auto s = loadScene(file());

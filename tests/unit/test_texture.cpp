@@ -123,13 +123,14 @@ TEST_F(TextureFiles, PngChannelsAreDataValues) {
   EXPECT_FLOAT_EQ(at(TextureChannel::B, 0), 0.2f);
   EXPECT_FLOAT_EQ(at(TextureChannel::A, 1), 0.0f);
   EXPECT_FLOAT_EQ(at(TextureChannel::Mean, 1), (0.0f + 0.4f + 0.8f) / 3.0f);
+  EXPECT_FLOAT_EQ(at(TextureChannel::Luminance, 1), 0.7152f * 0.4f + 0.0722f * 0.8f);  // Rec. 709 Y
   const auto rgb = loader.load(p, TextureChannel::Rgb, TextureWrap::Repeat, TextureFilter::Nearest);
   EXPECT_EQ(rgb->channels(), 3);
   EXPECT_EQ(rgb->rgb(Vec2(0.75f, 0.5f)), Vec3(0.0f, 0.4f, 0.8f));
   EXPECT_EQ(loader.load(p, TextureChannel::R, TextureWrap::Repeat, TextureFilter::Nearest).get(),
             loader.load(p, TextureChannel::R, TextureWrap::Repeat, TextureFilter::Nearest).get())
       << "the same texture is loaded once";
-  EXPECT_EQ(loader.bytes(), (5 * 2 + 3 * 2) * sizeof(float)) << "five one-channel textures and one RGB of 2 pixels";
+  EXPECT_EQ(loader.bytes(), (6 * 2 + 3 * 2) * sizeof(float)) << "six one-channel textures and one RGB of 2 pixels";
 }
 
 TEST_F(TextureFiles, ExrValuesAndRange) {
@@ -207,14 +208,14 @@ TEST_F(TextureFiles, ClearErrors) {
   writePng("two.png", 2, 1, std::vector<unsigned char>(8, 255));
   writePng("three.png", 3, 1, std::vector<unsigned char>(12, 255));
   EXPECT_EQ(error({{"c_texture", {{"file", "two.png"}, {"channel", "x"}}}}),
-            at + "c_texture/channel: unknown channel 'x' (mean, r, g, b, a)");
+            at + "c_texture/channel: unknown channel 'x' (mean, luminance, r, g, b, a)");
   EXPECT_EQ(error({{"c_texture", 3}}),
             at + "c_texture: expected an image file name or a texture object ({\"file\": ...} or {\"type\": ...}), got number");
   // An RGB colour is a reflectance's texture only.
   EXPECT_EQ(error({{"c_texture", {{"file", "two.png"}, {"channel", "rgb"}}}}),
-            at + "c_texture/channel: unknown channel 'rgb' (mean, r, g, b, a)");
+            at + "c_texture/channel: unknown channel 'rgb' (mean, luminance, r, g, b, a)");
   EXPECT_EQ(error({{"reflectance_texture", {{"file", "two.png"}, {"channel", "x"}}}}),
-            at + "reflectance_texture/channel: unknown channel 'x' (mean, r, g, b, a, rgb)");
+            at + "reflectance_texture/channel: unknown channel 'x' (mean, luminance, r, g, b, a, rgb)");
   EXPECT_EQ(error({{"reflectance_texture", {{"file", "two.png"}, {"channel", "rgb"}}}}), "no error");
   // Textures of one material may differ in size (each is filtered on its own grid).
   EXPECT_EQ(error({{"c_texture", "two.png"}, {"Q_texture", "three.png"}}), "no error");
