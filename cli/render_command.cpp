@@ -179,6 +179,10 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("-D", a.parameters,
                   "NAME=VALUE, repeatable: a Mitsuba XML scene's parameter $NAME (before its <default>s)")
       ->allow_extra_args(false);
+  cmd->add_option("-a", a.searchPaths,
+                  "DIR, repeatable: a directory where a Mitsuba XML scene's files are also looked for, after its "
+                  "<path>s and its own directory (Mitsuba's -a)")
+      ->allow_extra_args(false);
   cmd->add_option("--max-depth", a.maxDepth, "Maximum number of scattering events")->check(numberCheck(Sign::NonNegative, true));
   cmd->add_option("--exposure", a.exposure, "PNG exposure in stops")
       ->check(numberCheck(Sign::Any, false) & CLI::Range(-100.0, 100.0));
@@ -216,6 +220,13 @@ int runRender(const RenderArgs& given, RenderGroup* group) {
     if (!mitsuba::isMitsubaScenePath(a.scene))
       throw UsageError("-D " + text, "", "sets a parameter of a Mitsuba XML scene, not of " + a.scene);
     load.parameters[name] = text.substr(eq + 1);  // the last of one name wins
+  }
+  for (const std::string& dir : a.searchPaths) {
+    if (!mitsuba::isMitsubaScenePath(a.scene))
+      throw UsageError("-a " + dir, "", "adds a search path for a Mitsuba XML scene, not for " + a.scene);
+    std::error_code error;
+    if (!std::filesystem::is_directory(dir, error)) throw UsageError("-a " + dir, "", "no such directory");
+    load.searchPaths.push_back(dir);
   }
   // What an alias stands for, once its name is known: from the command line before the scene loads
   // (whose errors may concern the alias's settings), from the scene after.

@@ -23,6 +23,7 @@ struct RenderArgs {
   std::string sampler;
   std::vector<std::string> set;  // --set KEY=VALUE: settings of the scene's render object
   std::vector<std::string> parameters;  // -D NAME=VALUE: a Mitsuba scene's $NAME
+  std::vector<std::string> searchPaths;  // -a DIR: where a Mitsuba scene's files are also looked for
   float exposure = 0.0f;
   std::string checkpoint, resume;
   double checkpointInterval = 60.0;

@@ -55,9 +55,10 @@ size_t Shape::finalize() {
 
 Vec2 Shape::surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const {
   if (kind == Kind::Sphere) {
-    float u = 0.5f + std::atan2(n.z, n.x) / (2.0f * kPi);
+    const Vec3 l = glm::transpose(sphereAxes) * n;
+    float u = 0.5f + std::atan2(l.z, l.x) / (2.0f * kPi);
     if (u >= 1.0f) u -= 1.0f;
-    return Vec2(u, std::acos(std::clamp(-n.y, -1.0f, 1.0f)) / kPi);
+    return Vec2(u, std::acos(std::clamp(-l.y, -1.0f, 1.0f)) / kPi);
   }
   if (kind == Kind::Cylinder) return Vec2(bary.x, 1.0f - bary.y);
   if (cornerUvs.empty()) return Vec2(0.0f);
@@ -67,13 +68,14 @@ Vec2 Shape::surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const {
 
 Shape::UvDerivatives Shape::uvDerivatives(uint32_t prim, const Vec3& n) const {
   if (kind == Kind::Sphere) {
-    const float rho = std::sqrt(n.x * n.x + n.z * n.z);
-    const Vec3 dpdu = 2.0f * kPi * radius * Vec3(-n.z, 0.0f, n.x);
+    const Vec3 l = glm::transpose(sphereAxes) * n;
+    const float rho = std::sqrt(l.x * l.x + l.z * l.z);
     if (!(rho > 1e-6f)) {  // a pole: u is undefined there
       const Frame f = Frame::fromNormal(n);
       return {f.s, f.t};
     }
-    return {dpdu, kPi * radius * Vec3(-n.y * n.x / rho, rho, -n.y * n.z / rho)};
+    return {sphereAxes * (2.0f * kPi * radius * Vec3(-l.z, 0.0f, l.x)),
+            sphereAxes * (kPi * radius * Vec3(-l.y * l.x / rho, rho, -l.y * l.z / rho))};
   }
   if (kind == Kind::Cylinder) {
     // x = base + r·(cos φ·s + sin φ·t) + z·a with φ = 2πu, z = length·(1 − v) (surfaceUv).

@@ -2,6 +2,8 @@
 // Scene geometry: triangle meshes (OBJ, PLY and serialized files, rectangles, disks), spheres and
 // open cylinders, each with a material and optional area emission, and uniform-by-area point
 // sampling for emissive shapes.
+#include <glm/mat3x3.hpp>
+
 #include <memory>
 #include <optional>
 #include <string>
@@ -67,6 +69,10 @@ struct Shape {
   // Sphere
   Vec3 center{0.0f};
   float radius = 0.0f;
+  // The world directions of the sphere's own x, y and z axes (columns; orthonormal, possibly a
+  // mirror image): its texture coordinates are those of its normal in this frame. Identity unless
+  // placed by a transform.
+  glm::mat3 sphereAxes{1.0f};
   // Cylinder
   Cylinder cylinder;
 
@@ -79,8 +85,9 @@ struct Shape {
   // coordinates.
   bool hasUv() const { return kind != Kind::Mesh || !cornerUvs.empty(); }
   // Texture coordinates at a point. Triangles: the corners' coordinates interpolated with the
-  // barycentrics (b1, b2) of corners 1 and 2. Spheres, from the outward normal n:
-  // u = 1/2 + atan2(n_z, n_x)/(2π) (around +y), v = acos(−n_y)/π (0 at the bottom, 1 at the top).
+  // barycentrics (b1, b2) of corners 1 and 2. Spheres, from the outward normal n in the sphere's
+  // own axes (sphereAxes): u = 1/2 + atan2(n_z, n_x)/(2π) (around +y), v = acos(−n_y)/π (0 at the
+  // bottom, 1 at the top).
   // Cylinders, from their surface parameters (φ/2π, z/length) in bary: u = φ/2π, v = 1 − z/length,
   // Mitsuba's (u, v) with v counted from the image's bottom as kasha's textures count it.
   Vec2 surfaceUv(uint32_t prim, Vec2 bary, const Vec3& n) const;
@@ -88,7 +95,8 @@ struct Shape {
   // triangle prim (meshes: constant over a triangle, PBR4 eq. 6.7's linear system in the corners'
   // differences; where the corners' uv are degenerate, or a mesh has none, an orthonormal pair
   // around the triangle's normal). Spheres: ∂p/∂u = 2πr·(−n_z, 0, n_x), ∂p/∂v = πr·(−n_y n_x/ρ, ρ,
-  // −n_y n_z/ρ) with ρ = √(n_x² + n_z²), the derivatives of surfaceUv's angles.
+  // −n_y n_z/ρ) with ρ = √(n_x² + n_z²), the derivatives of surfaceUv's angles, in the sphere's
+  // own axes and turned into the world by them.
   // Cylinders (frame s, t, axis a): ∂p/∂u = 2πr·(cos φ·t − sin φ·s), ∂p/∂v = −length·a.
   struct UvDerivatives {
     Vec3 dpdu, dpdv;

@@ -79,7 +79,7 @@ PYBIND11_MODULE(kasha, m) {
       "`.result` is the partial result (every pixel has the same number of samples).";
 
   py::class_<PyScene>(m, "Scene", "A scene in kasha's JSON format (docs/scene-format.md), editable before each render.")
-      .def(py::init([](const py::object& path, const py::object& defaults) {
+      .def(py::init([](const py::object& path, const py::object& defaults, const py::object& searchPaths) {
              std::map<std::string, std::string> parameters;
              if (!defaults.is_none()) {
                if (!py::isinstance<py::dict>(defaults)) kasha::python::refuseType({"kasha.Scene", "defaults"}, "a dict or None", defaults);
@@ -92,11 +92,18 @@ PYBIND11_MODULE(kasha, m) {
                      isBool ? (value.cast<bool>() ? "true" : "false") : py::str(value).cast<std::string>();
                }
              }
-             return PyScene::fromFile(kasha::python::filePath(path, {"kasha.Scene", "path"}), parameters);
+             std::vector<std::string> dirs;
+             if (!searchPaths.is_none()) {
+               if (!py::isinstance<py::list>(searchPaths)) kasha::python::refuseType({"kasha.Scene", "search_paths"}, "a list or None", searchPaths);
+               for (const py::handle dir : searchPaths.cast<py::list>())
+                 dirs.push_back(kasha::python::filePath(dir, {"kasha.Scene", "search_paths"}));
+             }
+             return PyScene::fromFile(kasha::python::filePath(path, {"kasha.Scene", "path"}), parameters, dirs);
            }),
-           py::arg("path"), py::arg("defaults") = py::none(),
+           py::arg("path"), py::arg("defaults") = py::none(), py::arg("search_paths") = py::none(),
            "Loads the scene file at `path` (JSON, or Mitsuba 3 XML translated). `defaults` sets a Mitsuba scene's "
-           "$name parameters, e.g. defaults={'spp': 64} (as `kasha render -D spp=64`). Errors (a missing file, "
+           "$name parameters, e.g. defaults={'spp': 64} (as `kasha render -D spp=64`); `search_paths`, a list of "
+           "directories, are searched for its files after its own (as `kasha render -a DIR`). Errors (a missing file, "
            "malformed JSON or XML) raise kasha.InputError; the scene's contents are checked when it is rendered.")
       .def_static(
           "from_dict",

@@ -76,7 +76,8 @@ void requireWithinLists(const nlohmann::json& json, nlohmann::json::json_pointer
 
 }  // namespace
 
-PyScene PyScene::fromFile(const std::string& path, const std::map<std::string, std::string>& defaults) {
+PyScene PyScene::fromFile(const std::string& path, const std::map<std::string, std::string>& defaults,
+                          const std::vector<std::string>& searchPaths) {
   // Read by core/input_file.h's rule (a regular file, size-capped, never blocking) and parsed
   // strictly, as `kasha render` does; a Mitsuba scene (.xml) becomes its kasha JSON translation.
   for (const auto& [name, value] : defaults) {
@@ -85,9 +86,15 @@ PyScene PyScene::fromFile(const std::string& path, const std::map<std::string, s
     if (!mitsuba::isParameterName(name))
       throw InputError("kasha.Scene", "defaults", "'" + printable(name) + "' is not a parameter name (letters, digits and '_')");
   }
+  for (const std::string& dir : searchPaths) {
+    if (!mitsuba::isMitsubaScenePath(path))
+      throw InputError("kasha.Scene", "search_paths", "adds search paths for a Mitsuba XML scene, not for " + path);
+    std::error_code error;
+    if (!std::filesystem::is_directory(dir, error)) throw InputError("kasha.Scene", "search_paths", printable(dir) + ": no such directory");
+  }
   const std::string text = readSceneFile(path);
   if (!mitsuba::isMitsubaScenePath(path)) return PyScene(parseJsonStrict(text, path), path);
-  mitsuba::Translation t = mitsuba::translateMitsubaScene(text, path, defaults);
+  mitsuba::Translation t = mitsuba::translateMitsubaScene(text, path, defaults, searchPaths);
   for (const std::string& n : t.notes) std::cerr << "kasha: note: " << n << "\n";
   return PyScene(std::move(t.scene), path);
 }

@@ -21,7 +21,8 @@ class PyScene {
   // naming the file if it cannot be read (core/input_file.h) or parsed (core/json_parse.h).
   // `defaults` sets a Mitsuba scene's `$name` parameters (before its <default>s), as `kasha render
   // -D` does; InputError for a JSON scene or a malformed name.
-  static PyScene fromFile(const std::string& path, const std::map<std::string, std::string>& defaults = {});
+  static PyScene fromFile(const std::string& path, const std::map<std::string, std::string>& defaults = {},
+                          const std::vector<std::string>& searchPaths = {});
   // A dict in the scene format; relative file names start from baseDir.
   static PyScene fromDict(const pybind11::dict& scene, const std::string& baseDir);
 

@@ -486,6 +486,25 @@ struct Loader {
     s.cornerUvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 0), Vec2(1, 1), Vec2(0, 1)};
   }
 
+  // A sphere: center and radius, placed by "transform" if given, which may only rotate (or
+  // mirror), scale uniformly and translate; its rotation turns the sphere's own axes, in which its
+  // texture coordinates are computed (Shape::sphereAxes).
+  void sphere(JsonFields& f, Shape& s) {
+    s.kind = Shape::Kind::Sphere;
+    s.center = f.vec3("center");
+    s.radius = f.number("radius");
+    if (!(s.radius > 0.0f)) f.fail("radius", "must be positive");
+    if (!f.has("transform")) return;
+    const glm::mat4 m = f.affine("transform");
+    const float scale = uniformScale(glm::mat3(m), true);
+    if (!(scale > 0.0f)) f.fail("transform", "a sphere's transform may only rotate, mirror, translate and scale uniformly");
+    s.center = Vec3(m * glm::vec4(s.center, 1.0f));
+    s.radius *= scale;
+    s.sphereAxes = glm::mat3(m) / scale;
+    if (!std::isfinite(s.radius) || !std::isfinite(s.center.x + s.center.y + s.center.z))
+      f.fail("transform", "the placed sphere lies beyond the range of a 32-bit float");
+  }
+
   // The open cylinder from p0 to p1 (core/cylinder.h), placed by "transform" if given.
   void cylinder(JsonFields& f, Shape& s) {
     const Vec3 p0 = f.vec3("p0"), p1 = f.vec3("p1");
@@ -541,10 +560,7 @@ struct Loader {
         f.fail("material", "material '" + mat + "' reads the mesh attribute '" + attributes.front() +
                                "', which only PLY meshes carry");
       if (type == "sphere") {
-        s.kind = Shape::Kind::Sphere;
-        s.center = f.vec3("center");
-        s.radius = f.number("radius");
-        if (!(s.radius > 0.0f)) f.fail("radius", "must be positive");
+        sphere(f, s);
       } else if (type == "cylinder") {
         cylinder(f, s);
       } else if (type == "mesh") {

@@ -25,6 +25,9 @@ struct SceneLoadOptions {
   // A Mitsuba scene's `$name` parameters (`kasha render -D name=value`): they win over its
   // <default>s. A JSON scene takes none.
   std::map<std::string, std::string> parameters;
+  // A Mitsuba scene's further file search paths (`kasha render -a DIR`, as Mitsuba's `-a`):
+  // searched, in order, after its <path>s and its own directory.
+  std::vector<std::string> searchPaths;
 };
 
 // The text of a scene file (core/input_file.h: a regular file of at most kMaxJsonFileBytes).

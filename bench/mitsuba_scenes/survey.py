@@ -4,11 +4,13 @@
 Issue 35's acceptance check. For every `*.xml` directly in the folder (the scenes; `include/` and
 other subfolders hold their parts), run
 
-    kasha render SCENE --spp SPP --threads T -q -o OUT/NAME.exr [-D NAME=VALUE ...]
+    kasha render SCENE --spp SPP --threads T -q -o OUT/NAME.exr [-D NAME=VALUE ...] [-a COMMON]
 
 with `-D` only for a `$name` the scene uses without a `<default>` (Mitsuba's documentation scenes
-expect `-D spp=...` for a few of them), and report "renders" or kasha's one-line error. The table
-goes to stdout in Markdown, and with --json to a file.
+expect `-D spp=...` for a few of them), and `-a COMMON` (mitsuba-data's common/ folder, Mitsuba's
+own `-a` option) only for a scene that, with its includes, has no `<path>` element to find the shared
+meshes and textures there; and report "renders" or kasha's one-line error. The table goes to stdout
+in Markdown, and with --json to a file.
 
     python3 bench/mitsuba_scenes/survey.py --kasha build/kasha \
         --scenes /path/to/mitsuba-data/docs/scenes --out /tmp/mitsuba_survey
@@ -39,12 +41,28 @@ def parameters_without_default(scene_path):
     return sorted(used - defined)
 
 
+def declares_search_path(scene_path):
+    """Whether the scene or a file it includes has a <path> element."""
+    with open(scene_path, encoding="utf-8", errors="replace") as f:
+        text = re.sub(r"<!--.*?-->", "", f.read(), flags=re.S)
+    if re.search(r"<path\b", text):
+        return True
+    for included in re.findall(r"<include\s+filename=\"([^\"]+)\"", text):
+        path = os.path.join(os.path.dirname(scene_path), included)
+        if os.path.isfile(path) and declares_search_path(path):
+            return True
+    return False
+
+
 def survey_one(args, scene_path):
     name = os.path.splitext(os.path.basename(scene_path))[0]
     values = {"spp": str(args.spp)}
     defines = []
     for parameter in parameters_without_default(scene_path):
         defines += ["-D", "%s=%s" % (parameter, values.get(parameter, "1"))]
+    common = os.path.normpath(os.path.join(os.path.abspath(args.scenes), "..", "..", "common"))
+    if not declares_search_path(scene_path) and os.path.isdir(common):
+        defines += ["-a", common]
     output = os.path.join(args.out, name + ".exr")
     command = [args.kasha, "render", scene_path, "--spp", str(args.spp), "--threads",
                str(args.threads), "-q", "-o", output] + defines
@@ -90,12 +108,14 @@ def main():
     print("# Mitsuba 3's documentation scenes in kasha\n")
     print("Made by `python3 bench/mitsuba_scenes/survey.py --scenes mitsuba-data/docs/scenes --spp %d` "
           "(mitsuba-data from github.com/mitsuba-renderer/mitsuba-data; docs/mitsuba-import.md). "
-          "Each scene is rendered unchanged, with `-D` only for a parameter it has no default for.\n" % args.spp)
+          "Each scene is rendered unchanged, with `-D` only for a parameter it has no default for, and "
+          "`-a common` (Mitsuba's option) only for a scene without a `<path>` to mitsuba-data's shared files.\n" % args.spp)
     print("%d of %d scenes render; %d are outside kasha's scope; the first error of each other scene "
           "names what kasha lacks.\n" % (renders, len(results), outside))
     print("| scene | result |\n|---|---|")
     for r in results:
-        extra = " (" + " ".join(r["defines"]) + ")" if r["defines"] else ""
+        shown = [os.path.basename(d) if d.endswith("/common") else d for d in r["defines"]]
+        extra = " (" + " ".join(shown) + ")" if shown else ""
         result = r["result"].replace("kasha: error: ", "").replace("|", "\\|")
         print("| %s%s | %s |" % (r["scene"], extra, result))
     if args.json:

@@ -88,3 +88,19 @@ def test_mitsuba_defaults_and_the_scenes_integrator(tmp_path):
         kasha.Scene(os.path.join(REPO, "scenes", "jung18_fig1.json"), defaults={"spp": 4})
     with pytest.raises(kasha.InputError, match="kasha.Scene: defaults: expected str, int or float values"):
         kasha.Scene(str(path), defaults={"res": [4]})
+
+
+def test_mitsuba_search_paths(tmp_path):
+    (tmp_path / "shared" / "meshes").mkdir(parents=True)
+    (tmp_path / "shared" / "meshes" / "tri.obj").write_text("v -1 -1 0\nv 1 -1 0\nv -1 1 0\nf 1 2 3\n")
+    path = tmp_path / "uses_shared.xml"
+    path.write_text(MITSUBA_WITH_PARAMETERS.replace(
+        '<shape type="rectangle">', '<shape type="obj"><string name="filename" value="meshes/tri.obj"/>'))
+    with pytest.raises(kasha.InputError, match="meshes/tri.obj: cannot open mesh file"):
+        kasha.render(kasha.Scene(str(path), defaults={"integrator": "path", "res": 4}), spp=1, threads=1)
+    scene = kasha.Scene(str(path), defaults={"integrator": "path", "res": 4}, search_paths=[str(tmp_path / "shared")])
+    assert scene.get("/shapes/0/file") == str(tmp_path / "shared" / "meshes" / "tri.obj")
+    with pytest.raises(kasha.InputError, match="kasha.Scene: search_paths: .*: no such directory"):
+        kasha.Scene(str(path), search_paths=[str(tmp_path / "none")])
+    with pytest.raises(kasha.InputError, match="kasha.Scene: search_paths: expected a list or None"):
+        kasha.Scene(str(path), search_paths=str(tmp_path))

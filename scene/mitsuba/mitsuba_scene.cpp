@@ -116,6 +116,7 @@ std::string SceneJson::addMaterial(const XmlImport& xml, pugi::xml_node bsdf, js
   std::string name = base;
   for (int k = 2; root["materials"].contains(name); ++k) name = base + "#" + std::to_string(k);
   root["materials"][name] = std::move(material);
+  materialNames[bsdf] = name;
   origin("/materials/" + name, xml, bsdf);
   if (!id.empty()) bsdfIds[id] = name;
   return name;
@@ -129,8 +130,9 @@ bool isParameterName(const std::string& name) {
 
 // Reads the scene into `out`; the notes stay in `xml`.
 static void build(XmlImport& xml, SceneJson& out, const std::string& text, const std::string& path,
-                  const std::map<std::string, std::string>& parameters) {
+                  const std::map<std::string, std::string>& parameters, const std::vector<std::string>& searchPaths) {
   for (const auto& [name, value] : parameters) xml.setDefault(name, value);  // first set wins
+  for (const std::string& dir : searchPaths) xml.addFallbackPath(dir);
   const pugi::xml_node scene = xml.parse(text, path).document_element();
   readDefaults(xml, scene);
   visit(xml, scene, out, 0);
@@ -146,17 +148,18 @@ static void build(XmlImport& xml, SceneJson& out, const std::string& text, const
 }
 
 Translation translateMitsubaScene(const std::string& text, const std::string& path,
-                                  const std::map<std::string, std::string>& parameters) {
+                                  const std::map<std::string, std::string>& parameters,
+                                  const std::vector<std::string>& searchPaths) {
   XmlImport xml;
   SceneJson out;
-  build(xml, out, text, path, parameters);
+  build(xml, out, text, path, parameters, searchPaths);
   return {std::move(out.root), xml.notes()};
 }
 
 std::unique_ptr<Scene> loadMitsubaScene(const std::string& text, const std::string& path, const SceneLoadOptions& options) {
   XmlImport xml;
   SceneJson out;
-  build(xml, out, text, path, options.parameters);
+  build(xml, out, text, path, options.parameters, options.searchPaths);
   if (options.notes)
     for (const std::string& n : xml.notes()) *options.notes << "kasha: note: " << n << "\n";
   try {

@@ -17,10 +17,12 @@ struct Translation {
 };
 
 // Translates the Mitsuba XML `text` of the file `path`, with `parameters` given for its `$name`s
-// (before its <default>s). Malformed XML and unsupported plugins or properties are InputErrors
-// naming the file, the line and the plugin.
+// (before its <default>s) and `searchPaths` searched for files after its own (SceneLoadOptions).
+// Malformed XML and unsupported plugins or properties are InputErrors naming the file, the line and
+// the plugin.
 Translation translateMitsubaScene(const std::string& text, const std::string& path,
-                                  const std::map<std::string, std::string>& parameters = {});
+                                  const std::map<std::string, std::string>& parameters = {},
+                                  const std::vector<std::string>& searchPaths = {});
 
 // Translates and loads; prints each approximation to options.notes as "kasha: note: ...". Errors the
 // JSON loader finds in the translation are reported at the XML element they came from.

@@ -31,6 +31,13 @@ struct SceneJson {
   }
   // Adds a material under a unique name and returns the name.
   std::string addMaterial(const XmlImport& xml, pugi::xml_node bsdf, nlohmann::json material);
+  // The name addMaterial gave the element `n`'s material (a nested <bsdf>, or a shape's default),
+  // or null: an instanced shape's material is translated once.
+  const std::string* materialOf(pugi::xml_node n) const {
+    const auto it = materialNames.find(n);
+    return it == materialNames.end() ? nullptr : &it->second;
+  }
+  std::map<pugi::xml_node, std::string> materialNames;
 };
 
 }  // namespace kasha::mitsuba

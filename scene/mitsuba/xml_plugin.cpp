@@ -135,7 +135,13 @@ std::string XmlImport::resolve(pugi::xml_node n, const std::string& rel) const {
   // files relative to the scene that includes it).
   const std::string sceneDir = std::filesystem::path(files_.front().path).parent_path().string();
   if (std::optional<std::string> found = existing(sceneDir.empty() ? "." : sceneDir)) return *found;
+  for (const std::string& dir : fallbackPaths_)
+    if (std::optional<std::string> found = existing(dir)) return *found;
   return std::filesystem::absolute(baseDir(n) + "/" + rel).lexically_normal().string();
+}
+
+void XmlImport::addFallbackPath(const std::string& dir) {
+  fallbackPaths_.push_back(std::filesystem::absolute(dir).lexically_normal().string());
 }
 
 void XmlImport::addSearchPath(pugi::xml_node n, const std::string& dir) {
@@ -205,7 +211,9 @@ pugi::xml_node XmlImport::declared(const std::string& tag, const std::string& id
 void XmlImport::fail(pugi::xml_node n, const std::string& reason) const { throw InputError(where(n), describe(n), reason); }
 
 void XmlImport::note(pugi::xml_node n, const std::string& what) {
-  notes_.push_back(printable(where(n) + ": " + describe(n) + ": " + what));
+  std::string line = printable(where(n) + ": " + describe(n) + ": " + what);
+  // Once each: an instanced shape is read once per instance.
+  if (std::find(notes_.begin(), notes_.end(), line) == notes_.end()) notes_.push_back(std::move(line));
 }
 
 std::optional<std::vector<float>> parseNumbers(const std::string& text) {

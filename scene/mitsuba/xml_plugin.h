@@ -44,10 +44,13 @@ class XmlImport {
   // The directory relative file names in `n`'s file start from.
   std::string baseDir(pugi::xml_node n) const;
   // `rel` as an absolute path: in the first of the search paths (the latest <path> first) that
-  // holds it, else in n's file's directory (Mitsuba's file resolver).
+  // holds it, else in n's file's directory, else in the fallback paths (Mitsuba's file resolver).
   std::string resolve(pugi::xml_node n, const std::string& rel) const;
   // <path value="dir"/>: `dir` (relative to n's file) is searched before the others.
   void addSearchPath(pugi::xml_node n, const std::string& dir);
+  // A directory searched after the <path>s and the files' own directories (Mitsuba's `-a`),
+  // relative to the working directory.
+  void addFallbackPath(const std::string& dir);
 
   // An attribute with `$name` parameters substituted; a missing attribute is an error.
   std::string attribute(pugi::xml_node n, const char* name) const;
@@ -81,6 +84,7 @@ class XmlImport {
   std::deque<File> files_;
   std::vector<std::string> including_;  // the include chain, to detect cycles
   std::vector<std::string> searchPaths_;  // <path>s, absolute, the latest last
+  std::vector<std::string> fallbackPaths_;  // addFallbackPath's, absolute, in order
   std::map<std::string, std::string> params_;
   std::map<std::pair<std::string, std::string>, pugi::xml_node> ids_;  // (tag, id) → element
   std::vector<std::string> notes_;

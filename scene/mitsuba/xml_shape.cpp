@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "core/affine.h"
 #include "scene/mitsuba/xml_bsdf.h"
 #include "scene/mitsuba/xml_medium.h"
@@ -73,8 +75,11 @@ json shapeMedia(Plugin& s, SceneJson& out) {
 std::string material(Plugin& s, SceneJson& out, const ShapeRefs& refs, bool hasMedia) {
   const std::vector<pugi::xml_node> bsdfs = s.nested("bsdf");
   if (bsdfs.size() + refs.bsdfs.size() > 1) s.fail("more than one BSDF");
-  if (!bsdfs.empty())
-    return isNullBsdf(s.xml(), bsdfs[0]) ? "" : out.addMaterial(s.xml(), bsdfs[0], bsdfMaterial(s.xml(), bsdfs[0]));
+  if (!bsdfs.empty()) {
+    if (isNullBsdf(s.xml(), bsdfs[0])) return "";
+    if (const std::string* name = out.materialOf(bsdfs[0])) return *name;  // an instance's again
+    return out.addMaterial(s.xml(), bsdfs[0], bsdfMaterial(s.xml(), bsdfs[0]));
+  }
   if (!refs.bsdfs.empty()) return out.bsdfIds.at(s.xml().attribute(refs.bsdfs[0], "id"));
   if (hasMedia) {
     // Mitsuba 3's documentation (heterogeneous) calls this boundary index-matched; its code
@@ -84,6 +89,7 @@ std::string material(Plugin& s, SceneJson& out, const ShapeRefs& refs, bool hasM
     return "";
   }
   // Mitsuba's default BSDF: diffuse with reflectance 0.5 (one-sided).
+  if (const std::string* name = out.materialOf(s.node())) return *name;
   s.note("no BSDF: Mitsuba's default diffuse 0.5, reflecting on both sides in kasha");
   return out.addMaterial(s.xml(), s.node(), {{"type", "lambertian"}, {"reflectance", 0.5}});
 }
@@ -144,11 +150,18 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
   }
   if (t == "sphere") {
     if (flip) s.fail("flip_normals on a sphere is not supported (kasha's sphere normals point outwards)");
+    // Mitsuba's sphere is its unit sphere under to_world · translate(center) · scale(radius), with
+    // uv = (atan2(y, x)/2π, acos(z)/π) in its local axes (src/shapes/sphere.cpp). kasha's sphere
+    // has u = 1/2 + atan2(z, x)/2π and v = acos(−y)/π in its own axes (scene-format.md), so
+    // Mitsuba's local x, y, z are kasha's −x, −z, y: the same (u, 1 − v) as every imported shape.
     const pugi::xml_node c = s.property("center");
-    const Vec3 center = transformPoint(m, c ? parsePointProperty(s.xml(), c) : Vec3(0.0f));
-    const float scale = uniformScale(glm::mat3(m));
-    if (!(scale > 0.0f)) s.fail("a sphere's to_world may only rotate, translate and scale uniformly");
-    return {{{"type", "sphere"}, {"center", {center.x, center.y, center.z}}, {"radius", s.number("radius", 1.0f) * scale}}};
+    const Vec3 center = c ? parsePointProperty(s.xml(), c) : Vec3(0.0f);
+    const float radius = s.number("radius", 1.0f);
+    const Mat4 local = glm::scale(glm::translate(Mat4(1.0f), center), Vec3(radius));
+    const Mat4 mitsubaAxes(glm::vec4(-1, 0, 0, 0), glm::vec4(0, 0, 1, 0), glm::vec4(0, -1, 0, 0), glm::vec4(0, 0, 0, 1));
+    if (!(uniformScale(glm::mat3(m * local), true) > 0.0f))
+      s.fail("a sphere's to_world may only rotate, mirror, translate and scale uniformly");
+    return {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"transform", matrixJson(m * local * mitsubaAxes)}}};
   }
   if (t == "cylinder") {
     // Mitsuba's defaults: p0 = (0, 0, 0), p1 = (0, 0, 1), radius 1; to_world after them.
@@ -164,14 +177,14 @@ std::vector<json> geometry(Plugin& s, const Mat4& m, bool flip) {
     const bool mirrors = glm::determinant(glm::mat3(m)) < 0.0f;
     return {{{"type", "disk"}, {"transform", matrixJson(m)}, {"flip_normals", flip != mirrors}, {"flip_tex_coords", true}}};
   }
-  s.fail("unsupported shape plugin (obj, ply, serialized, rectangle, cube, sphere, disk, cylinder)");
+  s.fail("unsupported shape plugin (obj, ply, serialized, rectangle, cube, sphere, disk, cylinder, shapegroup, instance)");
 }
 
-}  // namespace
-
-void addShape(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
+// One shape (not a group), placed by `outer` after its own to_world and named `prefix` + its id or
+// label: the shapes a <shape> element gives, appended to `out`.
+void addPlacedShape(XmlImport& xml, pugi::xml_node node, SceneJson& out, const Mat4& outer, const std::string& prefix) {
   Plugin s(xml, node);
-  const Mat4 m = toWorld(s);
+  const Mat4 m = outer * toWorld(s);
   const bool flip = s.boolean("flip_normals", false);
   std::vector<json> parts = geometry(s, m, flip);
   const ShapeRefs refs = shapeRefs(s, out);
@@ -182,7 +195,7 @@ void addShape(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     s.fail("a cube with different media inside and outside: kasha's cube is six rectangles, not a closed surface "
            "(use an obj or ply box)");
   const json em = emission(s, refs);
-  const std::string base = node.attribute("id") ? xml.attribute(node, "id") : xml.label(node);
+  const std::string base = prefix + (node.attribute("id") ? xml.attribute(node, "id") : xml.label(node));
   json& shapes = out.root["shapes"];
   for (size_t i = 0; i < parts.size(); ++i) {
     json& p = parts[i];
@@ -194,6 +207,51 @@ void addShape(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     shapes.push_back(std::move(p));
   }
   s.finish();
+}
+
+// Mitsuba's shapegroup (Mitsuba 3 docs: shapegroup): shapes that appear only through instances.
+// Checked where it is declared, with Mitsuba's rules (src/render/shapegroup.cpp): no groups or
+// instances inside, no emitters.
+void declareShapeGroup(Plugin& g, const SceneJson& out) {
+  if (!g.node().attribute("id")) g.fail("a shapegroup needs an id for its instances to refer to");
+  const std::vector<pugi::xml_node> members = g.nested("shape");
+  if (members.empty()) g.fail("a shapegroup without shapes");
+  for (pugi::xml_node n : members) {
+    Plugin s(g.xml(), n);  // refuses a plugin outside kasha's scope at its own line
+    if (s.type() == "shapegroup" || s.type() == "instance") s.fail("a " + s.type() + " inside a shapegroup (Mitsuba permits no nesting)");
+    if (!s.nested("emitter").empty()) s.fail("an emitter in a shapegroup (Mitsuba does not instance emitters)");
+    for (pugi::xml_node r : s.nested("ref"))
+      if (!namesMediumSide(r) && out.declaredAs(s.xml().attribute(r, "id"), "emitter"))
+        s.fail(r, "an emitter in a shapegroup (Mitsuba does not instance emitters)");
+  }
+  g.finish();
+}
+
+// Mitsuba's instance: its shapegroup's shapes, each placed by the instance's to_world after its
+// own. kasha copies them into the scene (no shared acceleration structure: memory grows with the
+// number of instances, checked against the memory limit as any geometry).
+void addInstance(Plugin& inst, SceneJson& out) {
+  XmlImport& xml = inst.xml();
+  const std::vector<pugi::xml_node> refs = inst.nested("ref");
+  if (refs.size() != 1) inst.fail("an instance takes exactly one <ref id=\"..\"/> to a shapegroup");
+  const std::string id = xml.attribute(refs[0], "id");
+  const pugi::xml_node group = xml.declared("shape", id);
+  if (!group || std::string(group.attribute("type").value()) != "shapegroup")
+    inst.fail(refs[0], "no <shape type=\"shapegroup\" id=\"" + id + "\"> before this reference");
+  const Mat4 m = toWorld(inst);
+  const std::string prefix = (inst.node().attribute("id") ? xml.attribute(inst.node(), "id") : xml.label(inst.node())) + "/";
+  for (pugi::xml_node n : group.children("shape")) addPlacedShape(xml, n, out, m, prefix);
+  inst.finish();
+}
+
+}  // namespace
+
+void addShape(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
+  const std::string type = node.attribute("type") ? xml.attribute(node, "type") : "";
+  if (type != "shapegroup" && type != "instance") return addPlacedShape(xml, node, out, Mat4(1.0f), "");
+  Plugin p(xml, node);
+  if (type == "shapegroup") declareShapeGroup(p, out);
+  else addInstance(p, out);
 }
 
 }  // namespace kasha::mitsuba

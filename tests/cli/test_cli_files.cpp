@@ -203,6 +203,28 @@ TEST_F(CliFiles, MitsubaParametersFromTheCommandLine) {
   EXPECT_FALSE(fs::exists(dir + "/q.exr"));
 }
 
+// -a DIR: a directory where a Mitsuba scene's files are also looked for (Mitsuba's -a), as
+// Mitsuba's documentation scenes without a <path> need for the shared meshes.
+TEST_F(CliFiles, MitsubaSearchPathsFromTheCommandLine) {
+  fs::create_directories(dir + "/shared/meshes");
+  write("shared/meshes/tri.obj", "v -1 -1 0\nv 1 -1 0\nv -1 1 0\nf 1 2 3\n");
+  const std::string xml = write("uses_shared.xml", R"(<scene version="3.0.0">
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/></film></sensor>
+  <emitter type="point"><point name="position" x="0" y="3" z="0"/><spectrum name="intensity" value="1"/></emitter>
+  <shape type="obj"><string name="filename" value="meshes/tri.obj"/><boolean name="face_normals" value="true"/>
+    <bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>
+</scene>
+)");
+  expectRefused({"render", xml, "-q", "--no-png", "--spp", "1", "-o", dir + "/a.exr"}, 1, "meshes/tri.obj: cannot open mesh file");
+  const test::Finished r = run({"render", xml, "-q", "--no-png", "--spp", "1", "-o", dir + "/b.exr", "-a", dir + "/shared"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir + "/b.exr"));
+  expectRefused({"render", xml, "-q", "-a", dir + "/none"}, 2, "/none: no such directory");
+  expectRefused({"render", scene, "-q", "-a", dir + "/shared"}, 2, "adds a search path for a Mitsuba XML scene, not for");
+  EXPECT_FALSE(fs::exists(dir + "/a.exr"));
+}
+
 TEST_F(CliFiles, TheSceneChoosesTheIntegratorAndTheCommandLineOverrides) {
   std::string text = kScene;
   text.replace(text.find("\"spp\": 1"), 8, "\"spp\": 1, \"integrator\": \"lt\"");

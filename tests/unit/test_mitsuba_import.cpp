@@ -705,6 +705,100 @@ TEST_F(MitsubaImport, TextureCoordinatesAreMitsubasWithVCountedFromTheBottom) {
            Vec2(0.3f, 0.3f), "ply");
   expectUv(seen(R"(<shape type="ply"><string name="filename" value="tri.ply"/><boolean name="flip_tex_coords" value="true"/>
       <bsdf type="diffuse"/></shape>)", -0.5f, -0.5f), Vec2(0.3f, 0.7f), "ply with flip");
+  // sphere: Mitsuba's uv = (atan2(y, x)/2π wrapped to [0, 1), acos(z)/π) of the point in its local
+  // axes, the unit sphere under to_world · translate(center) · scale(radius).
+  const auto sphereUv = [](Vec3 local) {
+    const float u = std::atan2(local.y, local.x) / (2.0f * kPi);
+    return Vec2(u < 0.0f ? u + 1.0f : u, std::acos(local.z) / kPi);
+  };
+  const float zNear = -std::sqrt(1.0f - 0.3f * 0.3f - 0.4f * 0.4f);  // where x = 0.3, y = 0.4 meets the unit sphere
+  expectUv(seen(R"(<shape type="sphere"><bsdf type="diffuse"/></shape>)", 0.3f, 0.4f), sphereUv(Vec3(0.3f, 0.4f, zNear)),
+           "sphere", 1e-5f);
+  // Radius 2 about (1, 0, 0), then rotated 90° about x: world (x, y, z) = (lx, −lz, ly) + (1, 0, 0)
+  // for the local point l/2 in the unit sphere; the ray at (1.6, 0.8) meets it at ly = −√(4 − 0.6² − 0.8²).
+  const float ly = -std::sqrt(4.0f - 0.36f - 0.64f);
+  expectUv(seen(R"(<shape type="sphere"><float name="radius" value="2"/><point name="center" x="1" y="0" z="0"/>
+      <transform name="to_world"><rotate x="1" angle="90"/></transform><bsdf type="diffuse"/></shape>)", 1.6f, 0.8f),
+           sphereUv(Vec3(0.6f, ly, -0.8f) / 2.0f), "rotated sphere", 1e-5f);
+  // Mirrored in x: world (x, y, z) is local (−x, y, z).
+  expectUv(seen(R"(<shape type="sphere"><transform name="to_world"><scale x="-1" y="1" z="1"/></transform>
+      <bsdf type="diffuse"/></shape>)", 0.3f, 0.4f), sphereUv(Vec3(-0.3f, 0.4f, zNear)), "mirrored sphere", 1e-5f);
+}
+
+// Search paths given from outside (kasha render -a, Python's search_paths) come after the
+// scene's <path>s and its own directory, in order.
+TEST_F(MitsubaImport, FallbackSearchPathsComeAfterTheScenesOwn) {
+  fs::create_directories(dir / "first");
+  fs::create_directories(dir / "second");
+  const std::string tri = "v -1 -1 0\nv 1 -1 0\nv -1 1 0\nf 1 2 3\n";
+  write("second/only_second.obj", tri);
+  write("first/both.obj", tri);
+  write("second/both.obj", tri);
+  write("both_here.obj", tri);
+  write("first/both_here.obj", tri);
+  const std::string body = std::string(kLight) + R"(
+    <shape type="obj"><string name="filename" value="only_second.obj"/></shape>
+    <shape type="obj"><string name="filename" value="both.obj"/></shape>
+    <shape type="obj"><string name="filename" value="both_here.obj"/></shape>)";
+  const std::string path = scene(body);
+  std::ifstream in(path);
+  const mitsuba::Translation t = mitsuba::translateMitsubaScene(std::string(std::istreambuf_iterator<char>(in), {}), path, {},
+                                                                {(dir / "first").string(), (dir / "second").string()});
+  const json& shapes = t.scene["shapes"];
+  EXPECT_EQ(shapes[0]["file"], (dir / "second/only_second.obj").string());
+  EXPECT_EQ(shapes[1]["file"], (dir / "first/both.obj").string());
+  EXPECT_EQ(shapes[2]["file"], (dir / "both_here.obj").string());
+}
+
+// <shape type="shapegroup"> and <shape type="instance">: each instance places the group's shapes
+// by its to_world after their own; a nested material is translated once; Mitsuba's rules (no
+// emitters, no nesting, a reference to a group) are errors naming the element.
+TEST_F(MitsubaImport, InstancesPlaceTheirShapeGroupsShapes) {
+  const std::string group = R"(
+    <shape type="shapegroup" id="pair">
+      <shape type="rectangle"><bsdf type="diffuse" id="white"/></shape>
+      <shape type="sphere"><float name="radius" value="0.5"/>
+        <transform name="to_world"><translate z="3"/></transform><ref id="white"/></shape>
+    </shape>)";
+  const auto t = translate(std::string(kLight) + group + R"(
+    <shape type="instance" id="left"><ref id="pair"/><transform name="to_world"><translate x="-4"/></transform></shape>
+    <shape type="instance"><ref id="pair"/><transform name="to_world"><scale value="2"/><translate x="4"/></transform></shape>)");
+  const json& shapes = t.scene["shapes"];
+  ASSERT_EQ(shapes.size(), 4u);
+  EXPECT_EQ(t.scene["materials"].size(), 1u);
+  EXPECT_EQ(shapes[0]["name"].get<std::string>().rfind("left/", 0), 0u);
+  for (const json& sh : shapes) EXPECT_EQ(sh["material"], "white");
+  const auto s = load(std::string(kLight) + group + R"(
+    <shape type="instance" id="left"><ref id="pair"/><transform name="to_world"><translate x="-4"/></transform></shape>
+    <shape type="instance"><ref id="pair"/><transform name="to_world"><scale value="2"/><translate x="4"/></transform></shape>)");
+  // The spheres: centre (0, 0, 3) placed by x − 4, and by 2x + 4 (radius 1).
+  expectNear(s->shapes.at(1).center, Vec3(-4, 0, 3));
+  expectNear(s->shapes.at(3).center, Vec3(4, 0, 6));
+  EXPECT_NEAR(s->shapes[3].radius, 1.0f, 1e-5f);
+  // The second rectangle spans x in [2, 6] at z = 0.
+  const std::optional<Hit> h = s->accel->intersect(Ray{Vec3(5.9f, 1.9f, -5), Vec3(0, 0, 1)});
+  ASSERT_TRUE(h);
+  EXPECT_EQ(h->shape, 2u);
+  EXPECT_NEAR(h->t, 5.0f, 1e-4f);
+  // Errors.
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="instance"><ref id="nothing"/></shape>)"),
+                       "no <shape type=\"shapegroup\" id=\"nothing\"> before this reference"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="shapegroup" id="g">
+      <shape type="rectangle"><emitter type="area"><rgb name="radiance" value="1"/></emitter></shape></shape>)"),
+                       "an emitter in a shapegroup"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="shapegroup" id="g">
+      <shape type="shapegroup" id="h"><shape type="rectangle"/></shape></shape>)"),
+                       "a shapegroup inside a shapegroup"));
+  EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="shapegroup"><shape type="rectangle"/></shape>)"),
+                       "a shapegroup needs an id"));
+  // A plugin outside kasha's scope in a group is named at its own line (the file's last).
+  const std::string sdf = error(std::string(kLight) + R"(<shape type="shapegroup" id="g">
+      <shape type="sdfgrid"/></shape>)");
+  const std::string xml = scene(std::string(kLight) + R"(<shape type="shapegroup" id="g">
+      <shape type="sdfgrid"/></shape>)");
+  std::ifstream in(xml);
+  const long lines = std::count(std::istreambuf_iterator<char>(in), {}, '\n') + 1;
+  EXPECT_TRUE(contains(sdf, ":" + std::to_string(lines) + ": shape 'sdfgrid': outside kasha's scope (signed distance fields)"));
 }
 
 // <texture type="checkerboard"> declared at the top level and referred to by <ref>, nested on a
@@ -938,7 +1032,7 @@ TEST_F(MitsubaImport, UnsupportedPluginsAndPropertiesAreErrorsWithFileLineAndPlu
   EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"hair\" id=\"h\"/>"), file() + ":7: bsdf 'hair': outside kasha's scope (hair)"));
   EXPECT_TRUE(contains(error(prefix + "<bsdf type=\"pplastic\" id=\"p\"/>"), file() + ":7: bsdf 'pplastic': outside kasha's scope (polarisation)"));
   EXPECT_TRUE(contains(error(prefix + "<shape type=\"linearcurve\"/>"), file() + ":7: shape 'linearcurve': outside kasha's scope (curves)"));
-  EXPECT_TRUE(contains(error(prefix + "<shape type=\"shapegroup\"/>"), file() + ":7: shape 'shapegroup': unsupported shape plugin"));
+  EXPECT_TRUE(contains(error(prefix + "<shape type=\"ellipsoids\"/>"), file() + ":7: shape 'ellipsoids': unsupported shape plugin"));
   EXPECT_TRUE(contains(error(prefix + "<emitter type=\"sky\"/>"), file() + ":7: emitter 'sky': unsupported emitter plugin"));
   EXPECT_TRUE(contains(error(prefix + "<integrator type=\"prb\"/>"), file() + ":7: integrator 'prb': unsupported integrator plugin"));
   EXPECT_TRUE(contains(error(prefix + "<integrator type=\"aov\"/>"), file() + ":7: integrator 'aov': integrator 'aov' writes other quantities than radiance"));

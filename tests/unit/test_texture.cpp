@@ -250,6 +250,19 @@ TEST_F(TextureFiles, RectangleSphereAndDiskTextureCoordinates) {
   EXPECT_NEAR(sphere.surfaceUv(0, Vec2(0), Vec3(0, -1, 0)).y, 0.0f, 1e-6f);
   EXPECT_NEAR(sphere.surfaceUv(0, Vec2(0), Vec3(-1, 0, 0)).x, 0.0f, 1e-6f);
   EXPECT_NEAR(sphere.surfaceUv(0, Vec2(0), Vec3(0, 0, 1)).x, 0.75f, 1e-6f);
+  // Placed by a transform (a 90° turn about z, scale 2, a shift): its top is world −x, and the
+  // point seen from +z is its own +z, u = 3/4; a transform that shears is an error.
+  writeText("ball.json", sceneJson(kJung + "}", R"({"type": "sphere", "center": [0, 0, 0], "radius": 0.5,
+    "material": "paper", "transform": [[0, -2, 0, 1], [2, 0, 0, 0], [0, 0, 2, 0], [0, 0, 0, 1]]})"));
+  const auto ball = loadScene(dir + "/ball.json");
+  const Shape& b = ball->shapes.at(0);
+  EXPECT_NEAR(b.radius, 1.0f, 1e-6f);
+  EXPECT_NEAR(b.center.x, 1.0f, 1e-6f);
+  EXPECT_NEAR(b.surfaceUv(0, Vec2(0), Vec3(-1, 0, 0)).y, 1.0f, 1e-6f);
+  EXPECT_NEAR(b.surfaceUv(0, Vec2(0), Vec3(0, 0, 1)).x, 0.75f, 1e-6f);
+  writeText("sheared.json", sceneJson(kJung + "}", R"({"type": "sphere", "center": [0, 0, 0], "radius": 0.5,
+    "material": "paper", "transform": [[1, 1, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]})"));
+  EXPECT_THROW(loadScene(dir + "/sheared.json"), InputError);
   // The disk as Mitsuba's: u = radius, v = angle/2π, within what the 256-triangle fan's linear
   // interpolation allows: its chords (1 − cos(π/256)) and, towards the centre, whose one vertex
   // carries its triangle's middle angle, half a triangle's angle (1/512).
