@@ -103,6 +103,8 @@ std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::jso
   const std::string type = f.string("type");
   if (type != "homogeneous" && type != "heterogeneous")
     f.fail("type", "'" + type + "' is not a medium type (homogeneous, heterogeneous)");
+  if (type != "homogeneous" && f.has("albedo_grid"))
+    f.fail("albedo_grid", "only a homogeneous medium takes an albedo grid (media.md §7)");
   std::shared_ptr<const DensityField> density;
   if (type == "heterogeneous") {
     density = densityGrid(f, ctx);
@@ -113,7 +115,6 @@ std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::jso
   std::shared_ptr<const AlbedoField> albedo;
   if (f.has("albedo_grid")) {
     // σ_t alone, split at each point by the grid (media.md eq. 11): it is σ_a + σ_s with σ_s 0.
-    if (type != "homogeneous") f.fail("albedo_grid", "only a homogeneous medium takes an albedo grid (media.md §7)");
     if (f.has("fluorophores")) f.fail("albedo_grid", "a medium with fluorophores takes no albedo grid (media.md §7)");
     for (const char* key : {"sigma_a", "sigma_s"})
       if (f.has(key)) f.fail(key, "with albedo_grid, give sigma_t (the grid splits it into scattering and absorption)");
