@@ -2,19 +2,10 @@
 
 #include <algorithm>
 
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/matrix.hpp>
-
 namespace kasha {
 
-GridDensity::GridDensity(VolumeGrid grid, const glm::mat4& toWorld, bool useGridBox) : grid_(std::move(grid)) {
-  glm::mat4 boxToUnit(1.0f);  // the file's box onto [0, 1]³
-  if (useGridBox) {
-    const Vec3 lo = grid_.boxMin(), size = grid_.boxMax() - grid_.boxMin();
-    boxToUnit = glm::scale(glm::mat4(1.0f), 1.0f / size) * glm::translate(glm::mat4(1.0f), -lo);
-  }
-  toUnit_ = boxToUnit * glm::inverse(toWorld);
-}
+GridDensity::GridDensity(VolumeGrid grid, const glm::mat4& toWorld, bool useGridBox)
+    : grid_(std::move(grid)), toUnit_(grid_.worldToUnit(toWorld, useGridBox)) {}
 
 Vec3 GridDensity::toUnit(const Vec3& p) const { return Vec3(toUnit_ * glm::vec4(p, 1.0f)); }
 

@@ -39,13 +39,19 @@ std::string checkMediumParams(const MediumParams& p, WavelengthRange range) {
 }
 
 Medium::Medium(std::string name, MediumParams params, WavelengthRange range,
-               std::shared_ptr<const DensityField> density)
-    : name_(std::move(name)), params_(std::move(params)), range_(range), density_(std::move(density)) {
+               std::shared_ptr<const DensityField> density, std::shared_ptr<const AlbedoField> albedo)
+    : name_(std::move(name)), params_(std::move(params)), range_(range), density_(std::move(density)),
+      albedo_(std::move(albedo)) {
   if (std::string m = checkMediumParams(params_, range_); !m.empty()) throw std::invalid_argument(m);
   // Camera paths seek a fluorescent medium's source with a second free-flight density (media.md
   // eq. 6b), which delta tracking against one majorant does not combine with yet.
   if (density_ && !params_.fluorophores.empty())
     throw std::invalid_argument("fluorophores: a heterogeneous medium cannot fluoresce yet (media.md §4)");
+  // An albedo field splits the one σ_t of a homogeneous medium (eq. 7): no density scales it, no
+  // fluorophore shares it.
+  if (albedo_ && density_) throw std::invalid_argument("albedo_grid: a heterogeneous medium has no albedo field (media.md §7)");
+  if (albedo_ && !params_.fluorophores.empty())
+    throw std::invalid_argument("albedo_grid: a fluorescent medium has no albedo field (media.md §7)");
   for (const Fluorophore& f : params_.fluorophores) {
     absorption_.emplace_back(f.absorption, range_);
     emission_.emplace_back(f.emission, range_);

@@ -9,11 +9,17 @@
 // depth τ(λ) = Σ σ_t(λ)·d over its segments (media.md eq. 2): T(λ) = exp(−τ(λ)).
 // A heterogeneous medium scales all of its coefficients by a density field d(x) ≥ 0 (a grid):
 // σ(x, λ) = d(x)·σ(λ), and is tracked against the majorant σ̄(λ) = max d · σ_t(λ) (media.md §4).
+// A homogeneous medium without fluorophores may instead vary its single-scattering albedo α(x, λ)
+// in space (an albedo field, a grid; Mitsuba 3 docs: homogeneous, whose albedo may be any volume):
+// σ_t(λ) stays the same everywhere (free flights are the homogeneous ones), and at x
+//   σ_s(x, λ) = α(x, λ)·σ_t(λ),   σ_a(x, λ) = (1 − α(x, λ))·σ_t(λ)            (media.md eq. 11)
+// with σ_t = σ_a + σ_s of the params (the σ_s given there is replaced by the field's share).
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/math.h"
+#include "core/rgb_spectrum.h"
 #include "core/spectral_distribution.h"
 #include "core/spectrum.h"
 
@@ -48,11 +54,21 @@ class DensityField {
   virtual float extent(const Vec3& o, const Vec3& d) const = 0;
 };
 
+// The single-scattering albedo of a medium at world points (a grid, core/grid_albedo.h): a
+// reflectance-like spectrum α(x, λ) in [0, 1].
+class AlbedoField {
+ public:
+  virtual ~AlbedoField() = default;
+  virtual RgbSigmoid albedo(const Vec3& p) const = 0;
+};
+
 class Medium {
  public:
-  // Throws std::invalid_argument with checkMediumParams' message. `density` null: homogeneous.
+  // Throws std::invalid_argument with checkMediumParams' message, or if an albedo field comes
+  // with a density field or fluorophores. `density` null: homogeneous; `albedo` null: σ_s(λ) of
+  // the params everywhere.
   Medium(std::string name, MediumParams params, WavelengthRange range,
-         std::shared_ptr<const DensityField> density = nullptr);
+         std::shared_ptr<const DensityField> density = nullptr, std::shared_ptr<const AlbedoField> albedo = nullptr);
 
   const std::string& name() const { return name_; }
   const MediumParams& params() const { return params_; }
@@ -67,10 +83,15 @@ class Medium {
   float density(const Vec3& p) const { return density_ ? density_->density(p) : 1.0f; }
   float maxDensity() const { return density_ ? density_->maxDensity() : 1.0f; }
   float densityExtent(const Vec3& o, const Vec3& d) const { return density_ ? density_->extent(o, d) : kInf; }
+  // Whether σ_s varies in space (eq. 7), and α(p) if it does.
+  bool spatiallyVaryingAlbedo() const { return albedo_ != nullptr; }
+  RgbSigmoid albedo(const Vec3& p) const { return albedo_->albedo(p); }
   // Per fluorophore k: λ ∝ σ_f,k (camera paths' excitation) and λ ∝ e_k (light paths' emission;
   // its pdf is the normalised e_k).
   const SpectralDistribution& absorptionDistribution(size_t k) const { return absorption_[k]; }
   const SpectralDistribution& emissionDistribution(size_t k) const { return emission_[k]; }
+  // ∫σ_f,k over the range.
+  float absorptionIntegral(size_t k) const { return absorption_[k].integral(); }
 
  private:
   std::string name_;
@@ -78,6 +99,7 @@ class Medium {
   WavelengthRange range_;
   std::vector<SpectralDistribution> absorption_, emission_;
   std::shared_ptr<const DensityField> density_;
+  std::shared_ptr<const AlbedoField> albedo_;
   bool fluorescent_ = false;
 };
 

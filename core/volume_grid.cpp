@@ -8,6 +8,9 @@
 #include "core/input_file.h"
 #include "core/memory_budget.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
+
 namespace kasha {
 namespace {
 
@@ -103,19 +106,52 @@ VolumeGrid VolumeGrid::read(const std::string& path, uint64_t memoryLimit) {
   return g;
 }
 
-float VolumeGrid::lookup(Vec3 u, int c) const {
-  // Cell centres at (i + 1/2)/n (Dr.Jit's textures, which Mitsuba 3's gridvolume uses); clamped
-  // to the outermost centres (wrap_mode clamp). A NaN coordinate reads the first cell.
+std::optional<GridWrap> gridWrapNamed(const std::string& name) {
+  if (name == "clamp") return GridWrap::Clamp;
+  if (name == "repeat") return GridWrap::Repeat;
+  if (name == "mirror") return GridWrap::Mirror;
+  return std::nullopt;
+}
+
+glm::mat4 VolumeGrid::worldToUnit(const glm::mat4& toWorld, bool useGridBox) const {
+  glm::mat4 boxToUnit(1.0f);  // the file's box onto [0, 1]³
+  if (useGridBox) {
+    const Vec3 size = boxMax_ - boxMin_;
+    boxToUnit = glm::scale(glm::mat4(1.0f), 1.0f / size) * glm::translate(glm::mat4(1.0f), -boxMin_);
+  }
+  return boxToUnit * glm::inverse(toWorld);
+}
+
+namespace {
+
+// Cell index i of an axis of n cells under `wrap` (Dr.Jit's texture wrap, on indices).
+int wrappedIndex(int64_t i, int n, GridWrap wrap) {
+  if (wrap == GridWrap::Clamp) return int(std::clamp<int64_t>(i, 0, n - 1));
+  const int64_t period = wrap == GridWrap::Repeat ? n : 2 * int64_t(n);
+  const int64_t m = ((i % period) + period) % period;
+  return int(m < n ? m : period - 1 - m);
+}
+
+}  // namespace
+
+float VolumeGrid::lookup(Vec3 u, int c, GridWrap wrap) const {
+  // Cell centres at (i + 1/2)/n (Dr.Jit's textures, which Mitsuba 3's gridvolume uses): the
+  // stencil is cells ⌊x⌋ and ⌊x⌋ + 1 with x = u·n − 1/2, weighted by x's fraction, each found by
+  // `wrap`. A NaN coordinate (or, unless clamped, an infinite one) reads the first cell.
   std::array<int, 3> lo{}, hi{};
   std::array<float, 3> t{};
   for (int a = 0; a < 3; ++a) {
     const int n = resolution_[size_t(a)];
-    float x = u[a] * float(n) - 0.5f;
-    if (!(x > 0.0f)) x = 0.0f;
-    if (x > float(n - 1)) x = float(n - 1);
-    lo[size_t(a)] = std::min(int(x), n - 1);
-    hi[size_t(a)] = std::min(lo[size_t(a)] + 1, n - 1);
-    t[size_t(a)] = x - float(lo[size_t(a)]);
+    double x = double(u[a]) * n - 0.5;
+    if (std::isnan(x) || (wrap != GridWrap::Clamp && std::isinf(x))) x = 0.0;
+    // Bring x near the grid without changing what it reads: beyond [−1, n] clamping reads the
+    // edge cells, and the other modes repeat every n or 2n cells.
+    if (wrap == GridWrap::Clamp) x = std::clamp(x, -1.0, double(n));
+    else x -= 2.0 * n * std::floor(x / (2.0 * n));
+    const double cellBelow = std::floor(x);
+    lo[size_t(a)] = wrappedIndex(int64_t(cellBelow), n, wrap);
+    hi[size_t(a)] = wrappedIndex(int64_t(cellBelow) + 1, n, wrap);
+    t[size_t(a)] = float(x - cellBelow);
   }
   float sum = 0.0f;
   for (int corner = 0; corner < 8; ++corner) {

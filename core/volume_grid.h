@@ -13,12 +13,23 @@
 // finite and not negative (kasha reads densities and albedos); the box must have positive extent.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <glm/mat4x4.hpp>
 
 #include "core/math.h"
 
 namespace kasha {
+
+// What a lookup beyond the grid's unit cube reads (Mitsuba 3 docs: gridvolume, wrap_mode), applied
+// to the cell indices of the trilinear stencil as Dr.Jit's textures do: Clamp the edge cells,
+// Repeat the grid tiled (index i reads cell i mod n), Mirror the grid reflected at each face
+// (i mod 2n, and 2n − 1 − that when it is n or more).
+enum class GridWrap { Clamp, Repeat, Mirror };
+// "clamp", "repeat", "mirror"; nullopt for any other name.
+std::optional<GridWrap> gridWrapNamed(const std::string& name);
 
 class VolumeGrid {
  public:
@@ -42,13 +53,17 @@ class VolumeGrid {
                      size_t(channels_) + size_t(c)];
   }
   // Trilinear interpolation at `u` in the grid's unit cube [0, 1]³, as Mitsuba's gridvolume with
-  // its defaults (filter_type trilinear, wrap_mode clamp): cell i's value sits at the centre
-  // (i + 1/2)/n, and coordinates beyond the outermost centres take the edge cells' values.
-  float lookup(Vec3 u, int c = 0) const;
+  // filter_type trilinear: cell i's value sits at the centre (i + 1/2)/n; beyond the outermost
+  // centres the stencil's cells are found by `wrap` (Clamp, Mitsuba's default: the edge cells'
+  // values).
+  float lookup(Vec3 u, int c = 0, GridWrap wrap = GridWrap::Clamp) const;
   // lookup() at a point of the stored bounding box (mapped linearly onto the unit cube).
   float lookupInBox(Vec3 p, int c = 0) const { return lookup((p - boxMin_) / (boxMax_ - boxMin_), c); }
   // The largest value of channel c: no interpolated value exceeds it (a majorant for tracking).
   float maximum(int c = 0) const { return maximum_[size_t(c)]; }
+  // The map from world points to the unit cube lookup() reads, for a grid placed as Mitsuba's
+  // gridvolume: q = toWorld⁻¹·p, then (useGridBox) the stored box mapped onto [0, 1]³.
+  glm::mat4 worldToUnit(const glm::mat4& toWorld, bool useGridBox) const;
 
  private:
   std::array<int, 3> resolution_{};

@@ -67,7 +67,7 @@ std::optional<LightSubpathVertex> nextLightVertex(const Scene& scene, const Ray&
   Hit vertex;
   if (flight.hit) vertex = *flight.hit;
   else vertex.p = flight.p, vertex.ng = Vec3(0.0f);
-  const Bsdf bsdf = flight.hit ? scene.bsdf(vertex, lambda) : scene.mediumBsdf(flight.medium);
+  const Bsdf bsdf = flight.hit ? scene.bsdf(vertex, lambda) : scene.mediumBsdf(flight.medium, flight.p);
   return LightSubpathVertex{vertex, VertexMedium{flight.medium, flight.hit.has_value()}, bsdf, mis};
 }
 

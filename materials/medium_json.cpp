@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/grid_albedo.h"
 #include "core/grid_density.h"
 #include "core/json_fields.h"
 #include "core/volume_grid.h"
@@ -45,24 +46,53 @@ Fluorophore fluorophore(JsonFields& medium, const nlohmann::json& v, const Spect
   return fl;
 }
 
-// "density" of a heterogeneous medium: {"file": "x.vol", "transform": <to_world, optional>,
-// "use_grid_bbox": false} (core/grid_density.h); the grid must have one channel.
+// The grid of `g`, an object {"file": "x.vol", "transform": <to_world, optional>, "use_grid_bbox":
+// false} placed as Mitsuba's gridvolume (core/volume_grid.h), whose other keys the caller has read:
+// checks that `g` has no others, then reads the file (its errors name g's "file").
+struct PlacedGrid {
+  VolumeGrid grid;
+  glm::mat4 toWorld;
+  bool useGridBox;
+};
+PlacedGrid placedGrid(JsonFields& g, const SpectrumContext& ctx) {
+  const std::string path = ctx.resolve(g.string("file"));
+  const glm::mat4 toWorld = g.has("transform") ? g.affine("transform") : glm::mat4(1.0f);
+  const bool useGridBox = g.boolean("use_grid_bbox", false);
+  g.finish();
+  try {
+    return {VolumeGrid::read(path, ctx.memoryLimit), toWorld, useGridBox};
+  } catch (const InputError& e) {
+    throw InputError(ctx.file, g.path("file"), e.what());
+  }
+}
+
+// "density" of a heterogeneous medium (core/grid_density.h): a placed grid of one channel.
 std::shared_ptr<const DensityField> densityGrid(JsonFields& f, const SpectrumContext& ctx) {
   JsonFields density(f.get("density"), ctx.file, f.path("density"));
-  const std::string rel = density.string("file");
-  const std::string path = ctx.resolve(rel);
-  const glm::mat4 toWorld = density.has("transform") ? density.affine("transform") : glm::mat4(1.0f);
-  const bool useGridBox = density.boolean("use_grid_bbox", false);
-  density.finish();
-  VolumeGrid grid = [&] {
-    try {
-      return VolumeGrid::read(path, ctx.memoryLimit);
-    } catch (const InputError& e) {
-      throw InputError(ctx.file, density.path("file"), e.what());
-    }
-  }();
-  if (grid.channels() != 1) density.fail("file", "a density grid has 1 channel, '" + rel + "' has " + std::to_string(grid.channels()));
-  return std::make_shared<GridDensity>(std::move(grid), toWorld, useGridBox);
+  PlacedGrid g = placedGrid(density, ctx);
+  if (g.grid.channels() != 1)
+    density.fail("file", "a density grid has 1 channel, '" + density.string("file") + "' has " + std::to_string(g.grid.channels()));
+  return std::make_shared<GridDensity>(std::move(g.grid), g.toWorld, g.useGridBox);
+}
+
+// "albedo_grid" of a homogeneous medium (core/grid_albedo.h; media.md §7): a placed grid of
+// linear sRGB (3 channels) or grey (1) values in [0, 1], and "wrap_mode": "clamp" (default),
+// "repeat" or "mirror".
+std::shared_ptr<const AlbedoField> albedoGrid(JsonFields& f, const SpectrumContext& ctx) {
+  JsonFields albedo(f.get("albedo_grid"), ctx.file, f.path("albedo_grid"));
+  const std::string wrapName = albedo.string("wrap_mode", "clamp");
+  const std::optional<GridWrap> wrap = gridWrapNamed(wrapName);
+  if (!wrap) albedo.fail("wrap_mode", "'" + wrapName + "' is not a wrap mode (clamp, repeat, mirror)");
+  PlacedGrid g = placedGrid(albedo, ctx);
+  const int channels = g.grid.channels();
+  if (channels != 1 && channels != 3)
+    albedo.fail("file", "an albedo grid has 3 channels (linear RGB) or 1 (grey), '" + albedo.string("file") + "' has " +
+                            std::to_string(channels));
+  for (int c = 0; c < channels; ++c)
+    if (g.grid.maximum(c) > 1.0f)
+      albedo.fail("file", "albedo values must lie in [0, 1]; channel " + std::to_string(c) + " reaches " +
+                              std::to_string(g.grid.maximum(c)));
+  return std::make_shared<GridAlbedo>(std::move(g.grid), g.toWorld, g.useGridBox, *wrap);
 }
 
 }  // namespace
@@ -73,6 +103,8 @@ std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::jso
   const std::string type = f.string("type");
   if (type != "homogeneous" && type != "heterogeneous")
     f.fail("type", "'" + type + "' is not a medium type (homogeneous, heterogeneous)");
+  if (type != "homogeneous" && f.has("albedo_grid"))
+    f.fail("albedo_grid", "only a homogeneous medium takes an albedo grid (media.md §7)");
   std::shared_ptr<const DensityField> density;
   if (type == "heterogeneous") {
     density = densityGrid(f, ctx);
@@ -80,8 +112,20 @@ std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::jso
     if (f.has("fluorophores")) f.fail("fluorophores", "a heterogeneous medium cannot fluoresce yet (media.md §4)");
   }
   MediumParams p;
-  p.absorption = spectrumOr(f, "sigma_a", ctx, 0.0f);
-  p.scattering = spectrumOr(f, "sigma_s", ctx, 0.0f);
+  std::shared_ptr<const AlbedoField> albedo;
+  if (f.has("albedo_grid")) {
+    // σ_t alone, split at each point by the grid (media.md eq. 11): it is σ_a + σ_s with σ_s 0.
+    if (f.has("fluorophores")) f.fail("albedo_grid", "a medium with fluorophores takes no albedo grid (media.md §7)");
+    for (const char* key : {"sigma_a", "sigma_s"})
+      if (f.has(key)) f.fail(key, "with albedo_grid, give sigma_t (the grid splits it into scattering and absorption)");
+    if (!f.has("sigma_t")) f.fail("albedo_grid", "needs sigma_t (the extinction the grid splits)");
+    albedo = albedoGrid(f, ctx);
+    p.absorption = parseSpectrum(f.get("sigma_t"), ctx, f.path("sigma_t"));
+  } else {
+    if (f.has("sigma_t")) f.fail("sigma_t", "is read with albedo_grid only (otherwise give sigma_a and sigma_s)");
+    p.absorption = spectrumOr(f, "sigma_a", ctx, 0.0f);
+    p.scattering = spectrumOr(f, "sigma_s", ctx, 0.0f);
+  }
   p.g = f.number("g", 0.0f);
   if (f.has("fluorophores")) {
     const nlohmann::json& list = f.get("fluorophores");
@@ -96,6 +140,7 @@ std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::jso
     // "field: reason", the field possibly "fluorophores[k].x": as a JSON pointer below the medium.
     const size_t colon = problem.find(": ");
     std::string field = problem.substr(0, colon);
+    if (albedo && field == "sigma_a") field = "sigma_t";  // given as sigma_t (above)
     if (field.starts_with("fluorophores[")) {
       const size_t close = field.find(']');
       const std::string k = field.substr(13, close - 13), key = field.substr(close + 2);
@@ -104,7 +149,7 @@ std::unique_ptr<Medium> parseMedium(const std::string& name, const nlohmann::jso
     }
     throw InputError(ctx.file, pointer + "/" + field, problem.substr(colon + 2));
   }
-  return std::make_unique<Medium>(name, std::move(p), range, std::move(density));
+  return std::make_unique<Medium>(name, std::move(p), range, std::move(density), std::move(albedo));
 }
 
 }  // namespace kasha

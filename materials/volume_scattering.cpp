@@ -26,9 +26,9 @@ Vec3 sampleHenyeyGreenstein(const Vec3& axis, float g, Vec2 u) {
   return Frame::fromNormal(axis).toWorld(Vec3(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta));
 }
 
-VolumeScattering::VolumeScattering(const Medium& medium) : medium_(&medium) {
-  const size_t n = medium.params().fluorophores.size();
-  for (size_t k = 0; k < n; ++k) absorptionIntegral_.push_back(medium.absorptionDistribution(k).integral());
+VolumeScattering::VolumeScattering(const Medium& medium, std::optional<RgbSigmoid> albedoHere)
+    : medium_(&medium), albedoHere_(albedoHere) {
+  const size_t n = fluorophoreCount();
   flags_ = BsdfFlags::Volume | flagIf(medium.fluoresces(), BsdfFlags::Fluorescent) |
            flagIf(medium.fluoresces() && n == 1, BsdfFlags::FactorisedFluorescence);
 }
@@ -37,26 +37,30 @@ float VolumeScattering::fluorescentShare(TransportMode mode, size_t k, float lam
   const Fluorophore& f = medium_->params().fluorophores[k];
   // media.md eq. 5: Radiance Y_k·ê_k(λ_o)·∫σ_f,k; Importance σ_f,k(λ_i)·Y_k (∫ê_k = 1).
   return mode == TransportMode::Radiance
-             ? f.yield * medium_->emissionDistribution(k).pdf(lambdaKnown) * absorptionIntegral_[k]
+             ? f.yield * medium_->emissionDistribution(k).pdf(lambdaKnown) * medium_->absorptionIntegral(k)
              : f.yield * f.absorption(lambdaKnown);
+}
+
+float VolumeScattering::scattering(float lambda) const {
+  return albedoHere_ ? (*albedoHere_)(lambda) * medium_->sigmaT(lambda) : medium_->sigmaS(lambda);
 }
 
 float VolumeScattering::fluorescentWeight(TransportMode mode, float lambdaKnown) const {
   float a = 0.0f;
-  for (size_t k = 0; k < absorptionIntegral_.size(); ++k) a += fluorescentShare(mode, k, lambdaKnown);
+  for (size_t k = 0; k < fluorophoreCount(); ++k) a += fluorescentShare(mode, k, lambdaKnown);
   return a;
 }
 
 float VolumeScattering::albedoWeight(TransportMode mode, float lambdaKnown) const {
-  return medium_->sigmaS(lambdaKnown) + fluorescentWeight(mode, lambdaKnown);
+  return scattering(lambdaKnown) + fluorescentWeight(mode, lambdaKnown);
 }
 
 float VolumeScattering::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
                              SpectralLobe lobe) const {
   if (lobe == SpectralLobe::Elastic)  // media.md eq. 3
-    return medium_->sigmaS(lambdaIn) * henyeyGreenstein(-glm::dot(wi, wo), medium_->params().g);
+    return scattering(lambdaIn) * henyeyGreenstein(-glm::dot(wi, wo), medium_->params().g);
   float f = 0.0f;  // media.md eq. 4
-  for (size_t k = 0; k < absorptionIntegral_.size(); ++k) {
+  for (size_t k = 0; k < fluorophoreCount(); ++k) {
     const Fluorophore& fl = medium_->params().fluorophores[k];
     f += fl.absorption(lambdaIn) * fl.yield * medium_->emissionDistribution(k).pdf(lambdaOut);
   }
@@ -64,13 +68,13 @@ float VolumeScattering::eval(TransportMode, const Vec3& wi, const Vec3& wo, floa
 }
 
 float VolumeScattering::fluorescenceProbability(TransportMode mode, float lambdaKnown) const {
-  const float fl = fluorescentWeight(mode, lambdaKnown), total = fl + medium_->sigmaS(lambdaKnown);
+  const float fl = fluorescentWeight(mode, lambdaKnown), total = fl + scattering(lambdaKnown);
   return total > 0.0f ? fl / total : 0.0f;
 }
 
 SpectralChoice VolumeScattering::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
   SpectralChoice c;
-  const float fl = fluorescentWeight(mode, lambdaKnown), total = fl + medium_->sigmaS(lambdaKnown);
+  const float fl = fluorescentWeight(mode, lambdaKnown), total = fl + scattering(lambdaKnown);
   if (!(total > 0.0f)) return c;
   const float pFl = fl / total;
   if (!(u < pFl)) {
@@ -82,7 +86,7 @@ SpectralChoice VolumeScattering::sampleSpectral(TransportMode mode, float lambda
   // remainder of u.
   float v = u / pFl * fl;
   size_t k = 0;
-  const size_t n = absorptionIntegral_.size();
+  const size_t n = fluorophoreCount();
   for (; k + 1 < n; ++k) {
     const float share = fluorescentShare(mode, k, lambdaKnown);
     if (v < share) break;
@@ -99,9 +103,9 @@ SpectralChoice VolumeScattering::sampleSpectral(TransportMode mode, float lambda
 }
 
 float VolumeScattering::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
-  const float fl = fluorescentWeight(mode, lambdaKnown), total = fl + medium_->sigmaS(lambdaKnown);
+  const float fl = fluorescentWeight(mode, lambdaKnown), total = fl + scattering(lambdaKnown);
   if (!(total > 0.0f)) return 0.0f;
-  if (lobe == SpectralLobe::Elastic) return medium_->sigmaS(lambdaKnown) / total;
+  if (lobe == SpectralLobe::Elastic) return scattering(lambdaKnown) / total;
   // Σ_k share_k/total · (σ_f,k or ê_k density at the other wavelength) = 4π·f_fl/total.
   const bool radiance = mode == TransportMode::Radiance;
   const float f = eval(mode, Vec3(0.0f), Vec3(0.0f), radiance ? lambdaOther : lambdaKnown,

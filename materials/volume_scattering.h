@@ -12,6 +12,12 @@
 // wavelength from its σ_f,k (Radiance) or ê_k (Importance); the direction from the phase function
 // (elastic) or uniformly over the sphere (fluorescent, isotropic re-emission). f/pdf of a whole
 // event is therefore A_el + A_fl.
+//
+// In a medium with an albedo field (media.md §7) σ_s is that of one point x, α(x, λ)·σ_t(λ)
+// (media.md eq. 11): the model is built for the collision (Scene::mediumBsdf, in place in the Bsdf)
+// with the albedo there; otherwise one model serves the whole medium.
+#include <optional>
+
 #include "core/medium.h"
 #include "materials/bsdf_model.h"
 
@@ -26,8 +32,9 @@ Vec3 sampleHenyeyGreenstein(const Vec3& axis, float g, Vec2 u);
 
 class VolumeScattering final : public BsdfModel {
  public:
-  // `medium` must outlive the model (the scene's).
-  explicit VolumeScattering(const Medium& medium);
+  // `medium` must outlive the model (the scene's). `albedoHere`: α at the collision, for a medium
+  // with an albedo field (Medium::albedo); nullopt: the medium's own σ_s(λ).
+  explicit VolumeScattering(const Medium& medium, std::optional<RgbSigmoid> albedoHere = std::nullopt);
 
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const override;
@@ -49,8 +56,11 @@ class VolumeScattering final : public BsdfModel {
  private:
   // Fluorophore k's share of A_fl at the known wavelength (unnormalised).
   float fluorescentShare(TransportMode mode, size_t k, float lambdaKnown) const;
+  // σ_s(λ) here: α(λ)·σ_t(λ) with an albedo, else the medium's (media.md eq. 11).
+  float scattering(float lambda) const;
+  size_t fluorophoreCount() const { return medium_->params().fluorophores.size(); }
   const Medium* medium_;
-  std::vector<float> absorptionIntegral_;  // ∫σ_f,k over the range
+  std::optional<RgbSigmoid> albedoHere_;
   BsdfFlags flags_;
 };
 

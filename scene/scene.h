@@ -75,10 +75,11 @@ struct Scene {
     if (!m) return current;
     return glm::dot(d, h.ng) < 0.0f ? m->interior : m->exterior;
   }
-  // The collision kernel of medium m as a Bsdf (materials/volume_scattering.h), in a fixed frame:
-  // a medium point has no normal, and its phase function depends on angles between directions only.
+  // The collision kernel of medium m at the collision x as a Bsdf (materials/volume_scattering.h),
+  // in a fixed frame: a medium point has no normal, and its phase function depends on angles between
+  // directions only. x matters only where the medium's albedo varies (media.md §7).
   // (Out of line, scene/scene.cpp: it stays out of the integrators' hot loops in scenes without media.)
-  Bsdf mediumBsdf(int m) const;
+  Bsdf mediumBsdf(int m, const Vec3& x) const;
   // The shape an emission sample of light l lies on (its MediumInterface names the medium on each
   // side): an area light's, whose samples alone have a normal; −1 for any other light.
   int emittingShape(const Light& l, const EmissionSample& es) const;

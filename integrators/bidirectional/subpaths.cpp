@@ -189,7 +189,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
       if (flight.collided) {
         v.kind = PathVertex::Kind::Medium;
         v.p = flight.p;
-        v.bsdf = scene.mediumBsdf(flight.medium);
+        v.bsdf = scene.mediumBsdf(flight.medium, flight.p);
       } else {
         const Hit& hit = *flight.hit;
         v.p = hit.p;

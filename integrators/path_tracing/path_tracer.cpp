@@ -187,7 +187,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     }
     if (depth >= maxDepth_) break;
 
-    const Bsdf bsdf = shape ? scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)}) : scene.mediumBsdf(flight.medium);
+    const Bsdf bsdf = shape ? scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)}) : scene.mediumBsdf(flight.medium, flight.p);
     const VertexMedium where{flight.medium, shape != nullptr};
     const Vec3 wo = bsdf.toLocal(-ray.d);
     const float uLobe = rng.uniform();

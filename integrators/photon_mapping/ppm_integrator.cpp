@@ -214,7 +214,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
       }
     }
     if (bounces >= maxDepth_) break;
-    const Bsdf bsdf = shape ? scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)}) : scene.mediumBsdf(flight.medium);
+    const Bsdf bsdf = shape ? scene.bsdf(*hit, {lanes.lambda, size_t(lanes.n)}) : scene.mediumBsdf(flight.medium, flight.p);
     const VertexMedium where{flight.medium, shape != nullptr};
     const Vec3 wo = bsdf.toLocal(-ray.d);
     const float uLobe = rng.uniform(), uLane = rng.uniform(), uLight = rng.uniform();

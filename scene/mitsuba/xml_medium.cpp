@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/spectrum_json.h"
+#include "core/volume_grid.h"
 #include "scene/mitsuba/xml_spectrum.h"
 #include "scene/mitsuba/xml_transform.h"
 
@@ -68,10 +69,14 @@ json productSpectrum(const Spectrum& sigmaT, const Spectrum& albedo, bool scatte
   return {{"type", "tabulated"}, {"wavelengths", wavelengths}, {"values", values}};
 }
 
+// What a `gridvolume` may become where a medium reads it (docs/mitsuba-import.md): a heterogeneous
+// medium's σ_t grid becomes kasha's density, a homogeneous medium's albedo grid its albedo_grid.
+enum class GridRole { None, Density, Albedo };
+
 // A property that Mitsuba reads as a volume (a spectrum, or a <volume> plugin): a spectrum, or a
-// `constvolume`'s. A `gridvolume` is taken only where `grid` is given (a heterogeneous medium's
-// σ_t): it becomes kasha's density (docs/mitsuba-import.md) and the property 1.
-json volumeProperty(Plugin& m, const std::string& name, double fallback, json* grid) {
+// `constvolume`'s. A `gridvolume` is taken where `role` allows it: it is written to `grid`
+// (placed as Mitsuba places it) and the property is 1.
+json volumeProperty(Plugin& m, const std::string& name, double fallback, GridRole role, json& grid) {
   XmlImport& xml = m.xml();
   const pugi::xml_node p = m.property(name);
   if (!p) return fallback;
@@ -81,19 +86,28 @@ json volumeProperty(Plugin& m, const std::string& name, double fallback, json* g
   if (v.type() == "constvolume") {
     out = spectrumProperty(v, "value");
   } else if (v.type() == "gridvolume") {
-    if (!grid)
-      v.fail("a spatially varying " + name + " is not supported (kasha takes a grid only as a heterogeneous medium's sigma_t)");
+    if (role == GridRole::None)
+      v.fail("a spatially varying " + name + " is not supported here (kasha takes a grid as a heterogeneous medium's "
+             "sigma_t or a homogeneous medium's albedo)");
     if (!v.has("filename")) v.fail("missing property 'filename'");
-    *grid = {{"file", xml.resolve(p, v.string("filename", ""))}, {"use_grid_bbox", v.boolean("use_grid_bbox", false)},
-             {"transform", matrixJson(toWorld(v))}};
+    grid = {{"file", xml.resolve(p, v.string("filename", ""))}, {"use_grid_bbox", v.boolean("use_grid_bbox", false)},
+            {"transform", matrixJson(toWorld(v))}};
     const std::string filter = v.string("filter_type", "trilinear");
     if (filter != "trilinear") v.fail(v.property("filter_type"), "filter_type '" + filter + "': kasha interpolates grids trilinearly only");
     const std::string wrap = v.string("wrap_mode", "clamp");
-    if (wrap != "clamp") v.fail(v.property("wrap_mode"), "wrap_mode '" + wrap + "': kasha clamps grid lookups to the grid's box only");
-    v.boolean("raw", false);   // how colour grids are upsampled: a density has one channel
+    if (role == GridRole::Albedo) {
+      if (!gridWrapNamed(wrap)) v.fail(v.property("wrap_mode"), "wrap_mode '" + wrap + "' is not clamp, repeat or mirror");
+      grid["wrap_mode"] = wrap;
+      // Mitsuba upsamples a colour grid unless raw (its own docs: no plugin needs raw colours).
+      if (v.boolean("raw", false)) v.fail(v.property("raw"), "raw = true: kasha upsamples an albedo grid's colours");
+    } else {
+      if (wrap != "clamp") v.fail(v.property("wrap_mode"), "wrap_mode '" + wrap + "': kasha clamps density lookups to the grid's box");
+      v.boolean("raw", false);  // how colour grids are upsampled: a density has one channel
+    }
     v.boolean("accel", true);  // GPU texture hardware in Mitsuba: no effect on the image
   } else {
-    v.fail("unsupported volume plugin (constvolume; gridvolume as a heterogeneous medium's sigma_t)");
+    v.fail("unsupported volume plugin (constvolume; gridvolume as a heterogeneous medium's sigma_t or a homogeneous "
+           "medium's albedo)");
   }
   v.finish();
   return out;
@@ -143,14 +157,18 @@ std::string addMedium(XmlImport& xml, pugi::xml_node node, SceneJson& out) {
     m.fail("unsupported medium plugin (homogeneous, heterogeneous; kasha's fluorescent_homogeneous)");
   const float scale = m.number("scale", 1.0f);
   if (!(scale >= 0.0f)) m.fail(m.property("scale"), "scale must not be negative");
-  json density;
-  json sigmaT = volumeProperty(m, "sigma_t", 1.0, type == "heterogeneous" ? &density : nullptr);
-  const json albedo = volumeProperty(m, "albedo", 0.75, nullptr);
+  json density, albedoGrid;
+  json sigmaT = volumeProperty(m, "sigma_t", 1.0, type == "heterogeneous" ? GridRole::Density : GridRole::None, density);
+  const json albedo =
+      volumeProperty(m, "albedo", 0.75, type == "homogeneous" ? GridRole::Albedo : GridRole::None, albedoGrid);
   const pugi::xml_node albedoAt = m.property("albedo") ? m.property("albedo") : node;
   json medium = {{"type", density.is_null() ? "homogeneous" : "heterogeneous"}};
   if (!density.is_null()) medium["density"] = density;
   // σ_a = σ_t(1 − α)·scale, σ_s = σ_t·α·scale (Mitsuba 3 docs: homogeneous; src/media/homogeneous.cpp).
-  if (albedo.is_number()) {
+  if (!albedoGrid.is_null()) {  // α varies in space: σ_t·scale, split at each point (media.md §7)
+    medium["albedo_grid"] = albedoGrid;
+    medium["sigma_t"] = scaled(sigmaT, scale);
+  } else if (albedo.is_number()) {
     const double a = albedo.get<double>();
     if (!(a >= 0.0 && a <= 1.0)) m.fail(albedoAt, "albedo must lie in [0, 1]");
     medium["sigma_a"] = scaled(sigmaT, (1.0 - a) * scale);

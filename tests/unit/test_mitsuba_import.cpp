@@ -1328,9 +1328,13 @@ TEST_F(MitsubaImport, UnsupportedMediaAreOneLineErrors) {
                        line + "phase 'rayleigh': unsupported phase plugin (isotropic, hg)"));
   EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"homogeneous\"><spectrum name=\"radiance\" value=\"1\"/></medium>")),
                        line + "medium 'homogeneous': unsupported property 'radiance'"));
-  EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"homogeneous\"><volume name=\"albedo\" type=\"gridvolume\">"
+  EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"heterogeneous\"><volume name=\"albedo\" type=\"gridvolume\">"
                                           "<string name=\"filename\" value=\"a.vol\"/></volume></medium>")),
-                       line + "volume 'gridvolume': a spatially varying albedo is not supported"));
+                       line + "volume 'gridvolume': a spatially varying albedo is not supported here"));
+  EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"homogeneous\"><volume name=\"albedo\" type=\"gridvolume\">"
+                                          "<string name=\"filename\" value=\"a.vol\"/><string name=\"wrap_mode\" value=\"tile\"/>"
+                                          "</volume></medium>")),
+                       line + "volume 'gridvolume': wrap_mode 'tile' is not clamp, repeat or mirror"));
   EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"homogeneous\"><float name=\"albedo\" value=\"1.5\"/></medium>")),
                        line + "medium 'homogeneous': albedo must lie in [0, 1]"));
   EXPECT_TRUE(contains(error(mediumSphere("\n<medium id=\"fog\" type=\"homogeneous\"><phase type=\"hg\"><float name=\"g\" value=\"1\"/></phase></medium>")),
@@ -1374,6 +1378,37 @@ TEST_F(MitsubaImport, HeterogeneousGridMediumIsTranslatedAndLoaded) {
   // A heterogeneous medium without grids is homogeneous.
   const auto plain = translate(mediumSphere(R"(<medium id="fog" type="heterogeneous"><float name="sigma_t" value="4"/></medium>)"));
   EXPECT_EQ(plain.scene["media"]["fog"]["type"], "homogeneous");
+}
+
+// Mitsuba's medium_homogeneous_sss_textured: a homogeneous medium whose albedo is a colour grid that
+// repeats (docs/media.md §7): σ_t·scale, and the grid as the medium's albedo_grid.
+TEST_F(MitsubaImport, TexturedAlbedoMediumIsTranslatedAndLoaded) {
+  std::ofstream(dir / "albedo.vol", std::ios::binary) << test::volBytes({2, 1, 1}, 3, {0.9f, 0.3f, 0.1f, 0.1f, 0.4f, 0.8f});
+  const std::string medium = R"(
+<medium id="fog" type="homogeneous"><float name="scale" value="2"/><phase type="hg"><float name="g" value="0.7"/></phase>
+  <volume name="albedo" type="gridvolume"><string name="wrap_mode" value="repeat"/><string name="filename" value="albedo.vol"/>
+  </volume></medium>)";
+  const auto t = translate(mediumSphere(medium));
+  const json& fog = t.scene["media"]["fog"];
+  EXPECT_EQ(fog["type"], "homogeneous");
+  EXPECT_EQ(fog["albedo_grid"]["file"], (dir / "albedo.vol").string());
+  EXPECT_EQ(fog["albedo_grid"]["wrap_mode"], "repeat");
+  EXPECT_EQ(fog["albedo_grid"]["use_grid_bbox"], false);
+  EXPECT_NEAR(fog["sigma_t"].get<double>(), 2.0, 1e-6);  // Mitsuba's default σ_t = 1, times scale
+  EXPECT_FALSE(fog.contains("sigma_a"));
+  EXPECT_FALSE(fog.contains("sigma_s"));
+  EXPECT_NEAR(fog["g"].get<double>(), 0.7, 1e-6);
+  // Loaded: σ_t everywhere, the red cell's colour at its centre (x = 1/4) and a period on.
+  const auto scene = load(mediumSphere(medium));
+  const Medium& m = *scene->media.at(0);
+  ASSERT_TRUE(m.spatiallyVaryingAlbedo());
+  EXPECT_FLOAT_EQ(m.sigmaT(500.0f), 2.0f);
+  const RgbSigmoid red = rgbToSigmoid(Vec3(0.9f, 0.3f, 0.1f));
+  for (float x : {0.25f, 1.25f, -0.75f}) EXPECT_NEAR(m.albedo(Vec3(x, 0.5f, 0.5f))(600.0f), red(600.0f), 1e-5f) << x;
+  // A raw colour grid is refused (Mitsuba upsamples colours unless raw).
+  std::string raw = medium;
+  raw.replace(raw.find("</volume>"), 0, R"(<boolean name="raw" value="true"/>)");
+  EXPECT_TRUE(contains(error(mediumSphere(raw)), "raw = true: kasha upsamples an albedo grid's colours"));
 }
 
 TEST_F(MitsubaImport, MediumSphereRendersAsItsJsonTwin) {

@@ -1024,8 +1024,51 @@ TEST_F(SceneLoader, BadMediumFields) {
     j["media"]["fog"]["density"] = {{"file", "smoke.vol"}};
     EXPECT_TRUE(loadSceneFromString(j.dump(), path)->media[0]->heterogeneous());
   }
-  expectError(media([](json& m) { m["fog"]["sigma_t"] = 1; }), "/media/fog/sigma_t", "unknown field");
+  expectError(media([](json& m) { m["fog"]["sigma_t"] = 1; }), "/media/fog/sigma_t", "is read with albedo_grid only");
   expectError(media([](json& m) { m = json::array(); }), "/media", "expected an object of named media");
+}
+
+// A homogeneous medium's albedo grid (docs/media.md §7): sigma_t alone, 1 or 3 channels in [0, 1],
+// a known wrap mode; not with a density, fluorophores or sigma_a/sigma_s.
+TEST_F(SceneLoader, AlbedoGridFields) {
+  write("albedo.vol", test::volBytes({2, 1, 1}, 3, {0.9f, 0.5f, 0.1f, 0.2f, 0.4f, 1.0f}));
+  auto fog = [](const std::function<void(json&)>& change) {
+    return [change](json& j) {
+      j = withMedia(j);
+      j["media"]["fog"] = {{"type", "homogeneous"}, {"sigma_t", 2.0}, {"g", 0.3},
+                           {"albedo_grid", {{"file", "albedo.vol"}, {"wrap_mode", "repeat"}}}};
+      change(j["media"]["fog"]);
+    };
+  };
+  {
+    json j = base;
+    fog([](json&) {})(j);
+    const auto scene = loadSceneFromString(j.dump(), path);
+    const Medium& m = *scene->media[0];
+    ASSERT_TRUE(m.spatiallyVaryingAlbedo());
+    EXPECT_FALSE(m.heterogeneous());
+    EXPECT_FLOAT_EQ(m.sigmaT(500.0f), 2.0f);
+  }
+  expectError(fog([](json& m) { m["sigma_s"] = 1; }), "/media/fog/sigma_s", "with albedo_grid, give sigma_t");
+  expectError(fog([](json& m) { m["sigma_a"] = 1; }), "/media/fog/sigma_a", "with albedo_grid, give sigma_t");
+  expectError(fog([](json& m) { m.erase("sigma_t"); }), "/media/fog/albedo_grid", "needs sigma_t");
+  expectError(fog([](json& m) { m["sigma_t"] = -1; }), "/media/fog/sigma_t", "negative");
+  expectError(fog([](json& m) { m["albedo_grid"]["wrap_mode"] = "wrap"; }), "/media/fog/albedo_grid/wrap_mode",
+              "'wrap' is not a wrap mode (clamp, repeat, mirror)");
+  expectError(fog([](json& m) { m["albedo_grid"]["filter"] = "nearest"; }), "/media/fog/albedo_grid/filter",
+              "unknown field");
+  expectError(fog([](json& m) { m["albedo_grid"]["file"] = "missing.vol"; }), "/media/fog/albedo_grid/file",
+              "missing.vol");
+  expectError(fog([](json& m) { m["type"] = "heterogeneous"; }), "/media/fog/albedo_grid",
+              "only a homogeneous medium takes an albedo grid");
+  expectError(fog([](json& m) { m["fluorophores"] = json::parse(R"([{"sigma_f": 1, "emission": 1, "yield": 0.5}])"); }),
+              "/media/fog/albedo_grid", "a medium with fluorophores takes no albedo grid");
+  write("six.vol", test::volBytes({1, 1, 1}, 6, {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f}));
+  expectError(fog([](json& m) { m["albedo_grid"]["file"] = "six.vol"; }), "/media/fog/albedo_grid/file",
+              "an albedo grid has 3 channels (linear RGB) or 1 (grey), 'six.vol' has 6");
+  write("bright.vol", test::volBytes({2, 1, 1}, 3, {0.9f, 0.5f, 0.1f, 0.2f, 1.5f, 1.0f}));
+  expectError(fog([](json& m) { m["albedo_grid"]["file"] = "bright.vol"; }), "/media/fog/albedo_grid/file",
+              "albedo values must lie in [0, 1]; channel 1 reaches 1.5");
 }
 
 TEST_F(SceneLoader, BadMediumReferences) {

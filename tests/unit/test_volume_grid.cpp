@@ -81,6 +81,41 @@ TEST(VolumeGrid, TrilinearLookupReproducesMultilinearFunctions) {
   EXPECT_NEAR(boxed.lookupInBox(Vec3(0.0f, 0.5f, 15.0f)), f(0.5f, 0.5f, 0.5f), 1e-5f);
 }
 
+// The wrap modes (Mitsuba 3 docs: gridvolume, wrap_mode) on a row of 4 cells 1, 2, 4, 8 whose
+// centres sit at x = (i + 1/2)/4; values worked out by hand from the cells' neighbours.
+TEST(VolumeGrid, WrapModesFindTheStencilsCells) {
+  const VolumeGrid g = VolumeGrid::parse(volBytes({4, 1, 1}, 1, {1, 2, 4, 8}), "grid.vol", kLimit);
+  const auto at = [&](float x, GridWrap wrap) { return g.lookup(Vec3(x, 0.3f, -7.0f), 0, wrap); };
+  // Inside the outermost centres every mode interpolates: x = 0.3 is 0.7 of the way from cell 0 to 1.
+  for (GridWrap w : {GridWrap::Clamp, GridWrap::Repeat, GridWrap::Mirror}) EXPECT_NEAR(at(0.3f, w), 1.7f, 1e-5f);
+  // Repeat: the last cell's neighbour is the first (x = 0 and x = 1 halfway between 8 and 1), and
+  // x ≡ x + 1: 1.3 is 0.3, −0.2 is 0.8 (0.7 of the way from 4 to 8), 1000.3 is 0.3.
+  EXPECT_NEAR(at(0.0f, GridWrap::Repeat), 4.5f, 1e-5f);
+  EXPECT_NEAR(at(1.0f, GridWrap::Repeat), 4.5f, 1e-5f);
+  EXPECT_NEAR(at(1.3f, GridWrap::Repeat), 1.7f, 1e-5f);
+  EXPECT_NEAR(at(-0.2f, GridWrap::Repeat), 6.8f, 1e-5f);
+  EXPECT_NEAR(at(1000.3f, GridWrap::Repeat), 1.7f, 1e-3f);
+  EXPECT_NEAR(at(-3.2f, GridWrap::Repeat), 6.8f, 1e-4f);
+  // Mirror: reflected at each face, so 1.3 reads 0.7 (0.3 of the way from 4 to 8), 1.1 the last
+  // cell, −0.1 the first, 2.3 (reflected twice) 0.3.
+  EXPECT_NEAR(at(1.3f, GridWrap::Mirror), 5.2f, 1e-5f);
+  EXPECT_NEAR(at(1.1f, GridWrap::Mirror), 8.0f, 1e-5f);
+  EXPECT_NEAR(at(-0.1f, GridWrap::Mirror), 1.0f, 1e-5f);
+  EXPECT_NEAR(at(2.3f, GridWrap::Mirror), 1.7f, 1e-4f);
+  // Clamp: the edge cells beyond the outermost centres.
+  EXPECT_NEAR(at(1.3f, GridWrap::Clamp), 8.0f, 1e-5f);
+  EXPECT_NEAR(at(-0.2f, GridWrap::Clamp), 1.0f, 1e-5f);
+  // A NaN coordinate reads the first cell in every mode; an infinite one too where the grid repeats.
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  for (GridWrap w : {GridWrap::Clamp, GridWrap::Repeat, GridWrap::Mirror}) EXPECT_EQ(at(nan, w), 1.0f);
+  EXPECT_EQ(at(inf, GridWrap::Repeat), 1.0f);
+  EXPECT_EQ(at(inf, GridWrap::Clamp), 8.0f);
+  EXPECT_EQ(gridWrapNamed("repeat"), GridWrap::Repeat);
+  EXPECT_EQ(gridWrapNamed("mirror"), GridWrap::Mirror);
+  EXPECT_EQ(gridWrapNamed("clamp"), GridWrap::Clamp);
+  EXPECT_FALSE(gridWrapNamed("zero"));
+}
+
 TEST(VolumeGrid, MaximumBoundsEveryLookup) {
   std::mt19937 rng(7);
   std::exponential_distribution<float> density(1.0f);
