@@ -59,17 +59,23 @@ class Bsdf {
   }
   Bsdf(const Bsdf& o)
       : model_(o.model_), geometric_(o.geometric_), shading_(o.shading_), correction_(o.correction_),
-        flags_(o.flags_), clone_(o.clone_) {
+        flags_(o.flags_), frontOnly_(o.frontOnly_), clone_(o.clone_) {
     if (clone_) model_ = clone_(*o.model_, storage_);
   }
   Bsdf& operator=(const Bsdf& o) {
     if (this != &o) {
       geometric_ = o.geometric_, shading_ = o.shading_, correction_ = o.correction_, flags_ = o.flags_;
+      frontOnly_ = o.frontOnly_;
       clone_ = o.clone_;
       model_ = clone_ ? clone_(*o.model_, storage_) : o.model_;
     }
     return *this;
   }
+
+  // A one-sided surface (Material::oneSided; Mitsuba's BSDFs that are black from behind): every
+  // query below gives nothing unless both directions lie on the front of the shading normal (local
+  // z > 0), as Mitsuba checks cos θ_i > 0 and cos θ_o > 0.
+  void restrictToFront() { frontOnly_ = true; }
 
   // DeltaDirection, Fluorescent, WavelengthDependentDirection: known before anything is sampled.
   BsdfFlags flags() const { return flags_; }
@@ -91,6 +97,7 @@ class Bsdf {
   // With a shading normal, f·|cos θ_s| of the sampled direction is Veach's f_s (shading_normal.h).
   float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
              SpectralLobe lobe) const {
+    if (!front(wi) || !front(wo)) return 0.0f;
     const float c = correction_.factor(mode, wi, wo);
     return c > 0.0f ? c * model_->eval(mode, wi, wo, lambdaIn, lambdaOut, lobe) : 0.0f;
   }
@@ -112,20 +119,22 @@ class Bsdf {
   // per steradian (a probability if specular).
   std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
                                                  float lambdaIn, float lambdaOut, Vec2 u) const {
-    if (!correction_.consistent(wKnown)) return std::nullopt;
+    if (!correction_.consistent(wKnown) || !front(wKnown)) return std::nullopt;
     std::optional<DirectionSample> ds = model_->sampleDirection(mode, wKnown, lobe, lambdaIn, lambdaOut, u);
-    if (ds && !correction_.consistent(ds->w)) return std::nullopt;
+    if (ds && (!correction_.consistent(ds->w) || !front(ds->w))) return std::nullopt;
     return ds;
   }
   // That stage's density of wSampled, per steradian.
   float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
                      float lambdaOut) const {
+    if (!front(wKnown) || !front(wSampled)) return 0.0f;
     return model_->directionPdf(mode, wKnown, wSampled, lobe, lambdaIn, lambdaOut);
   }
   // Both stages (u.x spectral, u.y/u.z direction): value, density in this mode and the reverse.
   std::optional<ScatterSample> sample(TransportMode mode, const Vec3& wKnown, float lambdaKnown, Vec3 u) const {
-    if (!correction_.consistent(wKnown)) return std::nullopt;
+    if (!correction_.consistent(wKnown) || !front(wKnown)) return std::nullopt;
     std::optional<ScatterSample> s = model_->sample(mode, wKnown, lambdaKnown, u);
+    if (s && !front(s->w)) return std::nullopt;
     if (!s || !correction_.active) return s;
     const bool radiance = mode == TransportMode::Radiance;
     s->f *= correction_.factor(mode, radiance ? s->w : wKnown, radiance ? wKnown : s->w);
@@ -134,14 +143,18 @@ class Bsdf {
   // Both densities (this mode, reverse) of an event in physical order: spectral × directional.
   ScatterDensity pdf(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
                      SpectralLobe lobe) const {
+    if (!front(wi) || !front(wo)) return {};
     return model_->pdf(mode, wi, wo, lambdaIn, lambdaOut, lobe);
   }
 
  private:
+  bool front(const Vec3& w) const { return !frontOnly_ || w.z > 0.0f; }
+
   const BsdfModel* model_;
   Frame geometric_, shading_;
   ShadingCorrection correction_;
   BsdfFlags flags_;
+  bool frontOnly_ = false;
   // Copies a per-hit model into storage_; null when model_ lives outside the Bsdf.
   const BsdfModel* (*clone_)(const BsdfModel& from, void* to) = nullptr;
   alignas(std::max_align_t) std::byte storage_[kInPlaceBytes];

@@ -37,6 +37,10 @@ class Material {
   // Its parameters' textures, for the checks of the shapes it is on (texture coordinates, mesh
   // attributes); empty exactly when textured() is false.
   virtual std::vector<const Texture*> textures() const { return {}; }
+
+  // Scatters only light that arrives at and leaves its front (Mitsuba's one-sided BSDFs, black from
+  // behind; JSON "one_sided"): Scene::bsdf restricts its Bsdf (Bsdf::restrictToFront).
+  bool oneSided = false;
 };
 
 // A material that scatters the same everywhere: it is its own per-hit model, a Model (BsdfModel or

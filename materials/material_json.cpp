@@ -178,11 +178,21 @@ Vec2 parseAlpha(JsonFields& f, const std::string& key) {
   return a;
 }
 
+// A material nested in another (a mask's, a blend's, a perturbed normal's): one-sidedness belongs
+// to the whole surface (Scene::bsdf), so only a top-level material may ask for it.
+std::unique_ptr<Material> parseNestedMaterial(const nlohmann::json& v, const std::string& ptr, const SpectrumContext& ctx,
+                                              WavelengthRange range) {
+  std::unique_ptr<Material> nested = parseMaterial(v, ctx, ptr, range);
+  if (nested->oneSided)
+    throw InputError(ctx.file, ptr + "/one_sided", "only a top-level material can be one-sided (a nested one scatters as its wrapper says)");
+  return nested;
+}
+
 // {"type": "normal_map", "normals": <texture>, "material": {...}} and {"type": "bump_map",
 // "height": <texture>, "scale": s, "material": {...}} (normal_perturbation.h).
 std::unique_ptr<Material> parsePerturbedNormal(JsonFields& f, const std::string& type, const SpectrumContext& ctx,
                                                WavelengthRange range) {
-  std::unique_ptr<Material> nested = parseMaterial(f.get("material"), ctx, f.path("material"), range);
+  std::unique_ptr<Material> nested = parseNestedMaterial(f.get("material"), f.path("material"), ctx, range);
   if (type == "normal_map")
     return std::make_unique<NormalMapMaterial>(std::move(nested), parseRequiredTexture(f, "normals", ctx, true));
   const float scale = f.number("scale", 1.0f);
@@ -191,7 +201,7 @@ std::unique_ptr<Material> parsePerturbedNormal(JsonFields& f, const std::string&
 
 // {"type": "mask", "opacity": α, "opacity_texture": <texture>, "material": {...}} (opacity_mask.h).
 std::unique_ptr<Material> parseMask(JsonFields& f, const SpectrumContext& ctx, WavelengthRange range) {
-  std::unique_ptr<Material> nested = parseMaterial(f.get("material"), ctx, f.path("material"), range);
+  std::unique_ptr<Material> nested = parseNestedMaterial(f.get("material"), f.path("material"), ctx, range);
   if (nested->textured()) f.fail("material", "a mask around a textured material is not supported");
   const float opacity = f.number("opacity");
   if (!(opacity >= 0.0f && opacity <= 1.0f)) f.fail("opacity", "must lie in [0, 1]");
@@ -205,8 +215,8 @@ std::unique_ptr<Material> parseBlend(JsonFields& f, const SpectrumContext& ctx, 
   if (!list.is_array() || list.size() != 2)
     f.fail("materials", "expected an array of two materials, got " +
                             (list.is_array() ? std::to_string(list.size()) + " materials" : jsonTypeName(list)));
-  std::unique_ptr<Material> first = parseMaterial(list[0], ctx, f.path("materials") + "/0", range);
-  std::unique_ptr<Material> second = parseMaterial(list[1], ctx, f.path("materials") + "/1", range);
+  std::unique_ptr<Material> first = parseNestedMaterial(list[0], f.path("materials") + "/0", ctx, range);
+  std::unique_ptr<Material> second = parseNestedMaterial(list[1], f.path("materials") + "/1", ctx, range);
   const float weight = f.number("weight");
   if (!(weight >= 0.0f && weight <= 1.0f)) f.fail("weight", "must lie in [0, 1]");
   try {
@@ -282,6 +292,8 @@ std::unique_ptr<Material> parseMaterial(const nlohmann::json& v, const SpectrumC
                        "' (lambertian, jung_fluorescent, mirror, dielectric, thin_dielectric, rough_conductor, rough_dielectric, "
                        "coated_fluorescent, zhdanov, measured_reradiation, normal_map, bump_map, mask, blend, file)");
   }
+  // Mitsuba's one-sided BSDFs (black from behind): Scene::bsdf restricts the surface's Bsdf.
+  m->oneSided = m->oneSided || f.boolean("one_sided", false);
   f.finish();
   return m;
 }

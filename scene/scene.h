@@ -59,7 +59,9 @@ struct Scene {
       ctx.dpdu = d.dpdu;
       ctx.dpdv = d.dpdv;
     }
-    return m.bsdf(ctx);
+    Bsdf b = m.bsdf(ctx);
+    if (m.oneSided) b.restrictToFront();
+    return b;
   }
   // Whether any ray can meet a medium or an index-matched boundary.
   bool hasMedia() const { return !media.empty(); }

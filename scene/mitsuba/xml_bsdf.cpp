@@ -165,18 +165,22 @@ json kashaMaterial(Plugin& b) {
   return m;
 }
 
-json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided);
+// Where a <bsdf> sits: the surface's own, inside a <twosided> (both sides), or inside another
+// wrapper (a mask's, a blend's, a perturbed normal's).
+enum class Placement { Surface, TwoSided, Nested };
+json translate(XmlImport& xml, pugi::xml_node node, Placement placement);
+Placement inside(Placement wrapper) { return wrapper == Placement::TwoSided ? Placement::TwoSided : Placement::Nested; }
 
 // normalmap (<texture name="normalmap">, a tangent-space RGB image) and bumpmap (one <texture> of
 // any name, its luminance as the height, times scale) around one nested <bsdf>: kasha's
 // normal_map and bump_map (materials/normal_perturbation.h). Mitsuba flips a normal facing away
 // from the incident direction (flip_invalid_normals) and dims grazing light by a shadowing
 // function (use_shadowing_function); kasha uses Veach's shading-normal correction for both, noted.
-json perturbedNormal(Plugin& b, bool insideTwosided) {
+json perturbedNormal(Plugin& b, Placement placement) {
   const std::vector<pugi::xml_node> inner = b.nested("bsdf");
   if (inner.size() != 1) b.fail("expected exactly one nested <bsdf>");
   json m = {{"type", b.type() == "normalmap" ? "normal_map" : "bump_map"},
-            {"material", translate(b.xml(), inner.front(), insideTwosided)}};
+            {"material", translate(b.xml(), inner.front(), inside(placement))}};
   b.boolean("flip_invalid_normals", true);
   b.boolean("use_shadowing_function", true);
   b.note("shading normals corrected as Veach 1997 does (kasha), not by Mitsuba's normal flipping and shadowing function");
@@ -195,36 +199,41 @@ json perturbedNormal(Plugin& b, bool insideTwosided) {
 
 // mask (opacity: a number, default 0.5, or a <texture> whose luminance is the opacity)
 // around one nested <bsdf>: kasha's mask (materials/opacity_mask.h).
-json opacityMask(Plugin& b, bool insideTwosided) {
+json opacityMask(Plugin& b, Placement placement) {
   const std::vector<pugi::xml_node> inner = b.nested("bsdf");
   if (inner.size() != 1) b.fail("expected exactly one nested <bsdf>");
-  json m = {{"type", "mask"}, {"material", translate(b.xml(), inner.front(), insideTwosided)}};
+  json m = {{"type", "mask"}, {"material", translate(b.xml(), inner.front(), inside(placement))}};
   setScalar(b, "opacity", 0.5f, m);
   return m;
 }
 
 // blendbsdf (weight: a number, default 0.5, or a <texture> whose luminance is the weight)
 // of two nested <bsdf>s, in order: kasha's blend (materials/blend.h).
-json blend(Plugin& b, bool insideTwosided) {
+json blend(Plugin& b, Placement placement) {
   const std::vector<pugi::xml_node> inner = b.nested("bsdf");
   if (inner.size() != 2) b.fail("expected exactly two nested <bsdf>s, found " + std::to_string(inner.size()));
   json m = {{"type", "blend"}, {"materials", json::array()}};
-  for (const pugi::xml_node component : inner) m["materials"].push_back(translate(b.xml(), component, insideTwosided));
+  for (const pugi::xml_node component : inner) m["materials"].push_back(translate(b.xml(), component, inside(placement)));
   setScalar(b, "weight", 0.5f, m);
   return m;
 }
 
-json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
+json translate(XmlImport& xml, pugi::xml_node node, Placement placement) {
   Plugin b(xml, node);
   const std::string& t = b.type();
   json m;
+  // Mitsuba's diffuse, conductors and plastics are black from behind: kasha's "one_sided", which
+  // belongs to a whole surface, so a component of a mask or blend reflects on both sides.
+  bool frontOnly = false;
   const auto oneSided = [&] {
-    if (!insideTwosided) b.note("one-sided in Mitsuba (black from behind); kasha's material reflects on both sides");
+    if (placement == Placement::Surface) frontOnly = true;
+    if (placement == Placement::Nested)
+      b.note("one-sided in Mitsuba (black from behind); kasha's component of a wrapper reflects on both sides");
   };
   if (t == "twosided") {
     const std::vector<pugi::xml_node> inner = b.nested("bsdf");
     if (inner.size() != 1) b.fail("expected exactly one nested <bsdf> (two different sides are not supported)");
-    m = translate(xml, inner.front(), true);
+    m = translate(xml, inner.front(), Placement::TwoSided);
   } else if (t == "diffuse") {
     oneSided();
     m = {{"type", "lambertian"}};
@@ -265,11 +274,11 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
   } else if (t == "jung_fluorescent" || t == "zhdanov" || t == "coated_fluorescent" || t == "measured_reradiation") {
     m = kashaMaterial(b);
   } else if (t == "mask") {
-    m = opacityMask(b, insideTwosided);
+    m = opacityMask(b, placement);
   } else if (t == "blendbsdf") {
-    m = blend(b, insideTwosided);
+    m = blend(b, placement);
   } else if (t == "normalmap" || t == "bumpmap") {
-    m = perturbedNormal(b, insideTwosided);
+    m = perturbedNormal(b, placement);
   } else if (t == "thindielectric") {
     requireUnitSpecular(b, "specular_reflectance");
     requireUnitSpecular(b, "specular_transmittance");
@@ -278,13 +287,14 @@ json translate(XmlImport& xml, pugi::xml_node node, bool insideTwosided) {
     b.fail("unsupported BSDF plugin (diffuse, conductor, roughconductor, dielectric, thindielectric, roughdielectric, plastic, "
            "roughplastic, twosided, normalmap, bumpmap, mask, blendbsdf; kasha's jung_fluorescent, zhdanov, coated_fluorescent, measured_reradiation)");
   }
+  if (frontOnly) m["one_sided"] = true;
   b.finish();
   return m;
 }
 
 }  // namespace
 
-json bsdfMaterial(XmlImport& xml, pugi::xml_node bsdf) { return translate(xml, bsdf, false); }
+json bsdfMaterial(XmlImport& xml, pugi::xml_node bsdf) { return translate(xml, bsdf, Placement::Surface); }
 
 bool isNullBsdf(XmlImport& xml, pugi::xml_node bsdf) {
   if (xml.optionalAttribute(bsdf, "type").value_or("") != "null") return false;

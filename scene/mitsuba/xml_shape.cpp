@@ -88,10 +88,10 @@ std::string material(Plugin& s, SceneJson& out, const ShapeRefs& refs, bool hasM
            "<bsdf type=\"null\"/> says index-matched in both)");
     return "";
   }
-  // Mitsuba's default BSDF: diffuse with reflectance 0.5 (one-sided).
+  // Mitsuba's default BSDF: diffuse with reflectance 0.5, one-sided.
   if (const std::string* name = out.materialOf(s.node())) return *name;
-  s.note("no BSDF: Mitsuba's default diffuse 0.5, reflecting on both sides in kasha");
-  return out.addMaterial(s.xml(), s.node(), {{"type", "lambertian"}, {"reflectance", 0.5}});
+  s.note("no BSDF: Mitsuba's default, a one-sided diffuse 0.5");
+  return out.addMaterial(s.xml(), s.node(), {{"type", "lambertian"}, {"reflectance", 0.5}, {"one_sided", true}});
 }
 
 json emission(Plugin& s, const ShapeRefs& refs) {

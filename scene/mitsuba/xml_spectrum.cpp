@@ -100,6 +100,21 @@ json spectrumPlugin(XmlImport& xml, pugi::xml_node p) {
   return out;
 }
 
+// An emission of the linear sRGB colour c, tabulated: core/rgb_illuminant.h's spectrum, whose grey
+// (v, v, v) is v times D65 at Y = 1.
+json emissionOfColour(Vec3 c) {
+  const Spectrum s = rgbIlluminantSpectrum(c, WavelengthRange{360.0f, 830.0f});
+  return {{"type", "tabulated"}, {"wavelengths", s.lambdas()}, {"values", s.values()}};
+}
+
+// A single number: Mitsuba's spectral variants read it on an emitter as the D65 illuminant times
+// the number (src/core/properties.cpp, get_texture_impl: a "d65" texture), as a grey <rgb>. A
+// negative or overflowing one stays a number, which the JSON loader refuses.
+json uniform(double v, SpectrumUse use) {
+  const bool colour = use == SpectrumUse::Emission && v >= 0.0 && std::isfinite(float(v));
+  return colour ? emissionOfColour(Vec3(float(v))) : json(v);
+}
+
 // <rgb value="r, g, b"> (or one value for grey), linear sRGB: a reflectance stays kasha's
 // {"type": "rgb"} (the JSON loader upsamples it); an emission is tabulated here.
 json rgb(XmlImport& xml, pugi::xml_node p, SpectrumUse use) {
@@ -108,8 +123,7 @@ json rgb(XmlImport& xml, pugi::xml_node p, SpectrumUse use) {
   const Vec3 c = v->size() == 3 ? Vec3((*v)[0], (*v)[1], (*v)[2]) : Vec3(v->front());
   if (c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) xml.fail(p, "negative colour component");
   if (use == SpectrumUse::Reflectance) return {{"type", "rgb"}, {"value", {c.x, c.y, c.z}}};
-  const Spectrum s = rgbIlluminantSpectrum(c, WavelengthRange{360.0f, 830.0f});
-  return {{"type", "tabulated"}, {"wavelengths", s.lambdas()}, {"values", s.values()}};
+  return emissionOfColour(c);
 }
 
 }  // namespace
@@ -125,7 +139,7 @@ json spectrumElement(XmlImport& xml, pugi::xml_node p, SpectrumUse use) {
   if (tag == "float") {
     const auto v = parseNumbers(xml.attribute(p, "value"));
     if (!v || v->size() != 1) xml.fail(p, "value is not a finite number");
-    return v->front();
+    return uniform(v->front(), use);
   }
   if (tag == "blackbody") {
     // A number of kelvin, optionally followed by its unit ("6500", "6500K"), and nothing else.
@@ -162,14 +176,14 @@ json spectrumElement(XmlImport& xml, pugi::xml_node p, SpectrumUse use) {
   if (value.find(':') != std::string::npos) return pairs(xml, p, value);
   const auto v = parseNumbers(value);
   if (!v || v->size() != 1) xml.fail(p, "value '" + value + "' is neither a number nor wavelength:value pairs");
-  return v->front();
+  return uniform(v->front(), use);
 }
 
 json spectrumProperty(Plugin& owner, const std::string& name, const json& fallback, SpectrumUse use) {
   const pugi::xml_node p = owner.property(name);
   if (!p) {
     if (fallback.is_null()) owner.fail("missing spectrum property '" + name + "'");
-    return fallback;
+    return fallback.is_number() ? uniform(fallback.get<double>(), use) : fallback;
   }
   return spectrumElement(owner.xml(), p, use);
 }

@@ -132,7 +132,7 @@ TEST(NamedConductors, MitsubasMaterialNames) {
                                           "/tmp/conductors.xml", {});
   };
   const mitsuba::Translation gold = translated(R"(<bsdf type="conductor" id="m"><string name="material" value="Au"/></bsdf>)");
-  EXPECT_EQ(gold.scene["materials"]["m"], nlohmann::json({{"type", "mirror"}, {"reflectance", 1.0}, {"eta", "Au"}}));
+  EXPECT_EQ(gold.scene["materials"]["m"], nlohmann::json({{"type", "mirror"}, {"reflectance", 1.0}, {"eta", "Au"}, {"one_sided", true}}));
   const mitsuba::Translation palik =
       translated(R"(<bsdf type="roughconductor" id="m"><string name="material" value="Cu_palik"/></bsdf>)");
   EXPECT_EQ(palik.scene["materials"]["m"]["eta"], "Cu");

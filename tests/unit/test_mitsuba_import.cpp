@@ -15,6 +15,7 @@
 #include "core/color.h"
 #include "core/envmap_light.h"
 #include "core/error.h"
+#include "core/rgb_illuminant.h"
 #include "core/rgb_spectrum.h"
 #include "materials/material_json.h"
 #include "scene/scene_loader.h"
@@ -375,7 +376,11 @@ TEST_F(MitsubaImport, RefsNameAreaEmittersAndSamplersDeclaredAtTheTop) {
   EXPECT_EQ(t.scene["render"]["spp"], 9);
   ASSERT_EQ(t.scene["shapes"].size(), 1u);
   EXPECT_EQ(t.scene["shapes"][0]["material"], "white");
-  EXPECT_EQ(t.scene["shapes"][0]["emission"]["radiance"], 2.0);
+  // A number on an emitter is Mitsuba's D65 times it (its spectral variants), tabulated every nm.
+  const json& glow = t.scene["shapes"][0]["emission"]["radiance"];
+  ASSERT_EQ(glow["type"], "tabulated");
+  EXPECT_EQ(glow["wavelengths"][190], 550.0);
+  EXPECT_NEAR(glow["values"][190].get<double>(), 2.0 * unitD65(550.0f), 2e-4);
   EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="rectangle"><ref id="s"/></shape>)" +
                              R"(<sampler type="independent" id="s"/>)"),
                        "no <bsdf id=\"s\"> or area <emitter id=\"s\"> before this reference"));
@@ -417,7 +422,7 @@ TEST_F(MitsubaImport, ShapesObjPlyRectangleCubeSphereDisk) {
 TEST_F(MitsubaImport, AreaEmitterInsideAShape) {
   const auto s = load(R"(<shape type="rectangle"><emitter type="area"><spectrum name="radiance" value="2"/></emitter></shape>)");
   ASSERT_TRUE(s->shapes.at(0).emission.has_value());
-  EXPECT_FLOAT_EQ(s->shapes[0].emission->eval(550.0f, Vec3(0, 0, 1), Vec3(0, 0, 1)), 2.0f);
+  EXPECT_NEAR(s->shapes[0].emission->eval(550.0f, Vec3(0, 0, 1), Vec3(0, 0, 1)), 2.0f * unitD65(550.0f), 2e-4f);
   EXPECT_FLOAT_EQ(s->shapes[0].emission->eval(550.0f, Vec3(0, 0, 1), Vec3(0, 0, -1)), 0.0f);  // one-sided
   EXPECT_EQ(s->lights.size(), 1u);
 }
@@ -434,7 +439,8 @@ TEST_F(MitsubaImport, Emitters) {
   const auto* point = dynamic_cast<const PointLight*>(s->lights[0].get());
   ASSERT_NE(point, nullptr);
   expectNear(point->position(), Vec3(1, 2, 3));
-  EXPECT_FLOAT_EQ(point->intensity(500.0f), 3.0f);
+  // Mitsuba's D65 times the number (the grey's sigmoid fit is flat within 1e-4)
+  EXPECT_NEAR(point->intensity(500.0f), 3.0f * unitD65(500.0f), 3e-4f);
   const auto* spot = dynamic_cast<const SpotLight*>(s->lights[1].get());
   ASSERT_NE(spot, nullptr);
   EXPECT_GT(spot->emittedTowards(500.0f, Vec3(0), Vec3(0, -1, 0)), 0.9f);   // along the axis (down)
@@ -443,7 +449,7 @@ TEST_F(MitsubaImport, Emitters) {
   ASSERT_NE(distant, nullptr);
   expectNear(distant->direction(), Vec3(0, -1, 0));
   ASSERT_NE(s->environment(), nullptr);
-  EXPECT_FLOAT_EQ(s->environment()->Le(500.0f, Vec3(0, 1, 0)), 0.5f);
+  EXPECT_NEAR(s->environment()->Le(500.0f, Vec3(0, 1, 0)), 0.5f * unitD65(500.0f), 5e-5f);
 }
 
 // A spot's <texture>: the bitmap file, its encoding and the look-at's up go to kasha's spot, which
@@ -499,8 +505,8 @@ TEST_F(MitsubaImport, Bsdfs) {
       <spectrum name="reflectance" value="0.5"/><float name="c" value="0.5"/><float name="Q" value="0.9"/></bsdf>
     <shape type="rectangle"><ref id="j"/></shape>)");
   const json& m = t.scene["materials"];
-  EXPECT_EQ(m["d"], json({{"type", "lambertian"}, {"reflectance", 0.25}}));
-  EXPECT_EQ(m["c"], json({{"type", "mirror"}, {"reflectance", 1.0}, {"eta", 1.5}, {"k", 0.0}}));
+  EXPECT_EQ(m["d"], json({{"type", "lambertian"}, {"reflectance", 0.25}, {"one_sided", true}}));
+  EXPECT_EQ(m["c"], json({{"type", "mirror"}, {"reflectance", 1.0}, {"eta", 1.5}, {"k", 0.0}, {"one_sided", true}}));
   EXPECT_EQ(m["none"]["reflectance"], 1.0);
   EXPECT_EQ(m["rc"]["type"], "rough_conductor");
   EXPECT_EQ(m["rc"]["alpha"], 0.3f);
@@ -1431,6 +1437,9 @@ TEST_F(MitsubaImport, MediumSphereRendersAsItsJsonTwin) {
   const std::string xmlPath = write("fog.xml", xml);
   std::ifstream in(xmlPath);
   const json camera = mitsuba::translateMitsubaScene(std::string(std::istreambuf_iterator<char>(in), {}), xmlPath).scene["camera"];
+  // Mitsuba's intensity 20 is D65 times 20 (the translation tabulates core/rgb_illuminant.h's grey).
+  const Spectrum d65 = rgbIlluminantSpectrum(Vec3(20.0f), WavelengthRange{360.0f, 830.0f});
+  const json d65Times20 = {{"type", "tabulated"}, {"wavelengths", d65.lambdas()}, {"values", d65.values()}};
   const auto twin = [&](double sigmaS) {
     const json scene = {
         {"camera", camera},
@@ -1439,7 +1448,7 @@ TEST_F(MitsubaImport, MediumSphereRendersAsItsJsonTwin) {
         {"materials", {{"grey", {{"type", "lambertian"}, {"reflectance", 0.5}}}}},
         {"shapes", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1.2}, {"interior", "fog"}},
                     {{"type", "sphere"}, {"center", {0, 0, 3}}, {"radius", 1.5}, {"material", "grey"}}}},
-        {"lights", {{{"type", "point"}, {"position", {0, 3, -2}}, {"intensity", 20}}}}};
+        {"lights", {{{"type", "point"}, {"position", {0, 3, -2}}, {"intensity", d65Times20}}}}};
     return write("fog" + std::to_string(sigmaS) + ".json", scene.dump());
   };
   const std::vector<Vec3> fromXml = test::renderFilm(xmlPath, "pt"), fromJson = test::renderFilm(twin(0.75), "pt");
@@ -1459,4 +1468,24 @@ TEST_F(MitsubaImport, MediumSphereRendersAsItsJsonTwin) {
 }
 
 }  // namespace
+// Mitsuba's diffuse, conductors and plastics are black from behind: one-sided surfaces; inside a
+// twosided they reflect on both sides; inside a wrapper (mask) both sides, with a note.
+TEST_F(MitsubaImport, OneSidedBsdfsAreOneSidedSurfaces) {
+  const auto t = translate(std::string(kLight) + R"(
+    <bsdf type="diffuse" id="front"/>
+    <bsdf type="twosided" id="both"><bsdf type="roughconductor"/></bsdf>
+    <bsdf type="mask" id="cut"><bsdf type="plastic"/></bsdf>
+    <bsdf type="dielectric" id="glass"/>
+    <shape type="rectangle"><ref id="front"/></shape>)");
+  const json& m = t.scene["materials"];
+  EXPECT_EQ(m["front"].value("one_sided", false), true);
+  EXPECT_EQ(m["both"].value("one_sided", false), false);
+  EXPECT_EQ(m["cut"].value("one_sided", false), false);
+  EXPECT_FALSE(m["cut"]["material"].contains("one_sided"));
+  EXPECT_EQ(m["glass"].value("one_sided", false), false);
+  bool noted = false;
+  for (const std::string& n : t.notes) noted = noted || n.find("one-sided in Mitsuba") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
 }  // namespace kasha
