@@ -124,9 +124,9 @@ glm::mat4 VolumeGrid::worldToUnit(const glm::mat4& toWorld, bool useGridBox) con
 
 namespace {
 
-// Cell index i of an axis of n cells under `wrap` (Dr.Jit's texture wrap, on indices).
+// Cell index i of an axis of n cells under `wrap`, Repeat or Mirror (Dr.Jit's texture wrap, on
+// indices).
 int wrappedIndex(int64_t i, int n, GridWrap wrap) {
-  if (wrap == GridWrap::Clamp) return int(std::clamp<int64_t>(i, 0, n - 1));
   const int64_t period = wrap == GridWrap::Repeat ? n : 2 * int64_t(n);
   const int64_t m = ((i % period) + period) % period;
   return int(m < n ? m : period - 1 - m);
@@ -142,12 +142,19 @@ float VolumeGrid::lookup(Vec3 u, int c, GridWrap wrap) const {
   std::array<float, 3> t{};
   for (int a = 0; a < 3; ++a) {
     const int n = resolution_[size_t(a)];
+    if (wrap == GridWrap::Clamp) {
+      // x clamped to the outermost centres: an edge cell's value exactly, with all the weight.
+      float x = u[a] * float(n) - 0.5f;
+      if (!(x > 0.0f)) x = 0.0f;
+      if (x > float(n - 1)) x = float(n - 1);
+      lo[size_t(a)] = std::min(int(x), n - 1);
+      hi[size_t(a)] = std::min(lo[size_t(a)] + 1, n - 1);
+      t[size_t(a)] = x - float(lo[size_t(a)]);
+      continue;
+    }
     double x = double(u[a]) * n - 0.5;
-    if (std::isnan(x) || (wrap != GridWrap::Clamp && std::isinf(x))) x = 0.0;
-    // Bring x near the grid without changing what it reads: beyond [−1, n] clamping reads the
-    // edge cells, and the other modes repeat every n or 2n cells.
-    if (wrap == GridWrap::Clamp) x = std::clamp(x, -1.0, double(n));
-    else x -= 2.0 * n * std::floor(x / (2.0 * n));
+    if (!std::isfinite(x)) x = 0.0;
+    x -= 2.0 * n * std::floor(x / (2.0 * n));  // the other modes repeat every n or 2n cells
     const double cellBelow = std::floor(x);
     lo[size_t(a)] = wrappedIndex(int64_t(cellBelow), n, wrap);
     hi[size_t(a)] = wrappedIndex(int64_t(cellBelow) + 1, n, wrap);

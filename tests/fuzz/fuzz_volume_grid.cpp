@@ -1,9 +1,10 @@
 // libFuzzer target: Mitsuba's .vol grids (core/volume_grid.h), from bytes and from a file. Bytes
 // are either refused with one line naming the file (InputError, MemoryLimitError), or they become
 // what the reader promises: a resolution of at least one cell per axis, 1, 3 or 6 channels, the
-// same grid by either path, and lookups that are finite, not negative and bounded by the channel's
-// maximum. A broken promise, a crash, a hang, an allocation beyond libFuzzer's RSS limit or a
-// sanitizer report is a finding.
+// same grid by either path, and lookups (in every wrap mode) that are finite, not negative and
+// bounded by the channel's maximum. A broken promise, a crash, a hang, an allocation beyond
+// libFuzzer's RSS limit or a sanitizer report is a finding.
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -51,11 +52,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   require(fromFile.resolution() == n && fromFile.channels() == fromBytes.channels(), "the same header by either path");
   for (int c = 0; c < fromBytes.channels(); ++c) {
     require(fromFile.cell(n[0] - 1, n[1] - 1, n[2] - 1, c) == fromBytes.cell(n[0] - 1, n[1] - 1, n[2] - 1, c), "the same last cell");
-    for (const kasha::Vec3 u : {kasha::Vec3(0.5f), kasha::Vec3(-1.0f, 0.3f, 2.0f), kasha::Vec3(0.1f, 0.9f, 0.42f)}) {
-      const float v = fromBytes.lookup(u, c);
-      require(std::isfinite(v) && v >= 0.0f, "finite, non-negative lookups");
-      require(v <= fromBytes.maximum(c) * (1.0f + 1e-5f), "lookups bounded by the maximum");
-    }
+    for (const kasha::GridWrap wrap : {kasha::GridWrap::Clamp, kasha::GridWrap::Repeat, kasha::GridWrap::Mirror})
+      for (const kasha::Vec3 u : {kasha::Vec3(0.5f), kasha::Vec3(-1.0f, 0.3f, 2.0f), kasha::Vec3(0.1f, 0.9f, 0.42f)}) {
+        const float v = fromBytes.lookup(u, c, wrap);
+        require(std::isfinite(v) && v >= 0.0f, "finite, non-negative lookups");
+        // Weights summing to 1 in float, on values that may be subnormal (a few ulps of FLT_MIN).
+        require(v <= fromBytes.maximum(c) * (1.0f + 1e-5f) + 4.0f * FLT_MIN, "lookups bounded by the maximum");
+      }
   }
   return 0;
 }
