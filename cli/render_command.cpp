@@ -222,10 +222,8 @@ int runRender(const RenderArgs& given, RenderGroup* group) {
     load.parameters[name] = text.substr(eq + 1);  // the last of one name wins
   }
   for (const std::string& dir : a.searchPaths) {
-    if (!mitsuba::isMitsubaScenePath(a.scene))
-      throw UsageError("-a " + dir, "", "adds a search path for a Mitsuba XML scene, not for " + a.scene);
-    std::error_code error;
-    if (!std::filesystem::is_directory(dir, error)) throw UsageError("-a " + dir, "", "no such directory");
+    if (const std::string problem = mitsuba::searchPathProblem(a.scene, dir); !problem.empty())
+      throw UsageError("-a " + dir, "", problem);
     load.searchPaths.push_back(dir);
   }
   // What an alias stands for, once its name is known: from the command line before the scene loads

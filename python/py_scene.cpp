@@ -86,12 +86,9 @@ PyScene PyScene::fromFile(const std::string& path, const std::map<std::string, s
     if (!mitsuba::isParameterName(name))
       throw InputError("kasha.Scene", "defaults", "'" + printable(name) + "' is not a parameter name (letters, digits and '_')");
   }
-  for (const std::string& dir : searchPaths) {
-    if (!mitsuba::isMitsubaScenePath(path))
-      throw InputError("kasha.Scene", "search_paths", "adds search paths for a Mitsuba XML scene, not for " + path);
-    std::error_code error;
-    if (!std::filesystem::is_directory(dir, error)) throw InputError("kasha.Scene", "search_paths", printable(dir) + ": no such directory");
-  }
+  for (const std::string& dir : searchPaths)
+    if (const std::string problem = mitsuba::searchPathProblem(path, dir); !problem.empty())
+      throw InputError("kasha.Scene", "search_paths", printable(dir) + ": " + problem);
   const std::string text = readSceneFile(path);
   if (!mitsuba::isMitsubaScenePath(path)) return PyScene(parseJsonStrict(text, path), path);
   mitsuba::Translation t = mitsuba::translateMitsubaScene(text, path, defaults, searchPaths);

@@ -501,7 +501,7 @@ struct Loader {
     s.center = Vec3(m * glm::vec4(s.center, 1.0f));
     s.radius *= scale;
     s.sphereAxes = glm::mat3(m) / scale;
-    if (!std::isfinite(s.radius) || !std::isfinite(s.center.x + s.center.y + s.center.z))
+    if (!std::isfinite(s.radius) || !std::isfinite(s.center.x) || !std::isfinite(s.center.y) || !std::isfinite(s.center.z))
       f.fail("transform", "the placed sphere lies beyond the range of a 32-bit float");
   }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 
 
 #include "scene/mitsuba/xml_bsdf.h"
@@ -126,6 +127,12 @@ bool isMitsubaScenePath(const std::string& path) { return path.size() >= 4 && pa
 
 bool isParameterName(const std::string& name) {
   return !name.empty() && std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
+}
+
+std::string searchPathProblem(const std::string& scenePath, const std::string& dir) {
+  if (!isMitsubaScenePath(scenePath)) return "adds a search path for a Mitsuba XML scene, not for " + scenePath;
+  std::error_code error;
+  return std::filesystem::is_directory(dir, error) ? "" : "no such directory";
 }
 
 // Reads the scene into `out`; the notes stay in `xml`.

@@ -33,5 +33,8 @@ bool isMitsubaScenePath(const std::string& path);
 // Whether `name` can be a `$name` parameter set from outside (`kasha render -D`, Python's
 // defaults=): letters, digits and '_', not empty.
 bool isParameterName(const std::string& name);
+// Why `dir` cannot be a further search path (SceneLoadOptions::searchPaths) of the scene file
+// `scenePath`, or "": the scene is not a Mitsuba scene, or `dir` is not a directory.
+std::string searchPathProblem(const std::string& scenePath, const std::string& dir);
 
 }  // namespace kasha::mitsuba
