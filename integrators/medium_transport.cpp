@@ -98,8 +98,10 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
   // depth (densityIntegral) in place of the majorant's: what tau[0] and tauSeek[0] hold of
   // majorants, and the estimates.
   float majorantDepth = 0.0f, majorantSeekDepth = 0.0f, estimatedDepth = 0.0f, estimatedSeekDepth = 0.0f;
+  bool inMedia = false;  // whether the flight entered a medium so far
   const auto depthOfFlight = [&] {
-    return SegmentDepth{tau[0] - majorantDepth + estimatedDepth, tauSeek[0] - majorantSeekDepth + estimatedSeekDepth};
+    return SegmentDepth{tau[0] - majorantDepth + estimatedDepth, tauSeek[0] - majorantSeekDepth + estimatedSeekDepth,
+                        inMedia};
   };
   std::optional<Rng> stream;  // created at the first null collision
   float gap = 0.0f;           // of the medium behind ray.o (crossingGap)
@@ -108,6 +110,7 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
     ++counter.closest;
     const float length = gap + (hit ? hit->t : kInf);  // in this medium, from the boundary
     if (medium >= 0) {
+      inMedia = true;
       const Medium& m = *scene.media[size_t(medium)];
       const float dMax = m.maxDensity();
       float sigma[kMaxLanes], seekRate[kMaxLanes];  // σ_t (times max d: the majorant) and σ_t + A_fl
@@ -208,6 +211,7 @@ bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec
     if (hit && !scene.shapes[hit->shape].isMediumBoundary()) return false;
     const float length = hit ? gap + hit->t : tMax;
     if (medium >= 0) {
+      for (size_t k = 0; depths && k < n; ++k) depths[k].inMedia = true;
       const Medium& m = *scene.media[size_t(medium)];
       // The optical depths for `depths`: exact in a homogeneous medium, estimated in a heterogeneous
       // one (densityIntegral); its seeking rate is σ_t + A_fl.

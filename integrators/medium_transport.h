@@ -35,6 +35,9 @@ struct LaneRatios {
 // camera paths' source-seeking rate σ_t + A_fl (docs/media.md eq. 6b).
 struct SegmentDepth {
   float analog = 0.0f, seeking = 0.0f;
+  // Whether the segment runs through a medium at all: a property of its geometry and the scene's
+  // media, the same at every wavelength (where the bidirectional engine's lanes end, docs/media.md §5).
+  bool inMedia = false;
 };
 
 // What a ray from a vertex reaches through the media: a collision in a medium, a surface, or

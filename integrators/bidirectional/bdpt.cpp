@@ -61,7 +61,7 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s)
     throw std::invalid_argument(std::string("bdpt: render/bdpt/") + key + " " + why);
   });
   // In scenes with media (docs/media.md §5) every free flight's density depends on the wavelength:
-  // each path carries one, and the families trace light subpaths of their own.
+  // the lanes end at a flight through a medium, and the families trace light subpaths of their own.
   const bool media = scene.hasMedia();
   if (media) bidir::requireBidirectionalMedia(s, name());
   // Wavelength lanes (docs/bdpt-mis.md §10), in every family.
@@ -73,7 +73,7 @@ Bdpt::Bdpt(const Scene& scene, const RenderSettings& s)
     wsAlone_.lightFirst = nullptr;
     familyChoice_ = s.bdpt.families;
   }
-  lanes_ = s.heroWavelengths == kAutoLanes ? (media ? 1 : kDefaultLanes) : s.heroWavelengths;
+  lanes_ = s.heroWavelengths == kAutoLanes ? kDefaultLanes : s.heroWavelengths;
   if (lanes_ < 1 || lanes_ > kMaxLanes)
     throw std::invalid_argument("bdpt: hero wavelengths " + std::to_string(lanes_) + " is outside [1, " +
                                 std::to_string(kMaxLanes) + "]");
@@ -218,7 +218,7 @@ Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext&
   c.sharedLightVertices = sharedLightVertices;
   c.pixel = pixel;
   c.spectralSplats = ctx.recordSpectral;
-  if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
+  if (lanes_ > 1 && !ctx.recordSpectral && !scene.hasMedia()) c.directXyz = &directXyz_;
   if (mollifies()) c.bandwidth = static_cast<const MollifyPass&>(*ctx.pass).bandwidth;
   // The pilot's samples do not record strategies (pilotEstimates).
   StrategyLog log(ctx.strategies);

@@ -103,14 +103,21 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
     value[k] = fx > 0.0f ? x1.beta[k] * fx * f.cosineFactor(wi) / x1.spectralPdf * Li / (pSel * ls->pdf) : 0.0f;
     any = any || value[k] > 0.0f;
   }
-  SegmentDepth toLight;  // through the media from x_1 to x_0, at λ_0
-  if (!any || !visible(c, x1, x0, lambda0, &toLight)) return;
+  // Through the media from x_1 to x_0, at λ_0; where several lanes reach x_1, at lane 0's
+  // wavelength, and a segment through a medium serves lane 0 alone (laneZeroThroughMedia).
+  SegmentDepth toLight;
+  if (!any || !visible(c, x1, x0, lanes && c.scene.hasMedia() ? c.lanes.lambda[0] : lambda0, &toLight)) return;
+  const bool laneZero = lanes && toLight.inMedia;
+  if (laneZero) laneZeroThroughMedia(c, value);
+  // The wavelengths of the densities: λ_0 and x_1's own, or lane 0's alone.
+  const float lambdaIn = laneZero ? c.lanes.lambda[0] : lambda0, lambdaX1 = laneZero ? lambdaIn : x1.lambda;
+  x0.lambda = lambdaIn;
   for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) value[k] *= transmittance(toLight);
   const int lightIndex = int(li);  // a structured binding cannot be captured (clang 14)
-  const LightEnd end = lightEnd(c, lightIndex, x0, x1, toLight, lambda0);
-  const double pCam0 = cameraSide(c.scene, x1, wo, wi, x0, x1.lobe, lambda0, x1.lambda, toLight);
+  const LightEnd end = lightEnd(c, lightIndex, x0, x1, toLight, lambdaIn);
+  const double pCam0 = cameraSide(c.scene, x1, wo, wi, x0, x1.lobe, lambdaIn, lambdaX1, toLight);
   const double pLight2 =
-      x2.kind != Kind::Camera ? lightSide(c.scene, x1, wi, wo, x2, x1.lobe, lambda0, x1.lambda, x1.arrival) : 0.0;
+      x2.kind != Kind::Camera ? lightSide(c.scene, x1, wi, wo, x2, x1.lobe, lambdaIn, lambdaX1, x1.arrival) : 0.0;
   const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite, c.walk.strategies);
   MisSums own;
   own.nee = x1.spectralPdf * double(x1.spectralPdf);
@@ -212,6 +219,7 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     k0 = lane, k1 = lane + 1, laneScale = scale;
   }
   if (k0 >= k1) return;
+  const bool media = c.scene.hasMedia();
   const PathVertex& aPrev = L[size_t(s - 2)];
   const PathVertex& bNext = C[size_t(t - 2)];
   const Vec3 d = b.p - a.p;
@@ -222,8 +230,11 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
   const Vec3 aWi = fa.toLocal(towards(a, aPrev)), aWo = fa.toLocal(w);
   const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
   const float G = fa.cosineFactor(aWo) * fb.cosineFactor(bWi) / dist2;
-  // b's wavelength: an own join serves lane k0 only.
-  const float lambdaB = family == LightFamily::Own ? b.lambdaOf(c.lanes, k0) : b.lambda;
+  // The ends' wavelengths: an own join serves lane k0 only, and in a scene with media a join that
+  // serves one lane has that lane's densities (their free flights depend on λ, docs/media.md §5).
+  const bool oneLane = media && k1 - k0 == 1;
+  float lambdaA = oneLane ? a.lambdaOf(c.lanes, k0) : a.lambda;
+  float lambdaB = family == LightFamily::Own || oneLane ? b.lambdaOf(c.lanes, k0) : b.lambda;
 
   // The exact lobe pairs (docs/bdpt-mis.md §4), each with the connecting segment's wavelength as
   // a and b see it; the same for both except in the mollified elastic pair (§6), where a keeps the
@@ -238,22 +249,21 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
   if (family == LightFamily::Shared) {
     // Each end's densities at its own wavelength: the lane's, or with several lanes one at which it
     // scatters (docs/bdpt-mis.md §10).
-    pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, b.lambda, Variant::kStandard};
+    pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, lambdaA, lambdaB, Variant::kStandard};
   } else {
     if (a.bsdf->has(BsdfFlags::Fluorescent))
       pairs[n++] = {SpectralLobe::Fluorescent, SpectralLobe::Elastic, lambdaB, lambdaB, Variant::kOwn};
     if (b.bsdf->has(BsdfFlags::Fluorescent))
-      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, a.lambda, a.lambda, Variant::kOwn};
+      pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Fluorescent, lambdaA, lambdaA, Variant::kOwn};
     if (c.bandwidth > 0.0f && std::abs(a.lambda - lambdaB) < c.bandwidth)
       pairs[n++] = {SpectralLobe::Elastic, SpectralLobe::Elastic, a.lambda, lambdaB, Variant::kMollified};
   }
   const LightEnd end = storedLightEnd(L, s);
   // In a scene with media each pair's segment is traced before its weights, which need its optical
   // depths at the pair's wavelength (mollification, whose ends see two, is refused with media).
-  const bool media = c.scene.hasMedia();
   bool checked = media, unoccluded = media;
   for (int i = 0; i < n; ++i) {
-    const Pair& p = pairs[i];
+    Pair p = pairs[i];
     // f at both ends for each lane: the shared family's elastic pair at every lane's own wavelength.
     float fA[kMaxLanes], fB[kMaxLanes];
     bool any = false;
@@ -267,14 +277,22 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
       any = any || (fA[k] > 0.0f && fB[k] > 0.0f);
     }
     if (!any) continue;
+    // A shared join is traced at the wavelength of the first lane it serves: through a medium, between
+    // ends that several lanes reach, it serves that lane alone (laneZeroThroughMedia), with its
+    // densities.
     SegmentDepth segment;
-    if (media && !visible(c, a, b, p.lambdaA, &segment)) return;
+    const bool shared = family == LightFamily::Shared;
+    if (media && !visible(c, a, b, shared ? a.lambdaOf(c.lanes, k0) : p.lambdaA, &segment)) return;
+    if (shared && segment.inMedia && k1 - k0 > 1) {
+      k1 = k0 + 1, laneScale *= float(c.lanes.n);
+      p.lambdaA = lambdaA = a.lambdaOf(c.lanes, k0), p.lambdaB = lambdaB = b.lambdaOf(c.lanes, k0);
+    }
     // The four densities next to the connection, for its lobes and wavelengths.
-    const double pLightB = lightSide(c.scene, a, aWi, aWo, b, p.la, a.lambda, p.lambdaA, segment);
+    const double pLightB = lightSide(c.scene, a, aWi, aWo, b, p.la, lambdaA, p.lambdaA, segment);
     const double pLightBNext =
         bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, p.lb, p.lambdaB, lambdaB, b.arrival) : 0.0;
     const double pCamA = cameraSide(c.scene, b, bWo, bWi, a, p.lb, p.lambdaB, lambdaB, segment);
-    const double pCamAPrev = cameraSide(c.scene, a, aWo, aWi, aPrev, p.la, a.lambda, p.lambdaA, a.arrival);
+    const double pCamAPrev = cameraSide(c.scene, a, aWo, aWi, aPrev, p.la, lambdaA, p.lambdaA, a.arrival);
     const Strategies& st = c.walk.strategies;
     const MisSums sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st, false, true), pCamAPrev) +
                           cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st, true), pLightBNext);
@@ -355,15 +373,19 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   cam.p = conn->lensPoint;  // also where the memo kept the other view's link
   // The wavelength arriving at the camera: the light itself for s = 1, else the one a's sampled
   // spectral event sends towards the camera; with several lanes at a, each lane's own.
-  const float lambda = s == 1 ? a.lambda : a.lambdaNext;
+  float lambda = s == 1 ? a.lambda : a.lambdaNext;
   const bool lanes = a.allLanes(c.lanes);
   const bool shared = family == LightFamily::Shared;
   const Variant variant = shared ? Variant::kStandard : Variant::kOwn;
   // In a scene with media the segment to the lens is traced first: the camera's density of a needs
-  // its optical depths.
+  // its optical depths. Where several lanes reach a, it is traced at lane 0's wavelength, and
+  // through a medium it serves lane 0 alone (laneZeroThroughMedia), with lane 0's densities.
   const bool media = c.scene.hasMedia();
   SegmentDepth segment;
-  if (media && !visible(c, a, cam, lambda, &segment)) return;
+  if (media && !visible(c, a, cam, lanes ? c.lanes.lambda[0] : lambda, &segment)) return;
+  const bool laneZero = lanes && segment.inMedia;
+  if (laneZero) lambda = c.lanes.lambda[0];
+  const float lambdaA = laneZero ? lambda : a.lambda;
   const double pCamA = link.pdfCam * flightFactor(c.scene, TransportMode::Radiance, segment, a, lambda);
   const LightEnd end = storedLightEnd(L, s);
   float value[kMaxLanes];
@@ -381,6 +403,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       value[k] = Le * std::abs(glm::dot(a.n, conn->wi)) / (a.pdfFwd * a.choicePdf);
       any = any || Le > 0.0f;
     }
+    if (laneZero) laneZeroThroughMedia(c, value);
     here = directLightMultiplicity(true, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = 1.0;
     sides = lightEndSum(pCamA, a.pdfFwd);
@@ -397,7 +420,8 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       value[k] = a.beta[k] * fa * f.cosineFactor(wo) / a.spectralPdf;
       any = any || fa > 0.0f;
     }
-    pCamAPrev = cameraSide(c.scene, a, wo, wi, aPrev, a.lobe, a.lambda, lambda, a.arrival);
+    if (laneZero) laneZeroThroughMedia(c, value);
+    pCamAPrev = cameraSide(c.scene, a, wo, wi, aPrev, a.lobe, lambdaA, lambda, a.arrival);
     here = lightTracingMultiplicity(true, a.spectralPdf, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
     // a, next to the camera, is the path's first gather vertex.
@@ -425,7 +449,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       } else {
         fp.v[size_t(last - 2)].pdfCam = pCamAPrev;
         const PathVertex& x1 = L[1];
-        fp.specCam1 = s == 2 ? specCamera(x1, a.lobe, x1.lambda, lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
+        fp.specCam1 = s == 2 ? specCamera(x1, a.lobe, lambdaA, lambda) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
         fp.specLightLast = a.spectralPdf;
       }
       return fp;

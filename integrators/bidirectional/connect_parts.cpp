@@ -1,5 +1,6 @@
 #include "integrators/bidirectional/connect_parts.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "integrators/bidirectional/path_media.h"
@@ -134,6 +135,11 @@ double specLightLast(const PathVertex& c1, SpectralLobe lobe, float lambdaIn) {
 std::pair<int, float> ownJoinLane(const Context& c, const PathVertex& b) {
   if (!b.allLanes(c.lanes)) return {b.firstLane(), 1.0f};
   return {std::min(int(b.laneU * float(c.lanes.n)), c.lanes.n - 1), float(c.lanes.n)};
+}
+
+void laneZeroThroughMedia(const Context& c, float* value) {
+  value[0] *= float(c.lanes.n);
+  std::fill(value + 1, value + c.lanes.n, 0.0f);
 }
 
 float keptLaneScale(const Context& c, int laneA, int laneB) {

@@ -112,6 +112,12 @@ void laneWeights(const Context& c, int k0, int k1, float* w, Active&& active, We
   }
 }
 
+// A join between ends that several lanes reach, whose segment runs through a medium: its densities
+// depend on λ, so it serves lane 0 alone, its estimate (value[0]) times n, and the other lanes get 0
+// (docs/media.md §5). Unbiased as where a subpath's lanes end (docs/bdpt-mis.md §10): everything
+// sampled before the join is symmetric in the lanes, so lane 0 is a uniform choice among them.
+void laneZeroThroughMedia(const Context& c, float* value);
+
 // XYZ per unit radiance of lane k at the camera: W(λ_k)/(n·p(λ_k)).
 Vec3 laneScale(const Context& c, int k);
 // The factor of a connection or merge between two shared-family ends that carry one lane each

@@ -38,6 +38,10 @@ struct Families {
 // (docs/media.md §6).
 struct MergeEta {
   double eta = 0.0, gather = 0.0, volume = 0.0, volumeRadius = 0.0;
+  // Whether own vertices merge at the camera's first vertex at their own wavelength
+  // (Variant::kMergeSplat): not in a scene with media, where the camera's throughput to that vertex
+  // and its density, drawn at the camera's wavelength, would depend on the wavelength too.
+  bool splat = true;
   bool any() const { return eta > 0.0 || gather > 0.0 || volume > 0.0; }
 };
 
@@ -99,6 +103,7 @@ inline bool isMerge(Variant v) {
 // η of a merge variant, at the first gather vertex or not (kMergeSplat's x_{k−1} always is one), on a
 // surface or at a collision in a medium (`volume`: one η for every variant).
 inline double etaOf(const MergeEta& eta, Variant v, bool gather, bool volume) {
+  if (v == Variant::kMergeSplat && !eta.splat) return 0.0;
   if (volume) return eta.volume;
   return v == Variant::kMergeSplat || (v == Variant::kMergeOwn && gather) ? eta.gather : eta.eta;
 }

@@ -39,9 +39,6 @@ bool sphereClearOfSurfaces(const Scene& scene, const Vec3& p, float r, RayCounte
 }
 
 void requireBidirectionalMedia(const RenderSettings& settings, const std::string& integrator) {
-  if (settings.heroWavelengths != kAutoLanes && settings.heroWavelengths > 1)
-    throw std::invalid_argument(integrator + ": render/hero_wavelengths " + std::to_string(settings.heroWavelengths) +
-                                ": scenes with media take one wavelength per path in " + integrator);
   if (integrator == "bdpt" && settings.bdpt.mollify)
     throw std::invalid_argument("bdpt: render/bdpt/mollify: not supported in scenes with media");
 }

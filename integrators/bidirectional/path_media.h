@@ -33,9 +33,9 @@ inline double flightFactor(const Scene& scene, TransportMode mode, const Segment
 // deterministic function of p, so that the merges' weights and the merges agree.
 bool sphereClearOfSurfaces(const Scene& scene, const Vec3& p, float r, RayCounter& counter);
 
-// Throws std::invalid_argument where the bidirectional engine cannot transport media
-// with these settings: more than one wavelength lane (each lane's flights would have densities of
-// their own), or spectral mollification (its connections join two wavelengths).
+// Throws std::invalid_argument where the bidirectional engine cannot transport media with these
+// settings: spectral mollification (its connections join two wavelengths, each with flights of its
+// own density).
 void requireBidirectionalMedia(const RenderSettings& settings, const std::string& integrator);
 
 }  // namespace kasha::bidir

@@ -92,8 +92,8 @@ struct PathVertex {
   // the subpath scattered elastically.
   MisSums sums;
   bool elasticBefore = true;
-  // Whether no vertex of the subpath up to this one (included) makes sampling depend on λ: the
-  // wavelength lanes reach it all (docs/bdpt-mis.md §10).
+  // Whether no vertex of the subpath up to this one (included) makes sampling depend on λ, and no
+  // flight up to it ran through a medium: the wavelength lanes reach it all (docs/bdpt-mis.md §10).
   bool lanesKept = true;
   // Whether every vertex between this one and the subpath's start is specular: on a camera subpath,
   // this is the path's first gather vertex (MergeEta, docs/bdpt-mis.md §12).

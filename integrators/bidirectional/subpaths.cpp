@@ -27,6 +27,7 @@ struct Track {
   int lane = 0;        // -1 every lane alive, else the one kept (a one-lane subpath: its only lane)
   float pdfSA = 0.0f;  // density of the ray's direction at the last vertex, its spectral event included
   int medium = -1;     // the medium the ray travels in (scenes with media)
+  bool lanesEndedInFlight = false;  // the flight to the vertex about to be appended ended the lanes
   bool alive = true;
   bool stopAtFluorescence = false;  // the shared family: ends at its first fluorescent event
   // The merged subpath's shared lanes (docs/bdpt-mis.md §11): where sampling depends on the
@@ -41,6 +42,18 @@ struct Track {
 
 bool lambdaDependent(const Bsdf& bsdf) {
   return bsdf.has(BsdfFlags::Fluorescent) || bsdf.has(BsdfFlags::WavelengthDependentDirection);
+}
+
+// Ends the track's lanes in the hero lane 0, its throughput times n (docs/bdpt-mis.md §10): every
+// density on the subpath from here on is that lane's. Lane 0 is the member of the lane set that the
+// sensor's own number picks, so it is uniform among them, and the sampler stratifies it over the
+// pixel's samples; the camera and light subpaths keep the same one.
+void keepLaneZero(Track& tr) {
+  const Lanes& lanes = *tr.lanes;
+  tr.lane = 0;
+  tr.lambda = lanes.lambda[0];
+  for (int k = 1; k < lanes.n; ++k) tr.beta[k] = 0.0f;
+  tr.beta[0] *= float(lanes.n);
 }
 
 Track startTrack(const Lanes& lanes, std::vector<PathVertex>& path, const float* betaStart, float pdfSA, int medium) {
@@ -67,24 +80,20 @@ void arrive(Track& tr, const PathVertex& reached, const Ray& ray, const Scene& s
   PathVertex& v = path.back();
   const PathVertex& prev = path[path.size() - 2];
   const Bsdf& bsdf = *v.bsdf;
-  v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf);
+  v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf) && !tr.lanesEndedInFlight;
+  tr.lanesEndedInFlight = false;
   v.gather = !prev.scatters() || (prev.gather && !prev.joinable(false));
   if (v.inMedium() && st.merge.volume > 0.0)
     v.sphereInMedium = sphereClearOfSurfaces(scene, v.p, float(st.merge.volumeRadius), counter);
-  // Where sampling depends on the wavelength, the lanes end in the hero lane 0, its weight times n
-  // (docs/bdpt-mis.md §10): every density on the subpath is then that lane's. Lane 0 is the member
-  // of the lane set that the sensor's own number picks, so it is uniform among them, and the
-  // sampler stratifies it over the pixel's samples; the camera and light subpaths keep the same one.
-  // Elsewhere the densities are those of any lane that scatters here (docs/bdpt-mis.md §10).
+  // Where sampling depends on the wavelength, the lanes end on arrival in the hero lane 0
+  // (keepLaneZero). Elsewhere the densities are those of any lane that scatters here
+  // (docs/bdpt-mis.md §10).
   if (lanes.n > 1 && tr.lane < 0) {
     v.laneU = rng.uniform();
     if (lambdaDependent(bsdf)) {
       v.lanesEndHere = true;
       std::copy(tr.beta, tr.beta + lanes.n, v.betaArriving);
-      tr.lane = 0;
-      tr.lambda = lanes.lambda[0];
-      for (int k = 1; k < lanes.n; ++k) tr.beta[k] = 0.0f;
-      tr.beta[0] *= float(lanes.n);
+      keepLaneZero(tr);
     } else {
       tr.lambda = lanes.lambda[0];
       for (int k = 0; k < lanes.n; ++k)
@@ -163,11 +172,15 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
   auto live = [&] { return std::find_if(tracks, tracks + nTracks, [](const Track& t) { return t.alive; }); };
   for (bool arrived = atVertex;; arrived = false) {
     if (!arrived) {
-      // Through the media at the track's wavelength (one track and one lane in scenes with media,
-      // bdpt.cpp; docs/media.md §5): the flight's weight T/p goes into the throughput.
+      // Through the media (one track in scenes with media, bdpt.cpp; docs/media.md §5), at the
+      // track's wavelength, or where several lanes fly, at lane 0's: a flight through a medium ends
+      // them in lane 0 (keepLaneZero), since its density depends on λ; whether it runs through one
+      // does not. The flight's weight T/p goes into the throughput.
       Track& lead = tracks[0];
       const float uFlight = media ? rng.uniform() : 0.0f;
-      const FreeFlight flight = traceFreeFlight(scene, ray, lead.medium, {&lead.lambda, 1}, uFlight, mode, counter, true);
+      const float flightLambda = lead.lane < 0 ? lead.lanes->lambda[0] : lead.lambda;
+      const FreeFlight flight = traceFreeFlight(scene, ray, lead.medium, {&flightLambda, 1}, uFlight, mode, counter, true);
+      if (flight.depth.inMedia && lead.lane < 0) keepLaneZero(lead), lead.lanesEndedInFlight = true;
       if (media) lead.beta[0] *= flight.weight[0];
       if (!flight.hit && !flight.collided) {
         if (camera && scene.environment()) {  // the camera path escapes to the environment

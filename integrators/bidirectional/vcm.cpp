@@ -114,13 +114,9 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
   requireDensity(s.wavelengths.sensor, WavelengthSite::Sensor, "by " + name() + " (its MIS weights need the sensor's density)");
   requireDensity(s.wavelengths.light, WavelengthSite::LightStart,
                  "by " + name() + " (its MIS weights need the light-start density)");
-  // In scenes with media, one wavelength per path and separate light subpaths per family, as bdpt's
-  // (docs/media.md §5).
+  // In scenes with media, separate light subpaths per family, as bdpt's (docs/media.md §5).
   const bool media = scene.hasMedia();
-  if (media) {
-    bidir::requireBidirectionalMedia(s, name());
-    if (s.heroWavelengths == kAutoLanes) lanes_ = 1;
-  }
+  if (media) bidir::requireBidirectionalMedia(s, name());
   if (lanes_ < 1 || lanes_ > bidir::kLightVertexLanes)
     throw std::invalid_argument(name() + ": hero wavelengths " + std::to_string(lanes_) + " is outside [1, " +
                                 std::to_string(bidir::kLightVertexLanes) + "] (the lanes a light vertex keeps)");
@@ -317,7 +313,9 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   auto pass = std::make_unique<VcmPass>();
   // The pass's lanes: sample `firstSample` of a sequence of its own, so that passes stratify them.
   Sampler laneRng(sampler_, mixBits(seed ^ 0x2545f4914f6cdd1dULL), 0, uint32_t(firstSample));
-  pass->lanes = bidir::sensorLanes(scene, sensor_.density(), laneRng.uniform(), lanes_, pass->tables, nullptr,
+  // The own family's light-start density at the lanes where it traces subpaths of its own (media).
+  const WavelengthDensity* own = families_.independent && !lightFirst_ ? &light_.density() : nullptr;
+  pass->lanes = bidir::sensorLanes(scene, sensor_.density(), laneRng.uniform(), lanes_, pass->tables, own,
                                   lightFirst_.get());
   pass->walk = ws_;
   const float r = radius(firstSample);
@@ -332,7 +330,7 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   const float rv = volumeRadius(firstSample);
   pass->radiusVolume = rv * float(std::cbrt(double(paths_) / double(paths)));
   const double etaVolume = double(paths_) * (4.0 / 3.0) * kPi * double(rv) * rv * rv;
-  pass->walk.strategies.merge = {eta, eta, etaVolume, pass->radiusVolume};
+  pass->walk.strategies.merge = {eta, eta, etaVolume, pass->radiusVolume, !scene.hasMedia()};
   pass->setGather(gather);
   LightVertexTracing t;
   t.paths = paths;
@@ -368,7 +366,7 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
   c.spectralSplats = ctx.recordSpectral;
   c.bandwidth = pass.bandwidth;
   c.pixel = pixel;
-  if (lanes_ > 1 && !ctx.recordSpectral) c.directXyz = &directXyz_;
+  if (lanes_ > 1 && !ctx.recordSpectral && !scene.hasMedia()) c.directXyz = &directXyz_;
   // The pilot's samples do not record strategies (pilotEstimates).
   StrategyLog log(ctx.strategies);
   c.observer = ctx.recordStrategies ? &log : observer;

@@ -1,7 +1,8 @@
 // The closed forms of participating media (docs/validation.md §5) against pt and lt, each with one
 // wavelength lane and with four (the free flights' spectral MIS, LaneRatios), the bidirectional
-// integrators, and ppm's volume photons (the furnaces; docs/photon-mapping.md §9), within 4 standard
-// errors from independent batches (tests/closed_form_support.h). The expected values are computed here by
+// integrators with four (their lanes end at a flight through a medium; bdpt with one too), and
+// ppm's volume photons (the furnaces; docs/photon-mapping.md §9), within 4 standard errors from
+// independent batches (tests/closed_form_support.h). The expected values are computed here by
 // quadrature of the formulas from the spectra the scenes load. Every medium has σ_t depending on λ,
 // so the lanes' free-flight densities differ, and every fluorophore a σ_f varying with λ.
 #include <gtest/gtest.h>
@@ -251,10 +252,10 @@ TEST_P(MediaClosedForm, ScatteringFurnace) {
 
 INSTANTIATE_TEST_SUITE_P(Estimators, MediaClosedForm,
                          ::testing::Values(Estimator{"pt", 1, 64}, Estimator{"pt", 4, 64}, Estimator{"lt", 1, 512},
-                                           Estimator{"lt", 4, 512}, Estimator{"bdpt", 1, 64},
-                                           Estimator{"bdpt-shared", 1, 64}, Estimator{"bdpt-independent", 1, 64},
-                                           Estimator{"vcm", 1, 64}, Estimator{"vc", 1, 64},
-                                           Estimator{"vcm", 1, 64, 0.25f}, Estimator{"ppm", 4, 16}),
+                                           Estimator{"lt", 4, 512}, Estimator{"bdpt", 1, 64}, Estimator{"bdpt", 4, 64},
+                                           Estimator{"bdpt-shared", 4, 64}, Estimator{"bdpt-independent", 4, 64},
+                                           Estimator{"vcm", 4, 64}, Estimator{"vc", 4, 64},
+                                           Estimator{"vcm", 4, 64, 0.25f}, Estimator{"ppm", 4, 16}),
                          [](const ::testing::TestParamInfo<Estimator>& info) {
                            std::string name = std::string(info.param.integrator) + "_lanes" + std::to_string(info.param.lanes);
                            if (info.param.volumeRadius > 0.0f) name += "_large_volume_merges";

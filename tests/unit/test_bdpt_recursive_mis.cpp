@@ -135,7 +135,13 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/validation/media_fluorescent_furnace.json", kBoth, 0.0f},
                       Case{"scenes/validation/media_fluorescent_furnace.json", kOwn, 0.0f},
                       Case{"scenes/validation/media_fluorescent_furnace.json", kShared, 0.0f},
-                      Case{"scenes/fluorescein_cuvette.json", kBoth, 0.0f}),
+                      Case{"scenes/fluorescein_cuvette.json", kBoth, 0.0f},
+                      // Lanes in media: they end at a flight through a medium, and a join through
+                      // one serves lane 0 alone.
+                      Case{"scenes/validation/media_fluorescent_furnace.json", kBoth, 0.0f, 4},
+                      Case{"scenes/fluorescein_cuvette.json", kBoth, 0.0f, 4},
+                      Case{"scenes/fluorescein_cuvette.json", kShared, 0.0f, 4},
+                      Case{"scenes/tonic_water.json", kBoth, 0.0f, 4}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string name = describe(info.param);
       for (char& ch : name)

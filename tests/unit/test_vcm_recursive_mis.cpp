@@ -42,9 +42,10 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
   const LightFirstStart lightFirst(*scene, scene->render.wavelengths.light);
   // η comparable with the other strategies' densities, so that merge weights fall inside (0, 1);
   // another at the first gather vertex, and one at collisions in media. With media the families
-  // trace separate light subpaths (docs/media.md §5).
+  // trace separate light subpaths (docs/media.md §5), and own vertices do not merge at the camera's
+  // first vertex at their own wavelength (MergeEta::splat), as in vcm.
   const bool media = scene->hasMedia();
-  const Strategies strategies{param.connections, {3.0, 11.0, 5.0, 0.01}};
+  const Strategies strategies{param.connections, {3.0, 11.0, 5.0, 0.01, !media}};
   const WalkSettings ws{6, 3, &light.density(), families.independent && !media ? &lightFirst : nullptr, strategies};
   std::vector<PathVertex> C, LS, LO;
   test::WeightOracle oracle;
@@ -56,8 +57,8 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
   int merges = 0;
   for (uint32_t sample = 0; sample < 40000; ++sample) {
     Sampler rng(SamplerKind::Independent, 17, sample, 0);
-    const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, tables, nullptr,
-                                    ws.lightFirst);
+    const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, tables,
+                                    families.independent && !ws.lightFirst ? &light.density() : nullptr, ws.lightFirst);
     if (lanes.sensorPdf[0] <= 0.0f) continue;
     const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));
     traceCameraSubpath(*scene, film, lanes, ws, rng, counter, C);
@@ -115,7 +116,12 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/validation/media_slab.json", true, 1},
                       Case{"scenes/validation/media_fluorescent_furnace.json", true, 1},
                       Case{"scenes/validation/media_fluorescent_furnace.json", false, 1},  // the merges' algebra alone
-                      Case{"scenes/fluorescein_cuvette.json", true, 1}),
+                      Case{"scenes/fluorescein_cuvette.json", true, 1},
+                      // Lanes in media: ended at a flight through a medium.
+                      Case{"scenes/validation/media_slab.json", true, 4},
+                      Case{"scenes/validation/media_fluorescent_furnace.json", true, 4},
+                      Case{"scenes/fluorescein_cuvette.json", true, 4},
+                      Case{"scenes/tonic_water.json", true, 4}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string name = describe(info.param);
       for (char& ch : name)
