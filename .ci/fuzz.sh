@@ -4,13 +4,13 @@
 # checkpoint reader and Mitsuba's volume grids: builds the fuzz targets of tests/fuzz in the instrumented tree that .ci/sanitize.sh shares
 # (.ci/sanitize-build.sh: clang 14, -DKASHA_FUZZ=ON, ASan + UBSan, into build-sanitize/; after the
 # sanitizer stage there is nothing left to build), and runs each target for FUZZ_SECONDS (default
-# 12) on a copy of its seed corpus tests/fuzz/corpus/<target>/. A finding stops the run, leaves the
+# 9) on a copy of its seed corpus tests/fuzz/corpus/<target>/. A finding stops the run, leaves the
 # input as build-sanitize/crash-* / leak-* / timeout-* and fails the script. New inputs that grow
 # coverage stay in build-sanitize/corpus/<target>/; copy the interesting ones (small!) to the seed
 # corpus by hand.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SECONDS_PER_TARGET="${FUZZ_SECONDS:-12}"
+SECONDS_PER_TARGET="${FUZZ_SECONDS:-9}"
 BUILD=build-sanitize
 
 TARGETS=(fuzz_scene fuzz_mitsuba fuzz_spectrum_csv fuzz_obj fuzz_ply fuzz_serialized fuzz_image fuzz_material fuzz_checkpoint fuzz_volume_grid)
