@@ -193,6 +193,10 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
   std::fill(f.weight, f.weight + n, 0.0f);  // lost between boundaries: absorbed
   std::fill(f.ratio, f.ratio + n, 1.0f);
   f.medium = medium;
+  // Absorbed at every wavelength, as through a medium: the lanes of a caller that flew at lane 0's
+  // alone end with it (the bidirectional engine's, docs/media.md §5).
+  f.depth = depthOfFlight();
+  f.depth.inMedia = true;
   return f;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "integrators/bidirectional/connect_parts.h"
+#include "integrators/bidirectional/path_media.h"
 #include "integrators/progressive_schedule.h"
 
 namespace kasha::bidir {
@@ -45,7 +46,8 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
     r.total = r.total + lightTracingMultiplicity(true, r.specLight, st);
   } else {
     const double pdf = r.specLight * fb.directionPdf(TransportMode::Importance, bWi, bWo, lobe, lambdaIn, lambdaOut);
-    r.pLightNext = toArea(c.scene, float(pdf), b, bNext);
+    r.pLightNext = toArea(c.scene, float(pdf), b, bNext) *
+                   flightFactor(c.scene, TransportMode::Importance, b.arrival, bNext, lambdaOut);
     r.total = r.total + joinMultiplicity(bNext.joinable(false), lobe, bNext.lobe, st) +
               cameraSum(c, C, t - 1, r.pLightNext, cameraMultiplicity(C, t - 2, st, false), C[size_t(t - 3)].pdfRev);
   }

@@ -47,8 +47,9 @@ struct PathVertex {
   // leaves into (mediumToward).
   int medium = -1;
   int shape = -1;
-  // The optical depths, at this vertex's wavelength `lambda`, of the segment its subpath reached it
-  // along: what the free-flight densities of that segment need (medium_transport.h).
+  // The optical depths, at lane 0's wavelength (this vertex's `lambda` wherever the segment runs
+  // through a medium: the lanes end there), of the segment its subpath reached it along: what the
+  // free-flight densities of that segment need (medium_transport.h).
   SegmentDepth arrival;
   // A collision whose merge sphere (radius MergeEta::volumeRadius) meets no surface: only there do
   // merges in media happen (docs/media.md §6).
@@ -58,7 +59,7 @@ struct PathVertex {
   float beta[kMaxLanes] = {};
   // The lanes that reach this vertex: -1 every lane of the subpath, each at its own wavelength; else
   // only this one (at `lambda`), its throughput times n: a vertex whose sampling depends on the
-  // wavelength keeps one lane at random (docs/bdpt-mis.md §10).
+  // wavelength, and a flight through a medium, end the lanes in lane 0 (docs/bdpt-mis.md §10).
   int8_t lane = -1;
   // Where this vertex ended the lanes (on arrival), the throughput of every lane that arrived: a
   // merge here needs only the light arriving, which every lane knows (docs/bdpt-mis.md §12).

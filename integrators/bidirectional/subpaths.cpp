@@ -193,6 +193,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
           v.lambda = lead.lambda;
           v.arrival = flight.depth;
           v.pdfFwd = lead.pdfSA * flightFactor(scene, mode, v.arrival, v, v.lambda);
+          v.lanesKept = lead.path->back().lanesKept && !lead.lanesEndedInFlight;
           lead.path->push_back(v);
           updateSums(*lead.path, mode, ws.strategies);
         }
