@@ -1,6 +1,6 @@
 // Wavelength lanes through media in the bidirectional engine (docs/media.md §5): joins whose segment
 // runs through a medium between ends that several lanes reach. A diffuse floor in air and a slab of
-// an absorbing medium whose σ_a falls steeply over the visible range (index-matched, no scattering),
+// an absorbing medium whose σ_a rises steeply over the visible range (index-matched, no scattering),
 // seen straight down by an orthographic camera; the floor's radiance has a closed form.
 //   - Light above the slab, camera under it: next-event estimation from the floor (every lane)
 //     crosses the slab. L = ρ/π · E_0(λ) · e^{−σ_a(λ)·d} (a distant light at normal incidence).
