@@ -24,6 +24,15 @@ def read_pfm(path):
     return values.reshape(h, w)[::-1]
 
 
+def quantize_png(path):
+    """Rewrites the PNG at `path` with a palette of 256 colours: the committed figures stay a
+    quarter of their size, with no difference a reader sees."""
+    from PIL import Image
+    with Image.open(path) as im:
+        rgb = im.convert("RGB")
+    rgb.quantize(colors=256, method=Image.Quantize.MEDIANCUT).save(path, optimize=True)
+
+
 def convergence_plot(summary, budget_kind, title, path):
     """relMSE and RMSE against mean render time, log-log; error bars: standard deviation over seeds."""
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
@@ -50,6 +59,7 @@ def convergence_plot(summary, budget_kind, title, path):
     fig.tight_layout()
     fig.savefig(path, dpi=80)
     plt.close(fig)
+    quantize_png(path)
 
 
 def _crop(img, crop):
@@ -92,3 +102,4 @@ def crops_figure(reference_png, columns, crop, title, path):
     fig.suptitle(title, fontsize=9)
     fig.savefig(path, dpi=80, bbox_inches="tight")
     plt.close(fig)
+    quantize_png(path)

@@ -202,7 +202,7 @@ Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext&
   const WalkSettings& ws = alone ? wsAlone_ : ws_;
   const Families families = !alone ? families_ : Families{run == BdptFamilies::Shared, run == BdptFamilies::Own};
   const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, laneTables,
-                                  families.independent && !ws.lightFirst ? &light_.density() : nullptr, ws.lightFirst);
+                                  families.independent ? &light_.density() : nullptr, ws.lightFirst);
   for (int k = 0; k < lanes_; ++k)
     if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
   traceCameraSubpath(scene, scene.pixelFilter.filmPosition(pixel, rng.uniform2()), lanes, ws, rng, ctx.counter, C);

@@ -27,7 +27,6 @@ struct Track {
   int lane = 0;        // -1 every lane alive, else the one kept (a one-lane subpath: its only lane)
   float pdfSA = 0.0f;  // density of the ray's direction at the last vertex, its spectral event included
   int medium = -1;     // the medium the ray travels in (scenes with media)
-  bool lanesEndedInFlight = false;  // the flight to the vertex about to be appended ended the lanes
   bool alive = true;
   bool stopAtFluorescence = false;  // the shared family: ends at its first fluorescent event
   // The merged subpath's shared lanes (docs/bdpt-mis.md §11): where sampling depends on the
@@ -80,8 +79,7 @@ void arrive(Track& tr, const PathVertex& reached, const Ray& ray, const Scene& s
   PathVertex& v = path.back();
   const PathVertex& prev = path[path.size() - 2];
   const Bsdf& bsdf = *v.bsdf;
-  v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf) && !tr.lanesEndedInFlight;
-  tr.lanesEndedInFlight = false;
+  v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf) && !v.arrival.inMedia;
   v.gather = !prev.scatters() || (prev.gather && !prev.joinable(false));
   if (v.inMedium() && st.merge.volume > 0.0)
     v.sphereInMedium = sphereClearOfSurfaces(scene, v.p, float(st.merge.volumeRadius), counter);
@@ -180,7 +178,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
       const float uFlight = media ? rng.uniform() : 0.0f;
       const float flightLambda = lead.lane < 0 ? lead.lanes->lambda[0] : lead.lambda;
       const FreeFlight flight = traceFreeFlight(scene, ray, lead.medium, {&flightLambda, 1}, uFlight, mode, counter, true);
-      if (flight.depth.inMedia && lead.lane < 0) keepLaneZero(lead), lead.lanesEndedInFlight = true;
+      if (flight.depth.inMedia && lead.lane < 0) keepLaneZero(lead);
       if (media) lead.beta[0] *= flight.weight[0];
       if (!flight.hit && !flight.collided) {
         if (camera && scene.environment()) {  // the camera path escapes to the environment
@@ -193,7 +191,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
           v.lambda = lead.lambda;
           v.arrival = flight.depth;
           v.pdfFwd = lead.pdfSA * flightFactor(scene, mode, v.arrival, v, v.lambda);
-          v.lanesKept = lead.path->back().lanesKept && !lead.lanesEndedInFlight;
+          v.lanesKept = lead.path->back().lanesKept && !v.arrival.inMedia;
           lead.path->push_back(v);
           updateSums(*lead.path, mode, ws.strategies);
         }
@@ -286,7 +284,7 @@ Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, 
     lanes.lambda[k] = ws.lambda;
     lanes.sensorPdf[k] = ws.pdf;
     lanes.response[k] = Observer::cie1931().weight(ws.lambda);
-    lanes.lightPdf[k] = own && n > 1 ? own->pdf(ws.lambda) : 0.0f;
+    lanes.lightPdf[k] = own && !merged && n > 1 ? own->pdf(ws.lambda) : 0.0f;
   }
   if (n > 1) {
     tables.lights.reset(scene, {lanes.lambda, size_t(n)});

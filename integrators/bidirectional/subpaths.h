@@ -51,9 +51,10 @@ struct LaneTables {
 
 // The camera sample's n lanes from one uniform u: lane k at the stratum (u + k/n) of the sensor
 // density's inverse CDF (pt's lanes, Wilkie et al. 2014), each with its density and response;
-// with more than one, `tables` is filled with the lights' powers at them, and given the own family's
-// light-start density `own`, each lane's density under it, or given the merged subpath's start
-// `merged`, its density Q(l)·p_l at each lane for each light. The lanes point into `tables`.
+// with more than one, `tables` is filled with the lights' powers at them, and given the merged
+// subpath's start `merged`, its density Q(l)·p_l at each lane for each light, else given the own
+// family's light-start density `own` (where that family runs), each lane's density under it. The
+// lanes point into `tables`.
 Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneTables& tables,
                   const WavelengthDensity* own = nullptr, const LightFirstStart* merged = nullptr);
 

@@ -313,10 +313,8 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   auto pass = std::make_unique<VcmPass>();
   // The pass's lanes: sample `firstSample` of a sequence of its own, so that passes stratify them.
   Sampler laneRng(sampler_, mixBits(seed ^ 0x2545f4914f6cdd1dULL), 0, uint32_t(firstSample));
-  // The own family's light-start density at the lanes where it traces subpaths of its own (media).
-  const WavelengthDensity* own = families_.independent && !lightFirst_ ? &light_.density() : nullptr;
-  pass->lanes = bidir::sensorLanes(scene, sensor_.density(), laneRng.uniform(), lanes_, pass->tables, own,
-                                  lightFirst_.get());
+  pass->lanes = bidir::sensorLanes(scene, sensor_.density(), laneRng.uniform(), lanes_, pass->tables,
+                                  families_.independent ? &light_.density() : nullptr, lightFirst_.get());
   pass->walk = ws_;
   const float r = radius(firstSample);
   pass->bandwidth = bandwidth1_ * r / radius1_;

@@ -66,7 +66,7 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
   for (uint32_t sample = 0; sample < 20000; ++sample) {
     Sampler rng(SamplerKind::Independent, 11, sample, 0);
     const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, laneTables,
-                                    param.families.independent && !param.merged ? &light.density() : nullptr,
+                                    param.families.independent ? &light.density() : nullptr,
                                     param.merged ? &lightFirst : nullptr);
     if (lanes.sensorPdf[0] <= 0.0f) continue;
     const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));

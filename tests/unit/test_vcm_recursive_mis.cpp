@@ -58,7 +58,7 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
   for (uint32_t sample = 0; sample < 40000; ++sample) {
     Sampler rng(SamplerKind::Independent, 17, sample, 0);
     const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, tables,
-                                    families.independent && !ws.lightFirst ? &light.density() : nullptr, ws.lightFirst);
+                                    families.independent ? &light.density() : nullptr, ws.lightFirst);
     if (lanes.sensorPdf[0] <= 0.0f) continue;
     const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));
     traceCameraSubpath(*scene, film, lanes, ws, rng, counter, C);
