@@ -105,24 +105,27 @@ inline std::optional<BdptFamilies> parseBdptFamilies(const std::string& text) {
 // Which subpaths `vcm` traces (docs/bdpt-mis.md §14): camera and light subpaths with every strategy
 // (bidirectional), the same with photon mapping's wide final gather (gather: own light vertices
 // merge through a fluorescent lobe at the first non-specular camera vertex within 4× the radius),
-// camera subpaths alone (camera: vertex connection and merging without light subpaths is path
-// tracing with next-event estimation, and runs pt's estimator), or (auto, the default) whichever a
-// pilot estimates the most efficient.
-enum class VcmPaths { Auto, Bidirectional, Gather, Camera };
+// camera and light subpaths with the connections alone (connections: `vc`'s estimator), camera
+// subpaths alone (camera: vertex connection and merging without light subpaths is path tracing with
+// next-event estimation, and runs pt's estimator), or (auto, the default) whichever a pilot
+// estimates the most efficient.
+enum class VcmPaths { Auto, Bidirectional, Gather, Connections, Camera };
 
 inline const char* toString(VcmPaths p) {
   switch (p) {
     case VcmPaths::Bidirectional: return "bidirectional";
     case VcmPaths::Gather: return "gather";
+    case VcmPaths::Connections: return "connections";
     case VcmPaths::Camera: return "camera";
     default: return "auto";
   }
 }
-// "auto", "bidirectional", "gather" or "camera"; nullopt otherwise.
+// "auto", "bidirectional", "gather", "connections" or "camera"; nullopt otherwise.
 inline std::optional<VcmPaths> parseVcmPaths(const std::string& text) {
   if (text == "auto") return VcmPaths::Auto;
   if (text == "bidirectional") return VcmPaths::Bidirectional;
   if (text == "gather") return VcmPaths::Gather;
+  if (text == "connections") return VcmPaths::Connections;
   if (text == "camera") return VcmPaths::Camera;
   return std::nullopt;
 }

@@ -212,7 +212,7 @@ struct Loader {
     progressive(f, v);
     const std::string paths = f.string("paths", toString(v.paths));
     if (const auto choice = parseVcmPaths(paths)) v.paths = *choice;
-    else f.fail("paths", "'" + paths + "' is not a choice of vcm's subpaths (auto, bidirectional, gather, camera)");
+    else f.fail("paths", "'" + paths + "' is not a choice of vcm's subpaths (auto, bidirectional, gather, connections, camera)");
     f.finish();
   }
 

@@ -30,8 +30,9 @@ struct PilotEstimates {
 // holds them: a cell's sum then has the mean and variance of one pixel's splats at full
 // resolution); each image takes n = ⌈8192 / cells⌉ samples per cell.
 // relVar is the mean over the cells of Σ_XYZ v / (m² + 10⁻²): v = n·(x₁ − x₂)²/2, the per-sample
-// variance from the two images, and m the 5×5 box mean of both (the relative error of
-// integrators/comparison.h with a smooth stand-in for the reference); the 0.01% largest cells are
+// variance from the two images, and m the mean of both over the 5×5 cells around the cell, the cell
+// itself left out (the relative error of integrators/comparison.h with a smooth stand-in for the
+// reference that is independent of v); the 0.01% largest cells are
 // left out, so that one outlier does not decide. relExcess[a] is the mean over the cells of
 // Σ_XYZ e / (m² + 10⁻²), e the cell's excess per sample for alternative a. Values that are not finite
 // count as 0. Random numbers: `kind` with a seed of their own derived from `seed`.

@@ -43,7 +43,7 @@ struct LightVertex {
 };
 
 inline constexpr size_t kLightVertexBytes = sizeof(LightVertex);
-static_assert(kLightVertexBytes == 120);
+static_assert(kLightVertexBytes == 152);
 
 // Appends a LightVertex for every vertex of light subpath L from index 1 on where a merge can happen
 // (mergeable) and a lane carries light; `own` for an own-family subpath.

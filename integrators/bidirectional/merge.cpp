@@ -130,7 +130,8 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     // This merge: (η·pC_m)² relative to the strategy s' = m + 1.
     const double eta = etaMerge * b.pdfFwd;
     MisSums mine;
-    (variant == Variant::kMerge ? mine.shared : variant == Variant::kMergeOwn ? mine.own : mine.mollified) = eta * eta;
+    (variant == Variant::kMerge ? mine.mergeShared : variant == Variant::kMergeOwn ? mine.mergeOwn : mine.mergeMollified) =
+        eta * eta;
     const bool single = oneGroup(v, b, lobe);
     const bool lanesKept = v.has(LightVertex::kLanesKept) && b.lanesKept;
     float weight[kMaxLanes];
@@ -168,7 +169,7 @@ void mergeSplat(const Context& c, const std::vector<PathVertex>& C, const LightV
   const MergeSums sums = mergeSums(c, C, 2, v, lobe, lambda, lambda, true, bWi, bWo);
   const double eta = etaMerge * b.pdfFwd;
   MisSums mine;
-  mine.ownSplat = eta * eta;
+  mine.mergeOwnSplat = eta * eta;
   const MisFactors f = factors(c, v.light, v.lambda0, -1, c.sensor.pdf(lambda), oneGroup(v, b, lobe),
                                v.has(LightVertex::kLanesKept) && b.lanesKept, c.walk.lightFirst ? v.ownStart : 0.0f);
   const float weight = weigh(c, v.depth, 2, Variant::kMergeSplat, mine, sums.total, f, [&](const MisFactors& g) {

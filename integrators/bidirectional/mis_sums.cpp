@@ -3,14 +3,19 @@
 namespace kasha::bidir {
 
 double combine(const MisSums& m, const MisFactors& f) {
+  // Without merges their terms are 0, and x + 0 is x: the sums of bdpt and vc do not change.
+  const double mergeFactor = f.merges ? 1.0 : 0.0;
+  const double shared = m.shared + mergeFactor * m.mergeShared, own = m.own + mergeFactor * m.mergeOwn;
+  const double mollified = m.mollified + mergeFactor * m.mergeMollified;
+  const double ownSplat = m.ownSplat + mergeFactor * m.mergeOwnSplat;
   double chosen = f.cameraChoice * f.cameraChoice * m.nee;
-  if (f.sharedFamily && f.oneGroup) chosen += f.sharedChoice * f.sharedChoice * m.shared;
+  if (f.sharedFamily && f.oneGroup) chosen += f.sharedChoice * f.sharedChoice * shared;
   double sensed = f.laneGain * f.laneGain * (m.hit + chosen);
   double sum = 0.0;
   if (f.ownFamily) {
     const double l2 = f.ownChoice * f.ownChoice;
-    sensed += l2 * (m.own + f.mollifyWidth * f.mollifyWidth * m.mollified);
-    sum += l2 * m.ownSplat;
+    sensed += l2 * (own + f.mollifyWidth * f.mollifyWidth * mollified);
+    sum += l2 * ownSplat;
   }
   return sum + f.sensorPdf * f.sensorPdf * sensed;
 }
@@ -58,12 +63,12 @@ MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, boo
     return (eta * density) * (eta * density);
   };
   MisSums m;
-  m.shared = squared(Variant::kMerge, gather);
+  m.mergeShared = squared(Variant::kMerge, gather);
   if (lobe == SpectralLobe::Fluorescent) {
-    m.own = squared(Variant::kMergeOwn, gather);
+    m.mergeOwn = squared(Variant::kMergeOwn, gather);
   } else {
-    m.mollified = squared(Variant::kMergeMollified, gather);
-    if (first) m.ownSplat = squared(Variant::kMergeSplat, true);
+    m.mergeMollified = squared(Variant::kMergeMollified, gather);
+    if (first) m.mergeOwnSplat = squared(Variant::kMergeSplat, true);
   }
   return m;
 }

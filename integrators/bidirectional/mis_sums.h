@@ -13,9 +13,11 @@
 // choice; S: the shared light subpath's; ℓ: the own family's joint density of light and
 // wavelength; ε_h the mollification kernel's width; g the lanes' gain (MisFactors::laneGain).
 // hit: the camera subpath reaching the light (s' = 0); nee: next-event estimation; shared: the
-// shared family's joins, t = 1 and merges; own: the own family's joins and light vertex; mollified:
-// its mollified joins; ownSplat: its t = 1 and its merge at x_{k−1} at the light vertex's
-// wavelength, the only strategies whose last wavelength the sensor does not draw.
+// shared family's joins and t = 1; own: the own family's joins and light vertex; mollified: its
+// mollified joins; ownSplat: its t = 1, the only strategy whose last wavelength the sensor does not
+// draw. The merges (§12) are kept apart in mergeShared, mergeOwn, mergeMollified and mergeOwnSplat
+// (its merge at x_{k−1} at the light vertex's wavelength), each with the factor of its namesake, so
+// that the sum without them, the connections alone, is at hand (vcm's pilot, MisFactors::merges).
 #include "integrators/bidirectional/mis.h"
 #include "materials/bsdf_model.h"
 
@@ -23,11 +25,24 @@ namespace kasha::bidir {
 
 struct MisSums {
   double hit = 0.0, nee = 0.0, shared = 0.0, own = 0.0, mollified = 0.0, ownSplat = 0.0;
+  double mergeShared = 0.0, mergeOwn = 0.0, mergeMollified = 0.0, mergeOwnSplat = 0.0;
 
   MisSums operator+(const MisSums& o) const {
-    return {hit + o.hit, nee + o.nee, shared + o.shared, own + o.own, mollified + o.mollified, ownSplat + o.ownSplat};
+    return {hit + o.hit,
+            nee + o.nee,
+            shared + o.shared,
+            own + o.own,
+            mollified + o.mollified,
+            ownSplat + o.ownSplat,
+            mergeShared + o.mergeShared,
+            mergeOwn + o.mergeOwn,
+            mergeMollified + o.mergeMollified,
+            mergeOwnSplat + o.mergeOwnSplat};
   }
-  MisSums operator*(double f) const { return {hit * f, nee * f, shared * f, own * f, mollified * f, ownSplat * f}; }
+  MisSums operator*(double f) const {
+    return {hit * f,         nee * f,          shared * f,         own * f,      mollified * f,
+            ownSplat * f,    mergeShared * f,  mergeOwn * f,       mergeMollified * f, mergeOwnSplat * f};
+  }
 };
 
 // What decides the sums' factors for one full path (and one lane).
@@ -45,6 +60,9 @@ struct MisFactors {
   // (docs/bdpt-mis.md §10); set only in the unified estimator where both families run (with the
   // shared family alone it would cancel; bdpt-independent keeps the weights without it).
   double laneGain = 1.0;
+  // Whether the merges' terms count: false gives the sum of the estimator with the connections alone
+  // (`vc`'s, in vcm's pilot).
+  bool merges = true;
 };
 
 // The sum's value for one path.
@@ -90,10 +108,11 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st);
 
 // The merges at vertex x_m with lobe `lobe`, relative to the strategy that has x_m as its last vertex
 // on the side that sampled it with density `density` (docs/bdpt-mis.md §12): (η·density)², in the
-// shared family's part (any lobe: the single group is checked by `oneGroup`) and the own family's:
-// exact for a fluorescent lobe (η_g at the first gather vertex), through the wavelength kernel (the
-// mollified part) for an elastic one, and at x_{k−1} also exact at the light vertex's wavelength
-// (Variant::kMergeSplat, η_g, in the part whose last wavelength the sensor does not draw).
+// shared family's merge part (any lobe: the single group is checked by `oneGroup`) and the own
+// family's: exact for a fluorescent lobe (η_g at the first gather vertex), through the wavelength
+// kernel (the mollified merge part) for an elastic one, and at x_{k−1} also exact at the light
+// vertex's wavelength (Variant::kMergeSplat, η_g, in the merge part whose last wavelength the sensor
+// does not draw).
 // `gather`: x_m is the path's first gather vertex (MergeEta); `first`: x_m is x_{k−1}, the camera
 // ray's hit; `volume`: x_m is a collision in a medium (every merge there with η_v).
 MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,

@@ -8,14 +8,17 @@ namespace kasha::bidir {
 
 double densityOverAlone(Alone which, const MisSums& total, const MisFactors& f, double sum, double ownAloneChoice) {
   MisFactors alone = f;
-  if (which == Alone::Camera) {
-    alone.ownFamily = alone.sharedFamily = false;
-  } else if (which == Alone::Shared) {
-    alone.ownFamily = false;
-    alone.sharedChoice = f.cameraChoice;
-  } else {
-    alone.sharedFamily = false;
-    alone.ownChoice = ownAloneChoice;
+  switch (which) {
+    case Alone::Camera: alone.ownFamily = alone.sharedFamily = false; break;
+    case Alone::Shared:
+      alone.ownFamily = false;
+      alone.sharedChoice = f.cameraChoice;
+      break;
+    case Alone::Own:
+      alone.sharedFamily = false;
+      alone.ownChoice = ownAloneChoice;
+      break;
+    case Alone::Connections: alone.merges = false; break;
   }
   const double a = combine(total, alone);
   return a > 0.0 ? std::sqrt(sum / a) : std::numeric_limits<double>::infinity();
@@ -37,6 +40,7 @@ void PilotObserver::onWeight(const WeightEvent& e) {
   a[int(Alone::Own)].pending = w > 0.0f ? densityOverAlone(Alone::Own, e.total, f, e.sum, ownAlone) : 1.0;
   const bool sensed = w > 0.0f && f.sensorPdf > 0.0 && f.cameraChoice > 0.0;
   a[int(Alone::Camera)].pending = sensed ? densityOverAlone(Alone::Camera, e.total, f, e.sum, ownAlone) : 1.0;
+  a[int(Alone::Connections)].pending = w > 0.0f ? densityOverAlone(Alone::Connections, e.total, f, e.sum, ownAlone) : 1.0;
 }
 
 }  // namespace kasha::bidir

@@ -12,10 +12,10 @@
 namespace kasha::bidir {
 
 // The estimators a pilot weighs against the one it runs (docs/bdpt-mis.md §13, §14): each family
-// alone, as bdpt-shared and bdpt-independent run it (the unified bdpt's pilot), and camera paths
-// alone, path tracing with next-event estimation (vcm's).
-enum class Alone { Shared = 0, Own = 1, Camera = 2 };
-constexpr int kAlternatives = 3;
+// alone, as bdpt-shared and bdpt-independent run it (the unified bdpt's pilot), camera paths alone,
+// path tracing with next-event estimation, and the connections alone, vc's estimator (vcm's).
+enum class Alone { Shared = 0, Own = 1, Camera = 2, Connections = 3 };
+constexpr int kAlternatives = 4;
 
 // What the pilot learns from one camera sample of both families about each alternative, from the
 // weights' sums: for each contribution C (film XYZ), ρ = p_both/p_alone, the two estimators'
@@ -56,9 +56,9 @@ struct PilotMoments {
 // (their combination `sum`): p_alone the density of one family alone as bdpt-shared or
 // bdpt-independent runs it (the other family's terms gone; the shared light subpath choosing the
 // light as next-event estimation does, the own one its light and wavelength as bdpt-independent's,
-// ℓ = ownAloneChoice), or of camera paths alone (the camera subpath reaching the light and next-event
-// estimation: both families' terms gone); the square root of the ratio of the power-heuristic sums;
-// infinite where p_alone = 0.
+// ℓ = ownAloneChoice), of camera paths alone (the camera subpath reaching the light and next-event
+// estimation: both families' terms gone), or of the connections alone (the merges' terms gone); the
+// square root of the ratio of the power-heuristic sums; infinite where p_alone = 0.
 double densityOverAlone(Alone alone, const MisSums& total, const MisFactors& f, double sum, double ownAloneChoice);
 
 // Counts the merge weights computed (vcm's pilot: their cost, docs/bdpt-mis.md §14).

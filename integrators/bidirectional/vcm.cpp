@@ -47,6 +47,9 @@ constexpr size_t kPilotLightPaths = 8192;
 // gain from stratified random numbers (docs/bdpt-mis.md §14).
 constexpr size_t kGainPixels = 512;
 constexpr int kGainSpp = 16;
+// Samples at which the subpath pilot counts the rays of the connections alone (as bdpt's pilot
+// counts each family's alone, docs/bdpt-mis.md §13).
+constexpr size_t kCostSamples = 1024;
 
 // The radius of a sphere around a light vertex in a medium that holds `count` other such vertices
 // of `vertices` on average, by bisection on the counts (it adapts to thin media, where the count
@@ -194,7 +197,7 @@ std::unique_ptr<const PassData> Vcm::beginPass(const Scene& scene, int firstSamp
     run = pilotChoice(scene, seed, pilotRays);
     if (firstSample == 0) counter.closest += pilotRays.closest, counter.shadow += pilotRays.shadow;
   }
-  if (run != VcmPaths::Camera) return bidirectionalPass(scene, firstSample, seed, run == VcmPaths::Gather, counter);
+  if (run != VcmPaths::Camera) return bidirectionalPass(scene, firstSample, seed, run, counter);
   auto pass = std::make_unique<VcmPass>();
   pass->cameraAlone = true;
   pass->camera = cameraAlone_->beginPass(scene, firstSample, count, seed, counter);
@@ -207,19 +210,23 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   using namespace bidir;
   // Passes of its own (lanes, light vertices), one per sample of a pixel of each image, as a render
   // takes one per sample per pixel: two images of vcm against them, and from their paths what
-  // camera paths alone would add (PilotMoments, Alone::Camera); then two with the wide gather,
-  // against the same light vertices.
+  // camera paths alone and the connections alone would add (PilotMoments, Alone::Camera and
+  // Alone::Connections); then two with the wide gather, against the same light vertices.
   const int w = scene.camera.width(), h = scene.camera.height();
   RayCounter passRays;
   std::vector<std::unique_ptr<VcmPass>> passes;
   std::vector<const PassData*> passData;
+  const uint64_t passSeed = mixBits(seed ^ 0xa0761d6478bd642fULL);
   for (int i = 0; i < 2 * pilotSamplesPerImage(w, h); ++i) {
-    passes.push_back(bidirectionalPass(scene, i, mixBits(seed ^ 0xa0761d6478bd642fULL), false, passRays, kPilotLightPaths));
+    passes.push_back(bidirectionalPass(scene, i, passSeed, VcmPaths::Bidirectional, passRays, kPilotLightPaths));
     passData.push_back(passes.back().get());
   }
   // The render's light subpaths per pass over the pilot's.
   const double passShare = double(paths_) / double(std::min(kPilotLightPaths, paths_)) / double(passes.size());
-  std::atomic<uint64_t> unsampled{0};
+  // The alternatives weighed from vcm's paths: excess[0] and unsampled[0] camera paths alone's,
+  // [1] the connections alone's.
+  constexpr Alone kWeighed[2] = {Alone::Camera, Alone::Connections};
+  std::atomic<uint64_t> unsampled[2] = {0, 0};
   std::atomic<uint64_t> weights[2] = {0, 0};  // merge weights computed: without and with the wide gather
   const PilotSample both = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx,
                                std::vector<std::vector<Splat>>& excess) -> Vec3 {
@@ -228,12 +235,14 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
     PilotObserver observer(moments);
     const Vec3 v = estimate(scene, pixel, rng, ctx, static_cast<const VcmPass&>(*ctx.pass), &observer);
     weights[0].fetch_add(observer.count, std::memory_order_relaxed);
-    const PilotMoments::Alternative& alt = moments.alone[int(Alone::Camera)];
-    if (alt.unsampled > 0) unsampled.fetch_add(uint64_t(alt.unsampled), std::memory_order_relaxed);
-    excess[0].insert(excess[0].end(), alt.excess.begin(), alt.excess.end());
+    for (int a = 0; a < 2; ++a) {
+      const PilotMoments::Alternative& alt = moments.alone[int(kWeighed[a])];
+      if (alt.unsampled > 0) unsampled[a].fetch_add(uint64_t(alt.unsampled), std::memory_order_relaxed);
+      excess[size_t(a)].insert(excess[size_t(a)].end(), alt.excess.begin(), alt.excess.end());
+    }
     return v;
   };
-  const PilotEstimates e = pilotEstimates(w, h, seed, SamplerKind::Independent, 1, both, passData);
+  const PilotEstimates e = pilotEstimates(w, h, seed, SamplerKind::Independent, 2, both, passData);
   // The wide gather widens own merges only: without own light vertices it is vcm itself.
   const bool gatherDiffers = families_.independent;
   for (const std::unique_ptr<VcmPass>& pass : passes) pass->setGather(gatherDiffers);
@@ -244,6 +253,14 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
     return v;
   };
   const PilotEstimates g = gatherDiffers ? pilotEstimates(w, h, seed, SamplerKind::Independent, 1, wide, passData) : e;
+  // The connections alone's rays per sample, from samples of their own against a pass without light
+  // vertices.
+  RayCounter unused;
+  const std::unique_ptr<VcmPass> connectionPass = bidirectionalPass(scene, 0, passSeed, VcmPaths::Connections, unused);
+  const PilotSample connections = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
+    return estimate(scene, pixel, rng, ctx, *connectionPass, nullptr);
+  };
+  const RayCounter connectionRays = raysOfSamples(w, h, seed, SamplerKind::Independent, kCostSamples, connections);
   const PilotSample camera = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
     return cameraAlone_->samplePixel(scene, pixel, rng, ctx);
   };
@@ -261,8 +278,8 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   }
   const double cameraSamples = double(kinds) * 2.0 * kGainSpp * double(std::min(kGainPixels, size_t(w) * size_t(h)));
   const RayCounter gRays = gatherDiffers ? g.rays : RayCounter{};
-  counter.closest = e.rays.closest + gRays.closest + passRays.closest + cameraRays.closest;
-  counter.shadow = e.rays.shadow + gRays.shadow + passRays.shadow + cameraRays.shadow;
+  counter.closest = e.rays.closest + gRays.closest + connectionRays.closest + passRays.closest + cameraRays.closest;
+  counter.shadow = e.rays.shadow + gRays.shadow + connectionRays.shadow + passRays.shadow + cameraRays.shadow;
   PilotOutcome o;
   o.seed = seed;
   o.relVar = e.relVar;
@@ -270,7 +287,7 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   // sample per pixel).
   o.rays = double(e.rays.closest + e.rays.shadow) / double(e.samples) +
            double(passRays.closest + passRays.shadow) * passShare / (double(w) * double(h));
-  o.cameraSamplesAll = unsampled.load() == 0;
+  o.cameraSamplesAll = unsampled[0].load() == 0;
   o.stratification = gain;
   o.cameraRelVar = (e.relVar + e.relExcess[0]) * gain;
   o.cameraRays = double(cameraRays.closest + cameraRays.shadow) / cameraSamples;
@@ -279,8 +296,14 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   o.gatherDiffers = gatherDiffers;
   o.gatherRelVar = g.relVar;
   o.gatherCost = gatherDiffers ? o.rays + kRaysPerMergeWeight * double(weights[1].load()) / double(g.samples) : o.cost;
+  // The connections alone trace no light vertices and compute no merge weights.
+  o.connectionsSamplesAll = unsampled[1].load() == 0;
+  o.connectionsRelVar = e.relVar + e.relExcess[1];
+  o.connectionsRays = double(connectionRays.closest + connectionRays.shadow) / double(kCostSamples);
   double best = o.relVar * o.cost;
   if (o.gatherRelVar * o.gatherCost < best) o.run = VcmPaths::Gather, best = o.gatherRelVar * o.gatherCost;
+  if (o.connectionsSamplesAll && o.connectionsRelVar * o.connectionsRays < best)
+    o.run = VcmPaths::Connections, best = o.connectionsRelVar * o.connectionsRays;
   if (o.cameraSamplesAll && o.cameraRelVar * o.cameraRays < best) o.run = VcmPaths::Camera;
   pilot_ = o;
   return o.run;
@@ -297,18 +320,21 @@ std::string Vcm::choices() const {
                   pilot_->cameraRays, pilot_->stratification);
   else
     std::snprintf(camera, sizeof camera, "cannot sample some paths that carry light");
+  char connections[96] = "cannot sample some paths that carry light";
+  if (pilot_->connectionsSamplesAll)
+    std::snprintf(connections, sizeof connections, "%.3g, %.3g rays", pilot_->connectionsRelVar, pilot_->connectionsRays);
   char gather[80] = "the same (no own light vertices)";
   if (pilot_->gatherDiffers)
     std::snprintf(gather, sizeof gather, "%.3g, %.3g rays", pilot_->gatherRelVar, pilot_->gatherCost);
-  char buf[400];
+  char buf[480];
   std::snprintf(buf, sizeof buf,
                 "paths: %s (pilot: relative variance per sample and cost per sample in rays: bidirectional %.3g, "
-                "%.3g rays; gather %s; camera alone %s)",
-                toString(pilot_->run), pilot_->relVar, pilot_->cost, gather, camera);
+                "%.3g rays; gather %s; connections alone %s; camera alone %s)",
+                toString(pilot_->run), pilot_->relVar, pilot_->cost, gather, connections, camera);
   return buf;
 }
 
-std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed, bool gather,
+std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed, VcmPaths run,
                                                 RayCounter& counter, size_t paths) const {
   auto pass = std::make_unique<VcmPass>();
   // The pass's lanes: sample `firstSample` of a sequence of its own, so that passes stratify them.
@@ -316,9 +342,10 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   pass->lanes = bidir::sensorLanes(scene, sensor_.density(), laneRng.uniform(), lanes_, pass->tables,
                                   families_.independent ? &light_.density() : nullptr, lightFirst_.get());
   pass->walk = ws_;
+  // The connections alone are vc's: no merges, and no wavelength kernel (bandwidth1_ is 0 in vc).
+  if (parts_ == Parts::Connections || run == VcmPaths::Connections) return pass;
   const float r = radius(firstSample);
   pass->bandwidth = bandwidth1_ * r / radius1_;
-  if (parts_ == Parts::Connections) return pass;
   // Fewer light subpaths than the render's (the pilot) merge within a radius widened so that η, and
   // with it the merges' weights and the light vertices a disc holds, stay the pass's.
   paths = paths == 0 ? paths_ : std::min(paths, paths_);
@@ -329,7 +356,7 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   pass->radiusVolume = rv * float(std::cbrt(double(paths_) / double(paths)));
   const double etaVolume = double(paths_) * (4.0 / 3.0) * kPi * double(rv) * rv * rv;
   pass->walk.strategies.merge = {eta, eta, etaVolume, pass->radiusVolume, !scene.hasMedia()};
-  pass->setGather(gather);
+  pass->setGather(run == VcmPaths::Gather);
   LightVertexTracing t;
   t.paths = paths;
   t.sampler = sampler_;

@@ -50,8 +50,8 @@ class Vcm final : public Integrator {
   Capabilities capabilities() const override { return {lanes_, true, true}; }
   std::string choices() const override;
 
-  // The pilot's decision for a render with `seed` (docs/bdpt-mis.md §14): Bidirectional, Gather or
-  // Camera.
+  // The pilot's decision for a render with `seed` (docs/bdpt-mis.md §14): Bidirectional, Gather,
+  // Connections or Camera.
   // Computed once per seed (the render's first pass asks); `counter` is set to the rays it traced
   // when it runs (left alone when the decision was known).
   VcmPaths pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter) const;
@@ -64,10 +64,10 @@ class Vcm final : public Integrator {
   size_t lightPathsPerPass() const { return paths_; }
 
  private:
-  // The pass that takes sample `firstSample`: its lanes, radius and light vertices, with the wide
-  // gather or not; with `paths` > 0, at most that many light subpaths (the radius widened to keep the
-  // pass's η).
-  std::unique_ptr<VcmPass> bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed, bool gather,
+  // The pass that takes sample `firstSample` for `run` (Bidirectional, Gather or Connections): its
+  // lanes, and but for the connections alone its radius and light vertices, with the wide gather or
+  // not; with `paths` > 0, at most that many light subpaths (the radius widened to keep the pass's η).
+  std::unique_ptr<VcmPass> bidirectionalPass(const Scene& scene, int firstSample, uint64_t seed, VcmPaths run,
                                              RayCounter& counter, size_t paths = 0) const;
   // One camera sample of every strategy against `pass`; `observer` (the pilot's) watches it, or else,
   // where ctx asks for them, the per-strategy images.
@@ -101,6 +101,10 @@ class Vcm final : public Integrator {
     // With the merges' cost (kRaysPerMergeWeight); the wide gather's relative variance and cost,
     // where it differs (a scene that fluoresces: own light vertices).
     double cost = 0.0, gatherRelVar = 0.0, gatherCost = 0.0;
+    // The connections alone (vc's estimator): whether they sample every path that carries light,
+    // their relative variance per sample (from vcm's paths) and rays per sample.
+    bool connectionsSamplesAll = true;
+    double connectionsRelVar = 0.0, connectionsRays = 0.0;
     bool gatherDiffers = true;
   };
   mutable std::mutex pilotMutex_;

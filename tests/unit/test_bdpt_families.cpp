@@ -44,15 +44,41 @@ void measuresKnownVariances(int w, int h) {
   // Two independent halves: Var = 2·(1/4)·(1/3) per channel around a mean of 1.
   EXPECT_NEAR(e.relVar, kNoisyRelVar / 2.0, 4.0 * noisyStandardError(cells) / 2.0 + 0.01);
   ASSERT_EQ(e.relExcess.size(), 2u);
-  // Divided by the box mean m² (+ 10⁻²): m is 1 up to its noise, the mean of 2·25 cell values of
-  // variance (1/6)/n, so E[1/m²] ≈ 1 + 3·Var m.
-  const double inverseSquare = 1.0 + 3.0 * (1.0 / 6.0) / (50.0 * n);
+  // Divided by the neighbours' mean m² (+ 10⁻²): m is 1 up to its noise, the mean of 2·24 cell values
+  // of variance (1/6)/n, so E[1/m²] ≈ 1 + 3·Var m.
+  const double inverseSquare = 1.0 + 3.0 * (1.0 / 6.0) / (48.0 * n);
   EXPECT_NEAR(e.relExcess[0], 3.0 * 0.5 / 1.01 * inverseSquare, 0.01);
   EXPECT_NEAR(e.relExcess[1], -3.0 * 0.25 / 1.01 * inverseSquare, 0.005);
 }
 
 TEST(FamilyPilot, MeasuresKnownVariancesOfSamplesAndSplats) { measuresKnownVariances(64, 48); }
 TEST(FamilyPilot, LargeImagesAreSampledInCells) { measuresKnownVariances(256, 256); }
+
+// An estimator whose variance is rare large samples: 1 + X with probability p, else 1 (per channel).
+// Its relative variance per sample is X²·p(1 − p)·E[1/(m² + 10⁻²)] per channel, m the stand-in for
+// the reference: the mean of the 48 other samples of the cell's 5×5 neighbourhood, 1 + X·k/48 with k of
+// them large (binomial), independent of the cell's own two samples. Were the cell in its own mean, a
+// large sample would divide itself by about (X/50)², and the estimate was ×500 lower.
+TEST(FamilyPilot, RareLargeSamplesAreNotHiddenByTheirOwnCellsMean) {
+  constexpr int w = 128, h = 64;  // 8192 cells of one pixel, one sample each per image
+  constexpr double X = 1000.0, p = 0.005;
+  const bidir::PilotEstimates e = bidir::pilotEstimates(
+      w, h, 11, SamplerKind::Independent, 0, [&](Vec2, Sampler& rng, SampleContext&, std::vector<std::vector<Splat>>&) {
+        return Vec3(1.0f + (rng.uniform() < p ? float(X) : 0.0f));
+      });
+  double inverse = 0.0, binomial = std::pow(1.0 - p, 48.0);  // P(k = 0)
+  for (int k = 0; k <= 48; ++k) {
+    const double m = 1.0 + X * k / 48.0;
+    inverse += binomial / (m * m + 1e-2);
+    binomial *= (48.0 - k) / (k + 1.0) * p / (1.0 - p);
+  }
+  const double expected = 3.0 * X * X * p * (1.0 - p) * inverse;
+  // The estimate is a sum over the cells whose two samples differ, about 8192·2p(1 − p) = 81 of them
+  // (the border cells' fewer neighbours and the trimmed largest cell move it by about 2%):
+  // 4 standard errors are 4/√81 of it.
+  const double cells = w * h * 2.0 * p * (1.0 - p);
+  EXPECT_NEAR(e.relVar, expected, 4.0 * expected / std::sqrt(cells));
+}
 
 TEST(FamilyPilot, SmallImagesTakeSeveralSamplesPerPixel) {
   constexpr int w = 16, h = 8;  // 128 pixels: 64 samples per pixel and image

@@ -448,7 +448,7 @@ TEST_F(SceneLoader, UnknownTypes) {
   expectError([](json& j) { j["render"] = {{"bdpt", {{"families", "neither"}}}}; }, "/render/bdpt/families",
               "'neither' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
   expectError([](json& j) { j["render"] = {{"vcm", {{"paths", "light"}}}}; }, "/render/vcm/paths",
-              "'light' is not a choice of vcm's subpaths (auto, bidirectional, gather, camera)");
+              "'light' is not a choice of vcm's subpaths (auto, bidirectional, gather, connections, camera)");
 }
 
 TEST_F(SceneLoader, MissingMaterial) {

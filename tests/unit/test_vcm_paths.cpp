@@ -40,6 +40,29 @@ TEST(VcmPaths, TheDensityOfCameraPathsAlone) {
   EXPECT_TRUE(std::isinf(bidir::densityOverAlone(bidir::Alone::Camera, joinsOnly, f, 1.0, 0.0)));
 }
 
+// ρ = p_vcm/p_vc: the connections alone keep every term but the merges', which enter the sum with
+// the factors of their namesakes.
+TEST(VcmPaths, TheDensityOfTheConnectionsAlone) {
+  bidir::MisSums total;
+  total.hit = 1.0, total.nee = 2.0, total.shared = 3.0, total.own = 4.0, total.mollified = 5.0, total.ownSplat = 6.0;
+  total.mergeShared = 7.0, total.mergeOwn = 8.0, total.mergeMollified = 9.0, total.mergeOwnSplat = 10.0;
+  bidir::MisFactors f;
+  f.sharedFamily = f.ownFamily = true;
+  f.oneGroup = true;
+  f.sensorPdf = 0.5, f.laneGain = 2.0, f.cameraChoice = 0.25, f.sharedChoice = 0.5, f.ownChoice = 3.0;
+  f.mollifyWidth = 0.1;
+  // By hand: σ²·(g²·(1 + κ²·2 + S²·(3 + 7)) + ℓ²·(4 + 8 + ε²·(5 + 9))) + ℓ²·(6 + 10), and without 7–10.
+  const double all = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 10.0) + 9.0 * (12.0 + 0.01 * 14.0)) + 9.0 * 16.0;
+  const double connections = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 3.0) + 9.0 * (4.0 + 0.01 * 5.0)) + 9.0 * 6.0;
+  ASSERT_NEAR(bidir::combine(total, f), all, 1e-12);
+  EXPECT_NEAR(bidir::densityOverAlone(bidir::Alone::Connections, total, f, all, 0.0), std::sqrt(all / connections),
+              1e-12);
+  // A path only a merge samples (a caustic seen through a specular vertex).
+  bidir::MisSums mergesOnly;
+  mergesOnly.mergeShared = 1.0;
+  EXPECT_TRUE(std::isinf(bidir::densityOverAlone(bidir::Alone::Connections, mergesOnly, f, 1.0, 0.0)));
+}
+
 // 1 + U(−1, 1) per channel: Var = 1/3 around a mean of 1; stratified over a pixel's samples (Sobol)
 // the mean's variance falls faster than 1/n.
 Vec3 noisy(Sampler& rng) { return Vec3(1.0f) + 2.0f * rng.uniform3() - Vec3(1.0f); }
@@ -141,6 +164,22 @@ TEST(VcmPaths, CameraPathsAloneArePt) {
       << chosen.choices;
   // The pilot's rays count with the render's.
   EXPECT_GT(chosen.closestRays, fixed.closestRays);
+}
+
+// The connections alone, fixed or chosen by the pilot, are vc's estimator: the same image from the
+// same seed. uv_dye_caustic.json: the LED's light reaches the dye through a lens and a window, and the
+// camera sees the beam directly: light tracing's connections carry it, merges add nothing there but
+// their cost (docs/convergence.md, media scenes), and camera paths cannot sample it.
+TEST(VcmPaths, TheConnectionsAloneAreVc) {
+  const auto scene = smallScene("scenes/uv_dye_caustic.json", 24);
+  RenderSettings settings = scene->render;
+  const std::vector<Vec3> vc = image(*scene, "vc", settings, nullptr);
+  settings.vcm.paths = VcmPaths::Connections;
+  RenderStats fixed, chosen;
+  EXPECT_EQ(image(*scene, "vcm", settings, &fixed), vc);
+  settings.vcm.paths = VcmPaths::Auto;
+  EXPECT_EQ(image(*scene, "vcm", settings, &chosen), vc);
+  EXPECT_EQ(chosen.choices.rfind("paths: connections (pilot: ", 0), 0u) << chosen.choices;
 }
 
 TEST(VcmPaths, FixedOrHalvesDecideNothing) {
