@@ -19,17 +19,29 @@
 namespace kasha {
 namespace {
 
-// ρ = p_vcm/p_camera from the power-heuristic sums: camera paths alone keep the camera subpath
-// reaching the light and next-event estimation (σ²·g²·(hit + κ²·nee)), every other term goes.
-TEST(VcmPaths, TheDensityOfCameraPathsAlone) {
-  bidir::MisSums total;
-  total.hit = 1.0, total.nee = 2.0, total.shared = 3.0, total.own = 4.0, total.mollified = 5.0, total.ownSplat = 6.0;
+// Sums and factors whose combination is worked out by hand below: hit … ownSplat = 1 … 6, the
+// merges' terms 7 … 10 (0 without merges); σ = 0.5, g = 2, κ = 0.25, S = 0.5, ℓ = 3, ε_h = 0.1.
+bidir::MisSums sumsByHand(bool merges) {
+  bidir::MisSums m;
+  m.hit = 1.0, m.nee = 2.0, m.shared = 3.0, m.own = 4.0, m.mollified = 5.0, m.ownSplat = 6.0;
+  if (merges) m.mergeShared = 7.0, m.mergeOwn = 8.0, m.mergeMollified = 9.0, m.mergeOwnSplat = 10.0;
+  return m;
+}
+bidir::MisFactors factorsByHand() {
   bidir::MisFactors f;
   f.sharedFamily = f.ownFamily = true;
   f.oneGroup = true;
   f.sensorPdf = 0.5, f.laneGain = 2.0, f.cameraChoice = 0.25, f.sharedChoice = 0.5, f.ownChoice = 3.0;
   f.mollifyWidth = 0.1;
-  // By hand: σ²·(g²·(1 + κ²·2 + S²·3) + ℓ²·(4 + ε²·5)) + ℓ²·6, and σ²·g²·(1 + κ²·2).
+  return f;
+}
+
+// ρ = p_vcm/p_camera from the power-heuristic sums: camera paths alone keep the camera subpath
+// reaching the light and next-event estimation (σ²·g²·(hit + κ²·nee)), every other term goes.
+TEST(VcmPaths, TheDensityOfCameraPathsAlone) {
+  const bidir::MisSums total = sumsByHand(false);
+  const bidir::MisFactors f = factorsByHand();
+  // σ²·(g²·(1 + κ²·2 + S²·3) + ℓ²·(4 + ε²·5)) + ℓ²·6, and σ²·g²·(1 + κ²·2).
   const double all = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 3.0) + 9.0 * (4.0 + 0.01 * 5.0)) + 9.0 * 6.0;
   const double camera = 0.25 * 4.0 * (1.0 + 0.0625 * 2.0);
   ASSERT_NEAR(bidir::combine(total, f), all, 1e-12);
@@ -43,15 +55,9 @@ TEST(VcmPaths, TheDensityOfCameraPathsAlone) {
 // ρ = p_vcm/p_vc: the connections alone keep every term but the merges', which enter the sum with
 // the factors of their namesakes.
 TEST(VcmPaths, TheDensityOfTheConnectionsAlone) {
-  bidir::MisSums total;
-  total.hit = 1.0, total.nee = 2.0, total.shared = 3.0, total.own = 4.0, total.mollified = 5.0, total.ownSplat = 6.0;
-  total.mergeShared = 7.0, total.mergeOwn = 8.0, total.mergeMollified = 9.0, total.mergeOwnSplat = 10.0;
-  bidir::MisFactors f;
-  f.sharedFamily = f.ownFamily = true;
-  f.oneGroup = true;
-  f.sensorPdf = 0.5, f.laneGain = 2.0, f.cameraChoice = 0.25, f.sharedChoice = 0.5, f.ownChoice = 3.0;
-  f.mollifyWidth = 0.1;
-  // By hand: σ²·(g²·(1 + κ²·2 + S²·(3 + 7)) + ℓ²·(4 + 8 + ε²·(5 + 9))) + ℓ²·(6 + 10), and without 7–10.
+  const bidir::MisSums total = sumsByHand(true);
+  const bidir::MisFactors f = factorsByHand();
+  // σ²·(g²·(1 + κ²·2 + S²·(3 + 7)) + ℓ²·(4 + 8 + ε²·(5 + 9))) + ℓ²·(6 + 10), and without 7–10.
   const double all = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 10.0) + 9.0 * (12.0 + 0.01 * 14.0)) + 9.0 * 16.0;
   const double connections = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 3.0) + 9.0 * (4.0 + 0.01 * 5.0)) + 9.0 * 6.0;
   ASSERT_NEAR(bidir::combine(total, f), all, 1e-12);
