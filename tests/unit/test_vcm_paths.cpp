@@ -151,41 +151,38 @@ std::vector<Vec3> image(const Scene& scene, const std::string& name, RenderSetti
   return out;
 }
 
-// Camera paths alone, fixed or chosen by the pilot, are pt's estimator: the same image from the same
-// seed; the decision is reported.
-TEST(VcmPaths, CameraPathsAloneArePt) {
-  const auto scene = smallScene("scenes/cornell_fluorescent.json", 24);
-  RenderSettings settings = scene->render;
-  const std::vector<Vec3> pt = image(*scene, "pt", settings, nullptr);
-  settings.vcm.paths = VcmPaths::Camera;
-  RenderStats fixed, chosen;
-  EXPECT_EQ(image(*scene, "vcm", settings, &fixed), pt);
-  EXPECT_EQ(fixed.choices, "paths: camera");
+// vcm with its paths fixed to `paths`, and with the pilot choosing them, renders the image of
+// `estimator` from the same seed, and the pilot reports `paths`; their statistics go to `fixed` and
+// `chosen`.
+void expectVcmRunsAlone(const Scene& scene, const std::string& estimator, VcmPaths paths, RenderStats& fixed,
+                        RenderStats& chosen) {
+  RenderSettings settings = scene.render;
+  const std::vector<Vec3> expected = image(scene, estimator, settings, nullptr);
+  settings.vcm.paths = paths;
+  EXPECT_EQ(image(scene, "vcm", settings, &fixed), expected);
   settings.vcm.paths = VcmPaths::Auto;
-  EXPECT_EQ(image(*scene, "vcm", settings, &chosen), pt);
-  EXPECT_EQ(chosen.choices.rfind("paths: camera (pilot: relative variance per sample and cost per sample in rays: "
-                                 "bidirectional ",
-                                 0),
-            0u)
-      << chosen.choices;
+  EXPECT_EQ(image(scene, "vcm", settings, &chosen), expected);
+  const std::string report = std::string("paths: ") + toString(paths) +
+                             " (pilot: relative variance per sample and cost per sample in rays: bidirectional ";
+  EXPECT_EQ(chosen.choices.rfind(report, 0), 0u) << chosen.choices;
+}
+
+// Camera paths alone, fixed or chosen by the pilot, are pt's estimator; the decision is reported.
+TEST(VcmPaths, CameraPathsAloneArePt) {
+  RenderStats fixed, chosen;
+  expectVcmRunsAlone(*smallScene("scenes/cornell_fluorescent.json", 24), "pt", VcmPaths::Camera, fixed, chosen);
+  EXPECT_EQ(fixed.choices, "paths: camera");
   // The pilot's rays count with the render's.
   EXPECT_GT(chosen.closestRays, fixed.closestRays);
 }
 
-// The connections alone, fixed or chosen by the pilot, are vc's estimator: the same image from the
-// same seed. uv_dye_caustic.json: the LED's light reaches the dye through a lens and a window, and the
-// camera sees the beam directly: light tracing's connections carry it, merges add nothing there but
-// their cost (docs/convergence.md, media scenes), and camera paths cannot sample it.
+// The connections alone, fixed or chosen by the pilot, are vc's estimator. uv_dye_caustic.json: the
+// LED's light reaches the dye through a lens and a window, and the camera sees the beam directly:
+// light tracing's connections carry it, merges add nothing there but their cost
+// (docs/convergence.md, media scenes), and camera paths cannot sample it.
 TEST(VcmPaths, TheConnectionsAloneAreVc) {
-  const auto scene = smallScene("scenes/uv_dye_caustic.json", 24);
-  RenderSettings settings = scene->render;
-  const std::vector<Vec3> vc = image(*scene, "vc", settings, nullptr);
-  settings.vcm.paths = VcmPaths::Connections;
   RenderStats fixed, chosen;
-  EXPECT_EQ(image(*scene, "vcm", settings, &fixed), vc);
-  settings.vcm.paths = VcmPaths::Auto;
-  EXPECT_EQ(image(*scene, "vcm", settings, &chosen), vc);
-  EXPECT_EQ(chosen.choices.rfind("paths: connections (pilot: ", 0), 0u) << chosen.choices;
+  expectVcmRunsAlone(*smallScene("scenes/uv_dye_caustic.json", 24), "vc", VcmPaths::Connections, fixed, chosen);
 }
 
 TEST(VcmPaths, FixedOrHalvesDecideNothing) {
