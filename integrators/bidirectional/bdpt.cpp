@@ -33,8 +33,6 @@ struct FamiliesPass final : PassData {
 // and of bdpt-independent, over bdpt-shared's, 1.13–1.26 (mean 1.19) and 1.04–1.24 (mean 1.16) on
 // the convergence report's six scenes (1 thread, 32 spp).
 constexpr double kOwnFamilyCostPerRay = 1.19;
-// Camera samples of each family alone whose rays the pilot counts.
-constexpr size_t kRaySamples = 1024;
 
 }  // namespace
 
@@ -136,9 +134,7 @@ BdptFamilies Bdpt::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& co
     const PilotSample alone = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
       return estimate(scene, pixel, rng, ctx, run, nullptr);
     };
-    const RayCounter r = raysOfSamples(w, h, seed, SamplerKind::Independent, kRaySamples, alone);
-    counter.closest += r.closest, counter.shadow += r.shadow;
-    return double(r.closest + r.shadow) / double(kRaySamples);
+    return raysPerSample(w, h, seed, alone, counter);
   };
   PilotOutcome o;
   o.seed = seed;

@@ -43,15 +43,17 @@ Image neighbourMean(const std::array<Image, 2>& images, int w, int h) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       std::array<double, 3> s{};
-      int n = 0;
+      int n = 0;  // the other cells
       for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy)
-        for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx, ++n)
+        for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
+          if (xx == x && yy == y) continue;
+          ++n;
           for (const Image& img : images)
             for (int c = 0; c < 3; ++c) s[c] += img[size_t(yy) * w + xx][c];
+        }
       const size_t i = size_t(y) * w + x;
-      const bool alone = n == 1;
       for (int c = 0; c < 3; ++c)
-        mean[i][c] = alone ? s[c] / 2.0 : (s[c] - images[0][i][c] - images[1][i][c]) / double(2 * (n - 1));
+        mean[i][c] = n > 0 ? s[c] / double(2 * n) : 0.5 * (images[0][i][c] + images[1][i][c]);
     }
   return mean;
 }
@@ -205,6 +207,13 @@ RayCounter raysOfSamples(int width, int height, uint64_t seed, SamplerKind kind,
   RayCounter rays;
   for (const SampleContext& c : ctx) rays.closest += c.counter.closest, rays.shadow += c.counter.shadow;
   return rays;
+}
+
+double raysPerSample(int width, int height, uint64_t seed, const PilotSample& sample, RayCounter& counter) {
+  constexpr size_t kSamples = 1024;
+  const RayCounter r = raysOfSamples(width, height, seed, SamplerKind::Independent, kSamples, sample);
+  counter.closest += r.closest, counter.shadow += r.shadow;
+  return double(r.closest + r.shadow) / double(kSamples);
 }
 
 }  // namespace kasha::bidir

@@ -64,4 +64,8 @@ double relativeVarianceAtPixels(int width, int height, uint64_t seed, SamplerKin
 // random numbers of their own derived from `seed`.
 RayCounter raysOfSamples(int width, int height, uint64_t seed, SamplerKind kind, size_t count, const PilotSample& sample);
 
+// An alternative estimator's cost per sample in rays, from 1024 samples of its own (raysOfSamples,
+// independent numbers), whose rays are added to `counter`.
+double raysPerSample(int width, int height, uint64_t seed, const PilotSample& sample, RayCounter& counter);
+
 }  // namespace kasha::bidir

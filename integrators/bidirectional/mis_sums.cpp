@@ -4,10 +4,9 @@ namespace kasha::bidir {
 
 double combine(const MisSums& m, const MisFactors& f) {
   // Without merges their terms are 0, and x + 0 is x: the sums of bdpt and vc do not change.
-  const double mergeFactor = f.merges ? 1.0 : 0.0;
-  const double shared = m.shared + mergeFactor * m.mergeShared, own = m.own + mergeFactor * m.mergeOwn;
-  const double mollified = m.mollified + mergeFactor * m.mergeMollified;
-  const double ownSplat = m.ownSplat + mergeFactor * m.mergeOwnSplat;
+  const double shared = m.shared + (f.merges ? m.mergeShared : 0.0), own = m.own + (f.merges ? m.mergeOwn : 0.0);
+  const double mollified = m.mollified + (f.merges ? m.mergeMollified : 0.0);
+  const double ownSplat = m.ownSplat + (f.merges ? m.mergeOwnSplat : 0.0);
   double chosen = f.cameraChoice * f.cameraChoice * m.nee;
   if (f.sharedFamily && f.oneGroup) chosen += f.sharedChoice * f.sharedChoice * shared;
   double sensed = f.laneGain * f.laneGain * (m.hit + chosen);

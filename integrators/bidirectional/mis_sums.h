@@ -87,7 +87,11 @@ struct Strategies {
 };
 
 // M of the camera subpath reaching the light (s' = 0).
-inline MisSums hitMultiplicity() { return {1.0, 0.0, 0.0, 0.0, 0.0, 0.0}; }
+inline MisSums hitMultiplicity() {
+  MisSums m;
+  m.hit = 1.0;
+  return m;
+}
 
 // M of a join between two surface vertices with lobes la, lb (2 ≤ s' ≤ k − 1; docs/bdpt-mis.md §4):
 // the shared family's (any lobes: the path's single group is checked by `oneGroup`), the own

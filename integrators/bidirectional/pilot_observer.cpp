@@ -18,7 +18,10 @@ double densityOverAlone(Alone which, const MisSums& total, const MisFactors& f, 
       alone.sharedFamily = false;
       alone.ownChoice = ownAloneChoice;
       break;
-    case Alone::Connections: alone.merges = false; break;
+    case Alone::Connections:  // vc: no merges, and no wavelength kernel (no mollified joins)
+      alone.merges = false;
+      alone.mollifyWidth = 0.0;
+      break;
   }
   const double a = combine(total, alone);
   return a > 0.0 ? std::sqrt(sum / a) : std::numeric_limits<double>::infinity();

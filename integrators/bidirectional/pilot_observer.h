@@ -57,7 +57,8 @@ struct PilotMoments {
 // bdpt-independent runs it (the other family's terms gone; the shared light subpath choosing the
 // light as next-event estimation does, the own one its light and wavelength as bdpt-independent's,
 // ℓ = ownAloneChoice), of camera paths alone (the camera subpath reaching the light and next-event
-// estimation: both families' terms gone), or of the connections alone (the merges' terms gone); the
+// estimation: both families' terms gone), or of the connections alone, vc's (the merges' terms and
+// the mollified joins' gone: vc has no wavelength kernel); the
 // square root of the ratio of the power-heuristic sums; infinite where p_alone = 0.
 double densityOverAlone(Alone alone, const MisSums& total, const MisFactors& f, double sum, double ownAloneChoice);
 

@@ -47,9 +47,6 @@ constexpr size_t kPilotLightPaths = 8192;
 // gain from stratified random numbers (docs/bdpt-mis.md §14).
 constexpr size_t kGainPixels = 512;
 constexpr int kGainSpp = 16;
-// Samples at which the subpath pilot counts the rays of the connections alone (as bdpt's pilot
-// counts each family's alone, docs/bdpt-mis.md §13).
-constexpr size_t kCostSamples = 1024;
 
 // The radius of a sphere around a light vertex in a medium that holds `count` other such vertices
 // of `vertices` on average, by bisection on the counts (it adapts to thin media, where the count
@@ -255,12 +252,13 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   const PilotEstimates g = gatherDiffers ? pilotEstimates(w, h, seed, SamplerKind::Independent, 1, wide, passData) : e;
   // The connections alone's rays per sample, from samples of their own against a pass without light
   // vertices.
-  RayCounter unused;
-  const std::unique_ptr<VcmPass> connectionPass = bidirectionalPass(scene, 0, passSeed, VcmPaths::Connections, unused);
+  RayCounter connectionRays;  // no light vertices: the pass traces none
+  const std::unique_ptr<VcmPass> connectionPass =
+      bidirectionalPass(scene, 0, passSeed, VcmPaths::Connections, connectionRays);
   const PilotSample connections = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
     return estimate(scene, pixel, rng, ctx, *connectionPass, nullptr);
   };
-  const RayCounter connectionRays = raysOfSamples(w, h, seed, SamplerKind::Independent, kCostSamples, connections);
+  const double connectionsRays = raysPerSample(w, h, seed, connections, connectionRays);
   const PilotSample camera = [&](Vec2 pixel, Sampler& rng, SampleContext& ctx, std::vector<std::vector<Splat>>&) {
     return cameraAlone_->samplePixel(scene, pixel, rng, ctx);
   };
@@ -299,7 +297,7 @@ VcmPaths Vcm::pilotChoice(const Scene& scene, uint64_t seed, RayCounter& counter
   // The connections alone trace no light vertices and compute no merge weights.
   o.connectionsSamplesAll = unsampled[1].load() == 0;
   o.connectionsRelVar = e.relVar + e.relExcess[1];
-  o.connectionsRays = double(connectionRays.closest + connectionRays.shadow) / double(kCostSamples);
+  o.connectionsRays = connectionsRays;
   double best = o.relVar * o.cost;
   if (o.gatherRelVar * o.gatherCost < best) o.run = VcmPaths::Gather, best = o.gatherRelVar * o.gatherCost;
   if (o.connectionsSamplesAll && o.connectionsRelVar * o.connectionsRays < best)

@@ -11,8 +11,8 @@
 // by pass as in `ppm` (render/vcm/radius, bandwidth, alpha). `vc` has the connections alone (no
 // kernel), `bpm` the merges alone (with the camera subpath reaching the light), as SmallVCM's
 // algorithm list. `vcm` without light subpaths is path tracing with next-event estimation: a pilot
-// chooses per render between it, every strategy, and every strategy with the wide final gather
-// (docs/bdpt-mis.md §12, §14, render/vcm/paths). In scenes with media, collisions merge with the
+// chooses per render between it, every strategy, every strategy with the wide final gather, and the
+// connections alone (docs/bdpt-mis.md §12, §14, render/vcm/paths). In scenes with media, collisions merge with the
 // light vertices in media within a sphere (docs/media.md §6).
 #include <memory>
 #include <mutex>

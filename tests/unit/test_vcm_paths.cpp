@@ -1,7 +1,8 @@
-// vcm's choice between every strategy and camera paths alone (docs/bdpt-mis.md §14): the density of
-// camera paths alone from the weights' sums, what stratified random numbers gain, the pilot's
-// decision on scenes whose light camera paths find or miss, and that camera paths alone are exactly
-// pt's estimator.
+// vcm's choice between every strategy, the connections alone and camera paths alone (docs/bdpt-mis.md
+// §14): the densities of the connections alone and of camera paths alone from the weights' sums,
+// what stratified random numbers gain, the pilot's decision on scenes whose light camera paths find
+// or miss, and that the connections alone and camera paths alone are exactly vc's and pt's
+// estimators.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -53,13 +54,13 @@ TEST(VcmPaths, TheDensityOfCameraPathsAlone) {
 }
 
 // ρ = p_vcm/p_vc: the connections alone keep every term but the merges', which enter the sum with
-// the factors of their namesakes.
+// the factors of their namesakes, and the mollified joins' (vc has no wavelength kernel).
 TEST(VcmPaths, TheDensityOfTheConnectionsAlone) {
   const bidir::MisSums total = sumsByHand(true);
   const bidir::MisFactors f = factorsByHand();
-  // σ²·(g²·(1 + κ²·2 + S²·(3 + 7)) + ℓ²·(4 + 8 + ε²·(5 + 9))) + ℓ²·(6 + 10), and without 7–10.
+  // σ²·(g²·(1 + κ²·2 + S²·(3 + 7)) + ℓ²·(4 + 8 + ε²·(5 + 9))) + ℓ²·(6 + 10), and without 5 and 7–10.
   const double all = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 10.0) + 9.0 * (12.0 + 0.01 * 14.0)) + 9.0 * 16.0;
-  const double connections = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 3.0) + 9.0 * (4.0 + 0.01 * 5.0)) + 9.0 * 6.0;
+  const double connections = 0.25 * (4.0 * (1.0 + 0.0625 * 2.0 + 0.25 * 3.0) + 9.0 * 4.0) + 9.0 * 6.0;
   ASSERT_NEAR(bidir::combine(total, f), all, 1e-12);
   EXPECT_NEAR(bidir::densityOverAlone(bidir::Alone::Connections, total, f, all, 0.0), std::sqrt(all / connections),
               1e-12);
