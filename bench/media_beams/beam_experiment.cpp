@@ -1,0 +1,313 @@
+// Photon beams against photon points in a fluorescent medium seen directly (issue 34, "measure
+// whether beams earn their cost before keeping them"; docs/media-beams.md): renders, at equal time,
+// the light that light subpaths bring into the medium and that re-emerges towards the camera after
+// one event on the camera ray's segment through the medium, with two estimators of the same light
+// subpaths (Jarosz et al. 2011, "Progressive photon beams"; Křivánek et al. 2014, UPBP):
+//   points: each light subpath's collisions in the medium (photon points) merged at one point drawn
+//           uniformly on the camera ray's segment, within a sphere of radius r_p (P2P, 3D kernel;
+//           vcm's volume merges, unweighted);
+//   beams:  each light subpath's flights through the medium (short photon beams: the flight from a
+//           vertex to the next, whose power is the throughput leaving the vertex, since a flight
+//           sampled by σ_t reaches s with probability T(s)) against the whole camera segment
+//           (B2B): a beam within r_b of the camera ray adds power·f·T_c·(chord through the beam's
+//           cylinder)/(π r_b²), the chord 2√(r_b² − d²)/sin θ (Jarosz et al. 2011 eq. 8 with a
+//           cylindrical kernel integrated along the query ray).
+// Both shrink their radius by Knaus and Zwicker's schedule for their kernel's dimension (3 and 2).
+// The camera ray must meet the medium directly (no surface in front of it), as in
+// scenes/uv_dye_caustic.json; elsewhere the images are black. It writes points.exr and beams.exr.
+//   beam_experiment SCENE.json SECONDS SEED R_POINTS R_BEAMS OUTDIR
+#include <embree3/rtcore.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/color.h"
+#include "core/film.h"
+#include "core/image_output.h"
+#include "integrators/bidirectional/subpaths.h"
+#include "integrators/progressive_schedule.h"
+#include "scene/scene_loader.h"
+#include "scene/wavelength_strategy.h"
+
+namespace kasha {
+namespace {
+
+constexpr float kAlpha = 2.0f / 3.0f;
+
+struct Beam {
+  Vec3 a, d;          // start and unit direction
+  float length;       // to the flight's end (a collision or a surface)
+  float lambda, power;
+  int medium;
+};
+
+struct Point {
+  Vec3 p;
+  float lambda, power;
+  int medium;
+};
+
+// The beams and points of `count` light subpaths of the own family (their own wavelengths).
+void traceLight(const Scene& scene, const bidir::Lanes& lanes, const bidir::WalkSettings& walk, uint64_t seed,
+                int pass, size_t count, std::vector<Beam>& beams, std::vector<Point>& points) {
+  std::vector<std::vector<Beam>> beamsOf(count);
+  std::vector<std::vector<Point>> pointsOf(count);
+  tbb::parallel_for(size_t(0), count, [&](size_t i) {
+    thread_local std::vector<bidir::PathVertex> L;
+    Sampler rng(SamplerKind::Independent, seed, i, uint32_t(pass));
+    RayCounter rays;
+    L.clear();
+    bidir::traceLightSubpath(scene, bidir::LightFamily::Own, lanes, walk, rng, rays, L);
+    for (size_t j = 1; j < L.size(); ++j) {
+      const bidir::PathVertex& v = L[j];
+      if (!v.arrival.inMedia || !(v.beta[0] > 0.0f)) continue;
+      // The flight's medium: a collision's own; a flight that left the medium for a surface (the
+      // cell's wall, across the gap between it and the solution) ran through the scene's one medium.
+      const int medium = v.inMedium() ? v.medium : 0;
+      const float sigmaT = scene.media[size_t(medium)]->sigmaT(v.lambda);
+      // β arriving at a collision is the throughput leaving the previous vertex over σ_t (T/p).
+      const float leaving = v.inMedium() ? v.beta[0] * sigmaT : v.beta[0];
+      const Vec3 span = v.p - L[j - 1].p;
+      const float length = glm::length(span);
+      if (length > 0.0f) beamsOf[i].push_back({L[j - 1].p, span / length, length, v.lambda, leaving, medium});
+      if (v.inMedium()) pointsOf[i].push_back({v.p, v.lambda, v.beta[0], v.medium});
+    }
+  });
+  beams.clear(), points.clear();
+  for (size_t i = 0; i < count; ++i) {
+    beams.insert(beams.end(), beamsOf[i].begin(), beamsOf[i].end());
+    points.insert(points.end(), pointsOf[i].begin(), pointsOf[i].end());
+  }
+}
+
+// The photon points in cells of the merge radius.
+class PointGrid {
+ public:
+  PointGrid(const std::vector<Point>& points, float cell) : points_(points), cell_(cell) {
+    for (size_t i = 0; i < points.size(); ++i) cells_[key(cellOf(points[i].p))].push_back(uint32_t(i));
+  }
+  template <class F>
+  void within(const Vec3& x, float r, F&& visit) const {
+    const glm::ivec3 c = cellOf(x);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto it = cells_.find(key(c + glm::ivec3(dx, dy, dz)));
+          if (it == cells_.end()) continue;
+          for (uint32_t i : it->second) {
+            const Vec3 d = points_[i].p - x;
+            if (glm::dot(d, d) < r * r) visit(points_[i]);
+          }
+        }
+  }
+
+ private:
+  glm::ivec3 cellOf(const Vec3& p) const { return glm::ivec3(glm::floor(p / cell_)); }
+  static int64_t key(glm::ivec3 c) {
+    return (int64_t(c.x & 0x1fffff) << 42) | (int64_t(c.y & 0x1fffff) << 21) | int64_t(c.z & 0x1fffff);
+  }
+  const std::vector<Point>& points_;
+  float cell_;
+  std::unordered_map<int64_t, std::vector<uint32_t>> cells_;
+};
+
+// The beams as Embree round linear curves of radius r; a query collects every beam whose capsule a
+// ray meets (an intersection filter that records and rejects each hit).
+struct BeamQuery {
+  RTCIntersectContext context;
+  std::vector<unsigned>* found;
+};
+
+void collectBeam(const RTCFilterFunctionNArguments* args) {
+  auto* query = reinterpret_cast<BeamQuery*>(args->context);
+  query->found->push_back(RTCHitN_primID(args->hit, args->N, 0));
+  args->valid[0] = 0;
+}
+
+class BeamAccel {
+ public:
+  BeamAccel(RTCDevice device, const std::vector<Beam>& beams, float r) {
+    scene_ = rtcNewScene(device);
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 2 * beams.size()));
+    auto* index = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), beams.size()));
+    for (size_t i = 0; i < beams.size(); ++i) {
+      const Vec3 b = beams[i].a + beams[i].d * beams[i].length;
+      const float* ends[2] = {&beams[i].a.x, &b.x};
+      for (int e = 0; e < 2; ++e)
+        for (int k = 0; k < 3; ++k) v[8 * i + 4 * e + k] = ends[e][k];
+      v[8 * i + 3] = v[8 * i + 7] = r;
+      index[i] = unsigned(2 * i);
+    }
+    rtcSetGeometryIntersectFilterFunction(g, collectBeam);
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(scene_);
+  }
+  ~BeamAccel() { rtcReleaseScene(scene_); }
+  void near(const Vec3& o, const Vec3& d, float length, std::vector<unsigned>& found) const {
+    BeamQuery q;
+    rtcInitIntersectContext(&q.context);
+    q.found = &found;
+    RTCRayHit rh{};
+    rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
+    rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
+    rh.ray.tnear = 0.0f, rh.ray.tfar = length, rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &q.context, &rh);
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+  }
+
+ private:
+  RTCScene scene_;
+};
+
+// The camera ray's segment through the medium it enters at its first surface: [t0, t1] and the
+// medium, or medium −1.
+struct Segment {
+  float t0 = 0.0f, t1 = 0.0f;
+  int medium = -1;
+};
+
+Segment mediumSegment(const Scene& scene, const Ray& ray) {
+  const std::optional<Hit> enter = scene.accel->intersect(ray);
+  if (!enter) return {};
+  const int m = scene.mediumBeyond(*enter, ray.d, scene.cameraMedium);
+  if (m < 0) return {};
+  const Vec3 o = offsetPoint(enter->p, enter->ng, ray.d);
+  const std::optional<Hit> leave = scene.accel->intersect(Ray{o, ray.d, kInf});
+  if (!leave) return {};
+  return {enter->t, enter->t + glm::length(leave->p - enter->p), m};
+}
+
+// f_fl(λ_i → λ_o) of the medium at x (docs/media.md eq. 4, isotropic: any directions).
+float fluorescence(const Scene& scene, int medium, const Vec3& x, float lambdaIn, float lambdaOut) {
+  const Bsdf b = scene.mediumBsdf(medium, x);
+  const Vec3 w(0.0f, 0.0f, 1.0f);
+  return b.eval(TransportMode::Radiance, w, w, lambdaIn, lambdaOut, SpectralLobe::Fluorescent);
+}
+
+enum class Estimator { Points, Beams };
+
+// Renders into `film` with `estimator` for `seconds`: per pass N = w·h light subpaths, one camera
+// sample per pixel; returns the passes.
+int render(const Scene& scene, Estimator estimator, double seconds, uint64_t seed, float r1, Film& film) {
+  const int w = scene.camera.width(), h = scene.camera.height();
+  const WavelengthStrategy light(scene.render.wavelengths.light, WavelengthSources(scene), WavelengthSite::LightStart);
+  bidir::WalkSettings walk;
+  walk.maxDepth = scene.render.maxDepth;
+  walk.lightWavelengths = &light.density();
+  bidir::LaneTables tables;
+  const WavelengthStrategy sensor(scene.render.wavelengths.sensor, WavelengthSources(scene), WavelengthSite::Sensor);
+  const bidir::Lanes lanes = bidir::sensorLanes(scene, sensor.density(), 0.5f, 1, tables);
+  const size_t count = size_t(w) * size_t(h);
+  const float lo = scene.range.min, width = scene.range.max - scene.range.min;
+  RTCDevice device = rtcNewDevice("verbose=0");
+  int passes = 0;
+  std::vector<Beam> beams;
+  std::vector<Point> points;
+  const auto start = std::chrono::steady_clock::now();
+  while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds) {
+    traceLight(scene, lanes, walk, seed, passes, count, beams, points);
+    const float r = progressiveRadius(r1, kAlpha, passes + 1, estimator == Estimator::Points ? 3 : 2);
+    std::unique_ptr<PointGrid> grid;
+    std::unique_ptr<BeamAccel> accel;
+    if (estimator == Estimator::Points) grid = std::make_unique<PointGrid>(points, r);
+    else accel = std::make_unique<BeamAccel>(device, beams, r);
+    const float kernel = estimator == Estimator::Points ? 1.0f / (4.0f / 3.0f * kPi * r * r * r) : 1.0f / (kPi * r * r);
+    tbb::parallel_for(0, h, [&](int y) {
+      std::vector<unsigned> found;
+      for (int x = 0; x < w; ++x) {
+        Sampler rng(SamplerKind::Independent, seed ^ 0x9e3779b97f4a7c15ULL, uint64_t(y) * w + x, uint32_t(passes));
+        const Vec2 filmPos = scene.pixelFilter.filmPosition(Vec2(float(x), float(y)), rng.uniform2());
+        const Ray ray = scene.camera.generateRay(filmPos, rng.uniform2());
+        const float lambdaOut = lo + width * rng.uniform();
+        const Segment seg = mediumSegment(scene, ray);
+        if (seg.medium < 0) continue;
+        const float sigmaOut = scene.media[size_t(seg.medium)]->sigmaT(lambdaOut);
+        double radiance = 0.0;
+        if (estimator == Estimator::Points) {
+          const float t = seg.t0 + (seg.t1 - seg.t0) * rng.uniform();
+          const Vec3 at = ray.o + ray.d * t;
+          const float camera = std::exp(-sigmaOut * (t - seg.t0)) * (seg.t1 - seg.t0);  // T_c / p(t)
+          grid->within(at, r, [&](const Point& p) {
+            if (p.medium == seg.medium)
+              radiance += double(p.power) * fluorescence(scene, seg.medium, at, p.lambda, lambdaOut) * camera;
+          });
+        } else {
+          found.clear();
+          accel->near(ray.o + ray.d * seg.t0, ray.d, seg.t1 - seg.t0, found);
+          for (unsigned i : found) {
+            const Beam& b = beams[i];
+            if (b.medium != seg.medium) continue;
+            // Closest points of the camera line o + t·c and the beam line a + s·d.
+            const Vec3 c = ray.d, w0 = ray.o - b.a;
+            const float cd = glm::dot(c, b.d), sin2 = 1.0f - cd * cd;
+            if (!(sin2 > 1e-8f)) continue;
+            const float t = (cd * glm::dot(w0, b.d) - glm::dot(w0, c)) / sin2;
+            const float s = (glm::dot(w0, b.d) - cd * glm::dot(w0, c)) / sin2;
+            if (t < seg.t0 || t > seg.t1 || s < 0.0f || s > b.length) continue;
+            const Vec3 gap = (ray.o + c * t) - (b.a + b.d * s);
+            const float d2 = glm::dot(gap, gap);
+            if (d2 >= r * r) continue;
+            const float chord = 2.0f * std::sqrt(r * r - d2) / std::sqrt(sin2);
+            const Vec3 at = ray.o + c * t;
+            radiance += double(b.power) * fluorescence(scene, seg.medium, at, b.lambda, lambdaOut) *
+                        std::exp(-sigmaOut * (t - seg.t0)) * chord;
+          }
+        }
+        // Per light subpath of the pass, with the kernel; λ_o uniform: W(λ_o)·width.
+        const float value = float(radiance) * kernel / float(count) * width;
+        film.add(x, y, Observer::cie1931().weight(lambdaOut) * value);
+      }
+    });
+    ++passes;
+  }
+  film.setSamplesPerPixel(passes);
+  rtcReleaseDevice(device);
+  return passes;
+}
+
+}  // namespace
+}  // namespace kasha
+
+int main(int argc, char** argv) {
+  using namespace kasha;
+  if (argc != 7) {
+    std::fprintf(stderr, "usage: %s SCENE.json SECONDS SEED R_POINTS R_BEAMS OUTDIR\n", argv[0]);
+    return 2;
+  }
+  try {
+    const auto scene = loadScene(argv[1]);
+    if (scene->media.size() != 1) throw std::invalid_argument("the experiment takes a scene with one medium");
+    const double seconds = std::atof(argv[2]);
+    const uint64_t seed = std::strtoull(argv[3], nullptr, 10);
+    const std::string out = argv[6];
+    for (const Estimator e : {Estimator::Points, Estimator::Beams}) {
+      const bool points = e == Estimator::Points;
+      Film film(scene->camera.width(), scene->camera.height());
+      const int passes = render(*scene, e, seconds, seed, std::strtof(argv[points ? 4 : 5], nullptr), film);
+      const std::string path = out + (points ? "/points.exr" : "/beams.exr");
+      writeExr(film, path);
+      std::printf("%s: %d passes in %.3g s -> %s\n", points ? "points" : "beams", passes, seconds, path.c_str());
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beam_experiment: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
