@@ -1,4 +1,4 @@
-// Photon beams against photon points in a fluorescent medium seen directly (issue 34, "measure
+// Photon beams against photon points in a fluorescent medium (issue 34, "measure
 // whether beams earn their cost before keeping them"; docs/media-beams.md): renders, at equal time,
 // the light that light subpaths bring into the medium and that re-emerges towards the camera after
 // one event on the camera ray's segment through the medium, with two estimators of the same light
@@ -13,8 +13,9 @@
 //           cylinder)/(π r_b²), the chord 2√(r_b² − d²)/sin θ (Jarosz et al. 2011 eq. 8 with a
 //           cylindrical kernel integrated along the query ray).
 // Both shrink their radius by Knaus and Zwicker's schedule for their kernel's dimension (3 and 2).
-// The camera ray must meet the medium directly (no surface in front of it), as in
-// scenes/uv_dye_caustic.json; elsewhere the images are black. It writes points.exr and beams.exr.
+// The camera ray reaches the medium directly or through specular surfaces; where it meets anything
+// else first the images are black. The scene must have one medium. It writes points.exr and
+// beams.exr.
 //   beam_experiment SCENE.json SECONDS SEED R_POINTS R_BEAMS OUTDIR
 #include <embree3/rtcore.h>
 #include <tbb/parallel_for.h>
@@ -176,22 +177,37 @@ class BeamAccel {
   RTCScene scene_;
 };
 
-// The camera ray's segment through the medium it enters at its first surface: [t0, t1] and the
-// medium, or medium −1.
+// The camera ray's first segment through a medium, [0, length] along `ray`: reached across
+// index-matched boundaries and specular surfaces (each event drawn by the surface's own sampling at
+// the camera's wavelength, its weight f·|cos|/pdf in `weight`); medium −1 where the camera ray meets
+// anything else first (a diffuse surface, nothing, a wavelength-changing event).
 struct Segment {
-  float t0 = 0.0f, t1 = 0.0f;
+  Ray ray;
+  float length = 0.0f, weight = 1.0f;
   int medium = -1;
 };
 
-Segment mediumSegment(const Scene& scene, const Ray& ray) {
-  const std::optional<Hit> enter = scene.accel->intersect(ray);
-  if (!enter) return {};
-  const int m = scene.mediumBeyond(*enter, ray.d, scene.cameraMedium);
-  if (m < 0) return {};
-  const Vec3 o = offsetPoint(enter->p, enter->ng, ray.d);
-  const std::optional<Hit> leave = scene.accel->intersect(Ray{o, ray.d, kInf});
-  if (!leave) return {};
-  return {enter->t, enter->t + glm::length(leave->p - enter->p), m};
+Segment firstMediumSegment(const Scene& scene, Ray ray, float lambda, Sampler& rng) {
+  constexpr int kMaxEvents = 16;
+  int medium = scene.cameraMedium;
+  float weight = 1.0f;
+  for (int event = 0; event < kMaxEvents; ++event) {
+    const std::optional<Hit> hit = scene.accel->intersect(ray);
+    if (!hit) return {};
+    if (medium >= 0) return {ray, hit->t, weight, medium};
+    Vec3 d = ray.d;
+    if (!scene.shapes[hit->shape].isMediumBoundary()) {
+      const Bsdf b = scene.bsdf(*hit, {&lambda, 1});
+      if (!b.has(BsdfFlags::DeltaDirection)) return {};
+      const std::optional<ScatterSample> s = b.sample(TransportMode::Radiance, b.toLocal(-ray.d), lambda, rng.uniform3());
+      if (!s || !s->specular || s->lambda != lambda || !(s->pdf > 0.0f)) return {};
+      weight *= s->f * std::abs(s->w.z) / s->pdf;
+      d = b.toWorld(s->w);
+    }
+    medium = scene.mediumBeyond(*hit, d, medium);
+    ray = Ray{offsetPoint(hit->p, hit->ng, d), d, kInf};
+  }
+  return {};
 }
 
 // f_fl(λ_i → λ_o) of the medium at x (docs/media.md eq. 4, isotropic: any directions).
@@ -234,23 +250,23 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
       for (int x = 0; x < w; ++x) {
         Sampler rng(SamplerKind::Independent, seed ^ 0x9e3779b97f4a7c15ULL, uint64_t(y) * w + x, uint32_t(passes));
         const Vec2 filmPos = scene.pixelFilter.filmPosition(Vec2(float(x), float(y)), rng.uniform2());
-        const Ray ray = scene.camera.generateRay(filmPos, rng.uniform2());
         const float lambdaOut = lo + width * rng.uniform();
-        const Segment seg = mediumSegment(scene, ray);
+        const Segment seg = firstMediumSegment(scene, scene.camera.generateRay(filmPos, rng.uniform2()), lambdaOut, rng);
         if (seg.medium < 0) continue;
+        const Ray& ray = seg.ray;
         const float sigmaOut = scene.media[size_t(seg.medium)]->sigmaT(lambdaOut);
         double radiance = 0.0;
         if (estimator == Estimator::Points) {
-          const float t = seg.t0 + (seg.t1 - seg.t0) * rng.uniform();
+          const float t = seg.length * rng.uniform();
           const Vec3 at = ray.o + ray.d * t;
-          const float camera = std::exp(-sigmaOut * (t - seg.t0)) * (seg.t1 - seg.t0);  // T_c / p(t)
+          const float camera = std::exp(-sigmaOut * t) * seg.length;  // T_c / p(t)
           grid->within(at, r, [&](const Point& p) {
             if (p.medium == seg.medium)
               radiance += double(p.power) * fluorescence(scene, seg.medium, at, p.lambda, lambdaOut) * camera;
           });
         } else {
           found.clear();
-          accel->near(ray.o + ray.d * seg.t0, ray.d, seg.t1 - seg.t0, found);
+          accel->near(ray.o, ray.d, seg.length, found);
           for (unsigned i : found) {
             const Beam& b = beams[i];
             if (b.medium != seg.medium) continue;
@@ -260,16 +276,17 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
             if (!(sin2 > 1e-8f)) continue;
             const float t = (cd * glm::dot(w0, b.d) - glm::dot(w0, c)) / sin2;
             const float s = (glm::dot(w0, b.d) - cd * glm::dot(w0, c)) / sin2;
-            if (t < seg.t0 || t > seg.t1 || s < 0.0f || s > b.length) continue;
+            if (t < 0.0f || t > seg.length || s < 0.0f || s > b.length) continue;
             const Vec3 gap = (ray.o + c * t) - (b.a + b.d * s);
             const float d2 = glm::dot(gap, gap);
             if (d2 >= r * r) continue;
             const float chord = 2.0f * std::sqrt(r * r - d2) / std::sqrt(sin2);
             const Vec3 at = ray.o + c * t;
             radiance += double(b.power) * fluorescence(scene, seg.medium, at, b.lambda, lambdaOut) *
-                        std::exp(-sigmaOut * (t - seg.t0)) * chord;
+                        std::exp(-sigmaOut * t) * chord;
           }
         }
+        radiance *= seg.weight;
         // Per light subpath of the pass, with the kernel; λ_o uniform: W(λ_o)·width.
         const float value = float(radiance) * kernel / float(count) * width;
         film.add(x, y, Observer::cie1931().weight(lambdaOut) * value);

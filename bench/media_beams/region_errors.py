@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """The beam experiment's images (beam_experiment: points.exr, beams.exr) against a reference, in the
-beam regions of bench/convergence/media_scenes_regions.json: relMSE (kasha.metrics) and the ratio of
-the region's mean Y to the reference's (the estimators' bias shows there).
+regions of SCENE in bench/convergence/media_scenes_regions.json: relMSE (kasha.metrics) and the
+ratio of the region's mean Y to the reference's (the estimators' bias, or the share of the region's
+light they render: one event on the camera's first segment through the medium).
 
-    region_errors.py REFERENCE.exr DIR [DIR ...]
+    region_errors.py SCENE REFERENCE.exr DIR [DIR ...]
 """
 import importlib.util
 import json
@@ -25,27 +26,31 @@ import numpy as np  # noqa: E402
 
 
 def main():
-    if len(sys.argv) < 3:
+    if len(sys.argv) < 4:
         print(__doc__, file=sys.stderr)
         return 2
     with open(os.path.join(REPO, "bench", "convergence", "media_scenes_regions.json")) as f:
-        boxes = {k: v for k, v in json.load(f)["uv_dye_caustic"].items() if k.startswith("beam")}
-    ref = np.asarray(kasha.read_exr(sys.argv[1])["xyz"])
+        boxes = json.load(f)[sys.argv[1]]
+    ref = np.asarray(kasha.read_exr(sys.argv[2])["xyz"])
     h, w = ref.shape[:2]
     rows = {}
-    for d in sys.argv[2:]:
-        for name in ("points", "beams"):
-            img = np.asarray(kasha.read_exr(os.path.join(d, name + ".exr"))["xyz"])
-            for region, (x0, y0, x1, y1) in boxes.items():
-                ys, xs = slice(int(y0 * h), int(y1 * h)), slice(int(x0 * w), int(x1 * w))
-                err = kasha.metrics(img[ys, xs].copy(), ref[ys, xs].copy())["relmse"]
-                ratio = float(img[ys, xs, 1].mean() / ref[ys, xs, 1].mean())
-                rows.setdefault((name, region), []).append((err, ratio))
-    print("| estimator | region | relMSE (mean over runs) | mean Y / reference's |")
-    print("|---|---|---|---|")
-    for (name, region), v in sorted(rows.items()):
-        errs, ratios = [e for e, _ in v], [r for _, r in v]
-        print(f"| {name} | {region} | {statistics.mean(errs):.3g} | {statistics.mean(ratios):.3f} |")
+    for name in ("points", "beams"):
+        images = [np.asarray(kasha.read_exr(os.path.join(d, name + ".exr"))["xyz"]) for d in sys.argv[3:]]
+        for region, (x0, y0, x1, y1) in boxes.items():
+            ys, xs = slice(int(y0 * h), int(y1 * h)), slice(int(x0 * w), int(x1 * w))
+            errs = [kasha.metrics(img[ys, xs].copy(), ref[ys, xs].copy())["relmse"] for img in images]
+            luminance = np.stack([img[ys, xs, 1] for img in images])
+            ratio = float(luminance.mean() / ref[ys, xs, 1].mean())
+            if ratio < 0.01:  # light of other paths (a floor, a wall): not the experiment's
+                continue
+            # The noise alone: the variance over the runs of each pixel, over the region's mean
+            # squared (reference).
+            noise = float(luminance.var(axis=0, ddof=1).mean() / ref[ys, xs, 1].mean() ** 2)
+            rows[(name, region)] = (statistics.mean(errs), noise, ratio)
+    print("| estimator | region | relMSE (mean over runs) | relative variance over runs | mean Y / reference's |")
+    print("|---|---|---|---|---|")
+    for (name, region), (err, noise, ratio) in sorted(rows.items()):
+        print(f"| {name} | {region} | {err:.3g} | {noise:.3g} | {ratio:.3f} |")
     return 0
 
 
