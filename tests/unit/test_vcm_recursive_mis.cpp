@@ -3,11 +3,13 @@
 // families on one light subpath where the scene fluoresces, lanes, elastic, fluorescent, glossy and
 // specular vertices), every connection's and every merge's weight computed both ways must agree
 // (relative 1e-5), with connections and merges (vcm) and merges alone (bpm), with and without the
-// wavelength kernel that lets own light vertices merge through elastic lobes.
+// wavelength kernel that lets own light vertices merge through elastic lobes; and the density of the
+// connections alone that vcm's pilot weighs (docs/bdpt-mis.md §14) against the same recomputation.
 #include <gtest/gtest.h>
 
 #include "integrators/bidirectional/connect.h"
 #include "integrators/bidirectional/merge.h"
+#include "integrators/bidirectional/pilot_observer.h"
 #include "integrators/bidirectional/subpath_mis.h"
 #include "integrators/bidirectional/subpaths.h"
 #include "scene/scene_loader.h"
@@ -23,14 +25,46 @@ struct Case {
   bool connections;
   int lanes;
   float bandwidth = 0.0f;  // the wavelength kernel's half-width (nm): own merges through elastic lobes
+  // η times this: ×100 makes the merges carry a share of the paths that connections make too, which
+  // the check of the connections alone's density needs (at ×1 that share is mostly below 10⁻⁴).
+  float etaScale = 1.0f;
 };
 
 std::string describe(const Case& c) {
   return std::string(c.scene) + (c.connections ? " vcm" : " bpm") + " lanes " + std::to_string(c.lanes) +
-         (c.bandwidth > 0.0f ? " kernel" : "");
+         (c.bandwidth > 0.0f ? " kernel" : "") + (c.etaScale != 1.0f ? " eta x" + std::to_string(int(c.etaScale)) : "");
 }
 
 class MergeWeights : public ::testing::TestWithParam<Case> {};
+
+// The oracle, and for every connection's weight the density of the connections alone (vc's, the
+// pilot's Alone::Connections: the recursive sums without their merge parts and without the
+// mollified joins) against the full recomputation. By the power heuristic each strategy's weight is
+// its c²·P² over the path's sum Σ, so the strategies vc lacks (the merges and the mollified joins)
+// have the weights Σ_vcm − Σ_vc over Σ_vcm together: 1 − 1/ρ², with ρ = p_vcm/p_vc = √(Σ_vcm/Σ_vc).
+// Summed from the full recomputation's weights, that share keeps its relative precision however
+// small it is.
+class WeightAndConnectionsOracle final : public MisObserver {
+ public:
+  test::WeightOracle weights;
+  int compared = 0, inside = 0;  // ρ compared, and of those where the share is above 10⁻⁴
+  void onWeight(const WeightEvent& e) override {
+    weights.onWeight(e);
+    if (isMerge(e.variant) || !(e.weight > 0.0f)) return;
+    const FullPath path = e.layout(e.factors);
+    const int k = int(path.v.size()) - 1;
+    double share = 0.0;
+    for (int i = 1; i < k; ++i)
+      for (Variant v : {Variant::kMerge, Variant::kMergeOwn, Variant::kMergeMollified, Variant::kMollified})
+        share += misWeight(path, i, v);
+    if (k >= 2) share += misWeight(path, k - 1, Variant::kMergeSplat);
+    const double rho = densityOverAlone(Alone::Connections, e.total, e.factors, e.sum, 0.0);
+    ++compared;
+    inside += share > 1e-4;
+    EXPECT_NEAR(1.0 - 1.0 / (rho * rho), share, 1e-4 * share + 1e-9)
+        << "s = " << e.s << ", t = " << e.t << ", variant " << int(e.variant);
+  }
+};
 
 TEST_P(MergeWeights, EqualTheFullRecomputation) {
   const Case& param = GetParam();
@@ -45,10 +79,12 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
   // trace separate light subpaths (docs/media.md §5), and own vertices do not merge at the camera's
   // first vertex at their own wavelength (MergeEta::splat), as in vcm.
   const bool media = scene->hasMedia();
-  const Strategies strategies{param.connections, {3.0, 11.0, 5.0, 0.01, !media}};
+  const double eta = param.etaScale;
+  const Strategies strategies{param.connections, {3.0 * eta, 11.0 * eta, 5.0 * eta, 0.01, !media}};
   const WalkSettings ws{6, 3, &light.density(), families.independent && !media ? &lightFirst : nullptr, strategies};
   std::vector<PathVertex> C, LS, LO;
-  test::WeightOracle oracle;
+  WeightAndConnectionsOracle observer;
+  test::WeightOracle& oracle = observer.weights;
   LaneTables tables;
   std::vector<Splat> splats;
   std::vector<LightVertex> kept;
@@ -72,7 +108,7 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
     Context c{*scene, ws, families, lanes, sensor.density(), counter};
     c.sharedLightVertices = sharedLightVertices;
     c.bandwidth = param.bandwidth;
-    c.observer = &oracle;
+    c.observer = &observer;
     oracle.checks.clear();
     splats.clear();
     float radiance[kMaxLanes] = {};
@@ -93,6 +129,8 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
     ASSERT_TRUE(tally.add(oracle.checks, sample)) << describe(param);
   }
   EXPECT_GT(merges, 2000) << describe(param);
+  // The connections alone's density (vcm's pilot) on paths that merges sample too.
+  if (param.etaScale > 1.0f) EXPECT_GT(observer.inside, 200) << describe(param) << ": " << observer.compared << " compared";
   // With connections, more than 2000 of them besides the merges.
   tally.expectPower(param.connections ? merges + 2000 : merges - 1, describe(param));
 }
@@ -121,7 +159,10 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/validation/media_slab.json", true, 4},
                       Case{"scenes/validation/media_fluorescent_furnace.json", true, 4},
                       Case{"scenes/fluorescein_cuvette.json", true, 4},
-                      Case{"scenes/tonic_water.json", true, 4}),
+                      Case{"scenes/tonic_water.json", true, 4},
+                      // The connections alone's density where merges carry a share of the paths.
+                      Case{"scenes/cornell_uv.json", true, 4, 20.0f, 100.0f},  // with the mollified joins
+                      Case{"scenes/tonic_water.json", true, 4, 0.0f, 100.0f}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string name = describe(info.param);
       for (char& ch : name)
