@@ -132,14 +132,16 @@ def test_bdpt_families_from_python():
 
 
 def test_vcm_paths_from_python():
-    # vcm runs a pilot and reports its choice; camera paths alone are pt's estimator, image for
-    # image; a bad choice names the field.
+    # vcm runs a pilot and reports its choice; camera paths alone are pt's estimator and the
+    # connections alone vc's, image for image; a bad choice names the field.
     scene = kasha.Scene.from_dict(furnace_dict(resolution=8, spp=4))
     auto = kasha.render(scene, integrator="vcm")
     assert auto["stats"]["choices"].startswith("paths: ")
     camera = kasha.render(scene, integrator="vcm", vcm={"paths": "camera"})
     np.testing.assert_array_equal(camera["xyz"], kasha.render(scene, integrator="pt")["xyz"])
-    for fixed in ("bidirectional", "gather"):
+    connections = kasha.render(scene, integrator="vcm", vcm={"paths": "connections"})
+    np.testing.assert_array_equal(connections["xyz"], kasha.render(scene, integrator="vc")["xyz"])
+    for fixed in ("bidirectional", "gather", "connections"):
         assert "choices" not in kasha.render(scene, integrator="vcm", vcm={"paths": fixed})["stats"]
     with pytest.raises(kasha.InputError, match="/render/vcm/paths"):
         kasha.render(scene, integrator="vcm", vcm={"paths": "light"})
