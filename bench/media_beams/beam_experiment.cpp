@@ -1,21 +1,24 @@
-// Photon beams against photon points in a fluorescent medium (issue 34, "measure
-// whether beams earn their cost before keeping them"; docs/media-beams.md): renders, at equal time,
-// the light that light subpaths bring into the medium and that re-emerges towards the camera after
-// one event on the camera ray's segment through the medium, with two estimators of the same light
-// subpaths (Jarosz et al. 2011, "Progressive photon beams"; Křivánek et al. 2014, UPBP):
-//   points: each light subpath's collisions in the medium (photon points) merged at one point drawn
-//           uniformly on the camera ray's segment, within a sphere of radius r_p (P2P, 3D kernel;
-//           vcm's volume merges, unweighted);
-//   beams:  each light subpath's flights through the medium (short photon beams: the flight from a
-//           vertex to the next, whose power is the throughput leaving the vertex, since a flight
-//           sampled by σ_t reaches s with probability T(s)) against the whole camera segment
-//           (B2B): a beam within r_b of the camera ray adds power·f·T_c·(chord through the beam's
-//           cylinder)/(π r_b²), the chord 2√(r_b² − d²)/sin θ (Jarosz et al. 2011 eq. 8 with a
-//           cylindrical kernel integrated along the query ray).
-// Both shrink their radius by Knaus and Zwicker's schedule for their kernel's dimension (3 and 2).
+// Photon beams against photon points in a fluorescent medium (issue 34, "measure whether beams
+// earn their cost before keeping them"; docs/media-beams.md): renders, at equal time, the light that
+// light subpaths bring into the medium and that re-emerges towards the camera after one event on
+// the camera ray's first segment through a medium, with three estimators of the same light
+// subpaths (Jarosz et al. 2008, "The beam radiance estimate"; Jarosz et al. 2011, "Progressive
+// photon beams"; Křivánek et al. 2014, UPBP):
+//   points:    each light subpath's collisions in the medium (photon points) merged at one point
+//              drawn uniformly on the camera ray's segment, within a ball of radius r_p (P2P, 3D
+//              kernel; vcm's volume merges, unweighted);
+//   pointbeam: the same photon points against the whole camera segment (P2B, the beam radiance
+//              estimate): a point within r_b of the camera ray adds power·f·T_c/(π r_b²);
+//   beams:     each light subpath's flights through the medium (short photon beams: the flight
+//              from a vertex to the next, whose power is the throughput leaving the vertex, since a
+//              flight sampled by σ_t reaches s with probability T(s)) against the whole camera
+//              segment (B2B): a beam within r_b of the camera ray adds power·f·T_c·(chord through the
+//              beam's cylinder)/(π r_b²), the chord 2√(r_b² − d²)/sin θ (Jarosz et al. 2011 eq. 8
+//              with a cylindrical kernel integrated along the query ray).
+// Each shrinks its radius by Knaus and Zwicker's schedule for its kernel's dimension (3, 2 and 2).
 // The camera ray reaches the medium directly or through specular surfaces; where it meets anything
-// else first the images are black. The scene must have one medium. It writes points.exr and
-// beams.exr.
+// else first the images are black. The scene must have one medium. It writes points.exr,
+// pointbeam.exr and beams.exr.
 //   beam_experiment SCENE.json SECONDS SEED R_POINTS R_BEAMS OUTDIR
 #include <embree3/rtcore.h>
 #include <tbb/parallel_for.h>
@@ -121,24 +124,31 @@ class PointGrid {
   std::unordered_map<int64_t, std::vector<uint32_t>> cells_;
 };
 
-// The beams as Embree round linear curves of radius r; a query collects every beam whose capsule a
-// ray meets (an intersection filter that records and rejects each hit).
-struct BeamQuery {
+// Beams as Embree round linear curves of radius r, or points as spheres of radius r; a query
+// collects every one a ray segment meets (an intersection filter that records and rejects each
+// hit).
+struct KernelQuery {
   RTCIntersectContext context;
   std::vector<unsigned>* found;
 };
 
-void collectBeam(const RTCFilterFunctionNArguments* args) {
-  auto* query = reinterpret_cast<BeamQuery*>(args->context);
+void collectHit(const RTCFilterFunctionNArguments* args) {
+  auto* query = reinterpret_cast<KernelQuery*>(args->context);
   query->found->push_back(RTCHitN_primID(args->hit, args->N, 0));
   args->valid[0] = 0;
 }
 
-class BeamAccel {
+class KernelAccel {
  public:
-  BeamAccel(RTCDevice device, const std::vector<Beam>& beams, float r) {
-    scene_ = rtcNewScene(device);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  KernelAccel(RTCDevice device, const std::vector<Point>& points, float r) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points.size()));
+    for (size_t i = 0; i < points.size(); ++i)
+      v[4 * i] = points[i].p.x, v[4 * i + 1] = points[i].p.y, v[4 * i + 2] = points[i].p.z, v[4 * i + 3] = r;
+    commit(device, g);
+  }
+  KernelAccel(RTCDevice device, const std::vector<Beam>& beams, float r) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
     auto* v = static_cast<float*>(
         rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 2 * beams.size()));
@@ -152,15 +162,11 @@ class BeamAccel {
       v[8 * i + 3] = v[8 * i + 7] = r;
       index[i] = unsigned(2 * i);
     }
-    rtcSetGeometryIntersectFilterFunction(g, collectBeam);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(scene_, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(scene_);
+    commit(device, g);
   }
-  ~BeamAccel() { rtcReleaseScene(scene_); }
+  ~KernelAccel() { rtcReleaseScene(scene_); }
   void near(const Vec3& o, const Vec3& d, float length, std::vector<unsigned>& found) const {
-    BeamQuery q;
+    KernelQuery q;
     rtcInitIntersectContext(&q.context);
     q.found = &found;
     RTCRayHit rh{};
@@ -174,6 +180,16 @@ class BeamAccel {
   }
 
  private:
+  void commit(RTCDevice device, RTCGeometry g) {
+    scene_ = rtcNewScene(device);
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetGeometryIntersectFilterFunction(g, collectHit);
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(scene_);
+  }
+
   RTCScene scene_;
 };
 
@@ -217,7 +233,9 @@ float fluorescence(const Scene& scene, int medium, const Vec3& x, float lambdaIn
   return b.eval(TransportMode::Radiance, w, w, lambdaIn, lambdaOut, SpectralLobe::Fluorescent);
 }
 
-enum class Estimator { Points, Beams };
+// P2P: photon points, a query point; P2B: photon points, the query beam; B2B: photon beams, the
+// query beam.
+enum class Estimator { Points, PointsAlongQuery, Beams };
 
 // Renders into `film` with `estimator` for `seconds`: per pass N = w·h light subpaths, one camera
 // sample per pixel; returns the passes.
@@ -241,9 +259,10 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
     traceLight(scene, lanes, walk, seed, passes, count, beams, points);
     const float r = progressiveRadius(r1, kAlpha, passes + 1, estimator == Estimator::Points ? 3 : 2);
     std::unique_ptr<PointGrid> grid;
-    std::unique_ptr<BeamAccel> accel;
+    std::unique_ptr<KernelAccel> accel;
     if (estimator == Estimator::Points) grid = std::make_unique<PointGrid>(points, r);
-    else accel = std::make_unique<BeamAccel>(device, beams, r);
+    else if (estimator == Estimator::PointsAlongQuery) accel = std::make_unique<KernelAccel>(device, points, r);
+    else accel = std::make_unique<KernelAccel>(device, beams, r);
     const float kernel = estimator == Estimator::Points ? 1.0f / (4.0f / 3.0f * kPi * r * r * r) : 1.0f / (kPi * r * r);
     tbb::parallel_for(0, h, [&](int y) {
       std::vector<unsigned> found;
@@ -264,6 +283,19 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
             if (p.medium == seg.medium)
               radiance += double(p.power) * fluorescence(scene, seg.medium, at, p.lambda, lambdaOut) * camera;
           });
+        } else if (estimator == Estimator::PointsAlongQuery) {
+          // Σ_p β_p·f·T_c(t_p)·K_2(d_p): the camera ray's integral of the points' ball kernel, blurred
+          // across the ray only (the beam radiance estimate, Jarosz et al. 2008).
+          found.clear();
+          accel->near(ray.o, ray.d, seg.length, found);
+          for (unsigned i : found) {
+            const Point& p = points[i];
+            const float t = glm::dot(p.p - ray.o, ray.d);
+            if (p.medium != seg.medium || t < 0.0f || t > seg.length) continue;
+            const Vec3 at = ray.o + ray.d * t, gap = p.p - at;
+            if (glm::dot(gap, gap) >= r * r) continue;
+            radiance += double(p.power) * fluorescence(scene, seg.medium, at, p.lambda, lambdaOut) * std::exp(-sigmaOut * t);
+          }
         } else {
           found.clear();
           accel->near(ray.o, ray.d, seg.length, found);
@@ -306,6 +338,7 @@ int main(int argc, char** argv) {
   using namespace kasha;
   if (argc != 7) {
     std::fprintf(stderr, "usage: %s SCENE.json SECONDS SEED R_POINTS R_BEAMS OUTDIR\n", argv[0]);
+    std::fprintf(stderr, "  (R_BEAMS is also the first radius of the points along the query beam)\n");
     return 2;
   }
   try {
@@ -314,13 +347,19 @@ int main(int argc, char** argv) {
     const double seconds = std::atof(argv[2]);
     const uint64_t seed = std::strtoull(argv[3], nullptr, 10);
     const std::string out = argv[6];
-    for (const Estimator e : {Estimator::Points, Estimator::Beams}) {
-      const bool points = e == Estimator::Points;
+    const struct {
+      Estimator estimator;
+      const char* name;
+      const char* radius;
+    } runs[] = {{Estimator::Points, "points", argv[4]},
+                {Estimator::PointsAlongQuery, "pointbeam", argv[5]},
+                {Estimator::Beams, "beams", argv[5]}};
+    for (const auto& run : runs) {
       Film film(scene->camera.width(), scene->camera.height());
-      const int passes = render(*scene, e, seconds, seed, std::strtof(argv[points ? 4 : 5], nullptr), film);
-      const std::string path = out + (points ? "/points.exr" : "/beams.exr");
+      const int passes = render(*scene, run.estimator, seconds, seed, std::strtof(run.radius, nullptr), film);
+      const std::string path = out + "/" + run.name + ".exr";
       writeExr(film, path);
-      std::printf("%s: %d passes in %.3g s -> %s\n", points ? "points" : "beams", passes, seconds, path.c_str());
+      std::printf("%s: %d passes in %.3g s -> %s\n", run.name, passes, seconds, path.c_str());
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beam_experiment: %s\n", e.what());

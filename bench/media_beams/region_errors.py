@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""The beam experiment's images (beam_experiment: points.exr, beams.exr) against a reference, in the
-regions of SCENE in bench/convergence/media_scenes_regions.json: relMSE (kasha.metrics) and the
-ratio of the region's mean Y to the reference's (the estimators' bias, or the share of the region's
-light they render: one event on the camera's first segment through the medium).
+"""The beam experiment's images (beam_experiment: points.exr, pointbeam.exr, beams.exr) against a
+reference, in the regions of SCENE in bench/convergence/media_scenes_regions.json: relMSE
+(kasha.metrics), the relative variance over the runs, and the ratio of the region's mean Y to the
+reference's (the estimators' bias, or the share of the region's light they render: one event on
+the camera's first segment through the medium).
 
     region_errors.py SCENE REFERENCE.exr DIR [DIR ...]
 """
@@ -34,7 +35,7 @@ def main():
     ref = np.asarray(kasha.read_exr(sys.argv[2])["xyz"])
     h, w = ref.shape[:2]
     rows = {}
-    for name in ("points", "beams"):
+    for name in ("points", "pointbeam", "beams"):
         images = [np.asarray(kasha.read_exr(os.path.join(d, name + ".exr"))["xyz"]) for d in sys.argv[3:]]
         for region, (x0, y0, x1, y1) in boxes.items():
             ys, xs = slice(int(y0 * h), int(y1 * h)), slice(int(x0 * w), int(x1 * w))

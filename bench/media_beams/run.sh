@@ -1,6 +1,7 @@
 #!/bin/bash
-# The beam experiment of docs/media-beams.md: photon points and photon beams at equal time (2 s
-# each), seeds 1–3, five pairs of first radii (points, beams), on the four media scenes of the media
+# The beam experiment of docs/media-beams.md: photon points, photon points against the camera's
+# query beam, and photon beams at equal time (2 s each), seeds 1–3, five pairs of first radii
+# (points; points along the query and beams), on the four media scenes of the media
 # convergence report, against its references (120 s of bdpt) and at its resolutions: run
 # `python3 bench/convergence/run.py bench/convergence/media_scenes.json` first. Tables to stdout.
 #   bash bench/media_beams/run.sh [BUILD_DIR]
