@@ -31,13 +31,13 @@
 #include <exception>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "core/color.h"
 #include "core/film.h"
 #include "core/image_output.h"
 #include "integrators/bidirectional/subpaths.h"
+#include "integrators/point_map_impl.h"
 #include "integrators/progressive_schedule.h"
 #include "scene/scene_loader.h"
 #include "scene/wavelength_strategy.h"
@@ -55,9 +55,10 @@ struct Beam {
 };
 
 struct Point {
-  Vec3 p;
+  float p[3];  // first: a PointMap record
   float lambda, power;
   int medium;
+  Vec3 position() const { return Vec3(p[0], p[1], p[2]); }
 };
 
 // The beams and points of `count` light subpaths of the own family (their own wavelengths).
@@ -83,7 +84,7 @@ void traceLight(const Scene& scene, const bidir::Lanes& lanes, const bidir::Walk
       const Vec3 span = v.p - L[j - 1].p;
       const float length = glm::length(span);
       if (length > 0.0f) beamsOf[i].push_back({L[j - 1].p, span / length, length, v.lambda, leaving, medium});
-      if (v.inMedium()) pointsOf[i].push_back({v.p, v.lambda, v.beta[0], v.medium});
+      if (v.inMedium()) pointsOf[i].push_back({{v.p.x, v.p.y, v.p.z}, v.lambda, v.beta[0], v.medium});
     }
   });
   beams.clear(), points.clear();
@@ -92,37 +93,6 @@ void traceLight(const Scene& scene, const bidir::Lanes& lanes, const bidir::Walk
     points.insert(points.end(), pointsOf[i].begin(), pointsOf[i].end());
   }
 }
-
-// The photon points in cells of the merge radius.
-class PointGrid {
- public:
-  PointGrid(const std::vector<Point>& points, float cell) : points_(points), cell_(cell) {
-    for (size_t i = 0; i < points.size(); ++i) cells_[key(cellOf(points[i].p))].push_back(uint32_t(i));
-  }
-  template <class F>
-  void within(const Vec3& x, float r, F&& visit) const {
-    const glm::ivec3 c = cellOf(x);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const auto it = cells_.find(key(c + glm::ivec3(dx, dy, dz)));
-          if (it == cells_.end()) continue;
-          for (uint32_t i : it->second) {
-            const Vec3 d = points_[i].p - x;
-            if (glm::dot(d, d) < r * r) visit(points_[i]);
-          }
-        }
-  }
-
- private:
-  glm::ivec3 cellOf(const Vec3& p) const { return glm::ivec3(glm::floor(p / cell_)); }
-  static int64_t key(glm::ivec3 c) {
-    return (int64_t(c.x & 0x1fffff) << 42) | (int64_t(c.y & 0x1fffff) << 21) | int64_t(c.z & 0x1fffff);
-  }
-  const std::vector<Point>& points_;
-  float cell_;
-  std::unordered_map<int64_t, std::vector<uint32_t>> cells_;
-};
 
 // Beams as Embree round linear curves of radius r, or points as spheres of radius r; a query
 // collects every one a ray segment meets (an intersection filter that records and rejects each
@@ -145,7 +115,7 @@ class KernelAccel {
     auto* v = static_cast<float*>(
         rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points.size()));
     for (size_t i = 0; i < points.size(); ++i)
-      v[4 * i] = points[i].p.x, v[4 * i + 1] = points[i].p.y, v[4 * i + 2] = points[i].p.z, v[4 * i + 3] = r;
+      v[4 * i] = points[i].p[0], v[4 * i + 1] = points[i].p[1], v[4 * i + 2] = points[i].p[2], v[4 * i + 3] = r;
     commit(device, g);
   }
   KernelAccel(RTCDevice device, const std::vector<Beam>& beams, float r) {
@@ -226,11 +196,10 @@ Segment firstMediumSegment(const Scene& scene, Ray ray, float lambda, Sampler& r
   return {};
 }
 
-// f_fl(λ_i → λ_o) of the medium at x (docs/media.md eq. 4, isotropic: any directions).
-float fluorescence(const Scene& scene, int medium, const Vec3& x, float lambdaIn, float lambdaOut) {
-  const Bsdf b = scene.mediumBsdf(medium, x);
+// f_fl(λ_i → λ_o) of a medium's collision kernel (docs/media.md eq. 4, isotropic: any directions).
+float fluorescence(const Bsdf& kernel, float lambdaIn, float lambdaOut) {
   const Vec3 w(0.0f, 0.0f, 1.0f);
-  return b.eval(TransportMode::Radiance, w, w, lambdaIn, lambdaOut, SpectralLobe::Fluorescent);
+  return kernel.eval(TransportMode::Radiance, w, w, lambdaIn, lambdaOut, SpectralLobe::Fluorescent);
 }
 
 // P2P: photon points, a query point; P2B: photon points, the query beam; B2B: photon beams, the
@@ -258,12 +227,12 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
   while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds) {
     traceLight(scene, lanes, walk, seed, passes, count, beams, points);
     const float r = progressiveRadius(r1, kAlpha, passes + 1, estimator == Estimator::Points ? 3 : 2);
-    std::unique_ptr<PointGrid> grid;
+    std::unique_ptr<PointMap<Point>> map;
     std::unique_ptr<KernelAccel> accel;
-    if (estimator == Estimator::Points) grid = std::make_unique<PointGrid>(points, r);
+    if (estimator == Estimator::Points) map = std::make_unique<PointMap<Point>>(points);
     else if (estimator == Estimator::PointsAlongQuery) accel = std::make_unique<KernelAccel>(device, points, r);
     else accel = std::make_unique<KernelAccel>(device, beams, r);
-    const float kernel = estimator == Estimator::Points ? 1.0f / (4.0f / 3.0f * kPi * r * r * r) : 1.0f / (kPi * r * r);
+    const float kernelNorm = estimator == Estimator::Points ? 1.0f / (4.0f / 3.0f * kPi * r * r * r) : 1.0f / (kPi * r * r);
     tbb::parallel_for(0, h, [&](int y) {
       std::vector<unsigned> found;
       for (int x = 0; x < w; ++x) {
@@ -274,15 +243,16 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
         if (seg.medium < 0) continue;
         const Ray& ray = seg.ray;
         const float sigmaOut = scene.media[size_t(seg.medium)]->sigmaT(lambdaOut);
+        const Bsdf collision = scene.mediumBsdf(seg.medium, ray.o);  // homogeneous: the same everywhere
         double radiance = 0.0;
         if (estimator == Estimator::Points) {
           const float t = seg.length * rng.uniform();
           const Vec3 at = ray.o + ray.d * t;
           const float camera = std::exp(-sigmaOut * t) * seg.length;  // T_c / p(t)
-          grid->within(at, r, [&](const Point& p) {
-            if (p.medium == seg.medium)
-              radiance += double(p.power) * fluorescence(scene, seg.medium, at, p.lambda, lambdaOut) * camera;
-          });
+          for (size_t i : map->within(at, r)) {
+            const Point& p = (*map)[i];
+            if (p.medium == seg.medium) radiance += double(p.power) * fluorescence(collision, p.lambda, lambdaOut) * camera;
+          }
         } else if (estimator == Estimator::PointsAlongQuery) {
           // Σ_p β_p·f·T_c(t_p)·K_2(d_p): the camera ray's integral of the points' ball kernel, blurred
           // across the ray only (the beam radiance estimate, Jarosz et al. 2008).
@@ -290,11 +260,11 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
           accel->near(ray.o, ray.d, seg.length, found);
           for (unsigned i : found) {
             const Point& p = points[i];
-            const float t = glm::dot(p.p - ray.o, ray.d);
+            const float t = glm::dot(p.position() - ray.o, ray.d);
             if (p.medium != seg.medium || t < 0.0f || t > seg.length) continue;
-            const Vec3 at = ray.o + ray.d * t, gap = p.p - at;
+            const Vec3 gap = p.position() - (ray.o + ray.d * t);
             if (glm::dot(gap, gap) >= r * r) continue;
-            radiance += double(p.power) * fluorescence(scene, seg.medium, at, p.lambda, lambdaOut) * std::exp(-sigmaOut * t);
+            radiance += double(p.power) * fluorescence(collision, p.lambda, lambdaOut) * std::exp(-sigmaOut * t);
           }
         } else {
           found.clear();
@@ -313,14 +283,13 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
             const float d2 = glm::dot(gap, gap);
             if (d2 >= r * r) continue;
             const float chord = 2.0f * std::sqrt(r * r - d2) / std::sqrt(sin2);
-            const Vec3 at = ray.o + c * t;
-            radiance += double(b.power) * fluorescence(scene, seg.medium, at, b.lambda, lambdaOut) *
+            radiance += double(b.power) * fluorescence(collision, b.lambda, lambdaOut) *
                         std::exp(-sigmaOut * t) * chord;
           }
         }
         radiance *= seg.weight;
         // Per light subpath of the pass, with the kernel; λ_o uniform: W(λ_o)·width.
-        const float value = float(radiance) * kernel / float(count) * width;
+        const float value = float(radiance) * kernelNorm / float(count) * width;
         film.add(x, y, Observer::cie1931().weight(lambdaOut) * value);
       }
     });
@@ -343,7 +312,8 @@ int main(int argc, char** argv) {
   }
   try {
     const auto scene = loadScene(argv[1]);
-    if (scene->media.size() != 1) throw std::invalid_argument("the experiment takes a scene with one medium");
+    if (scene->media.size() != 1 || scene->media[0]->heterogeneous() || scene->media[0]->spatiallyVaryingAlbedo())
+      throw std::invalid_argument("the experiment takes a scene with one homogeneous medium");
     const double seconds = std::atof(argv[2]);
     const uint64_t seed = std::strtoull(argv[3], nullptr, 10);
     const std::string out = argv[6];

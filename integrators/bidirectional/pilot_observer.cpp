@@ -43,7 +43,9 @@ void PilotObserver::onWeight(const WeightEvent& e) {
   a[int(Alone::Own)].pending = w > 0.0f ? densityOverAlone(Alone::Own, e.total, f, e.sum, ownAlone) : 1.0;
   const bool sensed = w > 0.0f && f.sensorPdf > 0.0 && f.cameraChoice > 0.0;
   a[int(Alone::Camera)].pending = sensed ? densityOverAlone(Alone::Camera, e.total, f, e.sum, ownAlone) : 1.0;
-  a[int(Alone::Connections)].pending = w > 0.0f ? densityOverAlone(Alone::Connections, e.total, f, e.sum, ownAlone) : 1.0;
+  // Without merges (bdpt's pilot) the connections alone are the estimator itself: ρ = 1.
+  const bool merges = w > 0.0f && e.c.walk.strategies.merge.any();
+  a[int(Alone::Connections)].pending = merges ? densityOverAlone(Alone::Connections, e.total, f, e.sum, ownAlone) : 1.0;
 }
 
 }  // namespace kasha::bidir
