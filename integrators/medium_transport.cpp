@@ -99,9 +99,10 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
   // majorants, and the estimates.
   float majorantDepth = 0.0f, majorantSeekDepth = 0.0f, estimatedDepth = 0.0f, estimatedSeekDepth = 0.0f;
   bool inMedia = false;  // whether the flight entered a medium so far
+  bool crossed = false;  // whether it crossed an index-matched boundary so far
   const auto depthOfFlight = [&] {
     return SegmentDepth{tau[0] - majorantDepth + estimatedDepth, tauSeek[0] - majorantSeekDepth + estimatedSeekDepth,
-                        inMedia};
+                        inMedia, crossed};
   };
   std::optional<Rng> stream;  // created at the first null collision
   float gap = 0.0f;           // of the medium behind ray.o (crossingGap)
@@ -189,6 +190,7 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
     medium = scene.mediumBeyond(*hit, ray.d, medium);
     ray.o = offsetPoint(hit->p, hit->ng, ray.d);
     gap = crossingGap(*hit, ray.d);
+    crossed = true;
   }
   std::fill(f.weight, f.weight + n, 0.0f);  // lost between boundaries: absorbed
   std::fill(f.ratio, f.ratio + n, 1.0f);
@@ -252,6 +254,7 @@ bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec
     }
     medium = scene.mediumBeyond(*hit, d, medium);
     origin = offsetPoint(hit->p, hit->ng, d);
+    for (size_t k = 0; depths && k < n; ++k) depths[k].crossesBoundary = true;
     tMax -= length;
     gap = crossingGap(*hit, d);
   }

@@ -38,6 +38,9 @@ struct SegmentDepth {
   // Whether the segment runs through a medium at all: a property of its geometry and the scene's
   // media, the same at every wavelength (where the bidirectional engine's lanes end, docs/media.md §5).
   bool inMedia = false;
+  // Whether it crosses an index-matched boundary (from one medium into the next): a camera side's
+  // query beam ends at the first (docs/media-beams.md).
+  bool crossesBoundary = false;
 };
 
 // What a ray from a vertex reaches through the media: a collision in a medium, a surface, or

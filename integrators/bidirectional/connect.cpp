@@ -294,7 +294,9 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     const double pCamA = cameraSide(c.scene, b, bWo, bWi, a, p.lb, p.lambdaB, lambdaB, segment);
     const double pCamAPrev = cameraSide(c.scene, a, aWo, aWi, aPrev, p.la, lambdaA, p.lambdaA, a.arrival);
     const Strategies& st = c.walk.strategies;
-    const MisSums sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st, false, true), pCamAPrev) +
+    const double beamA = st.merge.beam > 0.0 ? cameraBeamRatio(c.scene, segment, a, p.lambdaB) : 0.0;
+    const MisSums sides =
+        lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st, false, true, beamA), pCamAPrev) +
                           cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st, true), pLightBNext);
     const MisSums here = joinMultiplicity(true, p.la, p.lb, st);
     MisSums own;
@@ -316,6 +318,7 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
         fp.v[size_t(s)].pdfLight = pLightB;
         fp.v[size_t(s + 1)].pdfLight = pLightBNext;
         fp.v[size_t(s - 1)].pdfCam = pCamA;
+        fp.v[size_t(s - 1)].cameraBeam = beamA;
         fp.v[size_t(s - 2)].pdfCam = pCamAPrev;
         const PathVertex& x1 = L[1];
         fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
@@ -392,7 +395,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   bool any = false;
   MisSums here, own, sides;
   bool oneGroup = true;
-  double pCamAPrev = 0.0;
+  double pCamAPrev = 0.0, beamA = 0.0;  // beamA: the camera's beam ratio at a (s ≥ 2)
   if (s == 1) {
     // The light itself, seen directly (area lights only; weight 0 where the camera's s = 0 adds it
     // exactly, see emitterHit).
@@ -425,7 +428,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     here = lightTracingMultiplicity(true, a.spectralPdf, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
     // a, next to the camera, is the path's first gather vertex.
-    sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, c.walk.strategies, true, true), pCamAPrev);
+    beamA = c.walk.strategies.merge.beam > 0.0 ? cameraBeamRatio(c.scene, segment, a, lambda) : 0.0;
+    sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, a.lobe, a.lambdaNext, c.walk.strategies, true, true, beamA),
+                     pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
   for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) value[k] *= transmittance(segment);
@@ -444,6 +449,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       FullPath fp = layout(c, &L, s, camOnly, 1, end, g, true);
       const int last = s;
       fp.v[size_t(last - 1)].pdfCam = pCamA;
+      fp.v[size_t(last - 1)].cameraBeam = beamA;
       if (s == 1) {
         fp.lightSeenByPinhole = true;
       } else {

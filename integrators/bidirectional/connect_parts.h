@@ -62,7 +62,8 @@ MisFactors factors(const Context& c, int light, float lambda0, int lane, double 
                    bool lanesKept, float ownStart = 0.0f);
 
 // The full recomputation (test oracle, docs/bdpt-mis.md §5): the stored densities of L[0..s−1],
-// C[0..t−1] laid out as x_0 … x_k, with the light end's. The path ends a connection or a merge at
+// C[0..t−1] laid out as x_0 … x_k, with the light end's (and the stored beam ratios: a caller whose
+// camera side reaches L[s − 1] otherwise than from L[s] sets that one's). The path ends a connection or a merge at
 // L[s − 1], and a connection at C[t − 1] if `connection` (a merge goes on through C[t − 1]'s own
 // event): PathVertex::joinable.
 FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const std::vector<PathVertex>& C, int t,

@@ -36,7 +36,7 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   // connection ends at x_m, with the merges at x_m.
   const SpectralLobe prevLobe =
       v.has(LightVertex::kPrevFluorescent) ? SpectralLobe::Fluorescent : SpectralLobe::Elastic;
-  const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, t == 2, st, b.inMedium()) +
+  const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, t == 2, st, b.inMedium(), b.cameraBeam) +
                         (m == 1 ? firstVertexMultiplicity(true, lobe, r.specCam, v.has(LightVertex::kFiniteLight), st)
                                 : joinMultiplicity(v.has(LightVertex::kPrevConnectible), prevLobe, lobe, st));
   const double rPrev = densityRatio(r.pCamPrev, v.pdfPrev);
@@ -62,6 +62,7 @@ FullPath fullPath(const Context& c, const std::vector<PathVertex>& C, int t, con
   FullPath fp = layout(c, &L, m + 1, C, t - 1, storedLightEnd(L, m + 1), g, false);
   fp.v[size_t(m)].lobe = lobe;
   fp.v[size_t(m)].pdfCam = C[size_t(t - 1)].pdfFwd;
+  fp.v[size_t(m)].cameraBeam = C[size_t(t - 1)].cameraBeam;
   fp.v[size_t(m - 1)].pdfCam = r.pCamPrev;
   if (t > 2) fp.v[size_t(m + 1)].pdfLight = r.pLightNext;
   fp.specCam1 = m == 1 ? r.specCam : specCamera(L[1], L[1].lobe, L[1].lambda, L[1].lambdaNext);

@@ -23,8 +23,11 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
     const FullVertex& x = p.v[size_t(s)];
     if (s < 1 || s > k - 1 || !x.connectible || !x.mergeable || !(etaOf(p.mergeEta, variant, gatherVertex(p, s), x.volume) > 0.0))
       return false;
-    if (variant == Variant::kMerge) return p.families.shared && elastic;
     const bool fluorescent = p.v[size_t(s)].lobe == SpectralLobe::Fluorescent;
+    if (isBeam(variant) && !(x.cameraBeam > 0.0)) return false;
+    if (variant == Variant::kBeam) return p.families.shared && elastic;
+    if (variant == Variant::kBeamOwn) return p.families.independent && fluorescent;
+    if (variant == Variant::kMerge) return p.families.shared && elastic;
     if (variant == Variant::kMergeSplat) return p.families.independent && !fluorescent && s == k - 1;
     if (variant == Variant::kMergeOwn) return p.families.independent && fluorescent;
     return p.families.independent && !fluorescent && p.mollifyWidth > 0.0;
@@ -59,6 +62,8 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
     case Variant::kMergeOwn:
     case Variant::kMergeMollified:
     case Variant::kMergeSplat:
+    case Variant::kBeam:
+    case Variant::kBeamOwn:
       return false;  // decided above
   }
   if (s == k)  // t = 1: light tracing, x_{k−1}'s event sampled by the light side
@@ -81,10 +86,13 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
     // Both sides sample x_s; the kernel accepts a disc of area π r² around it, one of N light
     // subpaths (η = N·π r², each kind's), and through an elastic x_s an own light vertex's wavelength within a
     // window ε_h of the camera's (as a mollified join, eq. 6).
+    // A beam's: the camera side's free-flight factor at x_s replaced by the probability of its beam
+    // reaching past x_s (docs/media-beams.md eq. B2).
     double d = etaOf(p.mergeEta, variant, gatherVertex(p, s), p.v[size_t(s)].volume);
+    if (isBeam(variant)) d *= p.v[size_t(s)].cameraBeam;
     for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
     for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
-    if (variant == Variant::kMerge) return d * p.sensorPdf * p.sharedChoice * p.laneGain;
+    if (variant == Variant::kMerge || variant == Variant::kBeam) return d * p.sensorPdf * p.sharedChoice * p.laneGain;
     if (variant == Variant::kMergeSplat) return d * p.ownChoice;  // the light draws every group's wavelength
     d *= p.sensorPdf * p.ownChoice;
     return variant == Variant::kMergeMollified ? d * p.mollifyWidth : d;
@@ -138,6 +146,8 @@ float misWeight(const FullPath& p, int s, Variant variant) {
     add(i, Variant::kMerge);
     add(i, Variant::kMergeOwn);
     add(i, Variant::kMergeMollified);
+    add(i, Variant::kBeam);
+    add(i, Variant::kBeamOwn);
   }
   if (k >= 2) add(k - 1, Variant::kMergeSplat);
   return float(1.0 / sum);

@@ -21,6 +21,10 @@ struct FullVertex {
   bool connectible = true;                    // a connection may end here (no delta lobe)
   bool volume = false;                        // a collision in a medium: merges there use MergeEta::volume
   bool mergeable = true;  // connectible, and not a collision whose merge sphere meets a surface (subpath_mis.h)
+  // A collision in a homogeneous medium: R_C/F_C, the camera side's probability of flying past it
+  // over its density of colliding there, from its camera-side neighbour (docs/media-beams.md eq. B1);
+  // 0 elsewhere (no beam strategy there).
+  double cameraBeam = 0.0;
 };
 
 // Which light subpaths a camera sample is combined with (each at most one per camera sample).
@@ -42,7 +46,10 @@ struct MergeEta {
   // (Variant::kMergeSplat): not in a scene with media, where the camera's throughput to that vertex
   // and its density, drawn at the camera's wavelength, would depend on the wavelength too.
   bool splat = true;
-  bool any() const { return eta > 0.0 || gather > 0.0 || volume > 0.0; }
+  // N·π r_v², that of light vertices in media (photon points) against the camera's query beams (the
+  // beam radiance estimate, docs/media-beams.md), at collisions in homogeneous media (0: none).
+  double beam = 0.0;
+  bool any() const { return eta > 0.0 || gather > 0.0 || volume > 0.0 || beam > 0.0; }
 };
 
 struct FullPath {
@@ -92,17 +99,28 @@ struct FullPath {
 // - kMergeSplat: vertex merging at x_{k−1}, the camera ray's hit, of the own family through an
 //   elastic x_{k−1}, the sensor at the light vertex's wavelength (no kernel: the camera ray does not
 //   depend on λ, so, like t = 1, the light side draws the last group's wavelength), within the
-//   gather radius (η_g) (docs/bdpt-mis.md §12).
-enum class Variant : uint8_t { kStandard, kLightVertex, kMollified, kOwn, kMerge, kMergeOwn, kMergeMollified, kMergeSplat };
+//   gather radius (η_g) (docs/bdpt-mis.md §12);
+// - kBeam, kBeamOwn: at a collision x_s in a homogeneous medium, the light side's vertex x_s (a
+//   photon point) merged with the camera side's query beam from x_{s+1}, which does not sample where
+//   along itself x_s lies (docs/media-beams.md): of the shared family through an elastic x_s, of the
+//   own family through a fluorescent one.
+enum class Variant : uint8_t {
+  kStandard, kLightVertex, kMollified, kOwn, kMerge, kMergeOwn, kMergeMollified, kMergeSplat, kBeam, kBeamOwn
+};
 
-// Whether a variant is one of vertex merging's.
+// Whether a variant is a beam's.
+inline bool isBeam(Variant v) { return v == Variant::kBeam || v == Variant::kBeamOwn; }
+
+// Whether a variant is one of vertex merging's (beams included).
 inline bool isMerge(Variant v) {
-  return v == Variant::kMerge || v == Variant::kMergeOwn || v == Variant::kMergeMollified || v == Variant::kMergeSplat;
+  return v == Variant::kMerge || v == Variant::kMergeOwn || v == Variant::kMergeMollified || v == Variant::kMergeSplat ||
+         isBeam(v);
 }
 
 // η of a merge variant, at the first gather vertex or not (kMergeSplat's x_{k−1} always is one), on a
 // surface or at a collision in a medium (`volume`: one η for every variant).
 inline double etaOf(const MergeEta& eta, Variant v, bool gather, bool volume) {
+  if (isBeam(v)) return volume ? eta.beam : 0.0;
   if (v == Variant::kMergeSplat && !eta.splat) return 0.0;
   if (volume) return eta.volume;
   return v == Variant::kMergeSplat || (v == Variant::kMergeOwn && gather) ? eta.gather : eta.eta;

@@ -16,7 +16,8 @@
 // shared family's joins and t = 1; own: the own family's joins and light vertex; mollified: its
 // mollified joins; ownSplat: its t = 1, the only strategy whose last wavelength the sensor does not
 // draw. The merges (§12) are kept apart in mergeShared, mergeOwn, mergeMollified and mergeOwnSplat
-// (its merge at x_{k−1} at the light vertex's wavelength), each with the factor of its namesake, so
+// (its merge at x_{k−1} at the light vertex's wavelength; the beams in media in the first two), each
+// with the factor of its namesake, so
 // that the sum without them, the connections alone, is at hand (vcm's pilot, MisFactors::merges).
 #include "integrators/bidirectional/mis.h"
 #include "materials/bsdf_model.h"
@@ -118,8 +119,10 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st);
 // vertex's wavelength (Variant::kMergeSplat, η_g, in the merge part whose last wavelength the sensor
 // does not draw).
 // `gather`: x_m is the path's first gather vertex (MergeEta); `first`: x_m is x_{k−1}, the camera
-// ray's hit; `volume`: x_m is a collision in a medium (every merge there with η_v).
+// ray's hit; `volume`: x_m is a collision in a medium (every merge there with η_v). There the beams
+// (Variant::kBeam, kBeamOwn) add (η_b·density·cameraBeam)² to the merge part of their namesake
+// (FullVertex::cameraBeam; docs/media-beams.md eq. B2), which has their factors.
 MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,
-                          const Strategies& st, bool volume = false);
+                          const Strategies& st, bool volume = false, double cameraBeam = 0.0);
 
 }  // namespace kasha::bidir

@@ -26,6 +26,14 @@ double flightFactorInMedia(const Scene& scene, TransportMode mode, const Segment
   return freeFlightDensity(mixture, d, rate, seekRate);
 }
 
+double cameraBeamRatio(const Scene& scene, const SegmentDepth& d, const PathVertex& target, float lambda) {
+  if (target.kind != PathVertex::Kind::Medium || d.crossesBoundary || scene.media[size_t(target.medium)]->heterogeneous())
+    return 0.0;
+  const bool mixture = scene.hasFluorescentMedia();
+  const double collide = flightFactorInMedia(scene, TransportMode::Radiance, d, target, lambda);
+  return collide > 0.0 ? double(freeFlightDensity(mixture, d, 1.0f, 1.0f)) / collide : 0.0;
+}
+
 bool sphereClearOfSurfaces(const Scene& scene, const Vec3& p, float r, RayCounter& counter) {
   constexpr float d = 0.57735027f;  // 1/√3
   static const Vec3 directions[14] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},  {0, -1, 0},  {0, 0, 1},  {0, 0, -1},

@@ -27,6 +27,13 @@ inline double flightFactor(const Scene& scene, TransportMode mode, const Segment
   return scene.hasMedia() ? flightFactorInMedia(scene, mode, d, target, lambda) : 1.0;
 }
 
+// R_C/F_C at `target` (docs/media-beams.md eq. B1): the probability that a camera side's free flight
+// over a segment of optical depths d, at wavelength lambda, passes `target` over its density of
+// colliding there (flightFactor's), where `target` is a collision in a homogeneous medium that the
+// segment reaches without crossing a boundary; 0 at any other vertex, and in a heterogeneous medium,
+// whose density d(x) flightFactor leaves out.
+double cameraBeamRatio(const Scene& scene, const SegmentDepth& d, const PathVertex& target, float lambda);
+
 // Whether the sphere of radius r around p meets no surface, by 14 segments from p (the axes and the
 // diagonals): a merge's sphere in a medium (docs/media.md §6) that reaches out of it would count the
 // light vertices of a volume it does not fill, a bias of the order of r/(the medium's thickness). A

@@ -54,6 +54,11 @@ struct PathVertex {
   // A collision whose merge sphere (radius MergeEta::volumeRadius) meets no surface: only there do
   // merges in media happen (docs/media.md §6).
   bool sphereInMedium = true;
+  // A collision in a homogeneous medium: the camera side's R_C/F_C of it (FullVertex::cameraBeam,
+  // cameraBeamRatio) over the segment it reaches it along: on a camera subpath its arrival, on a
+  // light subpath the next vertex's (set when that one arrives); connections recompute it for the
+  // segment they join.
+  float cameraBeam = 0.0f;
   // Subpath throughput of each lane up to this vertex, its own scattering excluded; 0 for a lane
   // that ended.
   float beta[kMaxLanes] = {};

@@ -18,10 +18,11 @@ inline double densityRatio(double other, double own) { return own > 0.0 ? other 
 // the vertex that side sampled last). `gather`: L[j] connects to the camera (t = 1), so it is
 // x_{k−1}, the path's first gather vertex (MergeEta) and the camera ray's hit (Variant::kMergeSplat).
 // `ends`: the path being weighed ends a connection at L[j] (PathVertex::joinable); L[j − 1] is
-// always inside it.
+// always inside it. cameraBeam: the camera side's beam ratio at L[j] (PathVertex::cameraBeam) over
+// the segment by which the path's camera side reaches it.
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
-                          const Strategies& st, bool gather, bool ends);
-// The same with L[j]'s own sampled event.
+                          const Strategies& st, bool gather, bool ends, double cameraBeam);
+// The same with L[j]'s own sampled event, reached by the camera side from L[j + 1].
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st, bool gather, bool ends);
 
 // M of the strategy with j vertices on the camera subpath C (t' = j, s' = k + 1 − j), C[j] using

@@ -77,7 +77,7 @@ void arrive(Track& tr, const PathVertex& reached, const Ray& ray, const Scene& s
   std::vector<PathVertex>& path = *tr.path;
   path.push_back(reached);
   PathVertex& v = path.back();
-  const PathVertex& prev = path[path.size() - 2];
+  PathVertex& prev = path[path.size() - 2];
   const Bsdf& bsdf = *v.bsdf;
   v.lanesKept = prev.lanesKept && !lambdaDependent(bsdf) && !v.arrival.inMedia;
   v.gather = !prev.scatters() || (prev.gather && !prev.joinable(false));
@@ -107,6 +107,14 @@ void arrive(Track& tr, const PathVertex& reached, const Ray& ray, const Scene& s
   v.pdfFwd = (prev.kind == PathVertex::Kind::Infinite ? tr.pdfSA * v.cosine(ray.d)  // disk → surface
                                                        : toAreaDensity(tr.pdfSA, prev, v)) *
              flightFactor(scene, mode, v.arrival, v, v.lambda);
+  // The camera side's beam ratio over the segment just flown: of v on a camera subpath, of the
+  // previous vertex on a light subpath (which the camera side reaches from v).
+  if (st.merge.beam > 0.0) {
+    if (mode == TransportMode::Radiance)
+      v.cameraBeam = float(cameraBeamRatio(scene, v.arrival, v, v.lambda));
+    else
+      prev.cameraBeam = float(cameraBeamRatio(scene, v.arrival, prev, v.lambda));
+  }
   updateSums(path, mode, st);
 }
 

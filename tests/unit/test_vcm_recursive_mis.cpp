@@ -55,7 +55,8 @@ class WeightAndConnectionsOracle final : public MisObserver {
     const int k = int(path.v.size()) - 1;
     double share = 0.0;
     for (int i = 1; i < k; ++i)
-      for (Variant v : {Variant::kMerge, Variant::kMergeOwn, Variant::kMergeMollified, Variant::kMollified})
+      for (Variant v : {Variant::kMerge, Variant::kMergeOwn, Variant::kMergeMollified, Variant::kMollified,
+                        Variant::kBeam, Variant::kBeamOwn})
         share += misWeight(path, i, v);
     if (k >= 2) share += misWeight(path, k - 1, Variant::kMergeSplat);
     const double rho = densityOverAlone(Alone::Connections, e.total, e.factors, e.sum, 0.0);
@@ -80,7 +81,9 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
   // first vertex at their own wavelength (MergeEta::splat), as in vcm.
   const bool media = scene->hasMedia();
   const double eta = param.etaScale;
-  const Strategies strategies{param.connections, {3.0 * eta, 11.0 * eta, 5.0 * eta, 0.01, !media}};
+  Strategies strategies{param.connections, {3.0 * eta, 11.0 * eta, 5.0 * eta, 0.01, !media}};
+  // And the camera's query beams against light vertices in homogeneous media (docs/media-beams.md).
+  if (media) strategies.merge.beam = 2.0 * eta;
   const WalkSettings ws{6, 3, &light.density(), families.independent && !media ? &lightFirst : nullptr, strategies};
   std::vector<PathVertex> C, LS, LO;
   WeightAndConnectionsOracle observer;
