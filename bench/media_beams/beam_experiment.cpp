@@ -38,6 +38,7 @@
 #include "core/image_output.h"
 #include "integrators/bidirectional/subpaths.h"
 #include "integrators/point_map_impl.h"
+#include "integrators/points_near_segments.h"
 #include "integrators/progressive_schedule.h"
 #include "scene/scene_loader.h"
 #include "scene/wavelength_strategy.h"
@@ -94,9 +95,9 @@ void traceLight(const Scene& scene, const bidir::Lanes& lanes, const bidir::Walk
   }
 }
 
-// Beams as Embree round linear curves of radius r, or points as spheres of radius r; a query
-// collects every one a ray segment meets (an intersection filter that records and rejects each
-// hit).
+// Beams as Embree round linear curves of radius r; a query collects every one a ray segment meets
+// (an intersection filter that records and rejects each hit). Points against a segment are
+// PointsNearSegments' (integrators/points_near_segments.h).
 struct KernelQuery {
   RTCIntersectContext context;
   std::vector<unsigned>* found;
@@ -110,14 +111,6 @@ void collectHit(const RTCFilterFunctionNArguments* args) {
 
 class KernelAccel {
  public:
-  KernelAccel(RTCDevice device, const std::vector<Point>& points, float r) {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points.size()));
-    for (size_t i = 0; i < points.size(); ++i)
-      v[4 * i] = points[i].p[0], v[4 * i + 1] = points[i].p[1], v[4 * i + 2] = points[i].p[2], v[4 * i + 3] = r;
-    commit(device, g);
-  }
   KernelAccel(RTCDevice device, const std::vector<Beam>& beams, float r) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
     auto* v = static_cast<float*>(
@@ -228,13 +221,21 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
     traceLight(scene, lanes, walk, seed, passes, count, beams, points);
     const float r = progressiveRadius(r1, kAlpha, passes + 1, estimator == Estimator::Points ? 3 : 2);
     std::unique_ptr<PointMap<Point>> map;
+    std::unique_ptr<PointsNearSegments> nearQuery;
     std::unique_ptr<KernelAccel> accel;
-    if (estimator == Estimator::Points) map = std::make_unique<PointMap<Point>>(points);
-    else if (estimator == Estimator::PointsAlongQuery) accel = std::make_unique<KernelAccel>(device, points, r);
-    else accel = std::make_unique<KernelAccel>(device, beams, r);
+    if (estimator == Estimator::Points) {
+      map = std::make_unique<PointMap<Point>>(points);
+    } else if (estimator == Estimator::PointsAlongQuery) {
+      std::vector<Vec3> positions;
+      for (const Point& p : points) positions.push_back(p.position());
+      nearQuery = std::make_unique<PointsNearSegments>(positions, r);
+    } else {
+      accel = std::make_unique<KernelAccel>(device, beams, r);
+    }
     const float kernelNorm = estimator == Estimator::Points ? 1.0f / (4.0f / 3.0f * kPi * r * r * r) : 1.0f / (kPi * r * r);
     tbb::parallel_for(0, h, [&](int y) {
       std::vector<unsigned> found;
+      std::vector<PointsNearSegments::Found> nearPoints;
       for (int x = 0; x < w; ++x) {
         Sampler rng(SamplerKind::Independent, seed ^ 0x9e3779b97f4a7c15ULL, uint64_t(y) * w + x, uint32_t(passes));
         const Vec2 filmPos = scene.pixelFilter.filmPosition(Vec2(float(x), float(y)), rng.uniform2());
@@ -256,15 +257,11 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
         } else if (estimator == Estimator::PointsAlongQuery) {
           // Σ_p β_p·f·T_c(t_p)·K_2(d_p): the camera ray's integral of the points' ball kernel, blurred
           // across the ray only (the beam radiance estimate, Jarosz et al. 2008).
-          found.clear();
-          accel->near(ray.o, ray.d, seg.length, found);
-          for (unsigned i : found) {
-            const Point& p = points[i];
-            const float t = glm::dot(p.position() - ray.o, ray.d);
-            if (p.medium != seg.medium || t < 0.0f || t > seg.length) continue;
-            const Vec3 gap = p.position() - (ray.o + ray.d * t);
-            if (glm::dot(gap, gap) >= r * r) continue;
-            radiance += double(p.power) * fluorescence(collision, p.lambda, lambdaOut) * std::exp(-sigmaOut * t);
+          nearQuery->near(ray.o, ray.d, seg.length, nearPoints);
+          for (const PointsNearSegments::Found& f : nearPoints) {
+            const Point& p = points[f.index];
+            if (p.medium == seg.medium)
+              radiance += double(p.power) * fluorescence(collision, p.lambda, lambdaOut) * std::exp(-sigmaOut * f.t);
           }
         } else {
           found.clear();

@@ -1,0 +1,83 @@
+#include "integrators/points_near_segments.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "integrators/point_map_impl.h"
+
+namespace kasha {
+
+namespace {
+
+// The intersection context of a query: Embree hands the filter the context it was given, so the
+// list of spheres met follows it.
+struct Query {
+  RTCIntersectContext context;
+  std::vector<uint32_t>* met;
+};
+
+void recordAndReject(const RTCFilterFunctionNArguments* args) {
+  const auto* query = reinterpret_cast<const Query*>(args->context);
+  query->met->push_back(RTCHitN_primID(args->hit, args->N, 0));
+  args->valid[0] = 0;
+}
+
+}  // namespace
+
+PointsNearSegments::PointsNearSegments(const std::vector<Vec3>& points, float radius)
+    : points_(points), radius_(radius) {
+  if (!(radius > 0.0f)) throw std::invalid_argument("PointsNearSegments: the radius must be positive");
+  device_ = rtcNewDevice("verbose=0");
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  std::vector<Record> records(points.size());
+  if (!points.empty()) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points.size()));
+    for (size_t i = 0; i < points.size(); ++i) {
+      v[4 * i] = points[i].x, v[4 * i + 1] = points[i].y, v[4 * i + 2] = points[i].z, v[4 * i + 3] = radius;
+      records[i] = {{points[i].x, points[i].y, points[i].z}, uint32_t(i)};
+    }
+    rtcSetGeometryIntersectFilterFunction(g, recordAndReject);
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(scene_);
+  map_ = std::make_unique<PointMap<Record>>(std::move(records));
+}
+
+PointsNearSegments::~PointsNearSegments() {
+  rtcReleaseScene(scene_);
+  rtcReleaseDevice(device_);
+}
+
+void PointsNearSegments::near(const Vec3& o, const Vec3& d, float length, std::vector<Found>& found) const {
+  found.clear();
+  thread_local std::vector<uint32_t> met;
+  met.clear();
+  if (points_.empty() || !(length >= 0.0f)) return;
+  Query q;
+  rtcInitIntersectContext(&q.context);
+  q.met = &met;
+  RTCRayHit rh{};
+  rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
+  rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
+  rh.ray.tnear = 0.0f, rh.ray.tfar = length, rh.ray.mask = ~0u;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &q.context, &rh);
+  for (size_t i : map_->within(o, radius_)) met.push_back((*map_)[i].index);  // the map reorders its records
+  std::sort(met.begin(), met.end());
+  met.erase(std::unique(met.begin(), met.end()), met.end());
+  const float r2 = radius_ * radius_;
+  for (uint32_t i : met) {
+    const Vec3 x = points_[i] - o;
+    const float t = glm::dot(x, d);
+    if (t < 0.0f || t > length) continue;
+    const Vec3 across = x - t * d;
+    if (glm::dot(across, across) < r2) found.push_back({i, t});
+  }
+}
+
+}  // namespace kasha
