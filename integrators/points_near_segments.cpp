@@ -4,25 +4,9 @@
 #include <stdexcept>
 
 #include "integrators/point_map_impl.h"
+#include "integrators/segment_hits.h"
 
 namespace kasha {
-
-namespace {
-
-// The intersection context of a query: Embree hands the filter the context it was given, so the
-// list of spheres met follows it.
-struct Query {
-  RTCIntersectContext context;
-  std::vector<uint32_t>* met;
-};
-
-void recordAndReject(const RTCFilterFunctionNArguments* args) {
-  const auto* query = reinterpret_cast<const Query*>(args->context);
-  query->met->push_back(RTCHitN_primID(args->hit, args->N, 0));
-  args->valid[0] = 0;
-}
-
-}  // namespace
 
 PointsNearSegments::PointsNearSegments(const std::vector<Vec3>& points, float radius)
     : points_(points), radius_(radius) {
@@ -39,7 +23,7 @@ PointsNearSegments::PointsNearSegments(const std::vector<Vec3>& points, float ra
       v[4 * i] = points[i].x, v[4 * i + 1] = points[i].y, v[4 * i + 2] = points[i].z, v[4 * i + 3] = radius;
       records[i] = {{points[i].x, points[i].y, points[i].z}, uint32_t(i)};
     }
-    rtcSetGeometryIntersectFilterFunction(g, recordAndReject);
+    collectEveryHit(g);
     rtcCommitGeometry(g);
     rtcAttachGeometry(scene_, g);
     rtcReleaseGeometry(g);
@@ -58,15 +42,7 @@ void PointsNearSegments::near(const Vec3& o, const Vec3& d, float length, std::v
   thread_local std::vector<uint32_t> met;
   met.clear();
   if (points_.empty() || !(length >= 0.0f)) return;
-  Query q;
-  rtcInitIntersectContext(&q.context);
-  q.met = &met;
-  RTCRayHit rh{};
-  rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
-  rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
-  rh.ray.tnear = 0.0f, rh.ray.tfar = length, rh.ray.mask = ~0u;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &q.context, &rh);
+  hitsAlong(scene_, o, d, length, met);
   for (size_t i : map_->within(o, radius_)) met.push_back((*map_)[i].index);  // the map reorders its records
   std::sort(met.begin(), met.end());
   met.erase(std::unique(met.begin(), met.end()), met.end());

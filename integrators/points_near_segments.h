@@ -3,8 +3,7 @@
 // points against the camera's query beam, docs/media-beams.md): which of a set of points lie within
 // radius r of the segment, across it (their nearest point on its line inside it). The points are
 // Embree spheres of radius r (RTC_GEOMETRY_TYPE_SPHERE_POINT) in a scene of their own, and a query
-// is one Embree ray whose intersection filter records every sphere it meets and rejects the hit, so
-// that the traversal goes on; the spheres that hold the whole segment, which the ray never meets,
+// is one Embree ray that records every sphere it meets (segment_hits.h); the spheres that hold the whole segment, which the ray never meets,
 // hold its origin, and a FLANN ball query there (point_map.h) finds them.
 #include <embree3/rtcore.h>
 

@@ -39,6 +39,7 @@
 #include "integrators/bidirectional/subpaths.h"
 #include "integrators/point_map_impl.h"
 #include "integrators/points_near_segments.h"
+#include "integrators/segment_hits.h"
 #include "integrators/progressive_schedule.h"
 #include "scene/scene_loader.h"
 #include "scene/wavelength_strategy.h"
@@ -96,19 +97,7 @@ void traceLight(const Scene& scene, const bidir::Lanes& lanes, const bidir::Walk
 }
 
 // Beams as Embree round linear curves of radius r; a query collects every one a ray segment meets
-// (an intersection filter that records and rejects each hit). Points against a segment are
-// PointsNearSegments' (integrators/points_near_segments.h).
-struct KernelQuery {
-  RTCIntersectContext context;
-  std::vector<unsigned>* found;
-};
-
-void collectHit(const RTCFilterFunctionNArguments* args) {
-  auto* query = reinterpret_cast<KernelQuery*>(args->context);
-  query->found->push_back(RTCHitN_primID(args->hit, args->N, 0));
-  args->valid[0] = 0;
-}
-
+// (segment_hits.h). Points against a segment are PointsNearSegments' (points_near_segments.h).
 class KernelAccel {
  public:
   KernelAccel(RTCDevice device, const std::vector<Beam>& beams, float r) {
@@ -128,16 +117,8 @@ class KernelAccel {
     commit(device, g);
   }
   ~KernelAccel() { rtcReleaseScene(scene_); }
-  void near(const Vec3& o, const Vec3& d, float length, std::vector<unsigned>& found) const {
-    KernelQuery q;
-    rtcInitIntersectContext(&q.context);
-    q.found = &found;
-    RTCRayHit rh{};
-    rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
-    rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
-    rh.ray.tnear = 0.0f, rh.ray.tfar = length, rh.ray.mask = ~0u;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &q.context, &rh);
+  void near(const Vec3& o, const Vec3& d, float length, std::vector<uint32_t>& found) const {
+    hitsAlong(scene_, o, d, length, found);
     std::sort(found.begin(), found.end());
     found.erase(std::unique(found.begin(), found.end()), found.end());
   }
@@ -146,7 +127,7 @@ class KernelAccel {
   void commit(RTCDevice device, RTCGeometry g) {
     scene_ = rtcNewScene(device);
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    rtcSetGeometryIntersectFilterFunction(g, collectHit);
+    collectEveryHit(g);
     rtcCommitGeometry(g);
     rtcAttachGeometry(scene_, g);
     rtcReleaseGeometry(g);
@@ -234,7 +215,7 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
     }
     const float kernelNorm = estimator == Estimator::Points ? 1.0f / (4.0f / 3.0f * kPi * r * r * r) : 1.0f / (kPi * r * r);
     tbb::parallel_for(0, h, [&](int y) {
-      std::vector<unsigned> found;
+      std::vector<uint32_t> found;
       std::vector<PointsNearSegments::Found> nearPoints;
       for (int x = 0; x < w; ++x) {
         Sampler rng(SamplerKind::Independent, seed ^ 0x9e3779b97f4a7c15ULL, uint64_t(y) * w + x, uint32_t(passes));
@@ -266,7 +247,7 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
         } else {
           found.clear();
           accel->near(ray.o, ray.d, seg.length, found);
-          for (unsigned i : found) {
+          for (uint32_t i : found) {
             const Beam& b = beams[i];
             if (b.medium != seg.medium) continue;
             // Closest points of the camera line o + t·c and the beam line a + s·d.
