@@ -144,6 +144,9 @@ struct BdptSettings {
 // Vertex connection and merging, render/vcm (integrators "vcm", "vc" and "bpm", docs/bdpt-mis.md §12).
 struct VcmSettings : ProgressiveSettings {
   VcmPaths paths = VcmPaths::Auto;  // vcm's subpaths
+  // Light vertices in homogeneous media also merge with the camera's query beams, within the volume
+  // radius across them (photon points against beams, docs/media-beams.md).
+  bool beams = true;
 };
 
 // The ranges of the integrators' own settings, checked in one place for the scene loader and for

@@ -213,6 +213,7 @@ struct Loader {
     const std::string paths = f.string("paths", toString(v.paths));
     if (const auto choice = parseVcmPaths(paths)) v.paths = *choice;
     else f.fail("paths", "'" + paths + "' is not a choice of vcm's subpaths (auto, bidirectional, gather, connections, camera)");
+    v.beams = f.boolean("beams", v.beams);
     f.finish();
   }
 

@@ -80,7 +80,7 @@ bool oneGroup(const LightVertex& v, const PathVertex& b, SpectralLobe lobe) {
 // gather vertex, merge.h for withinRadius): lambdaB the wavelength of b's densities (and of an own
 // vertex's one lane), betaB b's throughput per lane, times laneFactor.
 void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
-                bool gather, int k0, int k1, float lambdaB, const float* betaB, float laneFactor, float* out,
+                bool beam, bool gather, int k0, int k1, float lambdaB, const float* betaB, float laneFactor, float* out,
                 const std::vector<PathVertex>* lightPath) {
   const PathVertex& b = C[size_t(t - 1)];
   const PathVertex& bNext = C[size_t(t - 2)];
@@ -92,12 +92,14 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     SpectralLobe lobe;
     Variant variant;
   };
+  // Against a query beam (docs/media-beams.md) the same through b, a collision on the beam, but no
+  // mollified one (an own vertex's elastic merge through the kernel has no beam).
   Kind kinds[2];
   int n = 0;
-  if (!own && withinRadius) kinds[n++] = {SpectralLobe::Elastic, Variant::kMerge};
+  if (!own && withinRadius) kinds[n++] = {SpectralLobe::Elastic, beam ? Variant::kBeam : Variant::kMerge};
   if (own && (withinRadius || gather) && b.bsdf->has(BsdfFlags::Fluorescent))
-    kinds[n++] = {SpectralLobe::Fluorescent, Variant::kMergeOwn};
-  if (own && withinRadius && c.bandwidth > 0.0f && std::abs(v.lambda - lambdaB) < c.bandwidth)
+    kinds[n++] = {SpectralLobe::Fluorescent, beam ? Variant::kBeamOwn : Variant::kMergeOwn};
+  if (!beam && own && withinRadius && c.bandwidth > 0.0f && std::abs(v.lambda - lambdaB) < c.bandwidth)
     kinds[n++] = {SpectralLobe::Elastic, Variant::kMergeMollified};
   const Bsdf& fb = *b.bsdf;
   const Vec3 bWi(v.wi[0], v.wi[1], v.wi[2]), bWo = fb.toLocal(towards(b, bNext));
@@ -110,7 +112,8 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     // The wavelengths of the densities at x_m: the light arriving and the camera's leaving, the
     // same through the elastic lobe (the camera's, one that scatters there, §10).
     const float lambdaOut = lambdaB;
-    const float lambdaIn = variant == Variant::kMergeOwn ? v.lambda : lambdaOut;
+    const bool ownPart = variant == Variant::kMergeOwn || variant == Variant::kBeamOwn;
+    const float lambdaIn = ownPart ? v.lambda : lambdaOut;
     // Mollified: δ(λ_v − λ_b) widened to K_h, renormalised inside the range (docs/bdpt-mis.md eq. 5).
     const WavelengthRange& r = c.scene.range;
     const float kernel = variant == Variant::kMergeMollified
@@ -128,11 +131,11 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     }
     if (!any) continue;
     const MergeSums sums = mergeSums(c, C, t, v, lobe, lambdaIn, lambdaOut, gather, bWi, bWo);
-    // This merge: (η·pC_m)² relative to the strategy s' = m + 1.
-    const double eta = etaMerge * b.pdfFwd;
+    // This merge: (η·pC_m)² relative to the strategy s' = m + 1; a beam's (η_b·pC_m·ρ_C)² (eq. B2).
+    const double eta = etaMerge * b.pdfFwd * (beam ? double(b.cameraBeam) : 1.0);
     MisSums mine;
-    (variant == Variant::kMerge ? mine.mergeShared : variant == Variant::kMergeOwn ? mine.mergeOwn : mine.mergeMollified) =
-        eta * eta;
+    const bool sharedPart = variant == Variant::kMerge || variant == Variant::kBeam;
+    (sharedPart ? mine.mergeShared : ownPart ? mine.mergeOwn : mine.mergeMollified) = eta * eta;
     const bool single = oneGroup(v, b, lobe);
     const bool lanesKept = v.has(LightVertex::kLanesKept) && b.lanesKept;
     float weight[kMaxLanes];
@@ -184,10 +187,9 @@ void mergeSplat(const Context& c, const std::vector<PathVertex>& C, const LightV
   atLight.push_back({lambda, value * weight});
 }
 
-}  // namespace
-
-void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
-           float* out, std::vector<SpectralSample>& atLight, const std::vector<PathVertex>* lightPath) {
+// merge's, and mergeBeam's with `beam` (C[t − 1] then a collision on the query beam).
+void mergeAt(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
+             bool beam, float* out, std::vector<SpectralSample>& atLight, const std::vector<PathVertex>* lightPath) {
   const PathVertex& b = C[size_t(t - 1)];
   // A collision in a medium merges within the volume radius alone (η_v for every variant, MergeEta):
   // no wider gather there.
@@ -199,7 +201,7 @@ void merge(const Context& c, const std::vector<PathVertex>& C, int t, const Ligh
   const bool ended = b.lanesEndHere;
   const float* beta = ended ? b.betaArriving : b.beta;
   const int bLane = ended ? -1 : b.lane;
-  if (own && t == 2 && etaOf(c.walk.strategies.merge, Variant::kMergeSplat, true, b.inMedium()) > 0.0)
+  if (!beam && own && t == 2 && etaOf(c.walk.strategies.merge, Variant::kMergeSplat, true, b.inMedium()) > 0.0)
     mergeSplat(c, C, v, beta[0], atLight, lightPath);
   // The lanes served: on a shared vertex (it carries the camera sample's lanes) those both reach; on
   // an own one every lane that reaches b, each a merge of its own (an own join keeps one of them at
@@ -212,11 +214,84 @@ void merge(const Context& c, const std::vector<PathVertex>& C, int t, const Ligh
   if (k1 - k0 > 1 && (own || ended)) {
     for (int k = k0; k < k1; ++k)
       if (beta[k] > 0.0f)
-        mergeLanes(c, C, t, v, withinRadius, gather, k, k + 1, c.lanes.lambda[k], beta, laneFactor, out, lightPath);
+        mergeLanes(c, C, t, v, withinRadius, beam, gather, k, k + 1, c.lanes.lambda[k], beta, laneFactor, out, lightPath);
   } else if (k0 < k1) {
     const float lambdaB = ended ? c.lanes.lambda[k0] : b.lambda;
-    mergeLanes(c, C, t, v, withinRadius, gather, k0, k1, lambdaB, beta, laneFactor, out, lightPath);
+    mergeLanes(c, C, t, v, withinRadius, beam, gather, k0, k1, lambdaB, beta, laneFactor, out, lightPath);
   }
+}
+
+// The collision at distance `along` on the query beam q of C[t−2] → C[t−1] = e, as the camera side's
+// free flight would have made it (its densities, sums and lanes are a collision's there), with the
+// throughput of the beam: the flight's weight T/p that e took replaced by T/R_C (eq. B3).
+PathVertex beamVertex(const Context& c, const std::vector<PathVertex>& C, int t, const PathVertex& e,
+                      const QueryBeam& q, float along) {
+  const Scene& scene = c.scene;
+  const PathVertex& y = C[size_t(t - 2)];
+  PathVertex b;
+  b.kind = Kind::Medium;
+  b.p = q.origin + along * q.w;
+  b.bsdf = scene.mediumBsdf(q.medium, b.p);
+  b.medium = q.medium;
+  const float lambda = e.lambda;
+  const float sigma = scene.media[size_t(q.medium)]->sigmaT(lambda);
+  const bool mixture = scene.hasFluorescentMedia();
+  const float seek =
+      sigma + (mixture ? scene.mediumScattering[size_t(q.medium)]->fluorescentWeight(TransportMode::Radiance, lambda) : 0.0f);
+  b.arrival = {sigma * along, seek * along, true, false};
+  b.lane = e.lane;
+  b.lambda = lambda;
+  b.elasticBefore = e.elasticBefore;
+  b.lanesKept = false;
+  b.gather = e.gather;
+  b.sums = e.sums;  // updateSums: from C[t−2] and C[t−3] alone
+  const double collide = flightFactor(scene, TransportMode::Radiance, b.arrival, b, lambda);
+  const double reach = freeFlightDensity(mixture, b.arrival, 1.0f, 1.0f);  // R_C
+  b.cameraBeam = float(cameraBeamRatio(scene, b.arrival, b, lambda));
+  // y's density of the direction, from e's area density (pdfSA·G·F).
+  const double pdfSA =
+      e.pdfFwd / (double(toAreaDensity(1.0f, y, e)) * flightFactor(scene, TransportMode::Radiance, e.arrival, e, lambda));
+  b.pdfFwd = float(pdfSA * toAreaDensity(1.0f, y, b) * collide);
+  const float scale = float(std::exp(-double(b.arrival.analog)) / reach) / e.flightWeight;
+  for (int k = 0; k < c.lanes.n; ++k) b.beta[k] = e.beta[k] * scale;
+  return b;
+}
+
+}  // namespace
+
+void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
+           float* out, std::vector<SpectralSample>& atLight, const std::vector<PathVertex>* lightPath) {
+  mergeAt(c, C, t, v, withinRadius, false, out, atLight, lightPath);
+}
+
+std::optional<QueryBeam> queryBeam(const Context& c, const std::vector<PathVertex>& C, int t) {
+  const Scene& scene = c.scene;
+  const PathVertex& y = C[size_t(t - 2)];
+  const PathVertex& e = C[size_t(t - 1)];
+  if (!(c.walk.strategies.merge.beam > 0.0) || !e.arrival.inMedia || !(e.flightWeight > 0.0f)) return std::nullopt;
+  QueryBeam q;
+  q.origin = y.p;
+  q.w = e.kind == Kind::Infinite ? -e.dir : glm::normalize(e.p - y.p);
+  q.medium = mediumToward(scene, y, q.w);
+  if (q.medium < 0 || scene.media[size_t(q.medium)]->heterogeneous()) return std::nullopt;
+  if (!e.arrival.crossesBoundary) {
+    q.length = e.kind == Kind::Infinite ? kInf : glm::length(e.p - y.p);
+  } else {  // up to the first boundary
+    ++c.counter.closest;
+    const std::optional<Hit> hit = scene.accel->intersect(Ray{offsetPoint(y.p, y.n, q.w), q.w});
+    if (!hit) return std::nullopt;
+    q.length = glm::length(hit->p - y.p);
+  }
+  return q;
+}
+
+void mergeBeam(const Context& c, std::vector<PathVertex>& C, int t, const QueryBeam& q, float along, const LightVertex& v,
+               float* out, const std::vector<PathVertex>* lightPath) {
+  PathVertex e = std::move(C[size_t(t - 1)]);
+  C[size_t(t - 1)] = beamVertex(c, C, t, e, q, along);
+  std::vector<SpectralSample> none;  // a beam has no merge at the light vertex's own wavelength
+  mergeAt(c, C, t, v, true, true, out, none, lightPath);
+  C[size_t(t - 1)] = std::move(e);
 }
 
 }  // namespace kasha::bidir

@@ -2,6 +2,7 @@
 // Vertex merging (docs/bdpt-mis.md §12): a light vertex of the pass near camera vertex C[t−1] stands
 // for a path that both subpaths reach, x_0 … x_m (the light subpath) … x_k (the camera subpath),
 // weighted against every connection and every other merge of that path.
+#include <optional>
 #include <vector>
 
 #include "integrators/bidirectional/connect.h"
@@ -21,5 +22,24 @@ namespace kasha::bidir {
 // the weight over the whole path), `lightPath` must be v's light subpath.
 void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
            float* out, std::vector<SpectralSample>& atLight, const std::vector<PathVertex>* lightPath = nullptr);
+
+// The camera's query beam along C[t−2] → C[t−1] (docs/media-beams.md): from `origin` (C[t−2]) in
+// direction w through `medium`, homogeneous, up to `length` (the segment's end, or the first
+// index-matched boundary it crosses).
+struct QueryBeam {
+  Vec3 origin{0.0f}, w{0.0f};
+  int medium = -1;
+  float length = 0.0f;
+};
+
+// C[t−1]'s query beam, where the walk has beams (MergeEta::beam) and the segment starts in a
+// homogeneous medium.
+std::optional<QueryBeam> queryBeam(const Context& c, const std::vector<PathVertex>& C, int t);
+
+// Merges light vertex v, a collision in q's medium within its radius of the query beam q at distance
+// `along`, with it (Variant::kBeam, kBeamOwn; eq. B3): as merge at a camera collision there
+// (C[t−1] stands in for it during the call), with the beam's throughput and densities.
+void mergeBeam(const Context& c, std::vector<PathVertex>& C, int t, const QueryBeam& q, float along, const LightVertex& v,
+               float* out, const std::vector<PathVertex>* lightPath = nullptr);
 
 }  // namespace kasha::bidir

@@ -59,6 +59,9 @@ struct PathVertex {
   // light subpath the next vertex's (set when that one arrives); connections recompute it for the
   // segment they join.
   float cameraBeam = 0.0f;
+  // The free flight's weight T/p at lane 0 that the subpath's throughput took on arriving here (1
+  // without media): a query beam along the same segment replaces it (vcm, docs/media-beams.md).
+  float flightWeight = 1.0f;
   // Subpath throughput of each lane up to this vertex, its own scattering excluded; 0 for a lane
   // that ended.
   float beta[kMaxLanes] = {};

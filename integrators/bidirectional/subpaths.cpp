@@ -198,6 +198,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
           v.lane = int8_t(lead.lane);
           v.lambda = lead.lambda;
           v.arrival = flight.depth;
+          if (media) v.flightWeight = flight.weight[0];
           v.pdfFwd = lead.pdfSA * flightFactor(scene, mode, v.arrival, v, v.lambda);
           v.lanesKept = lead.path->back().lanesKept && !v.arrival.inMedia;
           lead.path->push_back(v);
@@ -220,6 +221,7 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
       }
       v.medium = flight.medium;
       v.arrival = flight.depth;
+      if (media) v.flightWeight = flight.weight[0];
       const Bsdf& bsdf = *v.bsdf;
       int alive = 0;
       for (int i = 0; i < nTracks; ++i)

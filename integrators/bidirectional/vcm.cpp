@@ -16,6 +16,7 @@
 #include "integrators/bidirectional/subpath_mis.h"
 #include "integrators/direct_emission.h"
 #include "integrators/integrator_factory.h"
+#include "integrators/points_near_segments.h"
 #include "integrators/progressive_schedule.h"
 #include "integrators/bidirectional/light_vertex_pass.h"
 
@@ -96,6 +97,10 @@ struct VcmPass final : PassData {
   float radiusGather = 0.0f;  // own merges through a fluorescent lobe at the first gather vertex (MergeEta)
   float bandwidth = 0.0f;  // the wavelength kernel's half-width (own merges through an elastic lobe); 0: none
   std::unique_ptr<LightVertexMap> vertices;  // null without merges
+  // With beams: the light vertices in media (indices into `vertices`) near the camera's query beams,
+  // within radiusVolume across them (docs/media-beams.md).
+  std::unique_ptr<PointsNearSegments> beamPoints;
+  std::vector<size_t> beamVertices;
   bool cameraAlone = false;
   std::unique_ptr<const PassData> camera;    // cameraAlone: what pt's beginPass returned
 };
@@ -155,6 +160,7 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
     kept = std::max(1.0, double(onSurfaces) * double(paths_) / double(pilot.paths));
   }
   radius1_ = p.radius > 0.0f ? p.radius : float(std::sqrt(kVerticesPerDisc * area / (kPi * kept)));
+  beams_ = mergesInMedia && p.beams;
   if (mergesInMedia)
     volumeRadius1_ = p.volumeRadius > 0.0f ? p.volumeRadius
                                            : sphereHolding(pilotVertices, kVerticesPerSphere * double(pilot.paths) / double(paths_),
@@ -354,6 +360,9 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   pass->radiusVolume = rv * float(std::cbrt(double(paths_) / double(paths)));
   const double etaVolume = double(paths_) * (4.0 / 3.0) * kPi * double(rv) * rv * rv;
   pass->walk.strategies.merge = {eta, eta, etaVolume, pass->radiusVolume, !scene.hasMedia()};
+  // Beams: the pass's light vertices in media against a disc of radius r_v across each query beam,
+  // η_b = N·π r_v² of the light subpaths traced (docs/media-beams.md eq. B2).
+  if (beams_) pass->walk.strategies.merge.beam = double(paths) * kPi * double(pass->radiusVolume) * pass->radiusVolume;
   pass->setGather(run == VcmPaths::Gather);
   LightVertexTracing t;
   t.paths = paths;
@@ -364,6 +373,16 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   const uint64_t passSeed = mixBits(mixBits(seed ^ 0x5851f42d4c957f2dULL) + uint64_t(firstSample));
   pass->vertices = std::make_unique<LightVertexMap>(
       traceLightVertices(scene, pass->lanes, pass->walk, t, passSeed, counter));
+  if (beams_) {
+    std::vector<Vec3> points;
+    for (size_t i = 0; i < pass->vertices->size(); ++i) {
+      const bidir::LightVertex& v = (*pass->vertices)[i];
+      if (!v.has(bidir::LightVertex::kMedium)) continue;
+      pass->beamVertices.push_back(i);
+      points.emplace_back(v.p[0], v.p[1], v.p[2]);
+    }
+    if (!points.empty()) pass->beamPoints = std::make_unique<PointsNearSegments>(points, pass->radiusVolume);
+  }
   return pass;
 }
 
@@ -428,6 +447,17 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
         if (v.has(LightVertex::kMedium) != volume) continue;
         const Vec3 d = Vec3(v.p[0], v.p[1], v.p[2]) - b.p;
         if (v.depth + t - 2 <= maxDepth) merge(c, C, t, v, glm::dot(d, d) <= r2, radiance, atLight);
+      }
+    }
+    // The light vertices in media near each query beam (docs/media-beams.md).
+    thread_local std::vector<PointsNearSegments::Found> nearBeam;
+    for (int t = 2; pass.beamPoints && t <= int(C.size()) && t - 1 <= maxDepth; ++t) {
+      const std::optional<QueryBeam> q = queryBeam(c, C, t);
+      if (!q) continue;
+      pass.beamPoints->near(q->origin, q->w, q->length, nearBeam);
+      for (const PointsNearSegments::Found& f : nearBeam) {
+        const LightVertex& v = (*pass.vertices)[pass.beamVertices[f.index]];
+        if (v.depth + t - 2 <= maxDepth) mergeBeam(c, C, t, *q, f.t, v, radiance);
       }
     }
     for (const SpectralSample& a : atLight) xyz += sensorResponse(ctx, a.lambda, a.value);
