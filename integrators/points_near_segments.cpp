@@ -1,6 +1,7 @@
 #include "integrators/points_near_segments.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "integrators/point_map_impl.h"
@@ -41,7 +42,10 @@ void PointsNearSegments::near(const Vec3& o, const Vec3& d, float length, std::v
   found.clear();
   thread_local std::vector<uint32_t> met;
   met.clear();
-  if (points_.empty() || !(length >= 0.0f)) return;
+  // Embree asserts a finite origin and direction.
+  const bool finite = std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z) && std::isfinite(d.x) &&
+                      std::isfinite(d.y) && std::isfinite(d.z);
+  if (points_.empty() || !finite || !(length >= 0.0f)) return;
   hitsAlong(scene_, o, d, length, met);
   for (size_t i : map_->within(o, radius_)) met.push_back((*map_)[i].index);  // the map reorders its records
   std::sort(met.begin(), met.end());

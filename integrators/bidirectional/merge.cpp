@@ -271,11 +271,14 @@ std::optional<QueryBeam> queryBeam(const Context& c, const std::vector<PathVerte
   if (!(c.walk.strategies.merge.beam > 0.0) || !e.arrival.inMedia || !(e.flightWeight > 0.0f)) return std::nullopt;
   QueryBeam q;
   q.origin = y.p;
-  q.w = e.kind == Kind::Infinite ? -e.dir : glm::normalize(e.p - y.p);
+  const Vec3 towardsE = e.kind == Kind::Infinite ? -e.dir : e.p - y.p;
+  const float norm = glm::length(towardsE);
+  if (!(norm > 0.0f) || !std::isfinite(norm)) return std::nullopt;  // a segment of no length has no beam
+  q.w = towardsE / norm;
   q.medium = mediumToward(scene, y, q.w);
   if (q.medium < 0 || scene.media[size_t(q.medium)]->heterogeneous()) return std::nullopt;
   if (!e.arrival.crossesBoundary) {
-    q.length = e.kind == Kind::Infinite ? kInf : glm::length(e.p - y.p);
+    q.length = e.kind == Kind::Infinite ? kInf : norm;
   } else {  // up to the first boundary
     ++c.counter.closest;
     const std::optional<Hit> hit = scene.accel->intersect(Ray{offsetPoint(y.p, y.n, q.w), q.w});
