@@ -449,6 +449,8 @@ TEST_F(SceneLoader, UnknownTypes) {
               "'neither' is not a choice of bdpt's light subpaths (auto, both, shared, own)");
   expectError([](json& j) { j["render"] = {{"vcm", {{"paths", "light"}}}}; }, "/render/vcm/paths",
               "'light' is not a choice of vcm's subpaths (auto, bidirectional, gather, connections, camera)");
+  expectError([](json& j) { j["render"] = {{"vcm", {{"beams", "yes"}}}}; }, "/render/vcm/beams",
+              "expected true or false, got string");
 }
 
 TEST_F(SceneLoader, MissingMaterial) {
