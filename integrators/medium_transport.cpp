@@ -202,6 +202,13 @@ FreeFlight traceFreeFlightThroughMedia(const Scene& scene, Ray ray, int medium, 
   return f;
 }
 
+SegmentDepth depthThrough(const Scene& scene, int medium, float lambda, float length) {
+  const float sigma = scene.media[size_t(medium)]->sigmaT(lambda);
+  const float seekRate =
+      sigma + scene.mediumScattering[size_t(medium)]->fluorescentWeight(TransportMode::Radiance, lambda);
+  return {opticalDepth(sigma, length), opticalDepth(seekRate, length), true, false};
+}
+
 bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec3& d, float tMax, int medium,
                                       std::span<const float> lambda, float* tr, RayCounter& counter, SegmentDepth* depths) {
   const size_t n = lambda.size();
@@ -225,10 +232,9 @@ bool segmentTransmittanceThroughMedia(const Scene& scene, Vec3 origin, const Vec
                                  ? densityIntegral(m, Ray{origin, d}, gap, 0.0f, std::min(length, gap + m.densityExtent(origin, d)))
                                  : length;
       for (size_t k = 0; depths && k < n; ++k) {
-        const float seekRate = m.sigmaT(lambda[k]) + scene.mediumScattering[size_t(medium)]->fluorescentWeight(
-                                                         TransportMode::Radiance, lambda[k]);
-        depths[k].analog += opticalDepth(m.sigmaT(lambda[k]), integral);
-        depths[k].seeking += opticalDepth(seekRate, integral);
+        const SegmentDepth part = depthThrough(scene, medium, lambda[k], integral);
+        depths[k].analog += part.analog;
+        depths[k].seeking += part.seeking;
       }
       if (!m.heterogeneous()) {
         for (size_t k = 0; k < n; ++k) tau[k] += opticalDepth(m.sigmaT(lambda[k]), length);

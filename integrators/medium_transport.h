@@ -43,6 +43,11 @@ struct SegmentDepth {
   bool crossesBoundary = false;
 };
 
+// The optical depths at lambda over `length` through `medium` (for a heterogeneous one, the caller's
+// integral of its density along the segment in place of the length): σ_t·length and, the camera
+// paths' source-seeking rate, (σ_t + A_fl)·length (docs/media.md eq. 6b).
+SegmentDepth depthThrough(const Scene& scene, int medium, float lambda, float length);
+
 // What a ray from a vertex reaches through the media: a collision in a medium, a surface, or
 // nothing.
 struct FreeFlight {

@@ -234,24 +234,17 @@ PathVertex beamVertex(const Context& c, const std::vector<PathVertex>& C, int t,
   b.bsdf = scene.mediumBsdf(q.medium, b.p);
   b.medium = q.medium;
   const float lambda = e.lambda;
-  const float sigma = scene.media[size_t(q.medium)]->sigmaT(lambda);
-  const bool mixture = scene.hasFluorescentMedia();
-  const float seek =
-      sigma + (mixture ? scene.mediumScattering[size_t(q.medium)]->fluorescentWeight(TransportMode::Radiance, lambda) : 0.0f);
-  b.arrival = {sigma * along, seek * along, true, false};
+  b.arrival = depthThrough(scene, q.medium, lambda, along);
   b.lane = e.lane;
   b.lambda = lambda;
   b.elasticBefore = e.elasticBefore;
   b.lanesKept = false;
   b.gather = e.gather;
   b.sums = e.sums;  // updateSums: from C[t−2] and C[t−3] alone
-  const double collide = flightFactor(scene, TransportMode::Radiance, b.arrival, b, lambda);
-  const double reach = freeFlightDensity(mixture, b.arrival, 1.0f, 1.0f);  // R_C
-  b.cameraBeam = float(cameraBeamRatio(scene, b.arrival, b, lambda));
-  // y's density of the direction, from e's area density (pdfSA·G·F).
-  const double pdfSA =
-      e.pdfFwd / (double(toAreaDensity(1.0f, y, e)) * flightFactor(scene, TransportMode::Radiance, e.arrival, e, lambda));
-  b.pdfFwd = float(pdfSA * toAreaDensity(1.0f, y, b) * collide);
+  const double reach = freeFlightDensity(scene.hasFluorescentMedia(), b.arrival, 1.0f, 1.0f);  // R_C
+  b.cameraBeam = float(cameraBeamRatio(scene, b.arrival, b, lambda));                         // R_C/F_C
+  b.pdfFwd = float(q.directionPdf * toAreaDensity(1.0f, y, b) *
+                   flightFactor(scene, TransportMode::Radiance, b.arrival, b, lambda));
   const float scale = float(std::exp(-double(b.arrival.analog)) / reach) / e.flightWeight;
   for (int k = 0; k < c.lanes.n; ++k) b.beta[k] = e.beta[k] * scale;
   return b;
@@ -277,6 +270,10 @@ std::optional<QueryBeam> queryBeam(const Context& c, const std::vector<PathVerte
   q.w = towardsE / norm;
   q.medium = mediumToward(scene, y, q.w);
   if (q.medium < 0 || scene.media[size_t(q.medium)]->heterogeneous()) return std::nullopt;
+  // C[t−2]'s density of the direction, from e's area density (pdfSA·G·F).
+  q.directionPdf = e.pdfFwd / (double(toAreaDensity(1.0f, y, e)) *
+                               flightFactor(scene, TransportMode::Radiance, e.arrival, e, e.lambda));
+  if (!(q.directionPdf > 0.0) || !std::isfinite(q.directionPdf)) return std::nullopt;
   if (!e.arrival.crossesBoundary) {
     q.length = e.kind == Kind::Infinite ? kInf : norm;
   } else {  // up to the first boundary

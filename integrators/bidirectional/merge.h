@@ -30,6 +30,7 @@ struct QueryBeam {
   Vec3 origin{0.0f}, w{0.0f};
   int medium = -1;
   float length = 0.0f;
+  double directionPdf = 0.0;  // C[t−2]'s density of w per unit solid angle (its event's included)
 };
 
 // C[t−1]'s query beam, where the walk has beams (MergeEta::beam) and the segment starts in a
