@@ -17,6 +17,10 @@ void recordAndReject(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
+void recordMet(RTCIntersectContext* context, uint32_t prim) {
+  reinterpret_cast<const Collecting*>(context)->met->push_back(prim);
+}
+
 void collectEveryHit(RTCGeometry g) { rtcSetGeometryIntersectFilterFunction(g, recordAndReject); }
 
 void hitsAlong(RTCScene scene, const Vec3& o, const Vec3& d, float length, std::vector<uint32_t>& met) {

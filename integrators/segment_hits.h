@@ -15,6 +15,10 @@ namespace kasha {
 // Makes geometry g's hits recorded by hitsAlong (before rtcCommitGeometry).
 void collectEveryHit(RTCGeometry g);
 
+// For a user geometry's intersect function: records primitive `prim` as met by the hitsAlong query
+// whose context it was handed (and reports no hit, so that traversal goes on).
+void recordMet(RTCIntersectContext* context, uint32_t prim);
+
 // Appends to `met` the primitive IDs of every collecting geometry's primitives that the segment
 // o + t·d, t in [0, length], meets (a primitive met twice, as a sphere entered and left, twice).
 void hitsAlong(RTCScene scene, const Vec3& o, const Vec3& d, float length, std::vector<uint32_t>& met);

@@ -20,7 +20,6 @@
 // else first the images are black. The scene must have one medium. It writes points.exr,
 // pointbeam.exr and beams.exr.
 //   beam_experiment SCENE.json SECONDS SEED R_POINTS R_BEAMS OUTDIR
-#include <embree3/rtcore.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -39,7 +38,7 @@
 #include "integrators/bidirectional/subpaths.h"
 #include "integrators/point_map_impl.h"
 #include "integrators/points_near_segments.h"
-#include "integrators/segment_hits.h"
+#include "integrators/beams_near_segments.h"
 #include "integrators/progressive_schedule.h"
 #include "scene/scene_loader.h"
 #include "scene/wavelength_strategy.h"
@@ -95,47 +94,6 @@ void traceLight(const Scene& scene, const bidir::Lanes& lanes, const bidir::Walk
     points.insert(points.end(), pointsOf[i].begin(), pointsOf[i].end());
   }
 }
-
-// Beams as Embree round linear curves of radius r; a query collects every one a ray segment meets
-// (segment_hits.h). Points against a segment are PointsNearSegments' (points_near_segments.h).
-class KernelAccel {
- public:
-  KernelAccel(RTCDevice device, const std::vector<Beam>& beams, float r) {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 2 * beams.size()));
-    auto* index = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), beams.size()));
-    for (size_t i = 0; i < beams.size(); ++i) {
-      const Vec3 b = beams[i].a + beams[i].d * beams[i].length;
-      const float* ends[2] = {&beams[i].a.x, &b.x};
-      for (int e = 0; e < 2; ++e)
-        for (int k = 0; k < 3; ++k) v[8 * i + 4 * e + k] = ends[e][k];
-      v[8 * i + 3] = v[8 * i + 7] = r;
-      index[i] = unsigned(2 * i);
-    }
-    commit(device, g);
-  }
-  ~KernelAccel() { rtcReleaseScene(scene_); }
-  void near(const Vec3& o, const Vec3& d, float length, std::vector<uint32_t>& found) const {
-    hitsAlong(scene_, o, d, length, found);
-    std::sort(found.begin(), found.end());
-    found.erase(std::unique(found.begin(), found.end()), found.end());
-  }
-
- private:
-  void commit(RTCDevice device, RTCGeometry g) {
-    scene_ = rtcNewScene(device);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    collectEveryHit(g);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(scene_, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(scene_);
-  }
-
-  RTCScene scene_;
-};
 
 // The camera ray's first segment through a medium, [0, length] along `ray`: reached across
 // index-matched boundaries and specular surfaces (each event drawn by the surface's own sampling at
@@ -193,7 +151,6 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
   const bidir::Lanes lanes = bidir::sensorLanes(scene, sensor.density(), 0.5f, 1, tables);
   const size_t count = size_t(w) * size_t(h);
   const float lo = scene.range.min, width = scene.range.max - scene.range.min;
-  RTCDevice device = rtcNewDevice("verbose=0");
   int passes = 0;
   std::vector<Beam> beams;
   std::vector<Point> points;
@@ -203,7 +160,7 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
     const float r = progressiveRadius(r1, kAlpha, passes + 1, estimator == Estimator::Points ? 3 : 2);
     std::unique_ptr<PointMap<Point>> map;
     std::unique_ptr<PointsNearSegments> nearQuery;
-    std::unique_ptr<KernelAccel> accel;
+    std::unique_ptr<BeamsNearSegments> accel;
     if (estimator == Estimator::Points) {
       map = std::make_unique<PointMap<Point>>(points);
     } else if (estimator == Estimator::PointsAlongQuery) {
@@ -211,7 +168,9 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
       for (const Point& p : points) positions.push_back(p.position());
       nearQuery = std::make_unique<PointsNearSegments>(positions, r);
     } else {
-      accel = std::make_unique<KernelAccel>(device, beams, r);
+      std::vector<BeamsNearSegments::Beam> segments;
+      for (const Beam& b : beams) segments.push_back({b.a, b.d, b.length});
+      accel = std::make_unique<BeamsNearSegments>(segments, r);
     }
     const float kernelNorm = estimator == Estimator::Points ? 1.0f / (4.0f / 3.0f * kPi * r * r * r) : 1.0f / (kPi * r * r);
     tbb::parallel_for(0, h, [&](int y) {
@@ -274,7 +233,6 @@ int render(const Scene& scene, Estimator estimator, double seconds, uint64_t see
     ++passes;
   }
   film.setSamplesPerPixel(passes);
-  rtcReleaseDevice(device);
   return passes;
 }
 

@@ -121,7 +121,12 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
   const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite, c.walk.strategies);
   MisSums own;
   own.nee = x1.spectralPdf * double(x1.spectralPdf);
-  const MisSums total = m1 + lightEndSum(pCam0, end.pdf0) + cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, c.walk.strategies, true), pLight2);
+  const double beamX1 =
+      c.walk.strategies.merge.photonBeam > 0.0 ? lightBeamRatio(c.scene, toLight, x1, x0, lambdaIn) : 0.0;
+  const MisSums total =
+      m1 + lightEndSum(pCam0, end.pdf0) +
+      cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, x1.lobe, x1.lambdaNext, c.walk.strategies, true, beamX1),
+                pLight2);
   float weight[kMaxLanes];
   laneWeights(c, x1.firstLane(), x1.endLane(c.lanes), weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     const MisFactors f = factors(c, lightIndex, lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
@@ -133,6 +138,7 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
       const std::vector<PathVertex> L1{lightVertex};
       FullPath fp = layout(c, &L1, 1, C, t, end, g, true);
       if (x2.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
+      fp.v[1].lightBeam = beamX1;
       fp.specCam1 = x1.spectralPdf;
       fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
       return fp;
@@ -178,14 +184,16 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   MisSums own;
   own.own = 1.0;
   const Strategies& st = c.walk.strategies;
+  const double beamB = st.merge.photonBeam > 0.0 ? lightBeamRatio(c.scene, segment, b, a, a.lambda) : 0.0;
   const MisSums total = firstVertexMultiplicity(true, F, specCam1, true, st) + lightEndSum(pCam0, a.pdfFwd) +
-                        cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, st, true), pLight2);
+                        cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, st, true, beamB), pLight2);
   const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false, false,
                                 c.walk.lightFirst ? a.choicePdf : 0.0f);
   const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, mf, [&](const MisFactors& g) {
     FullPath fp = layout(c, &L, 1, C, t, end, g, true);
     fp.v[1].lobe = F;
     fp.v[0].pdfCam = pCam0;
+    fp.v[1].lightBeam = beamB;
     if (bNext.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
     fp.specCam1 = specCam1;
     fp.specLightLast = t == 2 ? specLightLast(b, F, a.lambda) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
@@ -294,10 +302,12 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     const double pCamA = cameraSide(c.scene, b, bWo, bWi, a, p.lb, p.lambdaB, lambdaB, segment);
     const double pCamAPrev = cameraSide(c.scene, a, aWo, aWi, aPrev, p.la, lambdaA, p.lambdaA, a.arrival);
     const Strategies& st = c.walk.strategies;
-    const double beamA = st.merge.beam > 0.0 ? cameraBeamRatio(c.scene, segment, a, p.lambdaB) : 0.0;
+    // The beam ratios of the ends over the connection, each for the side that reaches it along it.
+    const double beamA = st.merge.beam > 0.0 || st.merge.photonBeam > 0.0 ? cameraBeamRatio(c.scene, segment, a, p.lambdaB) : 0.0;
+    const double beamB = st.merge.photonBeam > 0.0 ? lightBeamRatio(c.scene, segment, b, a, p.lambdaA) : 0.0;
     const MisSums sides =
         lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st, false, true, beamA), pCamAPrev) +
-                          cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st, true), pLightBNext);
+        cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st, true, beamB), pLightBNext);
     const MisSums here = joinMultiplicity(true, p.la, p.lb, st);
     MisSums own;
     (p.variant == Variant::kStandard ? own.shared : p.variant == Variant::kOwn ? own.own : own.mollified) = 1.0;
@@ -319,6 +329,7 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
         fp.v[size_t(s + 1)].pdfLight = pLightBNext;
         fp.v[size_t(s - 1)].pdfCam = pCamA;
         fp.v[size_t(s - 1)].cameraBeam = beamA;
+        fp.v[size_t(s)].lightBeam = beamB;
         fp.v[size_t(s - 2)].pdfCam = pCamAPrev;
         const PathVertex& x1 = L[1];
         fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
@@ -428,7 +439,8 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     here = lightTracingMultiplicity(true, a.spectralPdf, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
     // a, next to the camera, is the path's first gather vertex.
-    beamA = c.walk.strategies.merge.beam > 0.0 ? cameraBeamRatio(c.scene, segment, a, lambda) : 0.0;
+    const MergeEta& eta = c.walk.strategies.merge;
+    beamA = eta.beam > 0.0 || eta.photonBeam > 0.0 ? cameraBeamRatio(c.scene, segment, a, lambda) : 0.0;
     sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, a.lobe, a.lambdaNext, c.walk.strategies, true, true, beamA),
                      pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;

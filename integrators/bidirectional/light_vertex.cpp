@@ -34,7 +34,7 @@ void keepLightVertices(const std::vector<PathVertex>& L, bool own, const Scene& 
                       (v.lanesKept ? LightVertex::kLanesKept : 0) | (prev.joinable(false) ? LightVertex::kPrevConnectible : 0) |
                       (prev.lobe == SpectralLobe::Fluorescent ? LightVertex::kPrevFluorescent : 0) |
                       (L[0].kind == Kind::Light ? LightVertex::kFiniteLight : 0) |
-                      (v.inMedium() ? LightVertex::kMedium : 0));
+                      (v.inMedium() ? LightVertex::kMedium : 0) | (v.lightBeam > 0.0f ? LightVertex::kLightBeam : 0));
     out.push_back(r);
   }
 }

@@ -34,11 +34,15 @@ struct LightVertex {
   int16_t light;    // the subpath's light
   uint8_t depth;    // m, this vertex's index on its subpath (1: the first surface)
   int8_t lane;      // PathVertex::lane: −1 every lane, else the one that reaches here
-  // kOwn | kElasticBefore | kLanesKept | kPrevConnectible | kPrevFluorescent | kFiniteLight | kMedium
+  // kOwn | kElasticBefore | kLanesKept | kPrevConnectible | kPrevFluorescent | kFiniteLight | kMedium |
+  // kLightBeam
   uint8_t flags;
 
   static constexpr uint8_t kOwn = 1, kElasticBefore = 2, kLanesKept = 4, kPrevConnectible = 8, kPrevFluorescent = 16,
-                           kFiniteLight = 32, kMedium = 64;  // kMedium: a collision in a medium
+                           kFiniteLight = 32, kMedium = 64,
+                           // kMedium: a collision in a medium; kLightBeam: one where the light side's beam
+                           // ratio is 1/σ_t(lambda) of its medium (PathVertex::lightBeam > 0), else 0
+                           kLightBeam = 128;
   bool has(uint8_t flag) const { return (flags & flag) != 0; }
 };
 

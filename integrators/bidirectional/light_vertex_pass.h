@@ -7,6 +7,7 @@
 
 #include "core/sampler.h"
 #include "integrators/bidirectional/light_vertex.h"
+#include "integrators/bidirectional/photon_beam.h"
 #include "integrators/bidirectional/subpaths.h"
 #include "integrators/point_map.h"
 
@@ -32,9 +33,11 @@ inline constexpr size_t kBytesPerLightVertex = 2 * bidir::kLightVertexBytes;
 // Traces the subpaths (ws.lightFirst set: the merged subpath of both families; else the shared
 // family's, and the own family's where t.ownFamily) at `lanes` and returns their kept vertices in subpath order, whatever the number of
 // threads; subpath j draws from stream j of `seed`. Throws MemoryLimitError as soon as the vertices
-// kept so far exceed the memory limit.
+// kept so far exceed the memory limit. With `beams`, where the walk has photon beams, their flights
+// through media too (keepPhotonBeams), in subpath order, within the memory the vertices leave.
 std::vector<bidir::LightVertex> traceLightVertices(const Scene& scene, const bidir::Lanes& lanes,
                                                   const bidir::WalkSettings& ws, const LightVertexTracing& t,
-                                                  uint64_t seed, RayCounter& counter);
+                                                  uint64_t seed, RayCounter& counter,
+                                                  std::vector<bidir::PhotonBeam>* beams = nullptr);
 
 }  // namespace kasha

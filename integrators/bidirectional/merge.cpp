@@ -4,6 +4,7 @@
 
 #include "integrators/bidirectional/connect_parts.h"
 #include "integrators/bidirectional/path_media.h"
+#include "integrators/bidirectional/photon_beam.h"
 #include "integrators/progressive_schedule.h"
 
 namespace kasha::bidir {
@@ -19,6 +20,12 @@ struct MergeSums {
   double pCamPrev = 0.0;                  // the camera side's density of x_{m−1}, sampled at x_m
   double pLightNext = 0.0;                // the light side's of x_{m+1} (t > 2)
 };
+
+// The light side's beam ratio at the merge of v with b (PathVertex::lightBeam): over v's arrival, in
+// b's medium (a collision merges with a light vertex in its own).
+double lightBeamOf(const Context& c, const LightVertex& v, const PathVertex& b) {
+  return v.has(LightVertex::kLightBeam) && b.inMedium() ? inverseSigmaT(c.scene, b.medium, v.lambda) : 0.0;
+}
 
 MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v,
                     SpectralLobe lobe, float lambdaIn, float lambdaOut, bool gather, const Vec3& bWi, const Vec3& bWo) {
@@ -36,7 +43,8 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   // connection ends at x_m, with the merges at x_m.
   const SpectralLobe prevLobe =
       v.has(LightVertex::kPrevFluorescent) ? SpectralLobe::Fluorescent : SpectralLobe::Elastic;
-  const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, t == 2, st, b.inMedium(), b.cameraBeam) +
+  const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, t == 2, st, b.inMedium(), b.cameraBeam,
+                                          lightBeamOf(c, v, b)) +
                         (m == 1 ? firstVertexMultiplicity(true, lobe, r.specCam, v.has(LightVertex::kFiniteLight), st)
                                 : joinMultiplicity(v.has(LightVertex::kPrevConnectible), prevLobe, lobe, st));
   const double rPrev = densityRatio(r.pCamPrev, v.pdfPrev);
@@ -55,14 +63,30 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
 }
 
 // The merge's path laid out for the full recomputation (FullPathLayout, the test oracle), with factors g.
+// How a merge meets the camera side: at its vertex C[t−1] (a point), or along its query beam, with a
+// photon point or a photon beam (docs/media-beams.md).
+struct Along {
+  enum class Kind : uint8_t { Point, QueryBeam, PhotonBeam } kind = Kind::Point;
+  float chord = 1.0f;             // a photon beam's: the query beam's chord through its cylinder
+  double originCameraBeam = 0.0;  // a photon beam's: R_C/F_C at its origin x_{m−1}, from x_m
+};
+
 FullPath fullPath(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v,
-                  const std::vector<PathVertex>* lightPath, SpectralLobe lobe, const MergeSums& r, const MisFactors& g) {
+                  const std::vector<PathVertex>* lightPath, SpectralLobe lobe, const MergeSums& r, const MisFactors& g,
+                  const Along& along) {
   const std::vector<PathVertex>& L = *lightPath;
   const int m = v.depth;
   FullPath fp = layout(c, &L, m + 1, C, t - 1, storedLightEnd(L, m + 1), g, false);
+  if (along.kind == Along::Kind::PhotonBeam) {  // x_m, a collision on the light subpath's flight into L[m]
+    FullVertex& x = fp.v[size_t(m)];
+    x.pdfLight = v.pdfFwd;
+    x.connectible = x.mergeable = x.volume = true;
+    fp.v[size_t(m - 1)].cameraBeam = along.originCameraBeam;
+  }
   fp.v[size_t(m)].lobe = lobe;
   fp.v[size_t(m)].pdfCam = C[size_t(t - 1)].pdfFwd;
   fp.v[size_t(m)].cameraBeam = C[size_t(t - 1)].cameraBeam;
+  fp.v[size_t(m)].lightBeam = lightBeamOf(c, v, C[size_t(t - 1)]);
   fp.v[size_t(m - 1)].pdfCam = r.pCamPrev;
   if (t > 2) fp.v[size_t(m + 1)].pdfLight = r.pLightNext;
   fp.specCam1 = m == 1 ? r.specCam : specCamera(L[1], L[1].lobe, L[1].lambda, L[1].lambdaNext);
@@ -80,8 +104,8 @@ bool oneGroup(const LightVertex& v, const PathVertex& b, SpectralLobe lobe) {
 // gather vertex, merge.h for withinRadius): lambdaB the wavelength of b's densities (and of an own
 // vertex's one lane), betaB b's throughput per lane, times laneFactor.
 void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
-                bool beam, bool gather, int k0, int k1, float lambdaB, const float* betaB, float laneFactor, float* out,
-                const std::vector<PathVertex>* lightPath) {
+                const Along& along, bool gather, int k0, int k1, float lambdaB, const float* betaB, float laneFactor,
+                float* out, const std::vector<PathVertex>* lightPath) {
   const PathVertex& b = C[size_t(t - 1)];
   const PathVertex& bNext = C[size_t(t - 2)];
   const bool own = v.has(LightVertex::kOwn);
@@ -93,12 +117,15 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     Variant variant;
   };
   // Against a query beam (docs/media-beams.md) the same through b, a collision on the beam, but no
-  // mollified one (an own vertex's elastic merge through the kernel has no beam).
+  // mollified one (an own vertex's elastic merge through the kernel has no beam); v a photon point or
+  // a point of a photon beam.
+  const bool beam = along.kind != Along::Kind::Point, photon = along.kind == Along::Kind::PhotonBeam;
   Kind kinds[2];
   int n = 0;
-  if (!own && withinRadius) kinds[n++] = {SpectralLobe::Elastic, beam ? Variant::kBeam : Variant::kMerge};
+  if (!own && withinRadius)
+    kinds[n++] = {SpectralLobe::Elastic, photon ? Variant::kPhotonBeam : beam ? Variant::kBeam : Variant::kMerge};
   if (own && (withinRadius || gather) && b.bsdf->has(BsdfFlags::Fluorescent))
-    kinds[n++] = {SpectralLobe::Fluorescent, beam ? Variant::kBeamOwn : Variant::kMergeOwn};
+    kinds[n++] = {SpectralLobe::Fluorescent, photon ? Variant::kPhotonBeamOwn : beam ? Variant::kBeamOwn : Variant::kMergeOwn};
   if (!beam && own && withinRadius && c.bandwidth > 0.0f && std::abs(v.lambda - lambdaB) < c.bandwidth)
     kinds[n++] = {SpectralLobe::Elastic, Variant::kMergeMollified};
   const Bsdf& fb = *b.bsdf;
@@ -108,11 +135,11 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     const SpectralLobe lobe = kinds[i].lobe;
     const Variant variant = kinds[i].variant;
     const double etaMerge = etaOf(c.walk.strategies.merge, variant, gather, b.inMedium());
-    const float scale = fb.incidentShadingRatio(bWi) * laneFactor / float(etaMerge);
+    const float scale = fb.incidentShadingRatio(bWi) * laneFactor * along.chord / float(etaMerge);
     // The wavelengths of the densities at x_m: the light arriving and the camera's leaving, the
     // same through the elastic lobe (the camera's, one that scatters there, §10).
     const float lambdaOut = lambdaB;
-    const bool ownPart = variant == Variant::kMergeOwn || variant == Variant::kBeamOwn;
+    const bool ownPart = variant == Variant::kMergeOwn || isOwnBeam(variant);
     const float lambdaIn = ownPart ? v.lambda : lambdaOut;
     // Mollified: δ(λ_v − λ_b) widened to K_h, renormalised inside the range (docs/bdpt-mis.md eq. 5).
     const WavelengthRange& r = c.scene.range;
@@ -131,10 +158,12 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     }
     if (!any) continue;
     const MergeSums sums = mergeSums(c, C, t, v, lobe, lambdaIn, lambdaOut, gather, bWi, bWo);
-    // This merge: (η·pC_m)² relative to the strategy s' = m + 1; a beam's (η_b·pC_m·ρ_C)² (eq. B2).
-    const double eta = etaMerge * b.pdfFwd * (beam ? double(b.cameraBeam) : 1.0);
+    // This merge: (η·pC_m)² relative to the strategy s' = m + 1; a beam's (η_b·pC_m·ρ_C)² (eq. B2), a
+    // photon beam's (η_pb·pC_m·ρ_C·ρ_L)² (eq. B4).
+    const double eta =
+        etaMerge * b.pdfFwd * (beam ? double(b.cameraBeam) : 1.0) * (photon ? lightBeamOf(c, v, b) : 1.0);
     MisSums mine;
-    const bool sharedPart = variant == Variant::kMerge || variant == Variant::kBeam;
+    const bool sharedPart = variant == Variant::kMerge || (isBeam(variant) && !isOwnBeam(variant));
     (sharedPart ? mine.mergeShared : ownPart ? mine.mergeOwn : mine.mergeMollified) = eta * eta;
     const bool single = oneGroup(v, b, lobe);
     const bool lanesKept = v.has(LightVertex::kLanesKept) && b.lanesKept;
@@ -145,7 +174,7 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
                                          c.walk.lightFirst ? v.ownStart : 0.0f)
                                : factors(c, v.light, lambda0, k, c.lanes.sensorPdf[k], single, lanesKept);
       return weigh(c, m, t, variant, mine, sums.total, f, [&](const MisFactors& g) {
-        return fullPath(c, C, t, v, lightPath, lobe, sums, g);
+        return fullPath(c, C, t, v, lightPath, lobe, sums, g, along);
       });
     });
     for (int k = k0; k < k1; ++k) {
@@ -177,7 +206,7 @@ void mergeSplat(const Context& c, const std::vector<PathVertex>& C, const LightV
   const MisFactors f = factors(c, v.light, v.lambda0, -1, c.sensor.pdf(lambda), oneGroup(v, b, lobe),
                                v.has(LightVertex::kLanesKept) && b.lanesKept, c.walk.lightFirst ? v.ownStart : 0.0f);
   const float weight = weigh(c, v.depth, 2, Variant::kMergeSplat, mine, sums.total, f, [&](const MisFactors& g) {
-    return fullPath(c, C, 2, v, lightPath, lobe, sums, g);
+    return fullPath(c, C, 2, v, lightPath, lobe, sums, g, Along{});
   });
   if (!(weight > 0.0f)) return;
   if (c.observer) {  // in lane 0's slot, which takes the weight just computed
@@ -187,9 +216,11 @@ void mergeSplat(const Context& c, const std::vector<PathVertex>& C, const LightV
   atLight.push_back({lambda, value * weight});
 }
 
-// merge's, and mergeBeam's with `beam` (C[t − 1] then a collision on the query beam).
+// merge's, and along a query beam mergeBeam's and mergePhotonBeam's (C[t − 1] then a collision on it).
 void mergeAt(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
-             bool beam, float* out, std::vector<SpectralSample>& atLight, const std::vector<PathVertex>* lightPath) {
+             const Along& along, float* out, std::vector<SpectralSample>& atLight,
+             const std::vector<PathVertex>* lightPath) {
+  const bool beam = along.kind != Along::Kind::Point;
   const PathVertex& b = C[size_t(t - 1)];
   // A collision in a medium merges within the volume radius alone (η_v for every variant, MergeEta):
   // no wider gather there.
@@ -214,10 +245,10 @@ void mergeAt(const Context& c, const std::vector<PathVertex>& C, int t, const Li
   if (k1 - k0 > 1 && (own || ended)) {
     for (int k = k0; k < k1; ++k)
       if (beta[k] > 0.0f)
-        mergeLanes(c, C, t, v, withinRadius, beam, gather, k, k + 1, c.lanes.lambda[k], beta, laneFactor, out, lightPath);
+        mergeLanes(c, C, t, v, withinRadius, along, gather, k, k + 1, c.lanes.lambda[k], beta, laneFactor, out, lightPath);
   } else if (k0 < k1) {
     const float lambdaB = ended ? c.lanes.lambda[k0] : b.lambda;
-    mergeLanes(c, C, t, v, withinRadius, beam, gather, k0, k1, lambdaB, beta, laneFactor, out, lightPath);
+    mergeLanes(c, C, t, v, withinRadius, along, gather, k0, k1, lambdaB, beta, laneFactor, out, lightPath);
   }
 }
 
@@ -254,14 +285,15 @@ PathVertex beamVertex(const Context& c, const std::vector<PathVertex>& C, int t,
 
 void merge(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v, bool withinRadius,
            float* out, std::vector<SpectralSample>& atLight, const std::vector<PathVertex>* lightPath) {
-  mergeAt(c, C, t, v, withinRadius, false, out, atLight, lightPath);
+  mergeAt(c, C, t, v, withinRadius, Along{}, out, atLight, lightPath);
 }
 
 std::optional<QueryBeam> queryBeam(const Context& c, const std::vector<PathVertex>& C, int t) {
   const Scene& scene = c.scene;
   const PathVertex& y = C[size_t(t - 2)];
   const PathVertex& e = C[size_t(t - 1)];
-  if (!(c.walk.strategies.merge.beam > 0.0) || !e.arrival.inMedia || !(e.flightWeight > 0.0f)) return std::nullopt;
+  const MergeEta& eta = c.walk.strategies.merge;
+  if (!(eta.beam > 0.0 || eta.photonBeam > 0.0) || !e.arrival.inMedia || !(e.flightWeight > 0.0f)) return std::nullopt;
   QueryBeam q;
   q.origin = y.p;
   const Vec3 towardsE = e.kind == Kind::Infinite ? -e.dir : e.p - y.p;
@@ -285,13 +317,80 @@ std::optional<QueryBeam> queryBeam(const Context& c, const std::vector<PathVerte
   return q;
 }
 
+namespace {
+
+// Merges v (a photon point, or a point of a photon beam) with a collision at distance `along` on the
+// query beam q of C[t−1] (mergeBeam, mergePhotonBeam).
+void mergeAlong(const Context& c, std::vector<PathVertex>& C, int t, const QueryBeam& q, float at, const LightVertex& v,
+                const Along& along, float* out, const std::vector<PathVertex>* lightPath) {
+  PathVertex e = std::move(C[size_t(t - 1)]);
+  C[size_t(t - 1)] = beamVertex(c, C, t, e, q, at);
+  // C[t−2]'s light-side beam ratio over the shorter segment, which crosses no boundary.
+  PathVertex& y = C[size_t(t - 2)];
+  const float yBeam = y.lightBeam;
+  if (c.walk.strategies.merge.photonBeam > 0.0) {
+    const PathVertex& b = C[size_t(t - 1)];
+    y.lightBeam = float(lightBeamRatio(c.scene, b.arrival, y, b, b.lambda));
+  }
+  std::vector<SpectralSample> none;  // a beam has no merge at the light vertex's own wavelength
+  mergeAt(c, C, t, v, true, along, out, none, lightPath);
+  y.lightBeam = yBeam;
+  C[size_t(t - 1)] = std::move(e);
+}
+
+}  // namespace
+
 void mergeBeam(const Context& c, std::vector<PathVertex>& C, int t, const QueryBeam& q, float along, const LightVertex& v,
                float* out, const std::vector<PathVertex>* lightPath) {
-  PathVertex e = std::move(C[size_t(t - 1)]);
-  C[size_t(t - 1)] = beamVertex(c, C, t, e, q, along);
-  std::vector<SpectralSample> none;  // a beam has no merge at the light vertex's own wavelength
-  mergeAt(c, C, t, v, true, true, out, none, lightPath);
-  C[size_t(t - 1)] = std::move(e);
+  mergeAlong(c, C, t, q, along, v, Along{Along::Kind::QueryBeam}, out, lightPath);
+}
+
+void mergePhotonBeam(const Context& c, std::vector<PathVertex>& C, int t, const QueryBeam& q, const PhotonBeam& beam,
+                     const BeamCrossing& x, float* out, const std::vector<PathVertex>* lightPath) {
+  // The light side's densities of the merged vertex from its distance to the beam's origin: the
+  // camera side's point's, as every other strategy of the path sees it, not its projection onto the
+  // beam, which is nearer and would weigh the beam up wherever it passes close by its origin.
+  const Vec3 at = q.origin + x.t * q.w;
+  // As at every collision (docs/media.md §6), no merge where the merged vertex's sphere meets a surface:
+  // there the path's other strategies have none either.
+  if (!sphereClearOfSurfaces(c.scene, at, float(c.walk.strategies.merge.volumeRadius), c.counter)) return;
+  const float s = glm::length(at - beam.origin);
+  const LightVertex v = vertexAlong(c.scene, beam, s);
+  Along along{Along::Kind::PhotonBeam, x.chord};
+  PathVertex origin;  // x_{m−1} as cameraBeamRatio sees it
+  origin.kind = beam.originInMedium ? Kind::Medium : Kind::Surface;
+  origin.medium = beam.originMedium;
+  along.originCameraBeam = cameraBeamRatio(c.scene, depthThrough(c.scene, beam.medium, v.lambda, s), origin, v.lambda);
+  mergeAlong(c, C, t, q, x.t, v, along, out, lightPath);
+}
+
+std::optional<BeamCrossing> crossing(const QueryBeam& q, const PhotonBeam& beam, float radius, float u) {
+  // The closest points of the query line o + t·c and the beam line a + s·w, at distance g.
+  const Vec3 w0 = q.origin - beam.origin;
+  const float cw = glm::dot(q.w, beam.w), sin2 = 1.0f - cw * cw;
+  if (!(sin2 > 1e-8f)) return std::nullopt;  // parallel: no crossing point
+  const float dw = glm::dot(w0, beam.w), dc = glm::dot(w0, q.w);
+  const float tClosest = (cw * dw - dc) / sin2, sClosest = (dw - cw * dc) / sin2;
+  const Vec3 gap = (q.origin + tClosest * q.w) - (beam.origin + sClosest * beam.w);
+  const float g2 = glm::dot(gap, gap);
+  if (!(g2 < radius * radius)) return std::nullopt;
+  // The query points inside the cylinder: within r of the beam's line, t* ± √(r² − g²)/sin θ, inside
+  // the query, and projecting into the beam, s(t) = s* + (t − t*)·cos θ in [0, length].
+  const float half = std::sqrt((radius * radius - g2) / sin2);
+  float lo = std::max(tClosest - half, 0.0f), hi = std::min(tClosest + half, q.length);
+  if (std::abs(cw) > 0.0f) {
+    const float a = tClosest - sClosest / cw, b = tClosest + (beam.length - sClosest) / cw;
+    lo = std::max(lo, std::min(a, b)), hi = std::min(hi, std::max(a, b));
+  } else if (!(sClosest >= 0.0f && sClosest <= beam.length)) {
+    return std::nullopt;
+  }
+  if (!(hi > lo)) return std::nullopt;
+  BeamCrossing x;
+  x.chord = hi - lo;
+  x.t = lo + u * x.chord;
+  x.s = sClosest + (x.t - tClosest) * cw;
+  if (!(x.t > 0.0f && x.s > 0.0f && x.s <= beam.length)) return std::nullopt;
+  return x;
 }
 
 }  // namespace kasha::bidir

@@ -7,6 +7,7 @@
 
 #include "integrators/bidirectional/connect.h"
 #include "integrators/bidirectional/light_vertex.h"
+#include "integrators/bidirectional/photon_beam.h"
 
 namespace kasha::bidir {
 
@@ -42,5 +43,23 @@ std::optional<QueryBeam> queryBeam(const Context& c, const std::vector<PathVerte
 // (C[t−1] stands in for it during the call), with the beam's throughput and densities.
 void mergeBeam(const Context& c, std::vector<PathVertex>& C, int t, const QueryBeam& q, float along, const LightVertex& v,
                float* out, const std::vector<PathVertex>* lightPath = nullptr);
+
+// Where a query beam runs through a photon beam's cylinder of radius r (flat-capped at the beam's
+// ends, Jarosz et al. 2011's kernel): the chord of the query inside it, up to 2√(r² − g²)/sin θ (g the
+// distance of their lines, θ their angle), clipped to the query and to the beam's length, and the
+// point a fraction u along it, at t along the query and s along the beam (the merge's vertices). The
+// estimate integrates along the chord by that one point, uniform on it: the weights (and, in a
+// fluorescent medium, the camera side's T/R_C) change along it.
+struct BeamCrossing {
+  float t = 0.0f, s = 0.0f, chord = 0.0f;
+};
+std::optional<BeamCrossing> crossing(const QueryBeam& q, const PhotonBeam& beam, float radius, float u);
+
+// Merges the photon beam with the query beam q of C[t−1] where they cross (Variant::kPhotonBeam,
+// kPhotonBeamOwn; docs/media-beams.md eq. B5): the light vertex at x.s on the beam (vertexAlong)
+// with a collision at x.t on the query, as mergeBeam, its estimate times the chord over η_pb, the
+// cylinder kernel's integral along the query.
+void mergePhotonBeam(const Context& c, std::vector<PathVertex>& C, int t, const QueryBeam& q, const PhotonBeam& beam,
+                     const BeamCrossing& x, float* out, const std::vector<PathVertex>* lightPath = nullptr);
 
 }  // namespace kasha::bidir

@@ -25,8 +25,8 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
       return false;
     const bool fluorescent = p.v[size_t(s)].lobe == SpectralLobe::Fluorescent;
     if (isBeam(variant) && !(x.cameraBeam > 0.0)) return false;
-    if (variant == Variant::kBeam) return p.families.shared && elastic;
-    if (variant == Variant::kBeamOwn) return p.families.independent && fluorescent;
+    if (isPhotonBeam(variant) && !(x.lightBeam > 0.0)) return false;
+    if (isBeam(variant)) return isOwnBeam(variant) ? p.families.independent && fluorescent : p.families.shared && elastic;
     if (variant == Variant::kMerge) return p.families.shared && elastic;
     if (variant == Variant::kMergeSplat) return p.families.independent && !fluorescent && s == k - 1;
     if (variant == Variant::kMergeOwn) return p.families.independent && fluorescent;
@@ -64,6 +64,8 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
     case Variant::kMergeSplat:
     case Variant::kBeam:
     case Variant::kBeamOwn:
+    case Variant::kPhotonBeam:
+    case Variant::kPhotonBeamOwn:
       return false;  // decided above
   }
   if (s == k)  // t = 1: light tracing, x_{k−1}'s event sampled by the light side
@@ -87,12 +89,13 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
     // subpaths (η = N·π r², each kind's), and through an elastic x_s an own light vertex's wavelength within a
     // window ε_h of the camera's (as a mollified join, eq. 6).
     // A beam's: the camera side's free-flight factor at x_s replaced by the probability of its beam
-    // reaching past x_s (docs/media-beams.md eq. B2).
+    // reaching past x_s (docs/media-beams.md eq. B2), and a photon beam's the light side's too (eq. B4).
     double d = etaOf(p.mergeEta, variant, gatherVertex(p, s), p.v[size_t(s)].volume);
     if (isBeam(variant)) d *= p.v[size_t(s)].cameraBeam;
+    if (isPhotonBeam(variant)) d *= p.v[size_t(s)].lightBeam;
     for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
     for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
-    if (variant == Variant::kMerge || variant == Variant::kBeam) return d * p.sensorPdf * p.sharedChoice * p.laneGain;
+    if (variant == Variant::kMerge || variant == Variant::kBeam || variant == Variant::kPhotonBeam) return d * p.sensorPdf * p.sharedChoice * p.laneGain;
     if (variant == Variant::kMergeSplat) return d * p.ownChoice;  // the light draws every group's wavelength
     d *= p.sensorPdf * p.ownChoice;
     return variant == Variant::kMergeMollified ? d * p.mollifyWidth : d;
@@ -148,6 +151,8 @@ float misWeight(const FullPath& p, int s, Variant variant) {
     add(i, Variant::kMergeMollified);
     add(i, Variant::kBeam);
     add(i, Variant::kBeamOwn);
+    add(i, Variant::kPhotonBeam);
+    add(i, Variant::kPhotonBeamOwn);
   }
   if (k >= 2) add(k - 1, Variant::kMergeSplat);
   return float(1.0 / sum);

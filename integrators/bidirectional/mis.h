@@ -25,6 +25,9 @@ struct FullVertex {
   // over its density of colliding there, from its camera-side neighbour (docs/media-beams.md eq. B1);
   // 0 elsewhere (no beam strategy there).
   double cameraBeam = 0.0;
+  // The same of the light side, R_L/F_L = 1/σ_t (its flights are analog), from its light-side
+  // neighbour: with cameraBeam, the photon beams' factor (docs/media-beams.md eq. B4).
+  double lightBeam = 0.0;
 };
 
 // Which light subpaths a camera sample is combined with (each at most one per camera sample).
@@ -49,7 +52,10 @@ struct MergeEta {
   // N·π r_v², that of light vertices in media (photon points) against the camera's query beams (the
   // beam radiance estimate, docs/media-beams.md), at collisions in homogeneous media (0: none).
   double beam = 0.0;
-  bool any() const { return eta > 0.0 || gather > 0.0 || volume > 0.0 || beam > 0.0; }
+  // N·π r_v², that of the light subpaths' flights through homogeneous media (photon beams) against
+  // the camera's query beams, with a cylinder kernel of radius r_v around each flight (0: none).
+  double photonBeam = 0.0;
+  bool any() const { return eta > 0.0 || gather > 0.0 || volume > 0.0 || beam > 0.0 || photonBeam > 0.0; }
 };
 
 struct FullPath {
@@ -103,13 +109,22 @@ struct FullPath {
 // - kBeam, kBeamOwn: at a collision x_s in a homogeneous medium, the light side's vertex x_s (a
 //   photon point) merged with the camera side's query beam from x_{s+1}, which does not sample where
 //   along itself x_s lies (docs/media-beams.md): of the shared family through an elastic x_s, of the
-//   own family through a fluorescent one.
+//   own family through a fluorescent one;
+// - kPhotonBeam, kPhotonBeamOwn: the same with the light side's flight into x_s (a photon beam) in
+//   place of its vertex, which does not sample where along itself x_s lies either.
 enum class Variant : uint8_t {
-  kStandard, kLightVertex, kMollified, kOwn, kMerge, kMergeOwn, kMergeMollified, kMergeSplat, kBeam, kBeamOwn
+  kStandard, kLightVertex, kMollified, kOwn, kMerge, kMergeOwn, kMergeMollified, kMergeSplat, kBeam, kBeamOwn,
+  kPhotonBeam, kPhotonBeamOwn
 };
 
-// Whether a variant is a beam's.
-inline bool isBeam(Variant v) { return v == Variant::kBeam || v == Variant::kBeamOwn; }
+// Whether a variant is a photon beam's.
+inline bool isPhotonBeam(Variant v) { return v == Variant::kPhotonBeam || v == Variant::kPhotonBeamOwn; }
+
+// Whether a variant is a beam's: the camera's query beam, against photon points or photon beams.
+inline bool isBeam(Variant v) { return v == Variant::kBeam || v == Variant::kBeamOwn || isPhotonBeam(v); }
+
+// Whether a beam variant is the own family's (through a fluorescent x_s).
+inline bool isOwnBeam(Variant v) { return v == Variant::kBeamOwn || v == Variant::kPhotonBeamOwn; }
 
 // Whether a variant is one of vertex merging's (beams included).
 inline bool isMerge(Variant v) {
@@ -120,7 +135,7 @@ inline bool isMerge(Variant v) {
 // η of a merge variant, at the first gather vertex or not (kMergeSplat's x_{k−1} always is one), on a
 // surface or at a collision in a medium (`volume`: one η for every variant).
 inline double etaOf(const MergeEta& eta, Variant v, bool gather, bool volume) {
-  if (isBeam(v)) return volume ? eta.beam : 0.0;
+  if (isBeam(v)) return volume ? (isPhotonBeam(v) ? eta.photonBeam : eta.beam) : 0.0;
   if (v == Variant::kMergeSplat && !eta.splat) return 0.0;
   if (volume) return eta.volume;
   return v == Variant::kMergeSplat || (v == Variant::kMergeOwn && gather) ? eta.gather : eta.eta;

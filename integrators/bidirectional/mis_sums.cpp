@@ -55,7 +55,7 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st) {
 }
 
 MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,
-                          const Strategies& st, bool volume, double cameraBeam) {
+                          const Strategies& st, bool volume, double cameraBeam, double lightBeam) {
   if (!mergeable || !st.merge.any()) return {};
   auto squared = [&](Variant v, bool atGather) {
     const double eta = etaOf(st.merge, v, atGather, volume);
@@ -69,8 +69,9 @@ MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, boo
     m.mergeMollified = squared(Variant::kMergeMollified, gather);
     if (first) m.mergeOwnSplat = squared(Variant::kMergeSplat, true);
   }
-  if (volume && cameraBeam > 0.0) {  // docs/media-beams.md eq. B2
-    const double beam = squared(Variant::kBeam, false) * cameraBeam * cameraBeam;
+  if (volume && cameraBeam > 0.0) {  // docs/media-beams.md eqs. B2, B4
+    const double beam = (squared(Variant::kBeam, false) + squared(Variant::kPhotonBeam, false) * lightBeam * lightBeam) *
+                        cameraBeam * cameraBeam;
     m.mergeShared += beam;  // any lobe, as the shared merge's
     if (lobe == SpectralLobe::Fluorescent) m.mergeOwn += beam;
   }

@@ -16,7 +16,7 @@
 // shared family's joins and t = 1; own: the own family's joins and light vertex; mollified: its
 // mollified joins; ownSplat: its t = 1, the only strategy whose last wavelength the sensor does not
 // draw. The merges (§12) are kept apart in mergeShared, mergeOwn, mergeMollified and mergeOwnSplat
-// (its merge at x_{k−1} at the light vertex's wavelength; the beams in media in the first two), each
+// (its merge at x_{k−1} at the light vertex's wavelength; the beams in media, query and photon beams, in the first two), each
 // with the factor of its namesake, so
 // that the sum without them, the connections alone, is at hand (vcm's pilot, MisFactors::merges).
 #include "integrators/bidirectional/mis.h"
@@ -121,8 +121,9 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st);
 // `gather`: x_m is the path's first gather vertex (MergeEta); `first`: x_m is x_{k−1}, the camera
 // ray's hit; `volume`: x_m is a collision in a medium (every merge there with η_v). There the beams
 // (Variant::kBeam, kBeamOwn) add (η_b·density·cameraBeam)² to the merge part of their namesake
-// (FullVertex::cameraBeam; docs/media-beams.md eq. B2), which has their factors.
+// (FullVertex::cameraBeam; docs/media-beams.md eq. B2), which has their factors, and the photon beams
+// (Variant::kPhotonBeam, kPhotonBeamOwn) (η_pb·density·cameraBeam·lightBeam)² (eq. B4).
 MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,
-                          const Strategies& st, bool volume = false, double cameraBeam = 0.0);
+                          const Strategies& st, bool volume = false, double cameraBeam = 0.0, double lightBeam = 0.0);
 
 }  // namespace kasha::bidir

@@ -34,6 +34,19 @@ double cameraBeamRatio(const Scene& scene, const SegmentDepth& d, const PathVert
   return collide > 0.0 ? double(freeFlightDensity(mixture, d, 1.0f, 1.0f)) / collide : 0.0;
 }
 
+double lightBeamRatio(const Scene& scene, const SegmentDepth& d, const PathVertex& target, const PathVertex& origin,
+                      float lambda) {
+  if (target.kind != PathVertex::Kind::Medium || origin.kind == PathVertex::Kind::Infinite || d.crossesBoundary ||
+      scene.media[size_t(target.medium)]->heterogeneous())
+    return 0.0;
+  return inverseSigmaT(scene, target.medium, lambda);
+}
+
+double inverseSigmaT(const Scene& scene, int medium, float lambda) {
+  const float sigmaT = scene.media[size_t(medium)]->sigmaT(lambda);
+  return sigmaT > 0.0f ? 1.0 / double(sigmaT) : 0.0;
+}
+
 bool sphereClearOfSurfaces(const Scene& scene, const Vec3& p, float r, RayCounter& counter) {
   constexpr float d = 0.57735027f;  // 1/√3
   static const Vec3 directions[14] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},  {0, -1, 0},  {0, 0, 1},  {0, 0, -1},

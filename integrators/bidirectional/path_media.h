@@ -34,6 +34,15 @@ inline double flightFactor(const Scene& scene, TransportMode mode, const Segment
 // whose density d(x) flightFactor leaves out.
 double cameraBeamRatio(const Scene& scene, const SegmentDepth& d, const PathVertex& target, float lambda);
 
+// R_L/F_L at `target` (docs/media-beams.md eq. B4): the same for a light side's flight from `origin`,
+// analog (F_L = σ_t·e^{−τ}, R_L = e^{−τ}), so inverseSigmaT at a collision in a homogeneous medium
+// that the segment reaches without crossing a boundary from a finite origin (a flight from a light
+// at infinity is no photon beam: keepPhotonBeams); 0 at any other vertex.
+double lightBeamRatio(const Scene& scene, const SegmentDepth& d, const PathVertex& target, const PathVertex& origin,
+                      float lambda);
+// 1/σ_t(λ) of a homogeneous medium (0 where σ_t is).
+double inverseSigmaT(const Scene& scene, int medium, float lambda);
+
 // Whether the sphere of radius r around p meets no surface, by 14 segments from p (the axes and the
 // diagonals): a merge's sphere in a medium (docs/media.md §6) that reaches out of it would count the
 // light vertices of a volume it does not fill, a bias of the order of r/(the medium's thickness). A

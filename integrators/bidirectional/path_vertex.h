@@ -59,6 +59,10 @@ struct PathVertex {
   // light subpath the next vertex's (set when that one arrives); connections recompute it for the
   // segment they join.
   float cameraBeam = 0.0f;
+  // The light side's R_L/F_L of it (FullVertex::lightBeam, lightBeamRatio) over the segment the light
+  // side reaches it along: on a light subpath its arrival, on a camera subpath the next vertex's;
+  // connections recompute it for the camera end they join.
+  float lightBeam = 0.0f;
   // The free flight's weight T/p at lane 0 that the subpath's throughput took on arriving here (1
   // without media): a query beam along the same segment replaces it (vcm, docs/media-beams.md).
   float flightWeight = 1.0f;

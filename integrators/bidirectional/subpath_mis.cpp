@@ -9,7 +9,7 @@ MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe 
   const PathVertex& v = L[size_t(j)];
   // x_j next to the camera (gather, t = 1) is x_{k−1}.
   const MisSums merges =
-      mergeMultiplicity(mergeable(v, ends), lobe, v.pdfFwd, gather, gather, st, v.inMedium(), cameraBeam);
+      mergeMultiplicity(mergeable(v, ends), lobe, v.pdfFwd, gather, gather, st, v.inMedium(), cameraBeam, v.lightBeam);
   if (j == 1) {  // x_1: next-event estimation, and the light vertex through a fluorescent x_1
     const double specCam1 = v.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, v.lambda, lobe);
     return merges + firstVertexMultiplicity(v.joinable(ends), lobe, specCam1, L[0].kind == PathVertex::Kind::Light, st);
@@ -25,11 +25,11 @@ MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strateg
 }
 
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn,
-                           const Strategies& st, bool ends) {
+                           const Strategies& st, bool ends, double lightBeam) {
   if (j < 1) return {};
   const PathVertex& v = C[size_t(j)];
   const MisSums merges =
-      mergeMultiplicity(mergeable(v, ends), lobe, v.pdfFwd, v.gather, j == 1, st, v.inMedium(), v.cameraBeam);
+      mergeMultiplicity(mergeable(v, ends), lobe, v.pdfFwd, v.gather, j == 1, st, v.inMedium(), v.cameraBeam, lightBeam);
   if (j == 1) {  // t = 1: the light side samples x_{k−1}'s event
     const double specLight = v.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, v.lambda, lobe);
     return merges + lightTracingMultiplicity(v.joinable(ends), specLight, st);
@@ -40,7 +40,7 @@ MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe
 
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st, bool ends) {
   if (j < 1) return {};
-  return cameraMultiplicity(C, j, C[size_t(j)].lobe, C[size_t(j)].lambdaNext, st, ends);
+  return cameraMultiplicity(C, j, C[size_t(j)].lobe, C[size_t(j)].lambdaNext, st, ends, C[size_t(j)].lightBeam);
 }
 
 void updateSums(std::vector<PathVertex>& path, TransportMode mode, const Strategies& st) {

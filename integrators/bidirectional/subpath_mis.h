@@ -27,10 +27,11 @@ MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strateg
 
 // M of the strategy with j vertices on the camera subpath C (t' = j, s' = k + 1 − j), C[j] using
 // `lobe` with `lambdaIn` arriving from the light side, together with the merges at C[j]; `ends` as
-// for lightMultiplicity.
+// for lightMultiplicity. lightBeam: the light side's beam ratio at C[j] (PathVertex::lightBeam) over
+// the segment by which the path's light side reaches it.
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn,
-                           const Strategies& st, bool ends);
-// The same with C[j]'s own sampled event.
+                           const Strategies& st, bool ends, double lightBeam);
+// The same with C[j]'s own sampled event, reached by the light side from C[j + 1].
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st, bool ends);
 
 // Whether a merge can happen at v on the path being weighed: a surface without a delta lobe, or a

@@ -108,12 +108,13 @@ void arrive(Track& tr, const PathVertex& reached, const Ray& ray, const Scene& s
                                                        : toAreaDensity(tr.pdfSA, prev, v)) *
              flightFactor(scene, mode, v.arrival, v, v.lambda);
   // The camera side's beam ratio over the segment just flown: of v on a camera subpath, of the
-  // previous vertex on a light subpath (which the camera side reaches from v).
-  if (st.merge.beam > 0.0) {
-    if (mode == TransportMode::Radiance)
-      v.cameraBeam = float(cameraBeamRatio(scene, v.arrival, v, v.lambda));
-    else
-      prev.cameraBeam = float(cameraBeamRatio(scene, v.arrival, prev, v.lambda));
+  // previous vertex on a light subpath (which the camera side reaches from v); the light side's the
+  // other way round.
+  if (st.merge.beam > 0.0 || st.merge.photonBeam > 0.0) {
+    PathVertex& camera = mode == TransportMode::Radiance ? v : prev;
+    PathVertex& light = mode == TransportMode::Radiance ? prev : v;
+    camera.cameraBeam = float(cameraBeamRatio(scene, v.arrival, camera, v.lambda));
+    if (st.merge.photonBeam > 0.0) light.lightBeam = float(lightBeamRatio(scene, v.arrival, light, camera, v.lambda));
   }
   updateSums(path, mode, st);
 }

@@ -16,6 +16,7 @@
 #include "integrators/bidirectional/subpath_mis.h"
 #include "integrators/direct_emission.h"
 #include "integrators/integrator_factory.h"
+#include "integrators/beams_near_segments.h"
 #include "integrators/points_near_segments.h"
 #include "integrators/progressive_schedule.h"
 #include "integrators/bidirectional/light_vertex_pass.h"
@@ -101,6 +102,10 @@ struct VcmPass final : PassData {
   // within radiusVolume across them (docs/media-beams.md).
   std::unique_ptr<PointsNearSegments> beamPoints;
   std::vector<size_t> beamVertices;
+  // And the light subpaths' flights through homogeneous media, photon beams, near them within a
+  // cylinder of radius radiusVolume (docs/media-beams.md eq. B5).
+  std::vector<bidir::PhotonBeam> photonBeams;
+  std::unique_ptr<BeamsNearSegments> beamsNear;
   bool cameraAlone = false;
   std::unique_ptr<const PassData> camera;    // cameraAlone: what pt's beginPass returned
 };
@@ -361,8 +366,11 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   const double etaVolume = double(paths_) * (4.0 / 3.0) * kPi * double(rv) * rv * rv;
   pass->walk.strategies.merge = {eta, eta, etaVolume, pass->radiusVolume, !scene.hasMedia()};
   // Beams: the pass's light vertices in media against a disc of radius r_v across each query beam,
-  // η_b = N·π r_v² of the light subpaths traced (docs/media-beams.md eq. B2).
-  if (beams_) pass->walk.strategies.merge.beam = double(paths) * kPi * double(pass->radiusVolume) * pass->radiusVolume;
+  // η_b = N·π r_v² of the light subpaths traced (docs/media-beams.md eq. B2), and their flights
+  // through homogeneous media within a cylinder of the same radius around each (eq. B4).
+  if (beams_)
+    pass->walk.strategies.merge.beam = pass->walk.strategies.merge.photonBeam =
+        double(paths) * kPi * double(pass->radiusVolume) * pass->radiusVolume;
   pass->setGather(run == VcmPaths::Gather);
   LightVertexTracing t;
   t.paths = paths;
@@ -372,7 +380,7 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   // A stream family per pass, apart from the camera samples' (render_loop.cpp) and the lanes'.
   const uint64_t passSeed = mixBits(mixBits(seed ^ 0x5851f42d4c957f2dULL) + uint64_t(firstSample));
   pass->vertices = std::make_unique<LightVertexMap>(
-      traceLightVertices(scene, pass->lanes, pass->walk, t, passSeed, counter));
+      traceLightVertices(scene, pass->lanes, pass->walk, t, passSeed, counter, beams_ ? &pass->photonBeams : nullptr));
   if (beams_) {
     std::vector<Vec3> points;
     for (size_t i = 0; i < pass->vertices->size(); ++i) {
@@ -382,6 +390,10 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
       points.emplace_back(v.p[0], v.p[1], v.p[2]);
     }
     if (!points.empty()) pass->beamPoints = std::make_unique<PointsNearSegments>(points, pass->radiusVolume);
+    std::vector<BeamsNearSegments::Beam> segments;
+    segments.reserve(pass->photonBeams.size());
+    for (const bidir::PhotonBeam& b : pass->photonBeams) segments.push_back({b.origin, b.w, b.length});
+    if (!segments.empty()) pass->beamsNear = std::make_unique<BeamsNearSegments>(segments, pass->radiusVolume);
   }
   return pass;
 }
@@ -449,15 +461,24 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
         if (v.depth + t - 2 <= maxDepth) merge(c, C, t, v, glm::dot(d, d) <= r2, radiance, atLight);
       }
     }
-    // The light vertices in media near each query beam (docs/media-beams.md).
+    // The light vertices in media, and the photon beams, near each query beam (docs/media-beams.md).
     thread_local std::vector<PointsNearSegments::Found> nearBeam;
-    for (int t = 2; pass.beamPoints && t <= int(C.size()) && t - 1 <= maxDepth; ++t) {
+    thread_local std::vector<uint32_t> nearPhotonBeams;
+    for (int t = 2; (pass.beamPoints || pass.beamsNear) && t <= int(C.size()) && t - 1 <= maxDepth; ++t) {
       const std::optional<QueryBeam> q = queryBeam(c, C, t);
       if (!q) continue;
-      pass.beamPoints->near(q->origin, q->w, q->length, nearBeam);
+      nearBeam.clear(), nearPhotonBeams.clear();
+      if (pass.beamPoints) pass.beamPoints->near(q->origin, q->w, q->length, nearBeam);
       for (const PointsNearSegments::Found& f : nearBeam) {
         const LightVertex& v = (*pass.vertices)[pass.beamVertices[f.index]];
         if (v.depth + t - 2 <= maxDepth) mergeBeam(c, C, t, *q, f.t, v, radiance);
+      }
+      if (pass.beamsNear) pass.beamsNear->near(q->origin, q->w, q->length, nearPhotonBeams);
+      for (uint32_t i : nearPhotonBeams) {
+        const PhotonBeam& beam = pass.photonBeams[i];
+        if (beam.medium != q->medium || beam.vertex.depth + t - 2 > maxDepth) continue;
+        if (const std::optional<BeamCrossing> x = crossing(*q, beam, pass.radiusVolume, rng.uniform()))
+          mergePhotonBeam(c, C, t, *q, beam, *x, radiance);
       }
     }
     for (const SpectralSample& a : atLight) xyz += sensorResponse(ctx, a.lambda, a.value);

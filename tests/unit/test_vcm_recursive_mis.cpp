@@ -4,7 +4,7 @@
 // specular vertices), every connection's and every merge's weight computed both ways must agree
 // (relative 1e-5), with connections and merges (vcm) and merges alone (bpm), with and without the
 // wavelength kernel that lets own light vertices merge through elastic lobes, and in media with the
-// camera's query beams (docs/media-beams.md); and the density of the
+// camera's query beams against photon points and photon beams (docs/media-beams.md); and the density of the
 // connections alone that vcm's pilot weighs (docs/bdpt-mis.md §14) against the same recomputation.
 #include <gtest/gtest.h>
 
@@ -62,7 +62,7 @@ class WeightAndConnectionsOracle final : public MisObserver {
     double share = 0.0;
     for (int i = 1; i < k; ++i)
       for (Variant v : {Variant::kMerge, Variant::kMergeOwn, Variant::kMergeMollified, Variant::kMollified,
-                        Variant::kBeam, Variant::kBeamOwn})
+                        Variant::kBeam, Variant::kBeamOwn, Variant::kPhotonBeam, Variant::kPhotonBeamOwn})
         share += misWeight(path, i, v);
     if (k >= 2) share += misWeight(path, k - 1, Variant::kMergeSplat);
     const double rho = densityOverAlone(Alone::Connections, e.total, e.factors, e.sum, 0.0);
@@ -88,8 +88,9 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
   const bool media = scene->hasMedia();
   const double eta = param.etaScale;
   Strategies strategies{param.connections, {3.0 * eta, 11.0 * eta, 5.0 * eta, 0.01, !media}};
-  // And the camera's query beams against light vertices in homogeneous media (docs/media-beams.md).
-  if (media) strategies.merge.beam = 2.0 * eta;
+  // And the camera's query beams against light vertices and flights in homogeneous media
+  // (docs/media-beams.md).
+  if (media) strategies.merge.beam = 2.0 * eta, strategies.merge.photonBeam = 7.0 * eta;
   const WalkSettings ws{6, 3, &light.density(), families.independent && !media ? &lightFirst : nullptr, strategies};
   std::vector<PathVertex> C, LS, LO;
   WeightAndConnectionsOracle observer;
@@ -99,7 +100,8 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
   std::vector<LightVertex> kept;
   RayCounter counter;
   test::WeightTally tally;
-  int merges = 0, beams = 0;
+  std::vector<PhotonBeam> photonBeams;
+  int merges = 0, beams = 0, photonBeamWeights = 0;
   for (uint32_t sample = 0; sample < 40000; ++sample) {
     Sampler rng(SamplerKind::Independent, 17, sample, 0);
     const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, tables,
@@ -138,13 +140,22 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
         for (int t = 2; v.has(LightVertex::kMedium) && t <= int(C.size()) && v.depth + t - 2 <= ws.maxDepth; ++t)
           if (const std::optional<QueryBeam> q = queryBeam(c, C, t); q && std::isfinite(q->length))
             mergeBeam(c, C, t, *q, q->length * rng.uniform(), v, radiance, L);
+      // And every photon beam with every query beam in its medium, somewhere along each.
+      photonBeams.clear();
+      keepPhotonBeams(*L, L == &LO, *scene, strategies, photonBeams);
+      for (const PhotonBeam& b : photonBeams)
+        for (int t = 2; t <= int(C.size()) && b.vertex.depth + t - 2 <= ws.maxDepth; ++t)
+          if (const std::optional<QueryBeam> q = queryBeam(c, C, t); q && std::isfinite(q->length) && q->medium == b.medium)
+            mergePhotonBeam(c, C, t, *q, b, {q->length * rng.uniform(), b.length * rng.uniform(), 1.0f}, radiance, L);
     }
-    for (const test::WeightCheck& k : oracle.checks) beams += isBeam(Variant(k.variant));
+    for (const test::WeightCheck& k : oracle.checks) beams += isBeam(Variant(k.variant)) && !isPhotonBeam(Variant(k.variant));
+    for (const test::WeightCheck& k : oracle.checks) photonBeamWeights += isPhotonBeam(Variant(k.variant));
     for (const test::WeightCheck& k : oracle.checks) merges += isMerge(Variant(k.variant));
     ASSERT_TRUE(tally.add(oracle.checks, sample)) << describe(param);
   }
   EXPECT_GT(merges, 2000) << describe(param);
   EXPECT_GE(beams, param.minBeams) << describe(param);
+  EXPECT_GE(photonBeamWeights, param.minBeams) << describe(param);
   // The connections alone's density (vcm's pilot) on paths that merges sample too.
   if (param.etaScale > 1.0f) EXPECT_GT(observer.inside, 200) << describe(param) << ": " << observer.compared << " compared";
   // With connections, more than 2000 of them besides the merges.
