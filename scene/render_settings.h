@@ -147,6 +147,9 @@ struct VcmSettings : ProgressiveSettings {
   // Light vertices in homogeneous media also merge with the camera's query beams, within the volume
   // radius across them (photon points against beams, docs/media-beams.md).
   bool beams = true;
+  // And, with beams, the light subpaths' flights through homogeneous media (photon beams against the
+  // query beams, within a cylinder of the volume radius around each).
+  bool photonBeams = true;
 };
 
 // The ranges of the integrators' own settings, checked in one place for the scene loader and for

@@ -214,6 +214,7 @@ struct Loader {
     if (const auto choice = parseVcmPaths(paths)) v.paths = *choice;
     else f.fail("paths", "'" + paths + "' is not a choice of vcm's subpaths (auto, bidirectional, gather, connections, camera)");
     v.beams = f.boolean("beams", v.beams);
+    v.photonBeams = f.boolean("photon_beams", v.photonBeams);
     f.finish();
   }
 

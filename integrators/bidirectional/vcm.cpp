@@ -166,6 +166,7 @@ Vcm::Vcm(const Scene& scene, const RenderSettings& s, Parts parts)
   }
   radius1_ = p.radius > 0.0f ? p.radius : float(std::sqrt(kVerticesPerDisc * area / (kPi * kept)));
   beams_ = mergesInMedia && p.beams;
+  photonBeams_ = beams_ && p.photonBeams;
   if (mergesInMedia)
     volumeRadius1_ = p.volumeRadius > 0.0f ? p.volumeRadius
                                            : sphereHolding(pilotVertices, kVerticesPerSphere * double(pilot.paths) / double(paths_),
@@ -368,9 +369,11 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   // Beams: the pass's light vertices in media against a disc of radius r_v across each query beam,
   // η_b = N·π r_v² of the light subpaths traced (docs/media-beams.md eq. B2), and their flights
   // through homogeneous media within a cylinder of the same radius around each (eq. B4).
-  if (beams_)
-    pass->walk.strategies.merge.beam = pass->walk.strategies.merge.photonBeam =
-        double(paths) * kPi * double(pass->radiusVolume) * pass->radiusVolume;
+  if (beams_) {
+    const double etaBeam = double(paths) * kPi * double(pass->radiusVolume) * pass->radiusVolume;
+    pass->walk.strategies.merge.beam = etaBeam;
+    if (photonBeams_) pass->walk.strategies.merge.photonBeam = etaBeam;
+  }
   pass->setGather(run == VcmPaths::Gather);
   LightVertexTracing t;
   t.paths = paths;
@@ -380,7 +383,7 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   // A stream family per pass, apart from the camera samples' (render_loop.cpp) and the lanes'.
   const uint64_t passSeed = mixBits(mixBits(seed ^ 0x5851f42d4c957f2dULL) + uint64_t(firstSample));
   pass->vertices = std::make_unique<LightVertexMap>(
-      traceLightVertices(scene, pass->lanes, pass->walk, t, passSeed, counter, beams_ ? &pass->photonBeams : nullptr));
+      traceLightVertices(scene, pass->lanes, pass->walk, t, passSeed, counter, photonBeams_ ? &pass->photonBeams : nullptr));
   if (beams_) {
     std::vector<Vec3> points;
     for (size_t i = 0; i < pass->vertices->size(); ++i) {

@@ -84,6 +84,7 @@ class Vcm final : public Integrator {
   float radius1_, alpha_;
   float volumeRadius1_ = 0.0f;  // render/vcm/volume_radius, or from a pilot; 0 without media
   bool beams_ = false;  // light vertices in media also merge with the camera's query beams (render/vcm/beams)
+  bool photonBeams_ = false;  // and the light subpaths' flights through media (render/vcm/photon_beams)
   float bandwidth1_ = 0.0f;  // the first pass's wavelength kernel half-width (0: no kernel)
   uint64_t memoryLimit_;
   SamplerKind sampler_;

@@ -119,13 +119,13 @@ TEST(BeamsNearSegments, FindWhatABruteForceSearchFinds) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   auto direction = [&] { return glm::normalize(Vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f)); };
-  std::vector<BeamsNearSegments::Beam> beams(1500);
+  std::vector<BeamsNearSegments::Beam> beams(600);
   for (auto& b : beams) b = {Vec3(u(rng), u(rng), u(rng)), direction(), 0.3f * u(rng)};
-  const float r = 0.03f;
+  const float r = 0.04f;
   const BeamsNearSegments query(beams, r);
   std::vector<uint32_t> found;
   size_t total = 0, inside = 0;
-  for (int i = 0; i < 1500; ++i) {
+  for (int i = 0; i < 600; ++i) {
     // Every fourth segment starts on a beam and is shorter than r: inside its capsule.
     const bool shortOne = i % 4 == 0;
     const Vec3 o = shortOne ? beams[size_t(i)].a + 0.5f * beams[size_t(i)].length * beams[size_t(i)].w
@@ -135,19 +135,23 @@ TEST(BeamsNearSegments, FindWhatABruteForceSearchFinds) {
     query.near(o, d, length, found);
     // Every beam within r of the segment (by a fine march along it) must be found; those found must
     // come within r of it (up to the march's step).
-    constexpr int kSteps = 400;
+    constexpr int kSteps = 200;
     for (size_t j = 0; j < beams.size(); ++j) {
       float closest = 1e9f;
       for (int k = 0; k <= kSteps; ++k) closest = std::min(closest, distanceToSegment(o + d * (length * k / kSteps), beams[j]));
       const bool listed = std::binary_search(found.begin(), found.end(), uint32_t(j));
-      if (closest < 0.999f * r) EXPECT_TRUE(listed) << "segment " << i << ", beam " << j;
-      if (listed) EXPECT_LT(closest, r + length / kSteps) << "segment " << i << ", beam " << j;
+      if (closest < 0.999f * r) {
+        EXPECT_TRUE(listed) << "segment " << i << ", beam " << j;
+      }
+      if (listed) {
+        EXPECT_LT(closest, r + length / kSteps) << "segment " << i << ", beam " << j;
+      }
     }
     total += found.size();
     inside += shortOne ? found.size() : 0;
   }
-  EXPECT_GT(total, 2000u);
-  EXPECT_GT(inside, 300u);
+  EXPECT_GT(total, 300u);
+  EXPECT_GT(inside, 100u);
 }
 
 TEST(BeamCrossing, ChordIsTheQueryInsideTheCylinder) {

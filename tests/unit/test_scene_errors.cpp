@@ -451,6 +451,8 @@ TEST_F(SceneLoader, UnknownTypes) {
               "'light' is not a choice of vcm's subpaths (auto, bidirectional, gather, connections, camera)");
   expectError([](json& j) { j["render"] = {{"vcm", {{"beams", "yes"}}}}; }, "/render/vcm/beams",
               "expected true or false, got string");
+  expectError([](json& j) { j["render"] = {{"vcm", {{"photon_beams", 1}}}}; }, "/render/vcm/photon_beams",
+              "expected true or false, got number");
 }
 
 TEST_F(SceneLoader, MissingMaterial) {
