@@ -148,8 +148,9 @@ struct VcmSettings : ProgressiveSettings {
   // radius across them (photon points against beams, docs/media-beams.md).
   bool beams = true;
   // And, with beams, the light subpaths' flights through homogeneous media (photon beams against the
-  // query beams, within a cylinder of the volume radius around each).
-  bool photonBeams = true;
+  // query beams, within a cylinder of the volume radius around each). Off by default: on the media
+  // scenes they do not earn their cost (docs/media-beams.md).
+  bool photonBeams = false;
 };
 
 // The ranges of the integrators' own settings, checked in one place for the scene loader and for

@@ -123,10 +123,11 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
   own.nee = x1.spectralPdf * double(x1.spectralPdf);
   const double beamX1 =
       c.walk.strategies.merge.photonBeam > 0.0 ? lightBeamRatio(c.scene, toLight, x1, x0, lambdaIn) : 0.0;
+  const double sineX1 = beamX1 > 0.0 ? crossingSine(x1.p, x0.p, x2.p) : 0.0;
   const MisSums total =
       m1 + lightEndSum(pCam0, end.pdf0) +
-      cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, x1.lobe, x1.lambdaNext, c.walk.strategies, true, beamX1),
-                pLight2);
+      cameraSum(c, C, t, end.pdf1,
+                cameraMultiplicity(C, t - 1, x1.lobe, x1.lambdaNext, c.walk.strategies, true, beamX1, sineX1), pLight2);
   float weight[kMaxLanes];
   laneWeights(c, x1.firstLane(), x1.endLane(c.lanes), weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     const MisFactors f = factors(c, lightIndex, lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
@@ -139,6 +140,7 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
       FullPath fp = layout(c, &L1, 1, C, t, end, g, true);
       if (x2.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
       fp.v[1].lightBeam = beamX1;
+      fp.v[1].beamSine = sineX1;
       fp.specCam1 = x1.spectralPdf;
       fp.specLightLast = specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
       return fp;
@@ -185,8 +187,10 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   own.own = 1.0;
   const Strategies& st = c.walk.strategies;
   const double beamB = st.merge.photonBeam > 0.0 ? lightBeamRatio(c.scene, segment, b, a, a.lambda) : 0.0;
+  const double sineB = beamB > 0.0 ? crossingSine(b.p, a.p, bNext.p) : 0.0;
   const MisSums total = firstVertexMultiplicity(true, F, specCam1, true, st) + lightEndSum(pCam0, a.pdfFwd) +
-                        cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, st, true, beamB), pLight2);
+                        cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, st, true, beamB, sineB),
+                                  pLight2);
   const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false, false,
                                 c.walk.lightFirst ? a.choicePdf : 0.0f);
   const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, mf, [&](const MisFactors& g) {
@@ -194,6 +198,7 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
     fp.v[1].lobe = F;
     fp.v[0].pdfCam = pCam0;
     fp.v[1].lightBeam = beamB;
+    fp.v[1].beamSine = sineB;
     if (bNext.kind != Kind::Camera) fp.v[2].pdfLight = pLight2;
     fp.specCam1 = specCam1;
     fp.specLightLast = t == 2 ? specLightLast(b, F, a.lambda) : specLightLast(C[1], C[1].lobe, C[1].lambdaNext);
@@ -305,9 +310,12 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     // The beam ratios of the ends over the connection, each for the side that reaches it along it.
     const double beamA = st.merge.beam > 0.0 || st.merge.photonBeam > 0.0 ? cameraBeamRatio(c.scene, segment, a, p.lambdaB) : 0.0;
     const double beamB = st.merge.photonBeam > 0.0 ? lightBeamRatio(c.scene, segment, b, a, p.lambdaA) : 0.0;
+    const bool photon = st.merge.photonBeam > 0.0;
+    const double sineA = photon && a.inMedium() ? crossingSine(a.p, aPrev.p, b.p) : 0.0;
+    const double sineB = photon && b.inMedium() ? crossingSine(b.p, a.p, bNext.p) : 0.0;
     const MisSums sides =
-        lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st, false, true, beamA), pCamAPrev) +
-        cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st, true, beamB), pLightBNext);
+        lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, p.la, p.lambdaA, st, false, true, beamA, sineA), pCamAPrev) +
+        cameraSum(c, C, t, pLightB, cameraMultiplicity(C, t - 1, p.lb, p.lambdaB, st, true, beamB, sineB), pLightBNext);
     const MisSums here = joinMultiplicity(true, p.la, p.lb, st);
     MisSums own;
     (p.variant == Variant::kStandard ? own.shared : p.variant == Variant::kOwn ? own.own : own.mollified) = 1.0;
@@ -330,6 +338,8 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
         fp.v[size_t(s - 1)].pdfCam = pCamA;
         fp.v[size_t(s - 1)].cameraBeam = beamA;
         fp.v[size_t(s)].lightBeam = beamB;
+        fp.v[size_t(s - 1)].beamSine = sineA;
+        fp.v[size_t(s)].beamSine = sineB;
         fp.v[size_t(s - 2)].pdfCam = pCamAPrev;
         const PathVertex& x1 = L[1];
         fp.specCam1 = s == 2 ? specCamera(x1, p.la, x1.lambda, p.lambdaA) : specCamera(x1, x1.lobe, x1.lambda, x1.lambdaNext);
@@ -406,7 +416,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   bool any = false;
   MisSums here, own, sides;
   bool oneGroup = true;
-  double pCamAPrev = 0.0, beamA = 0.0;  // beamA: the camera's beam ratio at a (s ≥ 2)
+  double pCamAPrev = 0.0, beamA = 0.0, sineA = 0.0;  // beamA: the camera's beam ratio at a (s ≥ 2), sineA its sin θ
   if (s == 1) {
     // The light itself, seen directly (area lights only; weight 0 where the camera's s = 0 adds it
     // exactly, see emitterHit).
@@ -441,7 +451,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     // a, next to the camera, is the path's first gather vertex.
     const MergeEta& eta = c.walk.strategies.merge;
     beamA = eta.beam > 0.0 || eta.photonBeam > 0.0 ? cameraBeamRatio(c.scene, segment, a, lambda) : 0.0;
-    sides = lightSum(c, L, s, pCamA, lightMultiplicity(L, s - 1, a.lobe, a.lambdaNext, c.walk.strategies, true, true, beamA),
+    sineA = eta.photonBeam > 0.0 && a.inMedium() ? crossingSine(a.p, aPrev.p, cam.p) : 0.0;
+    sides = lightSum(c, L, s, pCamA,
+                     lightMultiplicity(L, s - 1, a.lobe, a.lambdaNext, c.walk.strategies, true, true, beamA, sineA),
                      pCamAPrev);
     oneGroup = a.elasticBefore && a.lobe == SpectralLobe::Elastic;
   }
@@ -462,6 +474,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       const int last = s;
       fp.v[size_t(last - 1)].pdfCam = pCamA;
       fp.v[size_t(last - 1)].cameraBeam = beamA;
+      fp.v[size_t(last - 1)].beamSine = sineA;
       if (s == 1) {
         fp.lightSeenByPinhole = true;
       } else {

@@ -106,13 +106,14 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
   for (int i = 0; i < s; ++i) {
     const PathVertex& v = (*L)[size_t(i)];
     const bool ends = i == s - 1;
-    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.joinable(ends), v.inMedium(), mergeable(v, ends), v.cameraBeam, v.lightBeam};
+    fp.v[size_t(i)] = {v.pdfFwd, v.pdfRev, v.lobe, v.joinable(ends), v.inMedium(), mergeable(v, ends), v.cameraBeam, v.lightBeam,
+                       v.beamSine};
   }
   for (int j = 0; j < t; ++j) {
     const PathVertex& v = C[size_t(j)];
     const bool ends = connection && j == t - 1;
     fp.v[size_t(k - j)] = {v.pdfRev, v.pdfFwd, v.lobe, v.joinable(ends), v.inMedium(), mergeable(v, ends), v.cameraBeam,
-                           v.lightBeam};
+                           v.lightBeam, v.beamSine};
   }
   fp.v[size_t(k)].pdfCam = 1.0;  // the pinhole is a delta: every strategy shares it
   fp.v[size_t(k)].pdfLight = 0.0;

@@ -19,6 +19,7 @@ struct MergeSums {
   double specCam = 0.0, specLight = 0.0;  // b's event: the camera side's and the light side's
   double pCamPrev = 0.0;                  // the camera side's density of x_{m−1}, sampled at x_m
   double pLightNext = 0.0;                // the light side's of x_{m+1} (t > 2)
+  double photonBeam = 0.0;                // a photon beam's factor at x_m (photonBeamRatio)
 };
 
 // The light side's beam ratio at the merge of v with b (PathVertex::lightBeam): over v's arrival, in
@@ -43,8 +44,10 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   // connection ends at x_m, with the merges at x_m.
   const SpectralLobe prevLobe =
       v.has(LightVertex::kPrevFluorescent) ? SpectralLobe::Fluorescent : SpectralLobe::Elastic;
+  // sin θ between the light's arrival and the camera side's, both in b's frame.
+  r.photonBeam = photonBeamRatio(lightBeamOf(c, v, b), glm::length(glm::cross(bWi, bWo)));
   const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, t == 2, st, b.inMedium(), b.cameraBeam,
-                                          lightBeamOf(c, v, b)) +
+                                          r.photonBeam) +
                         (m == 1 ? firstVertexMultiplicity(true, lobe, r.specCam, v.has(LightVertex::kFiniteLight), st)
                                 : joinMultiplicity(v.has(LightVertex::kPrevConnectible), prevLobe, lobe, st));
   const double rPrev = densityRatio(r.pCamPrev, v.pdfPrev);
@@ -87,6 +90,7 @@ FullPath fullPath(const Context& c, const std::vector<PathVertex>& C, int t, con
   fp.v[size_t(m)].pdfCam = C[size_t(t - 1)].pdfFwd;
   fp.v[size_t(m)].cameraBeam = C[size_t(t - 1)].cameraBeam;
   fp.v[size_t(m)].lightBeam = lightBeamOf(c, v, C[size_t(t - 1)]);
+  fp.v[size_t(m)].beamSine = fp.v[size_t(m)].lightBeam > 0.0 ? r.photonBeam / fp.v[size_t(m)].lightBeam : 0.0;
   fp.v[size_t(m - 1)].pdfCam = r.pCamPrev;
   if (t > 2) fp.v[size_t(m + 1)].pdfLight = r.pLightNext;
   fp.specCam1 = m == 1 ? r.specCam : specCamera(L[1], L[1].lobe, L[1].lambda, L[1].lambdaNext);
@@ -135,7 +139,9 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     const SpectralLobe lobe = kinds[i].lobe;
     const Variant variant = kinds[i].variant;
     const double etaMerge = etaOf(c.walk.strategies.merge, variant, gather, b.inMedium());
-    const float scale = fb.incidentShadingRatio(bWi) * laneFactor * along.chord / float(etaMerge);
+    // A photon beam's estimate: the chord over N·π r_v², which is η_pb·2r_v (MergeEta::photonBeam).
+    const double norm = photon ? etaMerge * 2.0 * c.walk.strategies.merge.volumeRadius : etaMerge;
+    const float scale = fb.incidentShadingRatio(bWi) * laneFactor * along.chord / float(norm);
     // The wavelengths of the densities at x_m: the light arriving and the camera's leaving, the
     // same through the elastic lobe (the camera's, one that scatters there, §10).
     const float lambdaOut = lambdaB;
@@ -159,9 +165,9 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     if (!any) continue;
     const MergeSums sums = mergeSums(c, C, t, v, lobe, lambdaIn, lambdaOut, gather, bWi, bWo);
     // This merge: (η·pC_m)² relative to the strategy s' = m + 1; a beam's (η_b·pC_m·ρ_C)² (eq. B2), a
-    // photon beam's (η_pb·pC_m·ρ_C·ρ_L)² (eq. B4).
+    // photon beam's (η_pb·pC_m·ρ_C·ρ_L·sin θ)² (eq. B4).
     const double eta =
-        etaMerge * b.pdfFwd * (beam ? double(b.cameraBeam) : 1.0) * (photon ? lightBeamOf(c, v, b) : 1.0);
+        etaMerge * b.pdfFwd * (beam ? double(b.cameraBeam) : 1.0) * (photon ? sums.photonBeam : 1.0);
     MisSums mine;
     const bool sharedPart = variant == Variant::kMerge || (isBeam(variant) && !isOwnBeam(variant));
     (sharedPart ? mine.mergeShared : ownPart ? mine.mergeOwn : mine.mergeMollified) = eta * eta;

@@ -25,7 +25,7 @@ bool validGiven(const FullPath& p, int s, Variant variant, bool elastic) {
       return false;
     const bool fluorescent = p.v[size_t(s)].lobe == SpectralLobe::Fluorescent;
     if (isBeam(variant) && !(x.cameraBeam > 0.0)) return false;
-    if (isPhotonBeam(variant) && !(x.lightBeam > 0.0)) return false;
+    if (isPhotonBeam(variant) && !(x.lightBeam > 0.0 && x.beamSine > 0.0)) return false;
     if (isBeam(variant)) return isOwnBeam(variant) ? p.families.independent && fluorescent : p.families.shared && elastic;
     if (variant == Variant::kMerge) return p.families.shared && elastic;
     if (variant == Variant::kMergeSplat) return p.families.independent && !fluorescent && s == k - 1;
@@ -92,7 +92,7 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
     // reaching past x_s (docs/media-beams.md eq. B2), and a photon beam's the light side's too (eq. B4).
     double d = etaOf(p.mergeEta, variant, gatherVertex(p, s), p.v[size_t(s)].volume);
     if (isBeam(variant)) d *= p.v[size_t(s)].cameraBeam;
-    if (isPhotonBeam(variant)) d *= p.v[size_t(s)].lightBeam;
+    if (isPhotonBeam(variant)) d *= p.v[size_t(s)].lightBeam * p.v[size_t(s)].beamSine;
     for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
     for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
     if (variant == Variant::kMerge || variant == Variant::kBeam || variant == Variant::kPhotonBeam) return d * p.sensorPdf * p.sharedChoice * p.laneGain;

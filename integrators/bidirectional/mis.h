@@ -28,6 +28,7 @@ struct FullVertex {
   // The same of the light side, R_L/F_L = 1/σ_t (its flights are analog), from its light-side
   // neighbour: with cameraBeam, the photon beams' factor (docs/media-beams.md eq. B4).
   double lightBeam = 0.0;
+  double beamSine = 0.0;  // sin θ between its two segments (PathVertex::beamSine)
 };
 
 // Which light subpaths a camera sample is combined with (each at most one per camera sample).
@@ -52,8 +53,9 @@ struct MergeEta {
   // N·π r_v², that of light vertices in media (photon points) against the camera's query beams (the
   // beam radiance estimate, docs/media-beams.md), at collisions in homogeneous media (0: none).
   double beam = 0.0;
-  // N·π r_v², that of the light subpaths' flights through homogeneous media (photon beams) against
-  // the camera's query beams, with a cylinder kernel of radius r_v around each flight (0: none).
+  // N·π r_v²/(2 r_v), that of the light subpaths' flights through homogeneous media (photon beams)
+  // against the camera's query beams, with a cylinder kernel of radius r_v around each flight, per
+  // unit sin θ of their crossing (0: none; docs/media-beams.md eq. B4).
   double photonBeam = 0.0;
   bool any() const { return eta > 0.0 || gather > 0.0 || volume > 0.0 || beam > 0.0 || photonBeam > 0.0; }
 };

@@ -55,7 +55,7 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st) {
 }
 
 MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,
-                          const Strategies& st, bool volume, double cameraBeam, double lightBeam) {
+                          const Strategies& st, bool volume, double cameraBeam, double photonBeam) {
   if (!mergeable || !st.merge.any()) return {};
   auto squared = [&](Variant v, bool atGather) {
     const double eta = etaOf(st.merge, v, atGather, volume);
@@ -70,7 +70,7 @@ MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, boo
     if (first) m.mergeOwnSplat = squared(Variant::kMergeSplat, true);
   }
   if (volume && cameraBeam > 0.0) {  // docs/media-beams.md eqs. B2, B4
-    const double beam = (squared(Variant::kBeam, false) + squared(Variant::kPhotonBeam, false) * lightBeam * lightBeam) *
+    const double beam = (squared(Variant::kBeam, false) + squared(Variant::kPhotonBeam, false) * photonBeam * photonBeam) *
                         cameraBeam * cameraBeam;
     m.mergeShared += beam;  // any lobe, as the shared merge's
     if (lobe == SpectralLobe::Fluorescent) m.mergeOwn += beam;

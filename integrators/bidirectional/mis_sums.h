@@ -122,8 +122,12 @@ MisSums directLightMultiplicity(bool seenByPinhole, const Strategies& st);
 // ray's hit; `volume`: x_m is a collision in a medium (every merge there with η_v). There the beams
 // (Variant::kBeam, kBeamOwn) add (η_b·density·cameraBeam)² to the merge part of their namesake
 // (FullVertex::cameraBeam; docs/media-beams.md eq. B2), which has their factors, and the photon beams
-// (Variant::kPhotonBeam, kPhotonBeamOwn) (η_pb·density·cameraBeam·lightBeam)² (eq. B4).
+// (Variant::kPhotonBeam, kPhotonBeamOwn) (η_pb·density·cameraBeam·lightBeam·sin θ)² (eq. B4), with
+// photonBeam = lightBeam·sin θ (photonBeamRatio).
 MisSums mergeMultiplicity(bool mergeable, SpectralLobe lobe, double density, bool gather, bool first,
-                          const Strategies& st, bool volume = false, double cameraBeam = 0.0, double lightBeam = 0.0);
+                          const Strategies& st, bool volume = false, double cameraBeam = 0.0, double photonBeam = 0.0);
+
+// A photon beam's factor at a collision besides the query beam's: R_L/F_L·sin θ (eq. B4).
+inline double photonBeamRatio(double lightBeam, double beamSine) { return lightBeam * beamSine; }
 
 }  // namespace kasha::bidir

@@ -40,6 +40,14 @@ double cameraBeamRatio(const Scene& scene, const SegmentDepth& d, const PathVert
 // at infinity is no photon beam: keepPhotonBeams); 0 at any other vertex.
 double lightBeamRatio(const Scene& scene, const SegmentDepth& d, const PathVertex& target, const PathVertex& origin,
                       float lambda);
+// sin θ between the segments from x to a and from x to b (0 where one has no length).
+inline float crossingSine(const Vec3& x, const Vec3& a, const Vec3& b) {
+  const Vec3 u = a - x, v = b - x;
+  const float uu = glm::dot(u, u), vv = glm::dot(v, v);
+  if (!(uu > 0.0f && vv > 0.0f)) return 0.0f;
+  return std::min(1.0f, glm::length(glm::cross(u, v)) / std::sqrt(uu * vv));
+}
+
 // 1/σ_t(λ) of a homogeneous medium (0 where σ_t is).
 double inverseSigmaT(const Scene& scene, int medium, float lambda);
 

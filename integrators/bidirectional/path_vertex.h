@@ -63,6 +63,10 @@ struct PathVertex {
   // side reaches it along: on a light subpath its arrival, on a camera subpath the next vertex's;
   // connections recompute it for the camera end they join.
   float lightBeam = 0.0f;
+  // A collision's sin θ between its two segments (|u × v| of their directions), set with lightBeam
+  // once both neighbours are known: a photon beam crossing a query beam at x has density ∝ sin θ
+  // (docs/media-beams.md eq. B4); connections and merges recompute it at their ends.
+  float beamSine = 0.0f;
   // The free flight's weight T/p at lane 0 that the subpath's throughput took on arriving here (1
   // without media): a query beam along the same segment replaces it (vcm, docs/media-beams.md).
   float flightWeight = 1.0f;

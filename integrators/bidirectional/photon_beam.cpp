@@ -55,9 +55,9 @@ void keepPhotonBeams(const std::vector<PathVertex>& L, bool own, const Scene& sc
     if (j == 0) {
       b.sumsFixed = lightMultiplicity(L, 0, st, false, false) + v.sums;
     } else {
-      const MisSums without = lightMultiplicity(L, j, o.lobe, o.lambdaNext, st, false, false, 0.0);
+      const MisSums without = lightMultiplicity(L, j, o.lobe, o.lambdaNext, st, false, false, 0.0, o.beamSine);
       b.sumsFixed = without + v.sums;
-      b.sumsPerOriginBeam = lightMultiplicity(L, j, o.lobe, o.lambdaNext, st, false, false, 1.0) + without * -1.0;
+      b.sumsPerOriginBeam = lightMultiplicity(L, j, o.lobe, o.lambdaNext, st, false, false, 1.0, o.beamSine) + without * -1.0;
     }
     out.push_back(b);
   }

@@ -3,13 +3,14 @@
 namespace kasha::bidir {
 
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
-                          const Strategies& st, bool gather, bool ends, double cameraBeam) {
+                          const Strategies& st, bool gather, bool ends, double cameraBeam, double beamSine) {
   if (j < 0) return {};
   if (j == 0) return hitMultiplicity();  // the camera subpath hits the light (0 where pC_0 is)
   const PathVertex& v = L[size_t(j)];
   // x_j next to the camera (gather, t = 1) is x_{k−1}.
   const MisSums merges =
-      mergeMultiplicity(mergeable(v, ends), lobe, v.pdfFwd, gather, gather, st, v.inMedium(), cameraBeam, v.lightBeam);
+      mergeMultiplicity(mergeable(v, ends), lobe, v.pdfFwd, gather, gather, st, v.inMedium(), cameraBeam,
+                        photonBeamRatio(v.lightBeam, beamSine));
   if (j == 1) {  // x_1: next-event estimation, and the light vertex through a fluorescent x_1
     const double specCam1 = v.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, v.lambda, lobe);
     return merges + firstVertexMultiplicity(v.joinable(ends), lobe, specCam1, L[0].kind == PathVertex::Kind::Light, st);
@@ -19,17 +20,18 @@ MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe 
 }
 
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st, bool gather, bool ends) {
-  if (j < 1) return lightMultiplicity(L, j, SpectralLobe::Elastic, 0.0f, st, false, ends, 0.0);
+  if (j < 1) return lightMultiplicity(L, j, SpectralLobe::Elastic, 0.0f, st, false, ends, 0.0, 0.0);
   const PathVertex& v = L[size_t(j)];
-  return lightMultiplicity(L, j, v.lobe, v.lambdaNext, st, gather, ends, v.cameraBeam);
+  return lightMultiplicity(L, j, v.lobe, v.lambdaNext, st, gather, ends, v.cameraBeam, v.beamSine);
 }
 
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn,
-                           const Strategies& st, bool ends, double lightBeam) {
+                           const Strategies& st, bool ends, double lightBeam, double beamSine) {
   if (j < 1) return {};
   const PathVertex& v = C[size_t(j)];
   const MisSums merges =
-      mergeMultiplicity(mergeable(v, ends), lobe, v.pdfFwd, v.gather, j == 1, st, v.inMedium(), v.cameraBeam, lightBeam);
+      mergeMultiplicity(mergeable(v, ends), lobe, v.pdfFwd, v.gather, j == 1, st, v.inMedium(), v.cameraBeam,
+                        photonBeamRatio(lightBeam, beamSine));
   if (j == 1) {  // t = 1: the light side samples x_{k−1}'s event
     const double specLight = v.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, v.lambda, lobe);
     return merges + lightTracingMultiplicity(v.joinable(ends), specLight, st);
@@ -40,7 +42,8 @@ MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe
 
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st, bool ends) {
   if (j < 1) return {};
-  return cameraMultiplicity(C, j, C[size_t(j)].lobe, C[size_t(j)].lambdaNext, st, ends, C[size_t(j)].lightBeam);
+  const PathVertex& v = C[size_t(j)];
+  return cameraMultiplicity(C, j, v.lobe, v.lambdaNext, st, ends, v.lightBeam, v.beamSine);
 }
 
 void updateSums(std::vector<PathVertex>& path, TransportMode mode, const Strategies& st) {

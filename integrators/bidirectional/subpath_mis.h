@@ -19,18 +19,19 @@ inline double densityRatio(double other, double own) { return own > 0.0 ? other 
 // x_{k−1}, the path's first gather vertex (MergeEta) and the camera ray's hit (Variant::kMergeSplat).
 // `ends`: the path being weighed ends a connection at L[j] (PathVertex::joinable); L[j − 1] is
 // always inside it. cameraBeam: the camera side's beam ratio at L[j] (PathVertex::cameraBeam) over
-// the segment by which the path's camera side reaches it.
+// the segment by which the path's camera side reaches it; beamSine, sin θ between that segment and
+// L[j]'s arrival (PathVertex::beamSine).
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, SpectralLobe lobe, float lambdaOut,
-                          const Strategies& st, bool gather, bool ends, double cameraBeam);
+                          const Strategies& st, bool gather, bool ends, double cameraBeam, double beamSine);
 // The same with L[j]'s own sampled event, reached by the camera side from L[j + 1].
 MisSums lightMultiplicity(const std::vector<PathVertex>& L, int j, const Strategies& st, bool gather, bool ends);
 
 // M of the strategy with j vertices on the camera subpath C (t' = j, s' = k + 1 − j), C[j] using
 // `lobe` with `lambdaIn` arriving from the light side, together with the merges at C[j]; `ends` as
 // for lightMultiplicity. lightBeam: the light side's beam ratio at C[j] (PathVertex::lightBeam) over
-// the segment by which the path's light side reaches it.
+// the segment by which the path's light side reaches it; beamSine as for lightMultiplicity.
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, SpectralLobe lobe, float lambdaIn,
-                           const Strategies& st, bool ends, double lightBeam);
+                           const Strategies& st, bool ends, double lightBeam, double beamSine);
 // The same with C[j]'s own sampled event, reached by the light side from C[j + 1].
 MisSums cameraMultiplicity(const std::vector<PathVertex>& C, int j, const Strategies& st, bool ends);
 

@@ -114,7 +114,11 @@ void arrive(Track& tr, const PathVertex& reached, const Ray& ray, const Scene& s
     PathVertex& camera = mode == TransportMode::Radiance ? v : prev;
     PathVertex& light = mode == TransportMode::Radiance ? prev : v;
     camera.cameraBeam = float(cameraBeamRatio(scene, v.arrival, camera, v.lambda));
-    if (st.merge.photonBeam > 0.0) light.lightBeam = float(lightBeamRatio(scene, v.arrival, light, camera, v.lambda));
+    if (st.merge.photonBeam > 0.0) {
+      light.lightBeam = float(lightBeamRatio(scene, v.arrival, light, camera, v.lambda));
+      // prev's two segments are known now.
+      if (path.size() >= 3 && prev.inMedium()) prev.beamSine = crossingSine(prev.p, path[path.size() - 3].p, v.p);
+    }
   }
   updateSums(path, mode, st);
 }

@@ -368,11 +368,12 @@ std::unique_ptr<VcmPass> Vcm::bidirectionalPass(const Scene& scene, int firstSam
   pass->walk.strategies.merge = {eta, eta, etaVolume, pass->radiusVolume, !scene.hasMedia()};
   // Beams: the pass's light vertices in media against a disc of radius r_v across each query beam,
   // η_b = N·π r_v² of the light subpaths traced (docs/media-beams.md eq. B2), and their flights
-  // through homogeneous media within a cylinder of the same radius around each (eq. B4).
+  // through homogeneous media within a cylinder of the same radius around each, whose chord through
+  // the query is 2r_v/sin θ: η_pb = N·π r_v²/(2r_v) (eq. B4).
   if (beams_) {
     const double etaBeam = double(paths) * kPi * double(pass->radiusVolume) * pass->radiusVolume;
     pass->walk.strategies.merge.beam = etaBeam;
-    if (photonBeams_) pass->walk.strategies.merge.photonBeam = etaBeam;
+    if (photonBeams_) pass->walk.strategies.merge.photonBeam = etaBeam / (2.0 * double(pass->radiusVolume));
   }
   pass->setGather(run == VcmPaths::Gather);
   LightVertexTracing t;

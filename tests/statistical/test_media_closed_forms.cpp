@@ -65,8 +65,10 @@ class MediaClosedForm : public ::testing::TestWithParam<Estimator> {
     settings.rrDepth = 3;
     settings.heroWavelengths = GetParam().lanes;
     settings.vcm.volumeRadius = GetParam().volumeRadius;
-    // vcm with every strategy (its pilot would choose per batch between them and pt, tested alone).
+    // vcm with every strategy (its pilot would choose per batch between them and pt, tested alone),
+    // photon beams too (docs/media-beams.md; off by default).
     settings.vcm.paths = VcmPaths::Bidirectional;
+    settings.vcm.photonBeams = true;
     settings.ppm.photonsPerPass = photons.photonsPerPass;
     settings.ppm.volumeRadius = photons.volumeRadius;
     settings.ppm.bandwidth = kPhotonBandwidth;
