@@ -19,7 +19,7 @@ struct MergeSums {
   double specCam = 0.0, specLight = 0.0;  // b's event: the camera side's and the light side's
   double pCamPrev = 0.0;                  // the camera side's density of x_{m−1}, sampled at x_m
   double pLightNext = 0.0;                // the light side's of x_{m+1} (t > 2)
-  double photonBeam = 0.0;                // a photon beam's factor at x_m (photonBeamRatio)
+  double beamSine = 0.0;                  // sin θ between x_m's two segments (PathVertex::beamSine)
 };
 
 // The light side's beam ratio at the merge of v with b (PathVertex::lightBeam): over v's arrival, in
@@ -45,9 +45,9 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   const SpectralLobe prevLobe =
       v.has(LightVertex::kPrevFluorescent) ? SpectralLobe::Fluorescent : SpectralLobe::Elastic;
   // sin θ between the light's arrival and the camera side's, both in b's frame.
-  r.photonBeam = photonBeamRatio(lightBeamOf(c, v, b), glm::length(glm::cross(bWi, bWo)));
+  r.beamSine = glm::length(glm::cross(bWi, bWo));
   const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, t == 2, st, b.inMedium(), b.cameraBeam,
-                                          r.photonBeam) +
+                                          photonBeamRatio(lightBeamOf(c, v, b), r.beamSine)) +
                         (m == 1 ? firstVertexMultiplicity(true, lobe, r.specCam, v.has(LightVertex::kFiniteLight), st)
                                 : joinMultiplicity(v.has(LightVertex::kPrevConnectible), prevLobe, lobe, st));
   const double rPrev = densityRatio(r.pCamPrev, v.pdfPrev);
@@ -65,7 +65,6 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   return r;
 }
 
-// The merge's path laid out for the full recomputation (FullPathLayout, the test oracle), with factors g.
 // How a merge meets the camera side: at its vertex C[t−1] (a point), or along its query beam, with a
 // photon point or a photon beam (docs/media-beams.md).
 struct Along {
@@ -74,6 +73,7 @@ struct Along {
   double originCameraBeam = 0.0;  // a photon beam's: R_C/F_C at its origin x_{m−1}, from x_m
 };
 
+// The merge's path laid out for the full recomputation (FullPathLayout, the test oracle), with factors g.
 FullPath fullPath(const Context& c, const std::vector<PathVertex>& C, int t, const LightVertex& v,
                   const std::vector<PathVertex>* lightPath, SpectralLobe lobe, const MergeSums& r, const MisFactors& g,
                   const Along& along) {
@@ -90,7 +90,7 @@ FullPath fullPath(const Context& c, const std::vector<PathVertex>& C, int t, con
   fp.v[size_t(m)].pdfCam = C[size_t(t - 1)].pdfFwd;
   fp.v[size_t(m)].cameraBeam = C[size_t(t - 1)].cameraBeam;
   fp.v[size_t(m)].lightBeam = lightBeamOf(c, v, C[size_t(t - 1)]);
-  fp.v[size_t(m)].beamSine = fp.v[size_t(m)].lightBeam > 0.0 ? r.photonBeam / fp.v[size_t(m)].lightBeam : 0.0;
+  fp.v[size_t(m)].beamSine = r.beamSine;
   fp.v[size_t(m - 1)].pdfCam = r.pCamPrev;
   if (t > 2) fp.v[size_t(m + 1)].pdfLight = r.pLightNext;
   fp.specCam1 = m == 1 ? r.specCam : specCamera(L[1], L[1].lobe, L[1].lambda, L[1].lambdaNext);
@@ -167,7 +167,7 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     // This merge: (η·pC_m)² relative to the strategy s' = m + 1; a beam's (η_b·pC_m·ρ_C)² (eq. B2), a
     // photon beam's (η_pb·pC_m·ρ_C·ρ_L·sin θ)² (eq. B4).
     const double eta =
-        etaMerge * b.pdfFwd * (beam ? double(b.cameraBeam) : 1.0) * (photon ? sums.photonBeam : 1.0);
+        etaMerge * b.pdfFwd * (beam ? double(b.cameraBeam) : 1.0) * (photon ? photonBeamRatio(lightBeamOf(c, v, b), sums.beamSine) : 1.0);
     MisSums mine;
     const bool sharedPart = variant == Variant::kMerge || (isBeam(variant) && !isOwnBeam(variant));
     (sharedPart ? mine.mergeShared : ownPart ? mine.mergeOwn : mine.mergeMollified) = eta * eta;
