@@ -41,7 +41,7 @@ std::vector<bidir::LightVertex> traceLightVertices(const Scene& scene, const bid
     requireMemory(saturatingMul(count, sizeof(PhotonBeam)) + used,
                   "the photon beams of one vcm pass (" + std::to_string(count) + " beams × " +
                       std::to_string(sizeof(PhotonBeam)) + " bytes, besides " + std::to_string(vertices.size()) +
-                      " light vertices; lower render/vcm/photons_per_pass or set render/vcm/beams to false)",
+                      " light vertices; lower render/vcm/photons_per_pass or set render/vcm/photon_beams to false)",
                   t.memoryLimit);
     beams->clear();
     beams->reserve(count);
