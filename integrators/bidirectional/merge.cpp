@@ -44,8 +44,9 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   // connection ends at x_m, with the merges at x_m.
   const SpectralLobe prevLobe =
       v.has(LightVertex::kPrevFluorescent) ? SpectralLobe::Fluorescent : SpectralLobe::Elastic;
-  // sin θ between the light's arrival and the camera side's, both in b's frame.
-  r.beamSine = glm::length(glm::cross(bWi, bWo));
+  // sin θ between the light's arrival and the camera side's, both in b's frame (only where a photon
+  // beam could merge).
+  if (st.merge.photonBeam > 0.0 && b.inMedium()) r.beamSine = glm::length(glm::cross(bWi, bWo));
   const MisSums mLast = mergeMultiplicity(true, lobe, v.pdfFwd, gather, t == 2, st, b.inMedium(), b.cameraBeam,
                                           photonBeamRatio(lightBeamOf(c, v, b), r.beamSine)) +
                         (m == 1 ? firstVertexMultiplicity(true, lobe, r.specCam, v.has(LightVertex::kFiniteLight), st)
@@ -361,13 +362,9 @@ void mergePhotonBeam(const Context& c, std::vector<PathVertex>& C, int t, const 
   // there the path's other strategies have none either.
   if (!sphereClearOfSurfaces(c.scene, at, float(c.walk.strategies.merge.volumeRadius), c.counter)) return;
   const float s = glm::length(at - beam.origin);
-  const LightVertex v = vertexAlong(c.scene, beam, s);
-  Along along{Along::Kind::PhotonBeam, x.chord};
-  PathVertex origin;  // x_{m−1} as cameraBeamRatio sees it
-  origin.kind = beam.originInMedium ? Kind::Medium : Kind::Surface;
-  origin.medium = beam.originMedium;
-  along.originCameraBeam = cameraBeamRatio(c.scene, depthThrough(c.scene, beam.medium, v.lambda, s), origin, v.lambda);
-  mergeAlong(c, C, t, q, x.t, v, along, out, lightPath);
+  const BeamPoint point = vertexAlong(c.scene, beam, s);
+  mergeAlong(c, C, t, q, x.t, point.vertex, Along{Along::Kind::PhotonBeam, x.chord, point.originCameraBeam}, out,
+             lightPath);
 }
 
 std::optional<BeamCrossing> crossing(const QueryBeam& q, const PhotonBeam& beam, float radius, float u) {

@@ -63,8 +63,9 @@ void keepPhotonBeams(const std::vector<PathVertex>& L, bool own, const Scene& sc
   }
 }
 
-LightVertex vertexAlong(const Scene& scene, const PhotonBeam& beam, float s) {
-  LightVertex r = beam.vertex;
+BeamPoint vertexAlong(const Scene& scene, const PhotonBeam& beam, float s) {
+  BeamPoint point{beam.vertex};
+  LightVertex& r = point.vertex;
   PathVertex x;  // the collision, as the densities see it
   x.kind = Kind::Medium;
   x.p = beam.origin + s * beam.w;
@@ -82,9 +83,9 @@ LightVertex vertexAlong(const Scene& scene, const PhotonBeam& beam, float s) {
   r.pdfFwd = float(beam.directionPdf * double(toAreaDensity(1.0f, o, x)) *
                    flightFactor(scene, TransportMode::Importance, depth, x, r.lambda));
   r.prevGeometry = float(toArea(scene, 1.0f, x, o) * flightFactor(scene, TransportMode::Radiance, depth, o, r.lambda));
-  const double originBeam = cameraBeamRatio(scene, depth, o, r.lambda);
-  r.sums = beam.sumsFixed + beam.sumsPerOriginBeam * (originBeam * originBeam);
-  return r;
+  point.originCameraBeam = cameraBeamRatio(scene, depth, o, r.lambda);
+  r.sums = beam.sumsFixed + beam.sumsPerOriginBeam * (point.originCameraBeam * point.originCameraBeam);
+  return point;
 }
 
 }  // namespace kasha::bidir

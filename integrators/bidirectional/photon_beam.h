@@ -38,7 +38,12 @@ void keepPhotonBeams(const std::vector<PathVertex>& L, bool own, const Scene& sc
                      std::vector<PhotonBeam>& out);
 
 // The light vertex at a collision at distance s along the beam (0 < s ≤ length): as the flight would
-// have made it, with the beam's throughput (T/R_L = 1 of an analog flight: the beam's own).
-LightVertex vertexAlong(const Scene& scene, const PhotonBeam& beam, float s);
+// have made it, with the beam's throughput (T/R_L = 1 of an analog flight: the beam's own); and the
+// camera side's R_C/F_C at the beam's origin, reached from it (its sums hold that term).
+struct BeamPoint {
+  LightVertex vertex;
+  double originCameraBeam = 0.0;
+};
+BeamPoint vertexAlong(const Scene& scene, const PhotonBeam& beam, float s);
 
 }  // namespace kasha::bidir

@@ -76,7 +76,7 @@ TEST_P(PhotonBeamEnd, IsTheLightVertexTheFlightMadeThere) {
         if (!end.inMedium()) continue;
         const auto real = std::find_if(kept.begin(), kept.end(), [&](const LightVertex& v) { return v.depth == b.vertex.depth; });
         if (real == kept.end()) continue;
-        const LightVertex along = vertexAlong(*scene, b, b.length);
+        const LightVertex along = vertexAlong(*scene, b, b.length).vertex;
         const int i = compared++;
         originInMedium += b.originInMedium;
         for (int k = 0; k < 3; ++k) {
