@@ -1,18 +1,22 @@
 // Every integrator against the closed forms of docs/validation.md §1–2, with tolerances of 4 standard
 // errors estimated from independent batches. Expected values are computed here by quadrature of
-// the formulas from the very spectra the scene files load. This file is compiled once per
-// integrator (tests/CMakeLists.txt), with KASHA_TEST_INTEGRATOR naming it.
+// the formulas from the very spectra the scene files load. This file is compiled once and linked
+// into one executable per integrator (tests/CMakeLists.txt), each defining kTestIntegrator.
 #include <gtest/gtest.h>
 
 #include "scene/wavelength_strategy.h"
 #include "tests/closed_form_support.h"
 
 namespace kasha {
+namespace test {
+// The integrator's name, defined by each executable (tests/CMakeLists.txt).
+extern const char* const kTestIntegrator;
+}  // namespace test
 namespace {
 
 using namespace test;
 
-const std::string gIntegrator = KASHA_TEST_INTEGRATOR;
+const std::string gIntegrator = kTestIntegrator;
 // Light tracing spends most paths where the small test cameras do not look, and so does photon
 // mapping (its photons land everywhere, and the test images hold only 64 pixels, so 64 photons a
 // pass): they get more samples so that every test keeps its power (the standard-error check
