@@ -1,6 +1,54 @@
 #include "integrators/lane_light_choice.h"
 
+#include <algorithm>
+
 namespace kasha {
+namespace {
+constexpr float kBelowOne = 0x1.fffffep-1f;
+}  // namespace
+
+void LaneLightTable::reset(const Scene& scene, std::span<const float> lambda) {
+  n_ = int(lambda.size());
+  lights_ = scene.lights.size();
+  power_.resize(size_t(n_) * lights_);
+  single_.resize(size_t(n_) * lights_);
+  total_.assign(size_t(n_), 0.0f);
+  mixture_.assign(lights_, 0.0f);
+  for (int k = 0; k < n_; ++k) {
+    const float selectorTotal = scene.lightSelector->totalPower(lambda[size_t(k)]);
+    for (size_t l = 0; l < lights_; ++l) {
+      const float power = scene.lights[l]->power(lambda[size_t(k)]);
+      power_[size_t(k) * lights_ + l] = power;
+      single_[size_t(k) * lights_ + l] = selectorTotal > 0.0f ? power / selectorTotal : 0.0f;  // as probability()
+      total_[size_t(k)] += power;
+    }
+  }
+  for (size_t l = 0; l < lights_; ++l) {
+    float sum = 0.0f;
+    for (int k = 0; k < n_; ++k)
+      if (total_[size_t(k)] > 0.0f) sum += power_[size_t(k) * lights_ + l] / total_[size_t(k)];
+    mixture_[l] = sum / float(n_);
+  }
+}
+
+std::pair<size_t, float> LaneLightTable::select(float u) const {
+  // A lane J uniformly with u, then the light ∝ Φ_l(λ_J) with the rest of u.
+  const int J = std::min(int(u * float(n_)), n_ - 1);
+  const float v = std::min(u * float(n_) - float(J), kBelowOne);
+  const float* power = &power_[size_t(J) * lights_];
+  if (!(total_[size_t(J)] > 0.0f)) return {0, 0.0f};
+  float acc = 0.0f;
+  size_t chosen = lights_;
+  for (size_t l = 0; l < lights_ && chosen == lights_; ++l) {
+    if (power[l] <= 0.0f) continue;
+    acc += power[l];
+    if (v * total_[size_t(J)] < acc) chosen = l;
+  }
+  if (chosen == lights_)  // rounding: the last light that emits at λ_J
+    for (size_t l = 0; l < lights_; ++l)
+      if (power[l] > 0.0f) chosen = l;
+  return {chosen, mixture_[chosen]};
+}
 
 void laneImportance(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, const float* beforeMagnitude,
                     const LaneEvent& e, float* importance) {

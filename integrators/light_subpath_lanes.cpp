@@ -3,25 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
-namespace kasha {
+#include "integrators/lane_light_choice.h"
 
-float LightLanes::sum() const {
-  float s = 0.0f;
-  for (int k = 0; k < n; ++k) s += beta[k];
-  return s;
-}
+namespace kasha {
 
 LightStartLanes startLightLanes(const Scene& scene, const WavelengthDensity& density, int n, float uLambda, float uLight,
                                 Vec2 uPos, Vec2 uDir) {
   LightStartLanes s;
+  const SampledLanes sampled = sampleLanes(density, uLambda, n);
   float* lambda = s.lanes.lambda;
-  float pdf[kMaxLanes];
-  for (int j = 0; j < n; ++j) {
-    const WavelengthSample ws = density.sample(laneStratum(uLambda, j, n));
-    lambda[j] = ws.lambda;
-    pdf[j] = ws.pdf;
-  }
-  const auto [li, pSelect] = selectLaneLight(scene, {lambda, size_t(n)}, uLight);
+  std::copy(sampled.lambda, sampled.lambda + n, lambda);
+  const float* pdf = sampled.pdf;
+  thread_local LaneLightTable lights;
+  lights.reset(scene, sampled.wavelengths());
+  const auto [li, pSelect] = lights.select(uLight);
   if (!(pSelect > 0.0f)) return s;
   s.light = scene.lights[li].get();
   s.lightIndex = li;
@@ -84,7 +79,7 @@ std::optional<Vec3> scatterLightLanes(const Bsdf& bsdf, const Vec3& wi, const La
   lanes.n = e.n;
   std::copy(next, next + e.n, lanes.beta);
   std::copy(e.lambda, e.lambda + e.n, lanes.lambda);
-  const float m = lanes.sum();
+  const float m = magnitude(lanes);
   if (!(m > 0.0f)) return std::nullopt;
   if (roulette) {
     const float q = std::min(1.0f, m / beta0);

@@ -1,7 +1,7 @@
 #pragma once
 // Light subpaths that carry wavelength lanes (the light tracer's and the photon pass's,
 // docs/wavelength-sampling.md "Hero wavelengths"): the start — N lanes at the strata of the
-// light-start density, a light chosen symmetrically in them (selectLaneLight), and one emission
+// light-start density, a light chosen symmetrically in them (LaneLightTable), and one emission
 // sample, whose geometry does not depend on λ, serving every lane — and the step through a vertex
 // once its spectral event (sampleLaneEvent, Importance mode) is known.
 #include <optional>
@@ -16,12 +16,7 @@
 namespace kasha {
 
 // The lanes of a light subpath segment: wavelength and throughput (flux per subpath) of each.
-struct LightLanes {
-  int n = 0;
-  float lambda[kMaxLanes];
-  float beta[kMaxLanes];
-  float sum() const;  // Σ_k beta_k: what Russian roulette compares
-};
+using LightLanes = PathLanes<float>;
 
 struct LightStartLanes {
   LightLanes lanes;  // lanes.n = 0 if the start failed (no light emits at the lanes, or no emission sample)

@@ -38,14 +38,9 @@ struct SensorShares {
   }
 };
 
-// The lanes of a camera path segment: wavelength and throughput (over the path density) of each,
-// the throughput XYZ (Vec3) or SensorShares.
-template <class Throughput>
-struct CameraLanesOf {
-  int n = 0;
-  float lambda[kMaxLanes];
-  Throughput T[kMaxLanes];
-};
-using CameraLanes = CameraLanesOf<SensorShares>;
+// The lane's magnitude (wavelength_lanes.h): the sum of its shares.
+inline float magnitude(const SensorShares& beta) { return beta.sum(); }
+
+using CameraLanes = PathLanes<SensorShares>;
 
 }  // namespace kasha

@@ -12,6 +12,17 @@ float laneStratum(float u, int k, int n) {
   return std::min(x < 1.0f ? x : x - 1.0f, kBelowOne);
 }
 
+SampledLanes sampleLanes(const WavelengthDensity& density, float u, int n) {
+  SampledLanes lanes;
+  lanes.n = n;
+  for (int k = 0; k < n; ++k) {
+    const WavelengthSample ws = density.sample(laneStratum(u, k, n));
+    lanes.lambda[k] = ws.lambda;
+    lanes.pdf[k] = ws.pdf;
+  }
+  return lanes;
+}
+
 LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const float> known, int fresh, float u,
                           const WavelengthDensity* strategy, FluorescentLanes atFluorescence) {
   const int n = int(known.size());
@@ -90,80 +101,6 @@ LaneEvent sampleLaneEvent(const Bsdf& bsdf, TransportMode mode, std::span<const 
     e.scale[k] = density > 0.0f ? 1.0f / (pFluor * density) : 0.0f;
   }
   return e;
-}
-
-float laneLightProbability(const Scene& scene, size_t light, std::span<const float> lambda) {
-  float sum = 0.0f;
-  for (const float x : lambda) {
-    float total = 0.0f;
-    for (const auto& l : scene.lights) total += l->power(x);
-    if (total > 0.0f) sum += scene.lights[light]->power(x) / total;
-  }
-  return sum / float(lambda.size());
-}
-
-namespace {
-
-// A lane J chosen uniformly with u, then the light ∝ power(J, l) with the rest of u; the number of
-// lights if none emits at λ_J.
-template <class Power>
-size_t chooseLaneLight(int n, size_t lights, float u, Power&& power) {
-  const int J = std::min(int(u * float(n)), n - 1);
-  const float v = std::min(u * float(n) - float(J), kBelowOne);
-  float total = 0.0f;
-  for (size_t l = 0; l < lights; ++l) total += power(J, l);
-  if (!(total > 0.0f)) return lights;
-  float acc = 0.0f;
-  size_t chosen = lights;
-  for (size_t l = 0; l < lights && chosen == lights; ++l) {
-    const float p = power(J, l);
-    if (p <= 0.0f) continue;
-    acc += p;
-    if (v * total < acc) chosen = l;
-  }
-  if (chosen == lights)  // rounding: the last light that emits at λ_J
-    for (size_t l = 0; l < lights; ++l)
-      if (power(J, l) > 0.0f) chosen = l;
-  return chosen;
-}
-
-}  // namespace
-
-std::pair<size_t, float> selectLaneLight(const Scene& scene, std::span<const float> lambda, float u) {
-  const size_t chosen = chooseLaneLight(int(lambda.size()), scene.lights.size(), u,
-                                        [&](int k, size_t l) { return scene.lights[l]->power(lambda[size_t(k)]); });
-  if (chosen == scene.lights.size()) return {0, 0.0f};
-  return {chosen, laneLightProbability(scene, chosen, lambda)};
-}
-
-void LaneLightTable::reset(const Scene& scene, std::span<const float> lambda) {
-  n_ = int(lambda.size());
-  lights_ = scene.lights.size();
-  power_.resize(size_t(n_) * lights_);
-  single_.resize(size_t(n_) * lights_);
-  total_.assign(size_t(n_), 0.0f);
-  mixture_.assign(lights_, 0.0f);
-  for (int k = 0; k < n_; ++k) {
-    const float selectorTotal = scene.lightSelector->totalPower(lambda[size_t(k)]);
-    for (size_t l = 0; l < lights_; ++l) {
-      const float power = scene.lights[l]->power(lambda[size_t(k)]);
-      power_[size_t(k) * lights_ + l] = power;
-      single_[size_t(k) * lights_ + l] = selectorTotal > 0.0f ? power / selectorTotal : 0.0f;  // as probability()
-      total_[size_t(k)] += power;
-    }
-  }
-  for (size_t l = 0; l < lights_; ++l) {
-    float sum = 0.0f;
-    for (int k = 0; k < n_; ++k)
-      if (total_[size_t(k)] > 0.0f) sum += power_[size_t(k) * lights_ + l] / total_[size_t(k)];
-    mixture_[l] = sum / float(n_);
-  }
-}
-
-std::pair<size_t, float> LaneLightTable::select(float u) const {
-  const size_t chosen = chooseLaneLight(n_, lights_, u, [&](int k, size_t l) { return power_[size_t(k) * lights_ + l]; });
-  if (chosen == lights_) return {0, 0.0f};
-  return {chosen, mixture_[chosen]};
 }
 
 bool lanesEndAt(const LaneEvent& e, const Bsdf& bsdf) {

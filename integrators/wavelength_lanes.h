@@ -21,6 +21,38 @@ inline constexpr int kMaxLanes = 16;
 // The k-th of n stratified points from u in [0, 1): (u + k/n) mod 1.
 float laneStratum(float u, int k, int n);
 
+// The n wavelengths a path starts with (compare pbrt-v4's SampledWavelengths): lane k at the
+// stratum (u + k/n) of one density's inverse CDF (Wilkie14), with its density p(λ_k). Every
+// integrator draws its lanes so: the camera's from the sensor density, the light's from the
+// light-start density.
+struct SampledLanes {
+  int n = 0;
+  float lambda[kMaxLanes];
+  float pdf[kMaxLanes];
+  std::span<const float> wavelengths() const { return {lambda, size_t(n)}; }
+};
+SampledLanes sampleLanes(const WavelengthDensity& density, float u, int n);
+
+// A path's lanes between two vertices: each lane's wavelength and throughput, of type T (a light
+// path's flux, a float; a camera path's XYZ, or its SensorShares where spectral bins are kept).
+template <class T>
+struct PathLanes {
+  int n = 0;
+  float lambda[kMaxLanes];
+  T beta[kMaxLanes];
+  std::span<const float> wavelengths() const { return {lambda, size_t(n)}; }
+};
+// The magnitude of a lane's throughput: what Russian roulette and the light choice compare.
+inline float magnitude(float beta) { return beta; }
+inline float magnitude(const Vec3& beta) { return beta.x + beta.y + beta.z; }
+// Σ_k of the lanes' magnitudes.
+template <class T>
+float magnitude(const PathLanes<T>& lanes) {
+  float m = 0.0f;
+  for (int k = 0; k < lanes.n; ++k) m += magnitude(lanes.beta[k]);
+  return m;
+}
+
 // The spectral event at a vertex for every lane. "Known" wavelengths are the lanes' before the
 // event (λ_o in Radiance mode, λ_i in Importance mode); lambda[k] is lane k's on the sampled side.
 struct LaneEvent {
@@ -71,33 +103,6 @@ T laneWeight(const Bsdf& bsdf, TransportMode mode, std::span<const float> known,
   for (size_t j = 0; j < known.size(); ++j) sum += before[j] * f(j);
   return sum * e.scale[k];
 }
-
-// Light selection symmetric in the lanes: a lane J uniformly, then light l ∝ Φ_l(λ_J), so that
-// P(l) = (1/N)·Σ_k Φ_l(λ_k)/Σ_l' Φ_l'(λ_k) (the mixture over the N hero techniques). Each lane
-// gets its share of the choices, however different the lights' powers at the lanes are
-// (∝ Σ_k Φ_l(λ_k) would almost never pick a weak white light beside a strong UV one).
-float laneLightProbability(const Scene& scene, size_t light, std::span<const float> lambda);
-// The light chosen with u and its probability P(l) (0 if no light emits at the chosen lane).
-std::pair<size_t, float> selectLaneLight(const Scene& scene, std::span<const float> lambda, float u);
-
-// The same two for many choices with one lane set: every light's power at every lane, evaluated
-// once (BDPT chooses lights and weighs them several times per camera sample).
-class LaneLightTable {
- public:
-  void reset(const Scene& scene, std::span<const float> lambda);
-  std::pair<size_t, float> select(float u) const;                     // as selectLaneLight
-  float probability(size_t light) const { return mixture_[light]; }  // as laneLightProbability
-  // p(light | λ_k), LightSelector::probability at lane k's wavelength.
-  float laneProbability(size_t light, int k) const { return single_[size_t(k) * lights_ + light]; }
-
- private:
-  int n_ = 0;
-  size_t lights_ = 0;
-  std::vector<float> power_;    // Φ_l(λ_k) at k·lights + l
-  std::vector<float> total_;    // Σ_l Φ_l(λ_k)
-  std::vector<float> mixture_;  // P(l)
-  std::vector<float> single_;   // p(l | λ_k) at k·lights + l
-};
 
 // Ends the lanes in one, lane j chosen with u with probability odds[j]/Σ odds (uniformly but for
 // ended fluorescent lanes), its weight divided by that probability: an unbiased one-sample

@@ -200,7 +200,7 @@ Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext&
   const Lanes lanes = sensorLanes(scene, sensor_.density(), rng.uniform(), lanes_, laneTables,
                                   families.independent ? &light_.density() : nullptr, ws.lightFirst);
   for (int k = 0; k < lanes_; ++k)
-    if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
+    if (lanes.pdf[k] <= 0.0f) return Vec3(0.0f);
   traceCameraSubpath(scene, scene.pixelFilter.filmPosition(pixel, rng.uniform2()), lanes, ws, rng, ctx.counter, C);
   LS.clear(), LO.clear();
   int sharedLightVertices = 0;
@@ -226,7 +226,7 @@ Vec3 Bdpt::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext&
   // Each lane's radiance weighted by W(λ_k)/(n·p(λ_k)): the balance heuristic over the n stratified
   // hero techniques (every lane distributed as p).
   for (int k = 0; k < lanes_; ++k)
-    xyz += sensorResponse(ctx, lanes.lambda[k], lanes.response[k], radiance[k] / (float(lanes_) * lanes.sensorPdf[k]));
+    xyz += sensorResponse(ctx, lanes.lambda[k], lanes.response[k], radiance[k] / (float(lanes_) * lanes.pdf[k]));
   return xyz;
 }
 

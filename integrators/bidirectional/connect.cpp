@@ -42,7 +42,7 @@ void emitterHit(const Context& c, const std::vector<PathVertex>& C, int t, float
   const MisSums total = own + cameraSum(c, C, t, end.pdf0, m1, end.pdf1);
   float weight[kMaxLanes];
   laneWeights(c, e.firstLane(), e.endLane(c.lanes), weight, [&](int j) { return Le[j] > 0.0f; }, [&](int j) {
-    const MisFactors f = factors(c, e.light, e.lambdaOf(c.lanes, j), e.elasticBefore ? j : -1, c.lanes.sensorPdf[j],
+    const MisFactors f = factors(c, e.light, e.lambdaOf(c.lanes, j), e.elasticBefore ? j : -1, c.lanes.pdf[j],
                                  e.elasticBefore, next.lanesKept);
     return weigh(c, 0, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
       FullPath fp = layout(c, nullptr, 0, C, t, end, g, true);
@@ -131,7 +131,7 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
   float weight[kMaxLanes];
   laneWeights(c, x1.firstLane(), x1.endLane(c.lanes), weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     const MisFactors f = factors(c, lightIndex, lanes ? c.lanes.lambda[k] : lambda0, cameraGroup ? k : -1,
-                                 c.lanes.sensorPdf[k], cameraGroup, x1.lanesKept);
+                                 c.lanes.pdf[k], cameraGroup, x1.lanesKept);
     return weigh(c, 1, t, Variant::kStandard, own, total, f, [&](const MisFactors& g) {
       PathVertex lightVertex = x0;
       lightVertex.pdfFwd = float(end.pdf0);
@@ -191,7 +191,7 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   const MisSums total = firstVertexMultiplicity(true, F, specCam1, true, st) + lightEndSum(pCam0, a.pdfFwd) +
                         cameraSum(c, C, t, end.pdf1, cameraMultiplicity(C, t - 1, F, a.lambda, st, true, beamB, sineB),
                                   pLight2);
-  const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.sensorPdf[lane], false, false,
+  const MisFactors mf = factors(c, a.light, a.lambda, -1, c.lanes.pdf[lane], false, false,
                                 c.walk.lightFirst ? a.choicePdf : 0.0f);
   const float weight = weigh(c, 1, t, Variant::kLightVertex, own, total, mf, [&](const MisFactors& g) {
     FullPath fp = layout(c, &L, 1, C, t, end, g, true);
@@ -325,9 +325,9 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
     laneWeights(c, k0, k1, weight, [&](int k) { return fA[k] > 0.0f && fB[k] > 0.0f; }, [&](int k) {
       // The path's first wavelength: lane k's on a shared subpath, the own subpath's own.
       const MisFactors f = family == LightFamily::Shared
-                               ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup,
+                               ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.pdf[k], oneGroup,
                                          lanesKept)
-                               : factors(c, L[0].light, L[0].lambda, -1, c.lanes.sensorPdf[k], oneGroup, lanesKept,
+                               : factors(c, L[0].light, L[0].lambda, -1, c.lanes.pdf[k], oneGroup, lanesKept,
                                          c.walk.lightFirst ? L[0].choicePdf : 0.0f);
       return weigh(c, s, t, p.variant, own, here + sides, f, [&](const MisFactors& g) {
         FullPath fp = layout(c, &L, s, C, t, end, g, true);
@@ -464,7 +464,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
   laneWeights(c, k0, k1, weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
     // A shared lane's wavelength is the sensor's lane k; an own subpath's arrives from the light.
     const bool lanesKept = s == 1 || a.lanesKept;
-    const MisFactors mf = shared ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.sensorPdf[k], oneGroup,
+    const MisFactors mf = shared ? factors(c, L[0].light, a.lambdaOf(c.lanes, k), k, c.lanes.pdf[k], oneGroup,
                                            lanesKept)
                                  : factors(c, L[0].light, L[0].lambda, -1, c.sensor.pdf(lambda), oneGroup, lanesKept,
                                            c.walk.lightFirst ? L[0].choicePdf : 0.0f);
@@ -496,7 +496,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     if (!(value[k] > 0.0f)) continue;
     const float lambdaK = lanes ? c.lanes.lambda[k] : lambda;
     float sensorWeight = perPath;
-    if (shared) sensorWeight /= float(c.lanes.n) * c.lanes.sensorPdf[k];
+    if (shared) sensorWeight /= float(c.lanes.n) * c.lanes.pdf[k];
     const float v = value[k] * conn->importance * sensorWeight;
     // A shared lane's wavelength is the sensor's lane k (whose response is known).
     const Vec3 xyz = shared ? c.lanes.response[k] * v : Observer::cie1931().weight(lambdaK) * v;

@@ -53,12 +53,12 @@ LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s) {
   return {L[0].pdfFwd, s >= 2 ? double(L[1].pdfFwd) : 0.0, L[0].kind == Kind::Light};
 }
 
-MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup,
+MisFactors factors(const Context& c, int light, float lambda0, int lane, double pdf, bool oneGroup,
                    bool lanesKept, float ownStart) {
   MisFactors f;
   f.sharedFamily = c.families.shared;
   f.ownFamily = c.families.independent;
-  f.sensorPdf = sensorPdf;
+  f.pdf = pdf;
   f.lambda0 = lambda0;
   f.oneGroup = oneGroup;
   if (lanesKept && f.ownFamily && c.walk.lightFirst) f.laneGain = c.lanes.n;
@@ -93,7 +93,7 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
                 const LightEnd& end, const MisFactors& f, bool connection) {
   FullPath fp;
   fp.families = c.families;
-  fp.sensorPdf = f.sensorPdf;
+  fp.pdf = f.pdf;
   fp.laneGain = f.laneGain;
   fp.cameraChoice = f.cameraChoice;
   fp.sharedChoice = f.sharedChoice;
@@ -149,7 +149,7 @@ float keptLaneScale(const Context& c, int laneA, int laneB) {
 }
 
 Vec3 laneScale(const Context& c, int k) {
-  return c.lanes.response[k] / (float(c.lanes.n) * c.lanes.sensorPdf[k]);
+  return c.lanes.response[k] / (float(c.lanes.n) * c.lanes.pdf[k]);
 }
 
 void record(const Context& c, int s, int t, Variant v, int k, float value, float weight) {

@@ -177,9 +177,9 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     float weight[kMaxLanes];
     laneWeights(c, k0, k1, weight, [&](int k) { return value[k] > 0.0f; }, [&](int k) {
       const float lambda0 = own ? v.lambda0 : v.lane < 0 && c.lanes.n > 1 ? c.lanes.lambda[k] : v.lambda;
-      const MisFactors f = own ? factors(c, v.light, lambda0, -1, c.lanes.sensorPdf[k], single, lanesKept,
+      const MisFactors f = own ? factors(c, v.light, lambda0, -1, c.lanes.pdf[k], single, lanesKept,
                                          c.walk.lightFirst ? v.ownStart : 0.0f)
-                               : factors(c, v.light, lambda0, k, c.lanes.sensorPdf[k], single, lanesKept);
+                               : factors(c, v.light, lambda0, k, c.lanes.pdf[k], single, lanesKept);
       return weigh(c, m, t, variant, mine, sums.total, f, [&](const MisFactors& g) {
         return fullPath(c, C, t, v, lightPath, lobe, sums, g, along);
       });

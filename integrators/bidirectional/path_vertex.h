@@ -11,19 +11,18 @@
 #include "core/math.h"
 #include "integrators/bidirectional/mis_sums.h"
 #include "integrators/medium_transport.h"
+#include "integrators/lane_light_choice.h"
 #include "integrators/wavelength_lanes.h"
 #include "materials/bsdf.h"
 
 namespace kasha::bidir {
 
 // The wavelength lanes of a subpath (docs/bdpt-mis.md §10): the camera sample's n wavelengths at the
-// strata of the sensor density, shared by the shared-family light subpath; an own-family light
-// subpath has one lane, its own wavelength.
-struct Lanes {
-  int n = 1;
-  float lambda[kMaxLanes];
-  float sensorPdf[kMaxLanes];  // p_sensor(λ_k); unused on an own-family subpath
-  Vec3 response[kMaxLanes];    // the sensor's XYZ response W(λ_k); unused on an own-family subpath
+// strata of the sensor density (SampledLanes, pdf the sensor's p(λ_k)), shared by the shared-family
+// light subpath; an own-family light subpath has one lane, its own wavelength, and no use for the
+// rest.
+struct Lanes : SampledLanes {
+  Vec3 response[kMaxLanes];    // the sensor's XYZ response W(λ_k)
   // p_light(λ_k), the light-start density (weights of the own family against each lane; only where
   // both run with more than one lane).
   float lightPdf[kMaxLanes];

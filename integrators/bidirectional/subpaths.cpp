@@ -293,13 +293,10 @@ Families familiesFor(const Scene& scene, WavelengthMode mode) {
 Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, int n, LaneTables& tables,
                   const WavelengthDensity* own, const LightFirstStart* merged) {
   Lanes lanes;
-  lanes.n = n;
+  static_cast<SampledLanes&>(lanes) = sampleLanes(sensor, u, n);
   for (int k = 0; k < n; ++k) {
-    const WavelengthSample ws = sensor.sample(laneStratum(u, k, n));
-    lanes.lambda[k] = ws.lambda;
-    lanes.sensorPdf[k] = ws.pdf;
-    lanes.response[k] = Observer::cie1931().weight(ws.lambda);
-    lanes.lightPdf[k] = own && !merged && n > 1 ? own->pdf(ws.lambda) : 0.0f;
+    lanes.response[k] = Observer::cie1931().weight(lanes.lambda[k]);
+    lanes.lightPdf[k] = own && !merged && n > 1 ? own->pdf(lanes.lambda[k]) : 0.0f;
   }
   if (n > 1) {
     tables.lights.reset(scene, {lanes.lambda, size_t(n)});

@@ -59,7 +59,7 @@ Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, 
                   const WavelengthDensity* own = nullptr, const LightFirstStart* merged = nullptr);
 
 // The light chosen with u for the lanes (a lane's wavelength at random, then ∝ Φ_l there: the
-// mixture over the lanes, wavelength_lanes.h; with one lane, ∝ Φ_l(λ)) and its probability.
+// mixture over the lanes, LaneLightTable; with one lane, ∝ Φ_l(λ)) and its probability.
 std::pair<size_t, float> selectLight(const Scene& scene, const Lanes& lanes, float u);
 // C[0] is the pinhole; C[1] the first hit. The lanes are the sensor's wavelengths; C[1].pdfFwd is
 // the camera direction's density alone (the sensor's is a factor of the weights, mis_sums.h).

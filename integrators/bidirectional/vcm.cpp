@@ -416,7 +416,7 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
   using namespace bidir;
   const Lanes& lanes = pass.lanes;
   for (int k = 0; k < lanes_; ++k)
-    if (lanes.sensorPdf[k] <= 0.0f) return Vec3(0.0f);
+    if (lanes.pdf[k] <= 0.0f) return Vec3(0.0f);
   thread_local std::vector<PathVertex> C, LS, LO;  // the camera subpath, the light subpath's two views
   const Vec2 film = scene.pixelFilter.filmPosition(pixel, rng.uniform2());
   traceCameraSubpath(scene, film, lanes, pass.walk, rng, ctx.counter, C);
@@ -489,7 +489,7 @@ Vec3 Vcm::estimate(const Scene& scene, Vec2 pixel, Sampler& rng, SampleContext& 
   }
   // Each lane's radiance weighted by W(λ_k)/(n·p(λ_k)), as bdpt's.
   for (int k = 0; k < lanes_; ++k)
-    xyz += sensorResponse(ctx, lanes.lambda[k], lanes.response[k], radiance[k] / (float(lanes_) * lanes.sensorPdf[k]));
+    xyz += sensorResponse(ctx, lanes.lambda[k], lanes.response[k], radiance[k] / (float(lanes_) * lanes.pdf[k]));
   return xyz;
 }
 

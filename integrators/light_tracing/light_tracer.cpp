@@ -86,7 +86,7 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     }
   }
 
-  const float magnitude0 = lanes.sum();  // Russian roulette compares the throughput with this
+  const float magnitude0 = magnitude(lanes);  // Russian roulette compares the throughput with this
   if (!(magnitude0 > 0.0f)) return Vec3(0.0f);
   Ray ray{offsetPoint(es.p, es.n, es.w), es.w};
   // Media (docs/media.md §3): the medium the ray travels in, and the lanes' spectral MIS of free flights.

@@ -14,17 +14,6 @@
 namespace kasha {
 namespace {
 
-float sum(float t) { return t; }
-float sum(const Vec3& t) { return t.x + t.y + t.z; }
-float sum(const SensorShares& t) { return t.sum(); }
-
-template <class T>
-float magnitude(const CameraLanesOf<T>& lanes) {
-  float m = 0.0f;
-  for (int j = 0; j < lanes.n; ++j) m += sum(lanes.T[j]);
-  return m;
-}
-
 // The event of one lane, which goes on as itself, from its spectral choice; none if its density is 0.
 LaneEvent oneLaneEvent(const SpectralChoice& c) {
   LaneEvent e;
@@ -66,35 +55,30 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
       const Vec2 uFilm = rng.uniform2();
       const Vec2 uLens = scene.camera.sampleLens(rng);
       if (!(d.weight > 0.0f)) continue;
-      CameraLanesOf<float> lane;
+      PathLanes<float> lane;
       lane.n = 1;
       lane.lambda[0] = d.lambda;
-      lane.T[0] = d.weight;
+      lane.beta[0] = d.weight;
       const Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm), uLens);
       const float L = radiance(scene, ray, lane, rng, ctx.counter);
       xyz += sensorResponse(ctx, d.lambda, L);
     }
     return xyz;
   }
-  const WavelengthDensity& p = sensor_.density();
-  const float u = rng.uniform();
+  // Lane j at the stratum (u + j/N) of the sensor density p: distributed as p, weighted by 1/(N·p(λ_j)).
+  const SampledLanes sampled = sampleLanes(sensor_.density(), rng.uniform(), n_);
+  const float* lambda = sampled.lambda;
+  const float* pdf = sampled.pdf;
   const Vec2 uFilm = rng.uniform2();
   const Vec2 uLens = scene.camera.sampleLens(rng);
-  // Lane j at the stratum (u + j/N) of p's inverse CDF: distributed as p, weighted by 1/(N·p(λ_j)).
-  float lambda[kMaxLanes], pdf[kMaxLanes];
-  for (int j = 0; j < n_; ++j) {
-    const WavelengthSample s = p.sample(laneStratum(u, j, n_));
-    lambda[j] = s.lambda;
-    pdf[j] = s.pdf;
-  }
   const Ray ray = scene.camera.generateRay(scene.pixelFilter.filmPosition(pixel, uFilm), uLens);
   if (!ctx.recordSpectral) {
     // The lanes' XYZ throughput W(λ_j)/(N·p(λ_j)).
-    CameraLanesOf<Vec3> lanes;
+    PathLanes<Vec3> lanes;
     lanes.n = n_;
     for (int j = 0; j < n_; ++j) {
       lanes.lambda[j] = lambda[j];
-      lanes.T[j] = pdf[j] > 0.0f ? Observer::cie1931().weight(lambda[j]) / (float(n_) * pdf[j]) : Vec3(0.0f);
+      lanes.beta[j] = pdf[j] > 0.0f ? Observer::cie1931().weight(lambda[j]) / (float(n_) * pdf[j]) : Vec3(0.0f);
     }
     return radiance(scene, ray, lanes, rng, ctx.counter);
   }
@@ -103,7 +87,7 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
   lanes.n = n_;
   for (int j = 0; j < n_; ++j) {
     lanes.lambda[j] = lambda[j];
-    lanes.T[j].v[j] = pdf[j] > 0.0f ? 1.0f / (float(n_) * pdf[j]) : 0.0f;
+    lanes.beta[j].v[j] = pdf[j] > 0.0f ? 1.0f / (float(n_) * pdf[j]) : 0.0f;
   }
   const SensorShares L = radiance(scene, ray, lanes, rng, ctx.counter);
   Vec3 xyz(0.0f);
@@ -113,9 +97,9 @@ Vec3 PathTracer::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sampl
 }
 
 template <class T>
-T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sampler& rng, RayCounter& counter) const {
+T PathTracer::radiance(const Scene& scene, Ray ray, PathLanes<T>& lanes, Sampler& rng, RayCounter& counter) const {
   constexpr bool oneLane = std::is_same_v<T, float>;
-  T L = lanes.T[0] * 0.0f;
+  T L = lanes.beta[0] * 0.0f;
   const float magnitude0 = magnitude(lanes);  // Russian roulette compares the throughput with this
   float prevDirPdf = 0.0f;     // solid-angle density of the direction that led here
   // The wavelength density of the last vertex's event for the λ_i the path took, and the one
@@ -145,7 +129,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     float mis = 1.0f;  // every contribution's share of the lanes' spectral MIS (LaneRatios)
     if (media) {
       for (int k = 0; k < lanes.n; ++k) {
-        lanes.T[k] = lanes.T[k] * flight.weight[k];
+        lanes.beta[k] = lanes.beta[k] * flight.weight[k];
         ratios.r[k] *= flight.ratio[k];
       }
       mis = ratios.misWeight();
@@ -158,7 +142,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
         if (!prevSpecular)
           w = powerHeuristic(prevDirPdf * prevSpectralPdf, lastLightProbability(size_t(scene.environmentLight)) *
                                                                env->pdfDirection(ray.d) * prevNeeSpectralPdf);
-        for (int j = 0; j < lanes.n; ++j) L += lanes.T[j] * (env->Le(lanes.lambda[j], ray.d) * w * mis);
+        for (int j = 0; j < lanes.n; ++j) L += lanes.beta[j] * (env->Le(lanes.lambda[j], ray.d) * w * mis);
       }
       break;
     }
@@ -180,7 +164,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
       // (Through a medium, the lanes estimate its transmittance too.)
       if (depth > 0 || media || !std::is_same_v<T, Vec3>) {
         for (int j = 0; j < lanes.n; ++j)
-          L += lanes.T[j] * (shape->emission->eval(lanes.lambda[j], hit->ng, -ray.d) * w * mis);
+          L += lanes.beta[j] * (shape->emission->eval(lanes.lambda[j], hit->ng, -ray.d) * w * mis);
       } else if constexpr (std::is_same_v<T, Vec3>) {
         if (shape->emission->emitsTowards(hit->ng, -ray.d)) L += directXyz_[size_t(scene.shapeLight[hit->shape])];
       }
@@ -232,18 +216,18 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
         prevNeeSpectralPdf = nee_.pdf(bsdf, shape->material, lambdaOut0, e.lambda[0], e.lobe);
       }
       const LaneEvent& nee = ownNee ? own : e;
-      L += laneNextEvent(scene, vertex, where, bsdf, wo, known, lanes.T, nee,
+      L += laneNextEvent(scene, vertex, where, bsdf, wo, known, lanes.beta, nee,
                          OneLaneLightChoice{*scene.lightSelector, nee.lambda[0]}, lambdaOut0, uLight, uPos,
                          NeeWeight::PowerHeuristic, counter, spectral) * mis;
     } else {
       LaneLightChoice& lights = lightChoice[current];
       if (!bsdf.has(BsdfFlags::DeltaDirection)) {
         float before[kMaxLanes], importance[kMaxLanes];
-        for (int j = 0; j < lanes.n; ++j) before[j] = sum(lanes.T[j]);
+        for (int j = 0; j < lanes.n; ++j) before[j] = magnitude(lanes.beta[j]);
         laneImportance(bsdf, TransportMode::Radiance, known, before, e, importance);
         lights.reset(scene, {e.lambda, size_t(e.n)}, importance);
       }
-      L += laneNextEvent(scene, vertex, where, bsdf, wo, known, lanes.T, e, lights, lambdaOut0, uLight, uPos,
+      L += laneNextEvent(scene, vertex, where, bsdf, wo, known, lanes.beta, e, lights, lambdaOut0, uLight, uPos,
                          NeeWeight::PowerHeuristic, counter) * mis;
     }
 
@@ -253,7 +237,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     if (!ds || ds->pdf <= 0.0f) break;
     T next[kMaxLanes];
     for (int k = 0; k < e.n; ++k)
-      next[k] = laneWeight(bsdf, TransportMode::Radiance, known, lanes.T, e, k, ds->w, wo) * (bsdf.cosineFactor(ds->w) / ds->pdf);
+      next[k] = laneWeight(bsdf, TransportMode::Radiance, known, lanes.beta, e, k, ds->w, wo) * (bsdf.cosineFactor(ds->w) / ds->pdf);
     // Fresh lanes (fluorescent), or one lane kept: the free flights' MIS so far goes into them.
     if (media && (e.lobe == SpectralLobe::Fluorescent || e.n != lanes.n)) {
       for (int k = 0; k < e.n; ++k) next[k] = next[k] * mis;
@@ -263,8 +247,8 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     float m = 0.0f;  // their magnitude
     for (int k = 0; k < e.n; ++k) {
       lanes.lambda[k] = e.lambda[k];
-      lanes.T[k] = next[k];
-      m += sum(next[k]);
+      lanes.beta[k] = next[k];
+      m += magnitude(next[k]);
     }
     if (!(m > 0.0f)) break;
     prevDirPdf = ds->pdf;
@@ -279,7 +263,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sam
     if (depth + 1 >= rrDepth_) {
       const float q = std::min(1.0f, m / magnitude0);
       if (rng.uniform() >= q) break;
-      for (int j = 0; j < lanes.n; ++j) lanes.T[j] /= q;
+      for (int j = 0; j < lanes.n; ++j) lanes.beta[j] /= q;
     }
   }
   return L;

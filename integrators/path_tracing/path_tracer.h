@@ -61,7 +61,7 @@ class PathTracer final : public Integrator {
   // The radiance over density arriving along the camera ray, in the lanes' throughput type T:
   // XYZ (Vec3) or SensorShares with N > 1, a scalar (float) with N = 1.
   template <class T>
-  T radiance(const Scene& scene, Ray ray, CameraLanesOf<T>& lanes, Sampler& rng, RayCounter& counter) const;
+  T radiance(const Scene& scene, Ray ray, PathLanes<T>& lanes, Sampler& rng, RayCounter& counter) const;
 
   WavelengthSources sources_;
   WavelengthStrategy sensor_;

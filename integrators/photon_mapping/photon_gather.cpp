@@ -31,7 +31,7 @@ void gatherPhotons(const KernelPhotons& photons, float bandwidth, const Bsdf& bs
     }
   }
   for (int k = 0; k < lanes.n; ++k)
-    if (sum[k] > 0.0f) L += lanes.T[k] * (sum[k] * photons.density);
+    if (sum[k] > 0.0f) L += lanes.beta[k] * (sum[k] * photons.density);
 }
 
 }  // namespace kasha

@@ -37,7 +37,7 @@ void tracePath(const Scene& scene, const PhotonTracing& s, Sampler& rng, std::ve
   LightStartLanes st = startLightLanes(scene, *s.wavelengths, s.lanes, uLambda, uLight, uPos, uDir);
   if (st.lanes.n == 0) return;
   LightLanes& lanes = st.lanes;
-  const float beta0 = lanes.sum();  // Russian roulette compares the throughput with the emitted weight
+  const float beta0 = magnitude(lanes);  // Russian roulette compares the throughput with the emitted weight
   if (!(beta0 > 0.0f)) return;
   const EmissionSample& es = st.es;
   Ray ray{glm::dot(es.n, es.n) > 0.0f ? offsetPoint(es.p, es.n, es.w) : es.p, es.w};

@@ -40,12 +40,12 @@ LaneEvent elasticEvent(std::span<const float> known) {
 // Lane j at the stratum (u + j/n) of p's inverse CDF, weighted by 1/(n·p(λ_j)) in its own sensor
 // share (Wilkie14 eq. 8, as the path tracer's lanes).
 CameraLanes stratifiedLanes(const WavelengthDensity& p, float u, int n) {
+  const SampledLanes sampled = sampleLanes(p, u, n);
   CameraLanes lanes;
   lanes.n = n;
   for (int j = 0; j < n; ++j) {
-    const WavelengthSample s = p.sample(laneStratum(u, j, n));
-    lanes.lambda[j] = s.lambda;
-    lanes.T[j].v[j] = s.pdf > 0.0f ? 1.0f / (float(n) * s.pdf) : 0.0f;
+    lanes.lambda[j] = sampled.lambda[j];
+    lanes.beta[j].v[j] = sampled.pdf[j] > 0.0f ? 1.0f / (float(n) * sampled.pdf[j]) : 0.0f;
   }
   return lanes;
 }
@@ -58,10 +58,10 @@ SensorShares lanesNextEvent(const Scene& scene, const Hit& hit, VertexMedium whe
   const std::span<const float> known(lanes.lambda, size_t(lanes.n));
   thread_local LaneLightChoice lights;
   float before[kMaxLanes], importance[kMaxLanes];
-  for (int j = 0; j < lanes.n; ++j) before[j] = lanes.T[j].sum();
+  for (int j = 0; j < lanes.n; ++j) before[j] = magnitude(lanes.beta[j]);
   laneImportance(bsdf, TransportMode::Radiance, known, before, direct, importance);
   lights.reset(scene, {direct.lambda, size_t(direct.n)}, importance);
-  return laneNextEvent(scene, hit, where, bsdf, wo, known, lanes.T, direct, lights, /*lambdaOut0, unused without MIS*/ 0.0f,
+  return laneNextEvent(scene, hit, where, bsdf, wo, known, lanes.beta, direct, lights, /*lambdaOut0, unused without MIS*/ 0.0f,
                        uLight, uPos, NeeWeight::Alone, counter);
 }
 
@@ -177,12 +177,12 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
         traceFreeFlight(scene, ray, medium, {lanes.lambda, size_t(lanes.n)}, uFlight, TransportMode::Radiance, ctx.counter);
     if (media) {
       for (int k = 0; k < lanes.n; ++k) {
-        lanes.T[k] = lanes.T[k] * flight.weight[k];
+        lanes.beta[k] = lanes.beta[k] * flight.weight[k];
         ratios.r[k] *= flight.ratio[k];
       }
       const float mis = ratios.misWeight();
       misWeighted.n = lanes.n;
-      for (int k = 0; k < lanes.n; ++k) misWeighted.lambda[k] = lanes.lambda[k], misWeighted.T[k] = lanes.T[k] * mis;
+      for (int k = 0; k < lanes.n; ++k) misWeighted.lambda[k] = lanes.lambda[k], misWeighted.beta[k] = lanes.beta[k] * mis;
     }
     // The lanes arriving here as every contribution weights them: times their share of the free
     // flights' MIS (LaneRatios), which is 1 without media.
@@ -191,7 +191,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     const bool seesEmitters = bounces > 0 || !hideEmitters_;
     if (!hit && !flight.collided) {
       if (const EnvironmentLight* env = seesEmitters ? scene.environment() : nullptr)
-        for (int k = 0; k < lanes.n; ++k) L += arriving.T[k] * env->Le(lanes.lambda[k], ray.d);
+        for (int k = 0; k < lanes.n; ++k) L += arriving.beta[k] * env->Le(lanes.lambda[k], ray.d);
       break;
     }
     // A surface, or a point in a medium (no shape, no normal: offsetPoint leaves it where it is).
@@ -210,7 +210,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
         // in the path tracer). Spectral bins need each lane's share, so they keep the lanes' estimate.
         if (shape->emission->emitsTowards(hit->ng, -ray.d)) xyz += directXyz_[size_t(scene.shapeLight[hit->shape])];
       } else {
-        for (int k = 0; k < lanes.n; ++k) L += arriving.T[k] * shape->emission->eval(lanes.lambda[k], hit->ng, -ray.d);
+        for (int k = 0; k < lanes.n; ++k) L += arriving.beta[k] * shape->emission->eval(lanes.lambda[k], hit->ng, -ray.d);
       }
     }
     if (bounces >= maxDepth_) break;
@@ -260,8 +260,8 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     bool alive = false;
     for (int k = 0; k < e.n; ++k) {
       next.lambda[k] = e.lambda[k];
-      next.T[k] = laneWeight(bsdf, TransportMode::Radiance, known, before.T, e, k, ds->w, wo) * (std::abs(ds->w.z) / ds->pdf);
-      alive = alive || next.T[k].anyPositive();
+      next.beta[k] = laneWeight(bsdf, TransportMode::Radiance, known, before.beta, e, k, ds->w, wo) * (std::abs(ds->w.z) / ds->pdf);
+      alive = alive || next.beta[k].anyPositive();
     }
     if (!alive) break;
     if (lanesChange) ratios.reset(e.n);

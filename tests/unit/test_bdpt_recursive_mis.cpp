@@ -68,7 +68,7 @@ TEST_P(RecursiveWeights, EqualTheFullRecomputation) {
     const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, laneTables,
                                     param.families.independent ? &light.density() : nullptr,
                                     param.merged ? &lightFirst : nullptr);
-    if (lanes.sensorPdf[0] <= 0.0f) continue;
+    if (lanes.pdf[0] <= 0.0f) continue;
     const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));
     traceCameraSubpath(*scene, film, lanes, ws, rng, counter, C);
     LS.clear(), LO.clear();

@@ -1,6 +1,8 @@
-// Next-event estimation's light choice for wavelength lanes (docs/wavelength-sampling.md "Choosing
-// the light"): LaneLightChoice with the lanes' importance (laneImportance).
-// - without the power share it is the per-lane mixture of selectLaneLight (light subpaths' choice);
+// The light choice for wavelength lanes (docs/wavelength-sampling.md "Choosing the light"):
+// LaneLightTable (light subpaths' and BDPT's), and next-event estimation's LaneLightChoice with the
+// lanes' importance (laneImportance).
+// - without the power share LaneLightChoice is the mixture over the lanes, as LaneLightTable is,
+//   and LaneLightTable draws each light with the probability it reports;
 // - with it, a lane inside a strong narrow UV light takes that light, unless its importance is 0;
 // - select() chooses each light with the probability it reports;
 // - laneImportance follows each lane's weight: equal for fluorescent lanes drawn from the
@@ -29,15 +31,54 @@ Bsdf bsdfAt(const Scene& scene, std::span<const float> lanes) {
 // distant light (0.05). Lane 0 sits inside the UV band; at the others only the white light emits.
 constexpr float kLanes[4] = {365.0f, 450.0f, 550.0f, 650.0f};
 
+// (1/N)·Σ_k Φ_l(λ_k)/Φ(λ_k), computed here from the lights' powers.
+float laneMixture(const Scene& scene, size_t light) {
+  float sum = 0.0f;
+  for (const float lambda : kLanes) {
+    float total = 0.0f;
+    for (const auto& l : scene.lights) total += l->power(lambda);
+    sum += scene.lights[light]->power(lambda) / total;
+  }
+  return sum / 4.0f;
+}
+
+// select() over a fine grid of u chooses each of the two lights with the probability it reports.
+template <class Choice>
+void expectSelectionFollowsProbabilities(const Choice& table) {
+  const int grid = 100000;
+  int chosen[2] = {};
+  for (int i = 0; i < grid; ++i) {
+    const auto [l, p] = table.select((float(i) + 0.5f) / float(grid));
+    ASSERT_LT(l, 2u);
+    EXPECT_EQ(p, table.probability(l));
+    ++chosen[l];
+  }
+  for (size_t l = 0; l < 2; ++l) EXPECT_NEAR(float(chosen[l]) / float(grid), table.probability(l), 2.0f / float(grid));
+}
+
 TEST(LaneLightChoice, WithoutThePowerShareItIsEachLanesMixture) {
   const auto scene = load("single_plane_uv_white.json");
-  LaneLightChoice table;
+  LaneLightChoice choice;
   const float equal[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-  table.reset(*scene, kLanes, equal, 0.0f);
-  for (size_t l = 0; l < 2; ++l)
-    EXPECT_NEAR(table.probability(l), laneLightProbability(*scene, l, kLanes), 1e-6f) << "light " << l;
+  choice.reset(*scene, kLanes, equal, 0.0f);
+  LaneLightTable table;
+  table.reset(*scene, kLanes);
+  for (size_t l = 0; l < 2; ++l) {
+    EXPECT_NEAR(choice.probability(l), laneMixture(*scene, l), 1e-6f) << "light " << l;
+    EXPECT_NEAR(table.probability(l), laneMixture(*scene, l), 1e-6f) << "light " << l;
+  }
   // Each lane gets a quarter: the UV light only through lane 0's quarter.
   EXPECT_LT(table.probability(0), 0.25f);
+}
+
+TEST(LaneLightTable, SelectChoosesEachLightWithItsProbabilityAndEachLaneAsTheSelector) {
+  const auto scene = load("single_plane_uv_white.json");
+  LaneLightTable table;
+  table.reset(*scene, kLanes);
+  expectSelectionFollowsProbabilities(table);
+  for (int k = 0; k < 4; ++k)
+    for (size_t l = 0; l < 2; ++l)
+      EXPECT_NEAR(table.laneProbability(l, k), scene->lightSelector->probability(l, kLanes[k]), 1e-6f);
 }
 
 TEST(LaneLightChoice, ThePowerShareFollowsTheLanesWeightedPower) {
@@ -70,15 +111,7 @@ TEST(LaneLightChoice, SelectChoosesEachLightWithItsProbability) {
   LaneLightChoice table;
   const float importance[4] = {0.5f, 2.0f, 1.0f, 3.0f};
   table.reset(*scene, kLanes, importance);
-  const int grid = 100000;
-  int chosen[2] = {};
-  for (int i = 0; i < grid; ++i) {
-    const auto [l, p] = table.select((float(i) + 0.5f) / float(grid));
-    ASSERT_LT(l, 2u);
-    EXPECT_EQ(p, table.probability(l));
-    ++chosen[l];
-  }
-  for (size_t l = 0; l < 2; ++l) EXPECT_NEAR(float(chosen[l]) / float(grid), table.probability(l), 2.0f / float(grid));
+  expectSelectionFollowsProbabilities(table);
 }
 
 TEST(LaneImportance, FluorescentLanesOfTheMaterialsDensityWeighTheSame) {

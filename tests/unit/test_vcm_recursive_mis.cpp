@@ -106,7 +106,7 @@ TEST_P(MergeWeights, EqualTheFullRecomputation) {
     Sampler rng(SamplerKind::Independent, 17, sample, 0);
     const Lanes lanes = sensorLanes(*scene, sensor.density(), rng.uniform(), param.lanes, tables,
                                     families.independent ? &light.density() : nullptr, ws.lightFirst);
-    if (lanes.sensorPdf[0] <= 0.0f) continue;
+    if (lanes.pdf[0] <= 0.0f) continue;
     const Vec2 film(rng.uniform() * float(scene->camera.width()), rng.uniform() * float(scene->camera.height()));
     traceCameraSubpath(*scene, film, lanes, ws, rng, counter, C);
     LS.clear(), LO.clear();
