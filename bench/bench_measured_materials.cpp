@@ -46,7 +46,7 @@ void evalFluorescent(benchmark::State& state, const std::string& type) {
   Rng rng(5);
   for (auto _ : state) {
     const float li = 360.0f + 300.0f * rng.uniform(), lo = li + 150.0f * rng.uniform();
-    benchmark::DoNotOptimize(m.eval(TransportMode::Radiance, wi, wo, li, lo, SpectralLobe::Fluorescent));
+    benchmark::DoNotOptimize(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, li, lo}, wi, wo));
   }
 }
 void BM_MeasuredEvalFluorescent(benchmark::State& s) { evalFluorescent(s, kMeasured); }

@@ -87,8 +87,8 @@ void BM_JungEval(benchmark::State& state) {
   size_t i = 0;
   for (auto _ : state) {
     const float l1 = ls[i], l2 = ls[(i + 1) & 4095];
-    benchmark::DoNotOptimize(m.eval(TransportMode::Radiance, wi, wo, l1, l1, SpectralLobe::Elastic));
-    benchmark::DoNotOptimize(m.eval(TransportMode::Radiance, wi, wo, l1, l2, SpectralLobe::Fluorescent));
+    benchmark::DoNotOptimize(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, l1, l1}, wi, wo));
+    benchmark::DoNotOptimize(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, l1, l2}, wi, wo));
     i = (i + 1) & 4095;
   }
   state.SetLabel("elastic + fluorescent");

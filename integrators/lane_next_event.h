@@ -86,11 +86,12 @@ T laneNextEvent(const Scene& scene, const Hit& hit, VertexMedium where, const Bs
   if (!any || bsdf.cosineFactor(wi) == 0.0f ||
       !lightTransmittance(scene, hit, where, *ls, {e.lambda, size_t(e.n)}, tr, counter))
     return sum;
-  const float w = ls->delta || weighting == NeeWeight::Alone
-                      ? 1.0f
-                      : powerHeuristic(lightPdf * spectral.nee,
-                                       bsdf.directionPdf(TransportMode::Radiance, wo, wi, e.lobe, e.lambda[0], lambdaOut0) *
-                                           spectral.event);
+  const float w =
+      ls->delta || weighting == NeeWeight::Alone
+          ? 1.0f
+          : powerHeuristic(
+                lightPdf * spectral.nee,
+                bsdf.directionPdf({TransportMode::Radiance, e.lobe, e.lambda[0], lambdaOut0}, wo, wi) * spectral.event);
   for (int k = 0; k < e.n; ++k)
     if (Li[k] > 0.0f) sum += weight[k] * (bsdf.cosineFactor(wi) * tr[k] * Li[k] * w / lightPdf);
   return sum;

@@ -70,7 +70,7 @@ std::optional<Vec3> scatterLightLanes(const Bsdf& bsdf, const Vec3& wi, const La
                                       bool roulette, float beta0, Sampler& rng) {
   const float lambdaIn0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lanes.lambda[0];
   const std::optional<DirectionSample> ds =
-      bsdf.sampleDirection(TransportMode::Importance, wi, e.lobe, lambdaIn0, e.lambda[0], rng.uniform2());
+      bsdf.sampleDirection({TransportMode::Importance, e.lobe, lambdaIn0, e.lambda[0]}, wi, rng.uniform2());
   if (!ds || ds->pdf <= 0.0f) return std::nullopt;
   const std::span<const float> known(lanes.lambda, size_t(lanes.n));
   float next[kMaxLanes];

@@ -96,7 +96,8 @@ T laneWeight(const Bsdf& bsdf, TransportMode mode, std::span<const float> known,
   const Vec3& wi = radiance ? wSampled : wKnown;
   const Vec3& wo = radiance ? wKnown : wSampled;
   const auto f = [&](size_t j) {
-    return radiance ? bsdf.eval(mode, wi, wo, e.lambda[k], known[j], e.lobe) : bsdf.eval(mode, wi, wo, known[j], e.lambda[k], e.lobe);
+    return radiance ? bsdf.eval({mode, e.lobe, e.lambda[k], known[j]}, wi, wo)
+                    : bsdf.eval({mode, e.lobe, known[j], e.lambda[k]}, wi, wo);
   };
   if (e.source[k] != kEveryLane) return before[e.source[k]] * (f(size_t(e.source[k])) * e.scale[k]);
   T sum = before[0] * 0.0f;

@@ -23,7 +23,7 @@ BlendModel::Owners BlendModel::owners(TransportMode mode, const Vec3& wKnown, co
   for (int c = 0; c < 2; ++c) {
     weighted.component[c] = share(c) > 0.0f;
     delta.component[c] = weighted.component[c] && has(components_[c]->flags(), BsdfFlags::DeltaDirection) &&
-                         components_[c]->directionPdf(mode, wKnown, wSampled, lobe, lambdaIn, lambdaOut) > 0.0f;
+                         components_[c]->directionPdf({mode, lobe, lambdaIn, lambdaOut}, wKnown, wSampled) > 0.0f;
   }
   return delta.component[0] || delta.component[1] ? delta : weighted;
 }
@@ -36,13 +36,13 @@ float BlendModel::directionShare(int c, SpectralLobe lobe) const {
   return hasLobe(c) && total > 0.0f ? share(c) / total : 0.0f;
 }
 
-float BlendModel::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                       SpectralLobe lobe) const {
-  const bool radiance = mode == TransportMode::Radiance;
-  const Owners own = owners(mode, radiance ? wo : wi, radiance ? wi : wo, lobe, lambdaIn, lambdaOut);
+float BlendModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  const bool radiance = query.mode == TransportMode::Radiance;
+  const Owners own =
+      owners(query.mode, radiance ? wo : wi, radiance ? wi : wo, query.lobe, query.lambdaIn, query.lambdaOut);
   float f = 0.0f;
   for (int c = 0; c < 2; ++c)
-    if (own.component[c]) f += share(c) * components_[c]->eval(mode, wi, wo, lambdaIn, lambdaOut, lobe);
+    if (own.component[c]) f += share(c) * components_[c]->eval(query, wi, wo);
   return f;
 }
 
@@ -71,28 +71,26 @@ SpectralChoice BlendModel::sampleSpectral(TransportMode mode, float lambdaKnown,
   return {SpectralLobe::Elastic, lambdaKnown, u < fluorescent + elastic ? elastic : 0.0f};
 }
 
-std::optional<DirectionSample> BlendModel::sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                           float lambdaIn, float lambdaOut, Vec2 u) const {
-  const float first = directionShare(0, lobe), second = directionShare(1, lobe);
+std::optional<DirectionSample> BlendModel::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+  const float first = directionShare(0, query.lobe), second = directionShare(1, query.lobe);
   if (first + second <= 0.0f) return std::nullopt;
   const int c = u.x < first ? 0 : 1;
   const Vec2 uc(c == 0 ? u.x / first : (u.x - first) / second, u.y);
-  std::optional<DirectionSample> ds = components_[c]->sampleDirection(mode, wKnown, lobe, lambdaIn, lambdaOut, uc);
+  std::optional<DirectionSample> ds = components_[c]->sampleDirection(query, wKnown, uc);
   if (!ds) return std::nullopt;
   // The density of the mixture, and whether the direction is a delta's (the sampled one's, or
   // another's within its tolerance: then the delta owns it, as in directionPdf and eval).
-  ds->specular = owners(mode, wKnown, ds->w, lobe, lambdaIn, lambdaOut).delta;
-  ds->pdf = directionPdf(mode, wKnown, ds->w, lobe, lambdaIn, lambdaOut);
+  ds->specular = owners(query.mode, wKnown, ds->w, query.lobe, query.lambdaIn, query.lambdaOut).delta;
+  ds->pdf = directionPdf(query, wKnown, ds->w);
   return ds;
 }
 
-float BlendModel::directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
-                               float lambdaIn, float lambdaOut) const {
-  const Owners own = owners(mode, wKnown, wSampled, lobe, lambdaIn, lambdaOut);
+float BlendModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+  const Owners own = owners(query.mode, wKnown, wSampled, query.lobe, query.lambdaIn, query.lambdaOut);
   float pdf = 0.0f;
   for (int c = 0; c < 2; ++c)
-    if (own.component[c] && directionShare(c, lobe) > 0.0f)
-      pdf += directionShare(c, lobe) * components_[c]->directionPdf(mode, wKnown, wSampled, lobe, lambdaIn, lambdaOut);
+    if (own.component[c] && directionShare(c, query.lobe) > 0.0f)
+      pdf += directionShare(c, query.lobe) * components_[c]->directionPdf(query, wKnown, wSampled);
   return pdf;
 }
 

@@ -95,11 +95,10 @@ class Bsdf {
 
   // f in physical order (ω_i, λ_i → ω_o, λ_o) of one lobe; per nm if fluorescent, deltas left out.
   // With a shading normal, f·|cos θ_s| of the sampled direction is Veach's f_s (shading_normal.h).
-  float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-             SpectralLobe lobe) const {
+  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
     if (!front(wi) || !front(wo)) return 0.0f;
-    const float c = correction_.factor(mode, wi, wo);
-    return c > 0.0f ? c * model_->eval(mode, wi, wo, lambdaIn, lambdaOut, lobe) : 0.0f;
+    const float c = correction_.factor(query.mode, wi, wo);
+    return c > 0.0f ? c * model_->eval(query, wi, wo) : 0.0f;
   }
   // Spectral stage: from the known wavelength, the lobe (fluorescent exactly when u < P) and the
   // unknown wavelength; pdf is the lobe's probability × (fluorescent) its per-nm density.
@@ -117,18 +116,16 @@ class Bsdf {
   }
   // Directional stage given the lobe and both wavelengths: the unknown direction, its density
   // per steradian (a probability if specular).
-  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                 float lambdaIn, float lambdaOut, Vec2 u) const {
+  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
     if (!correction_.consistent(wKnown) || !front(wKnown)) return std::nullopt;
-    std::optional<DirectionSample> ds = model_->sampleDirection(mode, wKnown, lobe, lambdaIn, lambdaOut, u);
+    std::optional<DirectionSample> ds = model_->sampleDirection(query, wKnown, u);
     if (ds && (!correction_.consistent(ds->w) || !front(ds->w))) return std::nullopt;
     return ds;
   }
   // That stage's density of wSampled, per steradian.
-  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
-                     float lambdaOut) const {
+  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
     if (!front(wKnown) || !front(wSampled)) return 0.0f;
-    return model_->directionPdf(mode, wKnown, wSampled, lobe, lambdaIn, lambdaOut);
+    return model_->directionPdf(query, wKnown, wSampled);
   }
   // Both stages (u.x spectral, u.y/u.z direction): value, density in this mode and the reverse.
   std::optional<ScatterSample> sample(TransportMode mode, const Vec3& wKnown, float lambdaKnown, Vec3 u) const {
@@ -141,10 +138,9 @@ class Bsdf {
     return s->f > 0.0f ? s : std::nullopt;
   }
   // Both densities (this mode, reverse) of an event in physical order: spectral × directional.
-  ScatterDensity pdf(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                     SpectralLobe lobe) const {
+  ScatterDensity pdf(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
     if (!front(wi) || !front(wo)) return {};
-    return model_->pdf(mode, wi, wo, lambdaIn, lambdaOut, lobe);
+    return model_->pdf(query, wi, wo);
   }
 
  private:

@@ -10,7 +10,8 @@ std::optional<ScatterSample> BsdfModel::sample(TransportMode mode, const Vec3& w
   const bool radiance = mode == TransportMode::Radiance;
   const float lambdaIn = radiance ? sc.lambda : lambdaKnown;
   const float lambdaOut = radiance ? lambdaKnown : sc.lambda;
-  const std::optional<DirectionSample> ds = sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, Vec2(u.y, u.z));
+  const std::optional<DirectionSample> ds =
+      sampleDirection({mode, sc.lobe, lambdaIn, lambdaOut}, wKnown, Vec2(u.y, u.z));
   if (!ds || ds->pdf <= 0.0f) return std::nullopt;
   const Vec3 wi = radiance ? ds->w : wKnown;
   const Vec3 wo = radiance ? wKnown : ds->w;
@@ -19,24 +20,23 @@ std::optional<ScatterSample> BsdfModel::sample(TransportMode mode, const Vec3& w
   s.lambda = sc.lambda;
   s.lobe = sc.lobe;
   s.specular = ds->specular;
-  s.f = eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
+  s.f = eval({mode, sc.lobe, lambdaIn, lambdaOut}, wi, wo);
   s.pdf = sc.pdf * ds->pdf;
   s.pdfRev = spectralPdf(flip(mode), sc.lambda, lambdaKnown, sc.lobe) *
-             directionPdf(flip(mode), ds->w, wKnown, sc.lobe, lambdaIn, lambdaOut);
+             directionPdf({flip(mode), sc.lobe, lambdaIn, lambdaOut}, ds->w, wKnown);
   return s;
 }
 
-ScatterDensity BsdfModel::pdf(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                             SpectralLobe lobe) const {
-  const bool radiance = mode == TransportMode::Radiance;
+ScatterDensity BsdfModel::pdf(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  const bool radiance = query.mode == TransportMode::Radiance;
   const Vec3& wKnown = radiance ? wo : wi;
   const Vec3& wOther = radiance ? wi : wo;
-  const float lKnown = radiance ? lambdaOut : lambdaIn;
-  const float lOther = radiance ? lambdaIn : lambdaOut;
+  const float lKnown = radiance ? query.lambdaOut : query.lambdaIn;
+  const float lOther = radiance ? query.lambdaIn : query.lambdaOut;
   ScatterDensity d;
-  d.pdf = spectralPdf(mode, lKnown, lOther, lobe) * directionPdf(mode, wKnown, wOther, lobe, lambdaIn, lambdaOut);
-  d.pdfRev = spectralPdf(flip(mode), lOther, lKnown, lobe) *
-             directionPdf(flip(mode), wOther, wKnown, lobe, lambdaIn, lambdaOut);
+  d.pdf = spectralPdf(query.mode, lKnown, lOther, query.lobe) * directionPdf(query, wKnown, wOther);
+  d.pdfRev = spectralPdf(flip(query.mode), lOther, lKnown, query.lobe) *
+             directionPdf({flip(query.mode), query.lobe, query.lambdaIn, query.lambdaOut}, wOther, wKnown);
   return d;
 }
 

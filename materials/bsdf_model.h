@@ -65,6 +65,16 @@ constexpr bool has(BsdfFlags set, BsdfFlags f) { return (uint8_t(set) & uint8_t(
 // `f` if `on`, else None.
 constexpr BsdfFlags flagIf(bool on, BsdfFlags f) { return on ? f : BsdfFlags::None; }
 
+// What a query of the directional stage is about (compare Mitsuba 3's BSDFContext): the transport
+// mode, which names the sampled direction, and the spectral event, its lobe and both wavelengths in
+// physical order (for an elastic lobe the two are equal).
+struct ScatterQuery {
+  TransportMode mode;
+  SpectralLobe lobe;
+  float lambdaIn;
+  float lambdaOut;
+};
+
 // Outcome of the spectral stage.
 struct SpectralChoice {
   SpectralLobe lobe = SpectralLobe::Elastic;
@@ -98,15 +108,14 @@ struct ScatterDensity {
 
 class BsdfModel {
  public:
-  // f(λ_i, ω_i, ω_o, λ_o) of one spectral lobe: for Elastic, λ_i = λ_o is implied and lambdaIn is
+  // f(λ_i, ω_i, ω_o, λ_o) of the query's lobe: for Elastic, λ_i = λ_o is implied and lambdaIn is
   // used; for Fluorescent, the density per nm of leaving at λ_o. Local directions.
-  // `mode` names the direction that was sampled (ω_i in Radiance mode, ω_o in Importance mode).
+  // The query's mode names the direction that was sampled (ω_i in Radiance mode, ω_o in Importance mode).
   // It matters only for a specular lobe, whose value is the coefficient of the Dirac delta in the
   // solid angle of that sampled direction, so that f·|cos θ_sampled|/pdf is the path weight in
   // both modes. Refraction maps solid angles with dω_o/dω_i = η_i²|cos θ_i| / (η_o²|cos θ_o|), so
   // there the two coefficients differ (Veach97 §5.2); every non-specular f is the same in both.
-  virtual float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                     SpectralLobe lobe) const = 0;
+  virtual float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const = 0;
 
   // Spectral stage: chooses the lobe and the unknown wavelength given the known one (λ_o in
   // Radiance mode, λ_i in Importance mode): the fluorescent lobe exactly when
@@ -121,12 +130,11 @@ class BsdfModel {
   // wavelength strategy) samples the event with density P·p(λ) (eval() is per nm).
   virtual float fluorescenceProbability(TransportMode mode, float lambdaKnown) const = 0;
 
-  // Directional stage given the spectral event (lobe and both wavelengths, which a dispersive
-  // model needs); wKnown is ω_o (Radiance) or ω_i (Importance).
-  virtual std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                         float lambdaIn, float lambdaOut, Vec2 u) const = 0;
-  virtual float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
-                             float lambdaIn, float lambdaOut) const = 0;
+  // Directional stage given the query's spectral event (lobe and both wavelengths, which a
+  // dispersive model needs); wKnown is ω_o (Radiance) or ω_i (Importance). The density is per
+  // steradian (for a specular lobe, the discrete probability).
+  virtual std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const = 0;
+  virtual float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const = 0;
 
   // DeltaDirection, Fluorescent, WavelengthDependentDirection (BsdfFlags).
   virtual BsdfFlags flags() const = 0;
@@ -134,8 +142,7 @@ class BsdfModel {
   // Both stages: u.x for the spectral stage, (u.y, u.z) for the direction.
   std::optional<ScatterSample> sample(TransportMode mode, const Vec3& wKnown, float lambdaKnown, Vec3 u) const;
   // Densities of an event given in physical order, sampled in `mode` (and reverse).
-  ScatterDensity pdf(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                     SpectralLobe lobe) const;
+  ScatterDensity pdf(ScatterQuery query, const Vec3& wi, const Vec3& wo) const;
 
  protected:
   // Models are owned by their materials (or built for one hit), never deleted through this type.

@@ -31,22 +31,22 @@ float CoatedModel::coatFresnel(float c, float lambda) const {
   return eta == 1.0f ? 0.0f : fresnelDielectric(c, eta);  // exactly 0 when index-matched, not rounding residue
 }
 
-float CoatedModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                              SpectralLobe lobe) const {
+float CoatedModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
-  const float ti = 1.0f - coatFresnel(std::abs(wi.z), lambdaIn);
-  if (lobe == SpectralLobe::Fluorescent) {
-    const float to = 1.0f - coatFresnel(std::abs(wo.z), lambdaOut);
-    const float ca = base_.c() * base_.a(lambdaIn);
-    return ti * to / sqr((*ior_)(lambdaOut)) * ca * base_.q() * base_.e(lambdaOut) * kInvPi;  // Jung18 eq. 2, coated
+  const float ti = 1.0f - coatFresnel(std::abs(wi.z), query.lambdaIn);
+  if (query.lobe == SpectralLobe::Fluorescent) {
+    const float to = 1.0f - coatFresnel(std::abs(wo.z), query.lambdaOut);
+    const float ca = base_.c() * base_.a(query.lambdaIn);
+    return ti * to / sqr((*ior_)(query.lambdaOut)) * ca * base_.q() * base_.e(query.lambdaOut) *
+           kInvPi;  // Jung18 eq. 2, coated
   }
-  const float to = 1.0f - coatFresnel(std::abs(wo.z), lambdaIn);
-  const float base = ti * to / sqr((*ior_)(lambdaIn)) * (1.0f - base_.c() * base_.a(lambdaIn)) * base_.r(lambdaIn) *
-                     kInvPi;  // Jung18 eq. 3, coated
+  const float to = 1.0f - coatFresnel(std::abs(wo.z), query.lambdaIn);
+  const float base = ti * to / sqr((*ior_)(query.lambdaIn)) * (1.0f - base_.c() * base_.a(query.lambdaIn)) *
+                     base_.r(query.lambdaIn) * kInvPi;  // Jung18 eq. 3, coated
   const float r = ggx_.reflection(wi, wo);
   if (r <= 0.0f) return base;
   const Vec3 h = reflectionHalfVector(wi, wo);
-  return base + coatFresnel(std::abs(glm::dot(wi, h)), lambdaIn) * r;  // Walter07 eq. 20
+  return base + coatFresnel(std::abs(glm::dot(wi, h)), query.lambdaIn) * r;  // Walter07 eq. 20
 }
 
 float CoatedModel::probFluorescence(TransportMode mode, float l) const {
@@ -86,12 +86,10 @@ float CoatedModel::probCoat(const Vec3& wKnown, float lambda) const {
   return F + base > 0.0f ? F / (F + base) : 0.0f;  // neither reflects: the base's cosine sampling
 }
 
-std::optional<DirectionSample> CoatedModel::sampleDirection(TransportMode mode, const Vec3& wKnown,
-                                                                   SpectralLobe lobe, float lambdaIn, float lambdaOut,
-                                                                   Vec2 u) const {
+std::optional<DirectionSample> CoatedModel::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
   if (wKnown.z == 0.0f) return std::nullopt;
-  if (lobe == SpectralLobe::Fluorescent) return diffuse::sample(wKnown, u);
-  const float pc = probCoat(wKnown, lambdaIn);
+  if (query.lobe == SpectralLobe::Fluorescent) return diffuse::sample(wKnown, u);
+  const float pc = probCoat(wKnown, query.lambdaIn);
   Vec3 w;
   if (u.x < pc) {
     w = reflectAbout(wKnown, ggx_.sampleVisible(wKnown, Vec2(std::min(u.x / pc, 0x1.fffffep-1f), u.y)));
@@ -100,16 +98,15 @@ std::optional<DirectionSample> CoatedModel::sampleDirection(TransportMode mode, 
     if (!d) return std::nullopt;
     w = d->w;
   }
-  const float pdf = directionPdf(mode, wKnown, w, lobe, lambdaIn, lambdaOut);
+  const float pdf = directionPdf(query, wKnown, w);
   if (!(pdf > 0.0f)) return std::nullopt;  // the coat mirrored the direction below the surface
   return DirectionSample{w, pdf, false};
 }
 
-float CoatedModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
-                                     float lambdaIn, float) const {
+float CoatedModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
   const float diffusePdf = diffuse::pdf(wKnown, wSampled);
-  if (lobe == SpectralLobe::Fluorescent) return diffusePdf;
-  const float pc = probCoat(wKnown, lambdaIn);
+  if (query.lobe == SpectralLobe::Fluorescent) return diffusePdf;
+  const float pc = probCoat(wKnown, query.lambdaIn);
   return pc * ggx_.reflectionPdf(wKnown, wSampled) + (1.0f - pc) * diffusePdf;
 }
 

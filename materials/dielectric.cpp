@@ -32,25 +32,23 @@ Dielectric::Match Dielectric::match(const Vec3& wKnown, const Vec3& wSampled, fl
   return m;
 }
 
-float Dielectric::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float,
-                       SpectralLobe lobe) const {
-  if (lobe != SpectralLobe::Elastic) return 0.0f;
-  const bool radiance = mode == TransportMode::Radiance;
+float Dielectric::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  if (query.lobe != SpectralLobe::Elastic) return 0.0f;
+  const bool radiance = query.mode == TransportMode::Radiance;
   const Vec3& wKnown = radiance ? wo : wi;
   const Vec3& wSampled = radiance ? wi : wo;
-  const Match m = match(wKnown, wSampled, lambdaIn);
+  const Match m = match(wKnown, wSampled, query.lambdaIn);
   if (!m.reflect && !m.refract) return 0.0f;
   const float f = m.prob / std::abs(wSampled.z);
   // Radiance mode, refraction: × (η_o/η_i)² = 1/η² with η = η_i/η_o the relative index from ω_o's
   // side (Veach97 §5.2). Importance mode carries power, which refraction does not rescale.
-  if (m.refract && radiance) return f / sqr(relativeEta(wo, lambdaIn));
+  if (m.refract && radiance) return f / sqr(relativeEta(wo, query.lambdaIn));
   return f;
 }
 
-std::optional<DirectionSample> Dielectric::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,
-                                                            float lambdaIn, float, Vec2 u) const {
-  if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
-  const float eta = relativeEta(wKnown, lambdaIn);
+std::optional<DirectionSample> Dielectric::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+  if (query.lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
+  const float eta = relativeEta(wKnown, query.lambdaIn);
   const float F = fresnelDielectric(std::abs(wKnown.z), eta);
   if (u.x < F) return DirectionSample{specular::reflect(wKnown), F, true};
   const std::optional<Vec3> t = specular::refract(wKnown, eta);
@@ -58,9 +56,8 @@ std::optional<DirectionSample> Dielectric::sampleDirection(TransportMode, const 
   return DirectionSample{*t, 1.0f - F, true};
 }
 
-float Dielectric::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
-                              float lambdaIn, float) const {
-  return lobe == SpectralLobe::Elastic ? match(wKnown, wSampled, lambdaIn).prob : 0.0f;
+float Dielectric::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+  return query.lobe == SpectralLobe::Elastic ? match(wKnown, wSampled, query.lambdaIn).prob : 0.0f;
 }
 
 }  // namespace kasha

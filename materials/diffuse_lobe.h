@@ -31,11 +31,10 @@ namespace kasha {
 template <class Base>
 class DiffuseModel : public Base {
  public:
-  std::optional<DirectionSample> sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe, float, float,
-                                                 Vec2 u) const final {
+  std::optional<DirectionSample> sampleDirection(ScatterQuery, const Vec3& wKnown, Vec2 u) const final {
     return diffuse::sample(wKnown, u);
   }
-  float directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe, float, float) const final {
+  float directionPdf(ScatterQuery, const Vec3& wKnown, const Vec3& wSampled) const final {
     return diffuse::pdf(wKnown, wSampled);
   }
 

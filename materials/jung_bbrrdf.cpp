@@ -47,12 +47,11 @@ JungBbrrdf::JungBbrrdf(JungParams params, WavelengthRange range, JungTextures te
       spectra_(std::move(params), range),
       textures_(std::move(textures)) {}
 
-float JungModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                       SpectralLobe lobe) const {
+float JungModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
-  const float ca = c() * a(lambdaIn);
-  if (lobe == SpectralLobe::Elastic) return (1.0f - ca) * r(lambdaIn) * kInvPi;  // Jung18 eq. 3
-  return ca * q() * e(lambdaOut) * kInvPi;                                        // Jung18 eq. 2
+  const float ca = c() * a(query.lambdaIn);
+  if (query.lobe == SpectralLobe::Elastic) return (1.0f - ca) * r(query.lambdaIn) * kInvPi;  // Jung18 eq. 3
+  return ca * q() * e(query.lambdaOut) * kInvPi;                                             // Jung18 eq. 2
 }
 
 float JungModel::probFluorescenceLight(float lambdaIn) const {

@@ -4,9 +4,9 @@
 
 namespace kasha {
 
-float LambertianModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float, SpectralLobe lobe) const {
-  if (lobe != SpectralLobe::Elastic || !diffuse::sameSide(wi, wo)) return 0.0f;
-  return r_(lambdaIn) * kInvPi;
+float LambertianModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  if (query.lobe != SpectralLobe::Elastic || !diffuse::sameSide(wi, wo)) return 0.0f;
+  return r_(query.lambdaIn) * kInvPi;
 }
 
 }  // namespace kasha

@@ -13,8 +13,7 @@ class LambertianModel : public DiffuseModel<ElasticModel> {
  public:
   explicit LambertianModel(HitReflectance r) : r_(r) {}
 
-  float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-             SpectralLobe lobe) const override;
+  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
   BsdfFlags flags() const override { return BsdfFlags::None; }
 
  private:

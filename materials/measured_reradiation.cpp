@@ -137,10 +137,9 @@ float MeasuredModel::probFluorescence(TransportMode mode, float lambdaKnown) con
   return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
 }
 
-float MeasuredModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                          SpectralLobe lobe) const {
+float MeasuredModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
-  return (lobe == SpectralLobe::Elastic ? diagonal(lambdaIn) : F(lambdaOut, lambdaIn)) * kInvPi;
+  return (query.lobe == SpectralLobe::Elastic ? diagonal(query.lambdaIn) : F(query.lambdaOut, query.lambdaIn)) * kInvPi;
 }
 
 SpectralChoice MeasuredModel::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {

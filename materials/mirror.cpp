@@ -19,24 +19,24 @@ Mirror::Mirror(Spectrum reflectance, ReflectanceTexture texture, std::shared_ptr
 
 MirrorModel Mirror::modelAt(const TexturePoint& p) const { return MirrorModel(mirrorFresnel(texture_.at(spectrum_, p), index_.get())); }
 
-float MirrorModel::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float, SpectralLobe lobe) const {
-  const bool radiance = mode == TransportMode::Radiance;
+float MirrorModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  const bool radiance = query.mode == TransportMode::Radiance;
   const Vec3& wKnown = radiance ? wo : wi;
   const Vec3& wSampled = radiance ? wi : wo;
-  if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f || !specular::matches(wSampled, specular::reflect(wKnown)))
+  if (query.lobe != SpectralLobe::Elastic || wKnown.z == 0.0f ||
+      !specular::matches(wSampled, specular::reflect(wKnown)))
     return 0.0f;
-  return f_(std::abs(wSampled.z), lambdaIn) / std::abs(wSampled.z);
+  return f_(std::abs(wSampled.z), query.lambdaIn) / std::abs(wSampled.z);
 }
 
-std::optional<DirectionSample> MirrorModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe, float,
-                                                        float, Vec2) const {
-  if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
+std::optional<DirectionSample> MirrorModel::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2) const {
+  if (query.lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
   return DirectionSample{specular::reflect(wKnown), 1.0f, true};
 }
 
-float MirrorModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float,
-                          float) const {
-  const bool hit = lobe == SpectralLobe::Elastic && wKnown.z != 0.0f && specular::matches(wSampled, specular::reflect(wKnown));
+float MirrorModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+  const bool hit =
+      query.lobe == SpectralLobe::Elastic && wKnown.z != 0.0f && specular::matches(wSampled, specular::reflect(wKnown));
   return hit ? 1.0f : 0.0f;
 }
 

@@ -29,11 +29,10 @@ float MaskModel::passThroughShare(TransportMode mode, float lambda) const {
   return elastic > 0.0f ? (1.0f - opacity_) / elastic : 0.0f;
 }
 
-float MaskModel::eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                      SpectralLobe lobe) const {
-  if (lobe == SpectralLobe::Elastic && opacity_ < 1.0f && isPassThrough(wi, wo))
+float MaskModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  if (query.lobe == SpectralLobe::Elastic && opacity_ < 1.0f && isPassThrough(wi, wo))
     return wi.z != 0.0f ? (1.0f - opacity_) / std::abs(wi.z) : 0.0f;
-  return opacity_ * nested_->eval(mode, wi, wo, lambdaIn, lambdaOut, lobe);
+  return opacity_ * nested_->eval(query, wi, wo);
 }
 
 float MaskModel::fluorescenceProbability(TransportMode mode, float lambdaKnown) const {
@@ -56,23 +55,20 @@ float MaskModel::spectralPdf(TransportMode mode, float lambdaKnown, float lambda
   return opacity_ * nested_->spectralPdf(mode, lambdaKnown, lambdaOther, lobe);
 }
 
-std::optional<DirectionSample> MaskModel::sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                          float lambdaIn, float lambdaOut, Vec2 u) const {
-  if (lobe == SpectralLobe::Fluorescent) return nested_->sampleDirection(mode, wKnown, lobe, lambdaIn, lambdaOut, u);
-  const float q = passThroughShare(mode, lambdaIn);
+std::optional<DirectionSample> MaskModel::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+  if (query.lobe == SpectralLobe::Fluorescent) return nested_->sampleDirection(query, wKnown, u);
+  const float q = passThroughShare(query.mode, query.lambdaIn);
   if (u.x < q) return DirectionSample{-wKnown, q, true};
-  std::optional<DirectionSample> ds =
-      nested_->sampleDirection(mode, wKnown, lobe, lambdaIn, lambdaOut, Vec2((u.x - q) / (1.0f - q), u.y));
+  std::optional<DirectionSample> ds = nested_->sampleDirection(query, wKnown, Vec2((u.x - q) / (1.0f - q), u.y));
   if (ds) ds->pdf *= 1.0f - q;
   return ds;
 }
 
-float MaskModel::directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
-                              float lambdaIn, float lambdaOut) const {
-  if (lobe == SpectralLobe::Fluorescent) return nested_->directionPdf(mode, wKnown, wSampled, lobe, lambdaIn, lambdaOut);
-  const float q = passThroughShare(mode, lambdaIn);
+float MaskModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+  if (query.lobe == SpectralLobe::Fluorescent) return nested_->directionPdf(query, wKnown, wSampled);
+  const float q = passThroughShare(query.mode, query.lambdaIn);
   if (q > 0.0f && isPassThrough(wKnown, wSampled)) return q;
-  return (1.0f - q) * nested_->directionPdf(mode, wKnown, wSampled, lobe, lambdaIn, lambdaOut);
+  return (1.0f - q) * nested_->directionPdf(query, wKnown, wSampled);
 }
 
 OpacityMask::OpacityMask(std::unique_ptr<Material> nested, float opacity, ScalarTexture texture)

@@ -25,27 +25,25 @@ RoughConductorModel RoughConductor::modelAt(const TexturePoint& p) const {
                              texturedGgx(ggx(), textures_.alpha, p));
 }
 
-float RoughConductorModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float,
-                           SpectralLobe lobe) const {
-  if (lobe != SpectralLobe::Elastic) return 0.0f;
+float RoughConductorModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  if (query.lobe != SpectralLobe::Elastic) return 0.0f;
   const float r = ggx_.reflection(wi, wo);
   if (r <= 0.0f) return 0.0f;
   const Vec3 h = reflectionHalfVector(wi, wo);
-  return f_(std::abs(glm::dot(wi, h)), lambdaIn) * r;  // Walter07 eq. 20
+  return f_(std::abs(glm::dot(wi, h)), query.lambdaIn) * r;  // Walter07 eq. 20
 }
 
-std::optional<DirectionSample> RoughConductorModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,
-                                                                float, float, Vec2 u) const {
-  if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
+std::optional<DirectionSample> RoughConductorModel::sampleDirection(ScatterQuery query, const Vec3& wKnown,
+                                                                    Vec2 u) const {
+  if (query.lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
   const Vec3 w = reflectAbout(wKnown, ggx_.sampleVisible(wKnown, u));
   const float pdf = ggx_.reflectionPdf(wKnown, w);
   if (!(pdf > 0.0f)) return std::nullopt;  // mirrored below the surface
   return DirectionSample{w, pdf, false};
 }
 
-float RoughConductorModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float,
-                                  float) const {
-  return lobe == SpectralLobe::Elastic ? ggx_.reflectionPdf(wKnown, wSampled) : 0.0f;
+float RoughConductorModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+  return query.lobe == SpectralLobe::Elastic ? ggx_.reflectionPdf(wKnown, wSampled) : 0.0f;
 }
 
 }  // namespace kasha

@@ -37,12 +37,9 @@ class RoughConductorModel : public ElasticModel {
  public:
   RoughConductorModel(ConductorFresnel f, Ggx ggx) : f_(f), ggx_(ggx) {}
 
-  float eval(TransportMode mode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-             SpectralLobe lobe) const override;
-  std::optional<DirectionSample> sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                 float lambdaIn, float lambdaOut, Vec2 u) const override;
-  float directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe, float lambdaIn,
-                     float lambdaOut) const override;
+  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
+  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
+  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
   BsdfFlags flags() const override { return BsdfFlags::None; }
 
   const Ggx& ggx() const { return ggx_; }

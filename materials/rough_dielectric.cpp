@@ -37,13 +37,12 @@ float RoughDielectricModel::reflectProbability(const Vec3& w, float lambda) cons
   return std::clamp(F, kMinReflectProbability, 1.0f - kMinReflectProbability);
 }
 
-float RoughDielectricModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float,
-                            SpectralLobe lobe) const {
-  if (lobe != SpectralLobe::Elastic || wi.z == 0.0f || wo.z == 0.0f) return 0.0f;
-  const float etaI = sideIndex(wi, lambdaIn), etaO = sideIndex(wo, lambdaIn);
+float RoughDielectricModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  if (query.lobe != SpectralLobe::Elastic || wi.z == 0.0f || wo.z == 0.0f) return 0.0f;
+  const float etaI = sideIndex(wi, query.lambdaIn), etaO = sideIndex(wo, query.lambdaIn);
   if (wi.z * wo.z > 0.0f) {
     const Vec3 h = reflectionHalfVector(wi, wo);
-    return fresnelDielectric(std::abs(glm::dot(wi, h)), sideIndex(-wi, lambdaIn) / etaI) *
+    return fresnelDielectric(std::abs(glm::dot(wi, h)), sideIndex(-wi, query.lambdaIn) / etaI) *
            ggx_.reflection(wi, wo);  // Walter07 eq. 20
   }
   const Vec3 h = refractionHalfVector(wi, etaI, wo, etaO);
@@ -59,10 +58,10 @@ float RoughDielectricModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, 
          ggx_.g1(wo) / denom;
 }
 
-std::optional<DirectionSample> RoughDielectricModel::sampleDirection(TransportMode, const Vec3& wKnown, SpectralLobe lobe,
-                                                                 float lambdaIn, float, Vec2 u) const {
-  if (lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
-  const float pr = reflectProbability(wKnown, lambdaIn);
+std::optional<DirectionSample> RoughDielectricModel::sampleDirection(ScatterQuery query, const Vec3& wKnown,
+                                                                     Vec2 u) const {
+  if (query.lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
+  const float pr = reflectProbability(wKnown, query.lambdaIn);
   const bool reflect = u.x < pr;
   u.x = reflect ? u.x / pr : (u.x - pr) / (1.0f - pr);
   u.x = std::min(u.x, 0x1.fffffep-1f);
@@ -70,17 +69,16 @@ std::optional<DirectionSample> RoughDielectricModel::sampleDirection(TransportMo
   Vec3 w;
   if (reflect) {
     w = reflectAbout(wKnown, m);
-  } else if (!refractAbout(wKnown, m, sideIndex(-wKnown, lambdaIn) / sideIndex(wKnown, lambdaIn), w)) {
+  } else if (!refractAbout(wKnown, m, sideIndex(-wKnown, query.lambdaIn) / sideIndex(wKnown, query.lambdaIn), w)) {
     return std::nullopt;  // total internal reflection at m: f = 0 for refraction
   }
-  const float pdf = density(wKnown, w, lambdaIn);
+  const float pdf = density(wKnown, w, query.lambdaIn);
   if (!(pdf > 0.0f) || reflect != (w.z * wKnown.z > 0.0f)) return std::nullopt;  // wrong side
   return DirectionSample{w, pdf, false};
 }
 
-float RoughDielectricModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
-                                   float lambdaIn, float) const {
-  return lobe == SpectralLobe::Elastic ? density(wKnown, wSampled, lambdaIn) : 0.0f;
+float RoughDielectricModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+  return query.lobe == SpectralLobe::Elastic ? density(wKnown, wSampled, query.lambdaIn) : 0.0f;
 }
 
 float RoughDielectricModel::density(const Vec3& wk, const Vec3& ws, float lambda) const {

@@ -55,14 +55,13 @@ float VolumeScattering::albedoWeight(TransportMode mode, float lambdaKnown) cons
   return scattering(lambdaKnown) + fluorescentWeight(mode, lambdaKnown);
 }
 
-float VolumeScattering::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                             SpectralLobe lobe) const {
-  if (lobe == SpectralLobe::Elastic)  // media.md eq. 3
-    return scattering(lambdaIn) * henyeyGreenstein(-glm::dot(wi, wo), medium_->params().g);
+float VolumeScattering::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  if (query.lobe == SpectralLobe::Elastic)  // media.md eq. 3
+    return scattering(query.lambdaIn) * henyeyGreenstein(-glm::dot(wi, wo), medium_->params().g);
   float f = 0.0f;  // media.md eq. 4
   for (size_t k = 0; k < fluorophoreCount(); ++k) {
     const Fluorophore& fl = medium_->params().fluorophores[k];
-    f += fl.absorption(lambdaIn) * fl.yield * medium_->emissionDistribution(k).pdf(lambdaOut);
+    f += fl.absorption(query.lambdaIn) * fl.yield * medium_->emissionDistribution(k).pdf(query.lambdaOut);
   }
   return f * kUniformSpherePdf;
 }
@@ -108,32 +107,31 @@ float VolumeScattering::spectralPdf(TransportMode mode, float lambdaKnown, float
   if (lobe == SpectralLobe::Elastic) return scattering(lambdaKnown) / total;
   // Σ_k share_k/total · (σ_f,k or ê_k density at the other wavelength) = 4π·f_fl/total.
   const bool radiance = mode == TransportMode::Radiance;
-  const float f = eval(mode, Vec3(0.0f), Vec3(0.0f), radiance ? lambdaOther : lambdaKnown,
-                       radiance ? lambdaKnown : lambdaOther, SpectralLobe::Fluorescent);
+  const float f = eval(
+      {mode, SpectralLobe::Fluorescent, radiance ? lambdaOther : lambdaKnown, radiance ? lambdaKnown : lambdaOther},
+      Vec3(0.0f), Vec3(0.0f));
   return f / kUniformSpherePdf / total;
 }
 
-std::optional<DirectionSample> VolumeScattering::sampleDirection(TransportMode mode, const Vec3& wKnown,
-                                                                 SpectralLobe lobe, float, float, Vec2 u) const {
+std::optional<DirectionSample> VolumeScattering::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
   DirectionSample ds;
-  if (lobe == SpectralLobe::Fluorescent) {
+  if (query.lobe == SpectralLobe::Fluorescent) {
     ds.w = sampleUniformSphere(u);
     ds.pdf = kUniformSpherePdf;
     return ds;
   }
   // Radiance: ω_i with −ω_i about ω_o; Importance: ω_o about −ω_i (cos θ = −ω_i·ω_o both ways).
   const float g = medium_->params().g;
-  const Vec3 travel = sampleHenyeyGreenstein(mode == TransportMode::Radiance ? wKnown : -wKnown, g, u);
-  ds.w = mode == TransportMode::Radiance ? -travel : travel;
-  ds.pdf = henyeyGreenstein(glm::dot(travel, mode == TransportMode::Radiance ? wKnown : -wKnown), g);
+  const Vec3 travel = sampleHenyeyGreenstein(query.mode == TransportMode::Radiance ? wKnown : -wKnown, g, u);
+  ds.w = query.mode == TransportMode::Radiance ? -travel : travel;
+  ds.pdf = henyeyGreenstein(glm::dot(travel, query.mode == TransportMode::Radiance ? wKnown : -wKnown), g);
   return ds;
 }
 
-float VolumeScattering::directionPdf(TransportMode mode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
-                                     float, float) const {
-  if (lobe == SpectralLobe::Fluorescent) return kUniformSpherePdf;
-  const Vec3& wi = mode == TransportMode::Radiance ? wSampled : wKnown;
-  const Vec3& wo = mode == TransportMode::Radiance ? wKnown : wSampled;
+float VolumeScattering::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+  if (query.lobe == SpectralLobe::Fluorescent) return kUniformSpherePdf;
+  const Vec3& wi = query.mode == TransportMode::Radiance ? wSampled : wKnown;
+  const Vec3& wo = query.mode == TransportMode::Radiance ? wKnown : wSampled;
   return henyeyGreenstein(-glm::dot(wi, wo), medium_->params().g);
 }
 

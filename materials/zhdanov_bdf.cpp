@@ -46,12 +46,12 @@ ZhdanovModel ZhdanovBdf::modelAt(const TexturePoint& at) const {
                                            textures_.passive.at(p.passive, at), textures_.excitation.at(1.0f, at)});
 }
 
-float ZhdanovModel::eval(TransportMode, const Vec3& wi, const Vec3& wo, float lambdaIn, float lambdaOut,
-                       SpectralLobe lobe) const {
+float ZhdanovModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
-  if (lobe == SpectralLobe::Elastic)  // Zhdanov eq. 2, passive part: gloss peak + Lambert
-    return (h_.gloss > 0.0f ? h_.gloss * gloss::value(wi, wo, h_.glossExponent) : 0.0f) + passive(lambdaIn) * kInvPi;
-  return E(lambdaOut) * A(lambdaIn) * kInvPi;  // Zhdanov eq. 3
+  if (query.lobe == SpectralLobe::Elastic)  // Zhdanov eq. 2, passive part: gloss peak + Lambert
+    return (h_.gloss > 0.0f ? h_.gloss * gloss::value(wi, wo, h_.glossExponent) : 0.0f) +
+           passive(query.lambdaIn) * kInvPi;
+  return E(query.lambdaOut) * A(query.lambdaIn) * kInvPi;  // Zhdanov eq. 3
 }
 
 float ZhdanovModel::fluorescentWeight(TransportMode mode, float lambdaKnown) const {
@@ -94,10 +94,9 @@ namespace {
 float glossChoice(float gloss, float passive) { return gloss + passive > 0.0f ? gloss / (gloss + passive) : 0.0f; }
 }  // namespace
 
-std::optional<DirectionSample> ZhdanovModel::sampleDirection(TransportMode mode, const Vec3& wKnown, SpectralLobe lobe,
-                                                            float lambdaIn, float lambdaOut, Vec2 u) const {
-  if (lobe == SpectralLobe::Fluorescent) return diffuse::sample(wKnown, u);
-  const float pg = glossChoice(h_.gloss, passive(lambdaIn));
+std::optional<DirectionSample> ZhdanovModel::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+  if (query.lobe == SpectralLobe::Fluorescent) return diffuse::sample(wKnown, u);
+  const float pg = glossChoice(h_.gloss, passive(query.lambdaIn));
   std::optional<DirectionSample> s;
   if (u.x < pg) {
     s = gloss::sample(wKnown, Vec2(std::min(u.x / pg, 0x1.fffffep-1f), u.y), h_.glossExponent);
@@ -105,14 +104,13 @@ std::optional<DirectionSample> ZhdanovModel::sampleDirection(TransportMode mode,
     s = diffuse::sample(wKnown, Vec2(std::min((u.x - pg) / (1.0f - pg), 0x1.fffffep-1f), u.y));
   }
   if (!s) return std::nullopt;
-  s->pdf = directionPdf(mode, wKnown, s->w, lobe, lambdaIn, lambdaOut);
+  s->pdf = directionPdf(query, wKnown, s->w);
   return s;
 }
 
-float ZhdanovModel::directionPdf(TransportMode, const Vec3& wKnown, const Vec3& wSampled, SpectralLobe lobe,
-                               float lambdaIn, float) const {
-  if (lobe == SpectralLobe::Fluorescent) return diffuse::pdf(wKnown, wSampled);
-  const float pg = glossChoice(h_.gloss, passive(lambdaIn));
+float ZhdanovModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+  if (query.lobe == SpectralLobe::Fluorescent) return diffuse::pdf(wKnown, wSampled);
+  const float pg = glossChoice(h_.gloss, passive(query.lambdaIn));
   const float lambert = (1.0f - pg) * diffuse::pdf(wKnown, wSampled);
   return pg > 0.0f ? pg * gloss::pdf(wKnown, wSampled, h_.glossExponent) + lambert : lambert;
 }

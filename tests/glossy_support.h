@@ -72,7 +72,7 @@ inline DirectionChi2Result directionChi2(const Material& material, TransportMode
         for (int b = 0; b < c.sub; ++b) {
           const Vec3 w = dirFromCosPhi(float(-1.0 + ic * dc + (a + 0.5) * sdc), float(ip * dp + (b + 0.5) * sdp));
           const auto [wi, wo] = physicalOrder(mode, wKnown, w);
-          const double mass = m.pdf(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic).pdf * sdc * sdp;
+          const double mass = m.pdf({mode, SpectralLobe::Elastic, lambda, lambda}, wi, wo).pdf * sdc * sdp;
           expected[size_t(ic * c.nPhi + ip)] += c.samples * mass;
           res.expectedMass += mass;
         }
@@ -107,11 +107,11 @@ inline double expectConsistentSample(const Material& material, TransportMode mod
   EXPECT_EQ(s.lobe, SpectralLobe::Elastic);
   EXPECT_EQ(s.lambda, lambda);
   const auto [wi, wo] = physicalOrder(mode, wKnown, s.w);
-  const ScatterDensity d = m.pdf(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic);
+  const ScatterDensity d = m.pdf({mode, SpectralLobe::Elastic, lambda, lambda}, wi, wo);
   EXPECT_TRUE(close(s.pdf, d.pdf, 1e-4));
   EXPECT_TRUE(close(s.pdfRev, d.pdfRev, relRev));
-  EXPECT_EQ(d.pdfRev, m.pdf(flip(mode), wi, wo, lambda, lambda, SpectralLobe::Elastic).pdf);
-  EXPECT_TRUE(close(s.f, m.eval(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic), 1e-6));
+  EXPECT_EQ(d.pdfRev, m.pdf({flip(mode), SpectralLobe::Elastic, lambda, lambda}, wi, wo).pdf);
+  EXPECT_TRUE(close(s.f, m.eval({mode, SpectralLobe::Elastic, lambda, lambda}, wi, wo), 1e-6));
   return s.f * std::abs(s.w.z) / s.pdf;
 }
 

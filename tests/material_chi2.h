@@ -121,7 +121,7 @@ inline Chi2Result jointChi2(const Bsdf& m, TransportMode mode, const Vec3& wKnow
           const double dw = subDc * subDp;
           const Event ee = physical(mode, wKnown, lKnown, w, lKnown);
           expected[elasticBase + d] +=
-              n * dw * m.pdf(mode, ee.wi, ee.wo, ee.lambdaIn, ee.lambdaOut, SpectralLobe::Elastic).pdf;
+              n * dw * m.pdf({mode, SpectralLobe::Elastic, ee.lambdaIn, ee.lambdaOut}, ee.wi, ee.wo).pdf;
           if (m.has(BsdfFlags::Fluorescent))  // otherwise every fluorescent cell expects 0
             for (int l = 0; l < nL; ++l)
               for (int k = 0; k < c.subNm; ++k) {
@@ -129,7 +129,7 @@ inline Chi2Result jointChi2(const Bsdf& m, TransportMode mode, const Vec3& wKnow
                 const Event ev = physical(mode, wKnown, lKnown, w, lambda);
                 expected[size_t(d) * nL + l] +=
                     n * dw * subNm *
-                    m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, SpectralLobe::Fluorescent).pdf;
+                    m.pdf({mode, SpectralLobe::Fluorescent, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo).pdf;
               }
         }
     }

@@ -131,7 +131,7 @@ Segment firstMediumSegment(const Scene& scene, Ray ray, float lambda, Sampler& r
 // f_fl(λ_i → λ_o) of a medium's collision kernel (docs/media.md eq. 4, isotropic: any directions).
 float fluorescence(const Bsdf& kernel, float lambdaIn, float lambdaOut) {
   const Vec3 w(0.0f, 0.0f, 1.0f);
-  return kernel.eval(TransportMode::Radiance, w, w, lambdaIn, lambdaOut, SpectralLobe::Fluorescent);
+  return kernel.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, lambdaIn, lambdaOut}, w, w);
 }
 
 // P2P: photon points, a query point; P2B: photon points, the query beam; B2B: photon beams, the

@@ -96,8 +96,8 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
   const bool lanes = x1.allLanes(c.lanes);
   for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) {
     const float lambda = lanes ? c.lanes.lambda[k] : lambda0;
-    const float fx = lanes ? x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda, lambda, x1.lobe)
-                           : x1.bsdf->eval(TransportMode::Radiance, wi, wo, lambda0, x1.lambda, x1.lobe);
+    const float fx = lanes ? x1.bsdf->eval({TransportMode::Radiance, x1.lobe, lambda, lambda}, wi, wo)
+                           : x1.bsdf->eval({TransportMode::Radiance, x1.lobe, lambda0, x1.lambda}, wi, wo);
     // The light's geometry does not depend on λ: the same point at every lane's wavelength.
     const float Li = lanes ? light.Li(*ls, lambda) : ls->Li;
     value[k] = fx > 0.0f ? x1.beta[k] * fx * f.cosineFactor(wi) / x1.spectralPdf * Li / (pSel * ls->pdf) : 0.0f;
@@ -170,7 +170,7 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   const Vec3 bWi = fb.toLocal(-w), bWo = fb.toLocal(towards(b, bNext));
   // x_1 bridges the light's wavelength to the camera's with its fluorescent lobe.
   constexpr SpectralLobe F = SpectralLobe::Fluorescent;
-  const float f = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, a.lambda, b.lambda, F);
+  const float f = b.bsdf->eval({TransportMode::Radiance, F, a.lambda, b.lambda}, bWi, bWo);
   if (!(f > 0.0f)) return;
   // In a scene with media the segment is traced first: its densities need its optical depths.
   const bool media = c.scene.hasMedia();
@@ -285,8 +285,10 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
       const float lambda = c.lanes.lambda[k];
       const bool lanesA = family == LightFamily::Shared && a.allLanes(c.lanes);
       const bool lanesB = family == LightFamily::Shared && b.allLanes(c.lanes);
-      fA[k] = a.bsdf->eval(TransportMode::Importance, aWi, aWo, lanesA ? lambda : a.lambda, lanesA ? lambda : p.lambdaA, p.la);
-      fB[k] = b.bsdf->eval(TransportMode::Radiance, bWi, bWo, lanesB ? lambda : p.lambdaB, lanesB ? lambda : lambdaB, p.lb);
+      fA[k] = a.bsdf->eval({TransportMode::Importance, p.la, lanesA ? lambda : a.lambda, lanesA ? lambda : p.lambdaA},
+                           aWi, aWo);
+      fB[k] = b.bsdf->eval({TransportMode::Radiance, p.lb, lanesB ? lambda : p.lambdaB, lanesB ? lambda : lambdaB}, bWi,
+                           bWo);
       any = any || (fA[k] > 0.0f && fB[k] > 0.0f);
     }
     if (!any) continue;
@@ -439,8 +441,9 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
     const Bsdf& f = *a.bsdf;
     const Vec3 wi = f.toLocal(towards(a, aPrev)), wo = f.toLocal(conn->wi);
     for (int k = a.firstLane(); k < a.endLane(c.lanes); ++k) {
-      const float fa = lanes ? a.bsdf->eval(TransportMode::Importance, wi, wo, c.lanes.lambda[k], c.lanes.lambda[k], a.lobe)
-                             : a.bsdf->eval(TransportMode::Importance, wi, wo, a.lambda, lambda, a.lobe);
+      const float fa =
+          lanes ? a.bsdf->eval({TransportMode::Importance, a.lobe, c.lanes.lambda[k], c.lanes.lambda[k]}, wi, wo)
+                : a.bsdf->eval({TransportMode::Importance, a.lobe, a.lambda, lambda}, wi, wo);
       value[k] = a.beta[k] * fa * f.cosineFactor(wo) / a.spectralPdf;
       any = any || fa > 0.0f;
     }

@@ -22,7 +22,7 @@ double cameraSide(const Scene& scene, const PathVertex& at, const Vec3& wCam, co
                   const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut,
                   const SegmentDepth& segment) {
   const float pdf = at.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe) *
-                    at.bsdf->directionPdf(TransportMode::Radiance, wCam, wTarget, lobe, lambdaIn, lambdaOut);
+                    at.bsdf->directionPdf({TransportMode::Radiance, lobe, lambdaIn, lambdaOut}, wCam, wTarget);
   return toArea(scene, pdf, at, target) * flightFactor(scene, TransportMode::Radiance, segment, target, lambdaIn);
 }
 
@@ -30,7 +30,7 @@ double lightSide(const Scene& scene, const PathVertex& at, const Vec3& wLight, c
                  const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut,
                  const SegmentDepth& segment) {
   const float pdf = at.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe) *
-                    at.bsdf->directionPdf(TransportMode::Importance, wLight, wTarget, lobe, lambdaIn, lambdaOut);
+                    at.bsdf->directionPdf({TransportMode::Importance, lobe, lambdaIn, lambdaOut}, wLight, wTarget);
   return toArea(scene, pdf, at, target) * flightFactor(scene, TransportMode::Importance, segment, target, lambdaOut);
 }
 

@@ -39,7 +39,7 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   r.specCam = fb.spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe);
   r.specLight = fb.spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe);
   r.pCamPrev =
-      r.specCam * fb.directionPdf(TransportMode::Radiance, bWo, bWi, lobe, lambdaIn, lambdaOut) * v.prevGeometry;
+      r.specCam * fb.directionPdf({TransportMode::Radiance, lobe, lambdaIn, lambdaOut}, bWo, bWi) * v.prevGeometry;
   // The light side (eq. 10 from the sum the light vertex kept): the strategy s' = m, whose
   // connection ends at x_m, with the merges at x_m.
   const SpectralLobe prevLobe =
@@ -57,7 +57,7 @@ MergeSums mergeSums(const Context& c, const std::vector<PathVertex>& C, int t, c
   if (t == 2) {
     r.total = r.total + lightTracingMultiplicity(true, r.specLight, st);
   } else {
-    const double pdf = r.specLight * fb.directionPdf(TransportMode::Importance, bWi, bWo, lobe, lambdaIn, lambdaOut);
+    const double pdf = r.specLight * fb.directionPdf({TransportMode::Importance, lobe, lambdaIn, lambdaOut}, bWi, bWo);
     r.pLightNext = toArea(c.scene, float(pdf), b, bNext) *
                    flightFactor(c.scene, TransportMode::Importance, b.arrival, bNext, lambdaOut);
     r.total = r.total + joinMultiplicity(bNext.joinable(false), lobe, bNext.lobe, st) +
@@ -158,8 +158,8 @@ void mergeLanes(const Context& c, const std::vector<PathVertex>& C, int t, const
     bool any = false;
     for (int k = k0; k < k1; ++k) {
       const float lambda = b.lanesEndHere || b.allLanes(c.lanes) ? c.lanes.lambda[k] : lambdaB;
-      const float f = own ? fb.eval(TransportMode::Radiance, bWi, bWo, lambdaIn, lambdaOut, lobe)
-                          : fb.eval(TransportMode::Radiance, bWi, bWo, lambda, lambda, lobe);
+      const float f = own ? fb.eval({TransportMode::Radiance, lobe, lambdaIn, lambdaOut}, bWi, bWo)
+                          : fb.eval({TransportMode::Radiance, lobe, lambda, lambda}, bWi, bWo);
       value[k] = betaB[k] * f * v.beta[own ? 0 : k] * scale * kernel;
       any = any || value[k] > 0.0f;
     }
@@ -203,7 +203,7 @@ void mergeSplat(const Context& c, const std::vector<PathVertex>& C, const LightV
   const SpectralLobe lobe = SpectralLobe::Elastic;
   const float lambda = v.lambda;
   const double etaMerge = etaOf(c.walk.strategies.merge, Variant::kMergeSplat, true, b.inMedium());
-  const float value = betaB * fb.eval(TransportMode::Radiance, bWi, bWo, lambda, lambda, lobe) * v.beta[0] *
+  const float value = betaB * fb.eval({TransportMode::Radiance, lobe, lambda, lambda}, bWi, bWo) * v.beta[0] *
                       fb.incidentShadingRatio(bWi) / float(etaMerge);
   if (!(value > 0.0f)) return;
   const MergeSums sums = mergeSums(c, C, 2, v, lobe, lambda, lambda, true, bWi, bWo);

@@ -150,7 +150,7 @@ bool scatter(Track& tr, const Scene& scene, TransportMode mode, const Vec3& wKno
   cur.specular = ds.specular;
   const float pdfFwd = sc.pdf * ds.pdf;
   const float pdfRev = bsdf.spectralPdf(flip(mode), sc.lambda, tr.lambda, sc.lobe) *
-                       bsdf.directionPdf(flip(mode), ds.w, wKnown, sc.lobe, lambdaIn, lambdaOut);
+                       bsdf.directionPdf({flip(mode), sc.lobe, lambdaIn, lambdaOut}, ds.w, wKnown);
   // The other side's density of the previous vertex. A delta light or the pinhole cannot be
   // reached by the other side at all.
   PathVertex& before = path[path.size() - 2];
@@ -161,8 +161,8 @@ bool scatter(Track& tr, const Scene& scene, TransportMode mode, const Vec3& wKno
     before.pdfRev = toAreaDensity(pdfRev, cur, before) * flightFactor(scene, flip(mode), cur.arrival, before, cur.lambda);
   // Every lane alive here scatters elastically through a wavelength-independent density.
   for (int k = cur.firstLane(); k < cur.endLane(lanes); ++k) {
-    const float f = cur.allLanes(lanes) ? bsdf.eval(mode, wi, wo, lanes.lambda[k], lanes.lambda[k], sc.lobe)
-                                        : bsdf.eval(mode, wi, wo, lambdaIn, lambdaOut, sc.lobe);
+    const float f = cur.allLanes(lanes) ? bsdf.eval({mode, sc.lobe, lanes.lambda[k], lanes.lambda[k]}, wi, wo)
+                                        : bsdf.eval({mode, sc.lobe, lambdaIn, lambdaOut}, wi, wo);
     tr.beta[k] *= f * bsdf.cosineFactor(ds.w) / pdfFwd;
   }
   tr.lambda = sc.lambda;
@@ -258,7 +258,8 @@ void randomWalk(const Scene& scene, Ray ray, Track* tracks, int nTracks, Transpo
     if (driver == tracks + nTracks) return;
     const SpectralChoice& sc = driver->event;
     const float lambdaIn = camera ? sc.lambda : driver->lambda, lambdaOut = camera ? driver->lambda : sc.lambda;
-    const std::optional<DirectionSample> ds = bsdf.sampleDirection(mode, wKnown, sc.lobe, lambdaIn, lambdaOut, rng.uniform2());
+    const std::optional<DirectionSample> ds =
+        bsdf.sampleDirection({mode, sc.lobe, lambdaIn, lambdaOut}, wKnown, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) return;
     float q = 0.0f;
     for (int i = 0; i < nTracks; ++i) {

@@ -233,7 +233,7 @@ T PathTracer::radiance(const Scene& scene, Ray ray, PathLanes<T>& lanes, Sampler
 
     // Direction stage at lane 0's wavelengths; every lane has the same density.
     const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(TransportMode::Radiance, wo, e.lobe, e.lambda[0], lambdaOut0, rng.uniform2());
+        bsdf.sampleDirection({TransportMode::Radiance, e.lobe, e.lambda[0], lambdaOut0}, wo, rng.uniform2());
     if (!ds || ds->pdf <= 0.0f) break;
     T next[kMaxLanes];
     for (int k = 0; k < e.n; ++k)

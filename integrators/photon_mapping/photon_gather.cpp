@@ -19,9 +19,10 @@ void gatherPhotons(const KernelPhotons& photons, float bandwidth, const Bsdf& bs
       // Fluorescent lobe: exact for any pair of wavelengths (docs/transport.md §4).
       if (fluorescent)
         for (int k = 0; k < lanes.n; ++k)
-          sum[k] += bsdf.eval(TransportMode::Radiance, wi, wo, lambda, lanes.lambda[k], SpectralLobe::Fluorescent) * power;
+          sum[k] +=
+              bsdf.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, lambda, lanes.lambda[k]}, wi, wo) * power;
       if (!elastic) continue;
-      const float fe = bsdf.eval(TransportMode::Radiance, wi, wo, lambda, lambda, SpectralLobe::Elastic) * power;
+      const float fe = bsdf.eval({TransportMode::Radiance, SpectralLobe::Elastic, lambda, lambda}, wi, wo) * power;
       if (fe <= 0.0f) continue;
       if (exactElastic) {
         xyz += sensorResponse(ctx, lambda, fe * photons.density);  // the sensor at the lane's own wavelength

@@ -248,7 +248,7 @@ Vec3 PpmIntegrator::samplePixel(const Scene& scene, Vec2 pixel, Sampler& rng, Sa
     if (e.lobe == SpectralLobe::Elastic && bsdf.has(BsdfFlags::WavelengthDependentDirection)) keepOneLane(e, uLane);
     const float lambdaOut0 = e.lobe == SpectralLobe::Elastic ? e.lambda[0] : lanes.lambda[0];
     const std::optional<DirectionSample> ds =
-        bsdf.sampleDirection(TransportMode::Radiance, wo, e.lobe, e.lambda[0], lambdaOut0, uDir);
+        bsdf.sampleDirection({TransportMode::Radiance, e.lobe, e.lambda[0], lambdaOut0}, wo, uDir);
     // The gather covers every non-specular lobe (a medium's phase function is one); a sampled
     // specular direction continues the path.
     if (!ds || !ds->specular || !(ds->pdf > 0.0f)) break;

@@ -96,7 +96,7 @@ TEST_F(AlbedoGridScene, CollisionKernelIsTheAlbedoThereTimesSigmaT) {
       const double sigmaT = 1.0 + 2.0 * (l - 400.0) / 300.0;
       const double want = albedo(l) * sigmaT * hg(mu, 0.6);
       for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance})
-        EXPECT_NEAR(bsdf.eval(mode, wi, wo, l, l, SpectralLobe::Elastic), want, 1e-5 * want) << l;
+        EXPECT_NEAR(bsdf.eval({mode, SpectralLobe::Elastic, l, l}, wi, wo), want, 1e-5 * want) << l;
       // A sampled event's f/pdf is σ_s there.
       const std::optional<ScatterSample> s = bsdf.sample(TransportMode::Radiance, wo, l, Vec3(0.3f, 0.6f, 0.2f));
       ASSERT_TRUE(s);
@@ -106,7 +106,7 @@ TEST_F(AlbedoGridScene, CollisionKernelIsTheAlbedoThereTimesSigmaT) {
   // Without a grid, the medium's one shared model and its own σ_s.
   const Bsdf plain = scene->mediumBsdf(1, Vec3(3, 0, 0));
   EXPECT_EQ(&plain.model(), scene->mediumScattering[1].get());
-  EXPECT_NEAR(plain.eval(TransportMode::Radiance, wi, wo, 500.0f, 500.0f, SpectralLobe::Elastic), 0.25 * hg(mu, 0.0),
+  EXPECT_NEAR(plain.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, wi, wo), 0.25 * hg(mu, 0.0),
               1e-6);
 }
 

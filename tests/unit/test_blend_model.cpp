@@ -60,8 +60,9 @@ TEST(Blend, ValueAndDensitiesAreTheWeightedSumsOfTheComponents) {
                     (1 - w) * b0.fluorescenceProbability(mode, lKnown) + w * b1.fluorescenceProbability(mode, lKnown), 1e-6f);
         for (const SpectralLobe lobe : {SpectralLobe::Elastic, SpectralLobe::Fluorescent}) {
           const test::Event e = test::physical(mode, wKnown, lKnown, wOther, lobe == SpectralLobe::Elastic ? lKnown : lOther);
-          const float f0 = b0.eval(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe), f1 = b1.eval(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe);
-          const float f = b.eval(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe);
+          const float f0 = b0.eval({mode, lobe, e.lambdaIn, e.lambdaOut}, e.wi, e.wo),
+                      f1 = b1.eval({mode, lobe, e.lambdaIn, e.lambdaOut}, e.wi, e.wo);
+          const float f = b.eval({mode, lobe, e.lambdaIn, e.lambdaOut}, e.wi, e.wo);
           EXPECT_TRUE(test::close(f, (1 - w) * f0 + w * f1, 1e-5, 1e-7));
           positive += f > 0.0f;
           const float lOth = lobe == SpectralLobe::Elastic ? lKnown : lOther;
@@ -69,14 +70,16 @@ TEST(Blend, ValueAndDensitiesAreTheWeightedSumsOfTheComponents) {
           EXPECT_TRUE(test::close(b.spectralPdf(mode, lKnown, lOth, lobe), (1 - w) * s0 + w * s1, 1e-5, 1e-8));
           // π_c: both components for the elastic lobe, the fluorescent one alone for the fluorescent lobe.
           const float pi0 = lobe == SpectralLobe::Elastic ? 1 - w : (fluorescent0 ? 1.0f : 0.0f);
-          const float d0 = b0.directionPdf(mode, wKnown, wOther, lobe, e.lambdaIn, e.lambdaOut);
-          const float d1 = b1.directionPdf(mode, wKnown, wOther, lobe, e.lambdaIn, e.lambdaOut);
+          const float d0 = b0.directionPdf({mode, lobe, e.lambdaIn, e.lambdaOut}, wKnown, wOther);
+          const float d1 = b1.directionPdf({mode, lobe, e.lambdaIn, e.lambdaOut}, wKnown, wOther);
           const float direction = pi0 * d0 + (1 - pi0) * d1;
-          EXPECT_TRUE(test::close(b.directionPdf(mode, wKnown, wOther, lobe, e.lambdaIn, e.lambdaOut), direction, 1e-5, 1e-8));
-          const ScatterDensity d = b.pdf(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe);
+          EXPECT_TRUE(test::close(b.directionPdf({mode, lobe, e.lambdaIn, e.lambdaOut}, wKnown, wOther), direction,
+                                  1e-5, 1e-8));
+          const ScatterDensity d = b.pdf({mode, lobe, e.lambdaIn, e.lambdaOut}, e.wi, e.wo);
           EXPECT_TRUE(test::close(d.pdf, ((1 - w) * s0 + w * s1) * direction, 1e-4, 1e-8));
           if (!fluorescent0 && lobe == SpectralLobe::Elastic) {
-            const ScatterDensity p0 = b0.pdf(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe), p1 = b1.pdf(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, lobe);
+            const ScatterDensity p0 = b0.pdf({mode, lobe, e.lambdaIn, e.lambdaOut}, e.wi, e.wo),
+                                 p1 = b1.pdf({mode, lobe, e.lambdaIn, e.lambdaOut}, e.wi, e.wo);
             EXPECT_TRUE(test::close(d.pdf, (1 - w) * p0.pdf + w * p1.pdf, 1e-5, 1e-8));
             EXPECT_TRUE(test::close(d.pdfRev, (1 - w) * p0.pdfRev + w * p1.pdfRev, 1e-5, 1e-8));
           }
@@ -149,7 +152,7 @@ TEST(Blend, DeltaComponentKeepsItsOwnPathWeight) {
     const double p = 0.6, se = std::sqrt(p * (1 - p) / n);
     EXPECT_NEAR(double(specular) / n, p, 4 * se) << toString(mode);
     const Vec3 wo = test::dirFromCosPhi(0.7f, 1.0f), wi = test::dirFromCosPhi(0.4f, 2.5f);
-    EXPECT_NEAR(b.eval(mode, wi, wo, 500.0f, 500.0f, SpectralLobe::Elastic), 0.4f * 0.5f / kPi, 1e-6f);
+    EXPECT_NEAR(b.eval({mode, SpectralLobe::Elastic, 500.0f, 500.0f}, wi, wo), 0.4f * 0.5f / kPi, 1e-6f);
   }
 }
 

@@ -160,9 +160,9 @@ TEST(BsdfInterface, FlagsTellTheTruth) {
     if (s.bsdf.has(BsdfFlags::DeltaDirection)) continue;
     bool differs = false;
     forRandomDirections(rng, [&](TransportMode mode, const Vec3& wKnown, const Vec3& wSampled) {
-      const float base = s.bsdf.directionPdf(mode, wKnown, wSampled, SpectralLobe::Elastic, 550.0f, 550.0f);
+      const float base = s.bsdf.directionPdf({mode, SpectralLobe::Elastic, 550.0f, 550.0f}, wKnown, wSampled);
       for (float l : {420.0f, 480.0f, 620.0f, 700.0f}) {
-        const float p = s.bsdf.directionPdf(mode, wKnown, wSampled, SpectralLobe::Elastic, l, l);
+        const float p = s.bsdf.directionPdf({mode, SpectralLobe::Elastic, l, l}, wKnown, wSampled);
         if (std::abs(p - base) > 1e-5f * std::max(p, base)) differs = true;
       }
     });
@@ -181,9 +181,9 @@ TEST(BsdfInterface, FluorescentDirectionDensityIgnoresTheWavelengths) {
     if (!s.bsdf.has(BsdfFlags::Fluorescent)) continue;
     int compared = 0;
     forRandomDirections(rng, [&](TransportMode mode, const Vec3& wKnown, const Vec3& wSampled) {
-      const float base = s.bsdf.directionPdf(mode, wKnown, wSampled, SpectralLobe::Fluorescent, 400.0f, 550.0f);
+      const float base = s.bsdf.directionPdf({mode, SpectralLobe::Fluorescent, 400.0f, 550.0f}, wKnown, wSampled);
       for (const auto& [li, lo] : {std::pair{380.0f, 700.0f}, {450.0f, 460.0f}, {520.0f, 640.0f}}) {
-        const float p = s.bsdf.directionPdf(mode, wKnown, wSampled, SpectralLobe::Fluorescent, li, lo);
+        const float p = s.bsdf.directionPdf({mode, SpectralLobe::Fluorescent, li, lo}, wKnown, wSampled);
         EXPECT_NEAR(p, base, 1e-6f * std::max(p, base)) << s.name << " " << toString(mode);
         compared += base > 0.0f;
       }
@@ -234,7 +234,7 @@ TEST(BsdfInterface, FluorophoreSpectraCoverTheFluorescentLobe) {
     int nonZero = 0;
     for (float li = s.range.min + 2.5f; li < s.range.max; li += 5.0f)
       for (float lo = s.range.min + 2.5f; lo < s.range.max; lo += 5.0f) {
-        if (!(s.bsdf.eval(TransportMode::Radiance, wi, wo, li, lo, SpectralLobe::Fluorescent) > 0.0f)) continue;
+        if (!(s.bsdf.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, li, lo}, wi, wo) > 0.0f)) continue;
         ++nonZero;
         EXPECT_GT(f->absorbed(li), 0.0f) << s.name << " absorbs at " << li << " nm";
         EXPECT_GT(f->reemitted(lo), 0.0f) << s.name << " re-emits at " << lo << " nm";

@@ -65,7 +65,8 @@ TEST(CheckerboardTexture, ValuesFollowTheCellParity) {
 TEST(CheckerboardTexture, JsonOnAReflectance) {
   const Vec3 n(0.0f, 0.0f, 1.0f);
   const auto reflectance = [&](const Material& m, Vec2 uv, float lambda) {
-    return test::localBsdf(m, lambda, uv).eval(TransportMode::Radiance, n, n, lambda, lambda, SpectralLobe::Elastic) * kPi;
+    return test::localBsdf(m, lambda, uv).eval({TransportMode::Radiance, SpectralLobe::Elastic, lambda, lambda}, n, n) *
+           kPi;
   };
   const auto grey = material(R"({"type": "lambertian", "reflectance": 1, "reflectance_texture": {"type": "checkerboard"}})");
   EXPECT_FLOAT_EQ(reflectance(*grey, Vec2(0.2f, 0.3f), 550.0f), 0.4f);
@@ -107,7 +108,7 @@ std::vector<float> evals(const Material& m, Vec2 uv) {
     for (const Vec3& wo : {glm::normalize(Vec3(-0.2f, -0.1f, 0.9f)), glm::normalize(Vec3(0.5f, -0.4f, 0.3f)),
                            glm::normalize(Vec3(0.1f, 0.3f, -0.8f))})
       for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance})
-        out.push_back(b.eval(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic));
+        out.push_back(b.eval({mode, SpectralLobe::Elastic, lambda, lambda}, wi, wo));
   return out;
 }
 

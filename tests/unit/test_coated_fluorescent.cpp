@@ -90,11 +90,11 @@ TEST(CoatedFluorescentSampling, SampleMatchesPdfAndEval) {
     EXPECT_FALSE(s->specular);
     EXPECT_GT(s->w.z * wKnown.z, 0.0f);
     const Event ev = physical(mode, wKnown, lKnown, s->w, s->lambda);
-    const ScatterDensity d = m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe);
+    const ScatterDensity d = m.pdf({mode, s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo);
     EXPECT_TRUE(close(s->pdf, d.pdf, 1e-4));
     EXPECT_TRUE(close(s->pdfRev, d.pdfRev, 1e-4, 1e-30));
-    EXPECT_EQ(d.pdfRev, m.pdf(flip(mode), ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe).pdf);
-    EXPECT_TRUE(close(s->f, m.eval(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe), 1e-6));
+    EXPECT_EQ(d.pdfRev, m.pdf({flip(mode), s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo).pdf);
+    EXPECT_TRUE(close(s->f, m.eval({mode, s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo), 1e-6));
   }
   EXPECT_GT(checked, 15000);
   EXPECT_GT(fluorescent, 500);
@@ -109,12 +109,12 @@ TEST(CoatedFluorescentEval, ByHandReciprocalAndModeFree) {
   const Vec3 wi = dirFromCosPhi(0.8f, 0.0f), wo = dirFromCosPhi(0.5f, 2.0f);
   const double ti = 1.0 - fresnelDielectric(0.8f, 1.5f), to = 1.0 - fresnelDielectric(0.5f, 1.5f);
   // fluorescent 420 → 575: T_i·T_o/η²·c·a·Q·e/π = ·0.7·0.8·0.8·(1/50)/π
-  EXPECT_TRUE(close(m.eval(TransportMode::Radiance, wi, wo, 420.0f, 575.0f, SpectralLobe::Fluorescent),
+  EXPECT_TRUE(close(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, 420.0f, 575.0f}, wi, wo),
                     ti * to / 2.25 * 0.7 * 0.8 * 0.8 * 0.02 / kPi, 1e-5));
   // elastic at 500 nm (no absorption): T_i·T_o/η²·r/π plus the coat's GGX reflection
   const Vec3 h = reflectionHalfVector(wi, wo);
   const double coat = fresnelDielectric(std::abs(glm::dot(wi, h)), 1.5f) * m.ggx().reflection(wi, wo);
-  EXPECT_TRUE(close(m.eval(TransportMode::Radiance, wi, wo, 500.0f, 500.0f, SpectralLobe::Elastic),
+  EXPECT_TRUE(close(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, wi, wo),
                     ti * to / 2.25 * 0.6 / kPi + coat, 1e-5));
   // Reciprocal in directions, not in wavelengths; one value in both modes.
   Rng rng(4);
@@ -122,13 +122,13 @@ TEST(CoatedFluorescentEval, ByHandReciprocalAndModeFree) {
     const Vec3 a = randomDirection(rng), b = randomDirection(rng);
     const float l1 = 380.0f + 300.0f * rng.uniform(), l2 = 380.0f + 300.0f * rng.uniform();
     for (const SpectralLobe lobe : {SpectralLobe::Elastic, SpectralLobe::Fluorescent}) {
-      const float fab = m.eval(TransportMode::Radiance, a, b, l1, l2, lobe);
-      EXPECT_TRUE(close(fab, m.eval(TransportMode::Radiance, b, a, l1, l2, lobe), 1e-5));
-      EXPECT_EQ(fab, m.eval(TransportMode::Importance, a, b, l1, l2, lobe));
+      const float fab = m.eval({TransportMode::Radiance, lobe, l1, l2}, a, b);
+      EXPECT_TRUE(close(fab, m.eval({TransportMode::Radiance, lobe, l1, l2}, b, a), 1e-5));
+      EXPECT_EQ(fab, m.eval({TransportMode::Importance, lobe, l1, l2}, a, b));
     }
   }
-  EXPECT_GT(m.eval(TransportMode::Radiance, wi, wo, 420.0f, 575.0f, SpectralLobe::Fluorescent), 0.0f);
-  EXPECT_EQ(m.eval(TransportMode::Radiance, wi, wo, 575.0f, 420.0f, SpectralLobe::Fluorescent), 0.0f);
+  EXPECT_GT(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, 420.0f, 575.0f}, wi, wo), 0.0f);
+  EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, 575.0f, 420.0f}, wi, wo), 0.0f);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -139,12 +139,12 @@ double albedoIn(const CoatedFluorescent& m, const Vec3& wi, float li) {
   // Elastic part on a fine direction grid (the GGX lobe); the fluorescent part, smooth in
   // direction, on a coarse one with 1 nm midpoints over the box emission (exact in λ).
   const double elastic = test::sphereQuadrature(1000, 300, [&](const Vec3& wo) {
-    return m.eval(TransportMode::Importance, wi, wo, li, li, SpectralLobe::Elastic) * std::abs(wo.z);
+    return m.eval({TransportMode::Importance, SpectralLobe::Elastic, li, li}, wi, wo) * std::abs(wo.z);
   });
   const double fluorescent = test::sphereQuadrature(200, 8, [&](const Vec3& wo) {
     double fl = 0.0;
     for (float lo = 550.5f; lo < 600.0f; lo += 1.0f)
-      fl += m.eval(TransportMode::Importance, wi, wo, li, lo, SpectralLobe::Fluorescent);
+      fl += m.eval({TransportMode::Importance, SpectralLobe::Fluorescent, li, lo}, wi, wo);
     return fl * std::abs(wo.z);
   });
   return elastic + fluorescent;
@@ -179,9 +179,9 @@ TEST(CoatedFluorescentLimit, IndexOneIsTheBase) {
     const float l1 = 380.0f + 300.0f * rng.uniform(), l2 = 380.0f + 300.0f * rng.uniform();
     for (const TransportMode mode : kModes) {
       for (const SpectralLobe lobe : {SpectralLobe::Elastic, SpectralLobe::Fluorescent}) {
-        EXPECT_FLOAT_EQ(m.eval(mode, a, b, l1, l2, lobe), base.eval(mode, a, b, l1, l2, lobe));
+        EXPECT_FLOAT_EQ(m.eval({mode, lobe, l1, l2}, a, b), base.eval({mode, lobe, l1, l2}, a, b));
         EXPECT_FLOAT_EQ(m.spectralPdf(mode, l1, l2, lobe), base.spectralPdf(mode, l1, l2, lobe));
-        EXPECT_FLOAT_EQ(m.directionPdf(mode, a, b, lobe, l1, l2), base.directionPdf(mode, a, b, lobe, l1, l2));
+        EXPECT_FLOAT_EQ(m.directionPdf({mode, lobe, l1, l2}, a, b), base.directionPdf({mode, lobe, l1, l2}, a, b));
       }
       const Vec3 u(rng.uniform(), rng.uniform(), rng.uniform());
       const std::optional<ScatterSample> sm = m.sample(mode, a, l1, u), sb = base.sample(mode, a, l1, u);

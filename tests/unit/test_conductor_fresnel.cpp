@@ -92,7 +92,7 @@ TEST(NamedConductors, MaterialsReflectTheMetalsFresnelTimesTheirReflectance) {
       const std::optional<ScatterSample> s = gold.sample(TransportMode::Radiance, w, l, Vec3(0.5f));
       ASSERT_TRUE(s);
       EXPECT_NEAR(s->f * c / s->pdf, F, 1e-4) << "cos " << c << " at " << l;
-      EXPECT_NEAR(half.eval(TransportMode::Radiance, mirrored, w, l, l, SpectralLobe::Elastic) * c, 0.5 * F, 1e-4);
+      EXPECT_NEAR(half.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, mirrored, w) * c, 0.5 * F, 1e-4);
     }
   }
   // A rough conductor's F at the microfacet normal, against the same microfacet term with F = 1.
@@ -101,9 +101,9 @@ TEST(NamedConductors, MaterialsReflectTheMetalsFresnelTimesTheirReflectance) {
   const RoughConductor schlickOne(Spectrum::constant(1.0f), 0.3f, 0.3f);  // F = 1: the bare microfacet term
   const Vec3 h = glm::normalize(wi + wo);
   const float l = 520.0f;
-  EXPECT_NEAR(rough.eval(TransportMode::Radiance, wi, wo, l, l, SpectralLobe::Elastic),
+  EXPECT_NEAR(rough.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, wi, wo),
               complexFresnel(glm::dot(wi, h), au.eta(l), au.k(l)) *
-                  schlickOne.eval(TransportMode::Radiance, wi, wo, l, l, SpectralLobe::Elastic),
+                  schlickOne.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, wi, wo),
               1e-4);
 }
 

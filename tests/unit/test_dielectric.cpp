@@ -129,7 +129,7 @@ TEST(DielectricSampling, SnellsLawAndSides) {
     const float l = kRange.min + rng.uniform() * kRange.width();
     const float F = fresnelDielectric(std::abs(w.z), m.relativeEta(w, l));
     const std::optional<DirectionSample> ds =
-        m.sampleDirection(mode, w, SpectralLobe::Elastic, l, l, Vec2(rng.uniform(), rng.uniform()));
+        m.sampleDirection({mode, SpectralLobe::Elastic, l, l}, w, Vec2(rng.uniform(), rng.uniform()));
     ASSERT_TRUE(ds);
     EXPECT_TRUE(ds->specular);
     EXPECT_NEAR(glm::length(ds->w), 1.0f, 1e-6f);
@@ -158,15 +158,15 @@ TEST(DielectricSampling, TotalInternalReflection) {
     for (const TransportMode mode : kModes)
       for (float u = 0.0f; u < 1.0f; u += 0.01f) {
         const std::optional<DirectionSample> ds =
-            m.sampleDirection(mode, inside, SpectralLobe::Elastic, 500.0f, 500.0f, Vec2(u, 0.5f));
+            m.sampleDirection({mode, SpectralLobe::Elastic, 500.0f, 500.0f}, inside, Vec2(u, 0.5f));
         ASSERT_TRUE(ds);
         EXPECT_EQ(ds->w, specular::reflect(inside));
         EXPECT_EQ(ds->pdf, 1.0f);
       }
     // Nothing leaves into the outside: no value and no density for any upward direction.
     const Vec3 out = dirFromCosPhi(std::sqrt(1.0f - sqr(1.5f * s * 0.5f)), kPi);
-    EXPECT_EQ(m.eval(TransportMode::Radiance, out, inside, 500.0f, 500.0f, SpectralLobe::Elastic), 0.0f);
-    EXPECT_EQ(m.directionPdf(TransportMode::Importance, inside, out, SpectralLobe::Elastic, 500.0f, 500.0f), 0.0f);
+    EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, out, inside), 0.0f);
+    EXPECT_EQ(m.directionPdf({TransportMode::Importance, SpectralLobe::Elastic, 500.0f, 500.0f}, inside, out), 0.0f);
   }
   // Just inside the critical angle the light still gets out.
   const float s = sinC * 0.999f;
@@ -212,13 +212,13 @@ TEST(DielectricSampling, SampleMatchesPdfBothWays) {
     ASSERT_TRUE(s);
     EXPECT_TRUE(s->specular);
     const Event ev = physical(mode, w, s->w);
-    const ScatterDensity d = m.pdf(mode, ev.wi, ev.wo, l, l, SpectralLobe::Elastic);
+    const ScatterDensity d = m.pdf({mode, SpectralLobe::Elastic, l, l}, ev.wi, ev.wo);
     EXPECT_EQ(s->pdf, d.pdf);
     EXPECT_EQ(s->pdfRev, d.pdfRev);
-    EXPECT_TRUE(close(s->f, m.eval(mode, ev.wi, ev.wo, l, l, SpectralLobe::Elastic), 1e-6));
+    EXPECT_TRUE(close(s->f, m.eval({mode, SpectralLobe::Elastic, l, l}, ev.wi, ev.wo), 1e-6));
     // The reverse density is the forward density of the other mode, and (F being the same from both
     // sides) equal to the forward one.
-    EXPECT_EQ(d.pdfRev, m.pdf(flip(mode), ev.wi, ev.wo, l, l, SpectralLobe::Elastic).pdf);
+    EXPECT_EQ(d.pdfRev, m.pdf({flip(mode), SpectralLobe::Elastic, l, l}, ev.wi, ev.wo).pdf);
     EXPECT_NEAR(s->pdfRev, s->pdf, 2e-6 + crossSideTolerance(w, s->w));
   }
 }
@@ -229,12 +229,12 @@ TEST(DielectricSampling, DiscreteProbabilitiesSumToOne) {
     for (const Vec3& w : knownDirections())
       for (const float l : {380.0f, 550.0f, 820.0f}) {
         double total = 0.0;
-        for (const Vec3& o : outcomes(m, w, l)) total += m.directionPdf(mode, w, o, SpectralLobe::Elastic, l, l);
+        for (const Vec3& o : outcomes(m, w, l)) total += m.directionPdf({mode, SpectralLobe::Elastic, l, l}, w, o);
         EXPECT_NEAR(total, 1.0, 1e-6) << toString(mode) << " cos θ = " << w.z;
         // Spectral stage: elastic with probability 1, no fluorescent lobe.
         EXPECT_EQ(m.spectralPdf(mode, l, l, SpectralLobe::Elastic), 1.0f);
         EXPECT_EQ(m.spectralPdf(mode, l, 600.0f, SpectralLobe::Fluorescent), 0.0f);
-        EXPECT_EQ(m.eval(mode, w, outcomes(m, w, l).back(), l, l, SpectralLobe::Fluorescent), 0.0f);
+        EXPECT_EQ(m.eval({mode, SpectralLobe::Fluorescent, l, l}, w, outcomes(m, w, l).back()), 0.0f);
       }
 }
 
@@ -249,8 +249,8 @@ TEST(DielectricEval, NothingOffTheTwoDirections) {
     if (nearLobe) continue;
     for (const TransportMode mode : kModes) {
       const Event ev = physical(mode, w, other);
-      EXPECT_EQ(m.eval(mode, ev.wi, ev.wo, l, l, SpectralLobe::Elastic), 0.0f);
-      EXPECT_EQ(m.pdf(mode, ev.wi, ev.wo, l, l, SpectralLobe::Elastic).pdf, 0.0f);
+      EXPECT_EQ(m.eval({mode, SpectralLobe::Elastic, l, l}, ev.wi, ev.wo), 0.0f);
+      EXPECT_EQ(m.pdf({mode, SpectralLobe::Elastic, l, l}, ev.wi, ev.wo).pdf, 0.0f);
     }
   }
 }
@@ -266,8 +266,8 @@ TEST(DielectricModes, ImportanceCarriesPowerRPlusTIsOne) {
     for (const float l : {400.0f, 550.0f, 700.0f}) {
       double power = 0.0;
       for (const Vec3& wo : outcomes(m, wi, l)) {
-        const float f = m.eval(TransportMode::Importance, wi, wo, l, l, SpectralLobe::Elastic);
-        const float p = m.directionPdf(TransportMode::Importance, wi, wo, SpectralLobe::Elastic, l, l);
+        const float f = m.eval({TransportMode::Importance, SpectralLobe::Elastic, l, l}, wi, wo);
+        const float p = m.directionPdf({TransportMode::Importance, SpectralLobe::Elastic, l, l}, wi, wo);
         power += f * std::abs(wo.z);
         if (p > 0.0f) EXPECT_NEAR(f * std::abs(wo.z) / p, 1.0f, 1e-5f);
       }
@@ -286,8 +286,8 @@ TEST(DielectricModes, RadianceRefractionScalesByEtaSquared) {
     const float etaI = sideIndex(m, *wi, l), etaO = sideIndex(m, wo, l);
     // The same physical event (light from ω_i to ω_o) seen from either end: the path weights
     // f·|cos θ_sampled| differ by exactly (η_o/η_i)².
-    const float fR = m.eval(TransportMode::Radiance, *wi, wo, l, l, SpectralLobe::Elastic);
-    const float fI = m.eval(TransportMode::Importance, *wi, wo, l, l, SpectralLobe::Elastic);
+    const float fR = m.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, *wi, wo);
+    const float fI = m.eval({TransportMode::Importance, SpectralLobe::Elastic, l, l}, *wi, wo);
     EXPECT_NEAR(fR * std::abs(wi->z), sqr(etaO / etaI) * fI * std::abs(wo.z),
                 sqr(etaO / etaI) * (2e-6 + crossSideTolerance(wo, *wi)));
     // Radiance weight = (η_o/η_i)²·T.
@@ -299,10 +299,10 @@ TEST(DielectricModes, RadianceRefractionScalesByEtaSquared) {
   // radiance leaving it shrinks, 0.96/1.5².
   const Dielectric g(Ior::constant(1.5), kRange);
   const Vec3 up(0, 0, 1), down(0, 0, -1);
-  EXPECT_NEAR(g.eval(TransportMode::Radiance, up, down, 500.0f, 500.0f, SpectralLobe::Elastic), 2.16f, 1e-5f);
-  EXPECT_NEAR(g.eval(TransportMode::Radiance, down, up, 500.0f, 500.0f, SpectralLobe::Elastic), 0.96f / 2.25f, 1e-6f);
-  EXPECT_NEAR(g.eval(TransportMode::Importance, up, down, 500.0f, 500.0f, SpectralLobe::Elastic), 0.96f, 1e-6f);
-  EXPECT_NEAR(g.eval(TransportMode::Importance, down, up, 500.0f, 500.0f, SpectralLobe::Elastic), 0.96f, 1e-6f);
+  EXPECT_NEAR(g.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, up, down), 2.16f, 1e-5f);
+  EXPECT_NEAR(g.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, down, up), 0.96f / 2.25f, 1e-6f);
+  EXPECT_NEAR(g.eval({TransportMode::Importance, SpectralLobe::Elastic, 500.0f, 500.0f}, up, down), 0.96f, 1e-6f);
+  EXPECT_NEAR(g.eval({TransportMode::Importance, SpectralLobe::Elastic, 500.0f, 500.0f}, down, up), 0.96f, 1e-6f);
 }
 
 TEST(DielectricModes, VeachRelationForRefraction) {
@@ -315,8 +315,8 @@ TEST(DielectricModes, VeachRelationForRefraction) {
     const Vec3 b = randomDirection(rng);
     const float l = kRange.min + rng.uniform() * kRange.width();
     for (const Vec3& a : outcomes(m, b, l)) {
-      const float fAB = m.eval(TransportMode::Radiance, a, b, l, l, SpectralLobe::Elastic);
-      const float fBA = m.eval(TransportMode::Importance, b, a, l, l, SpectralLobe::Elastic);
+      const float fAB = m.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, a, b);
+      const float fBA = m.eval({TransportMode::Importance, SpectralLobe::Elastic, l, l}, b, a);
       EXPECT_TRUE(close(fAB / sqr(sideIndex(m, b, l)), fBA / sqr(sideIndex(m, a, l)), 2e-5));
     }
   }
@@ -332,7 +332,7 @@ TEST(DielectricModes, UniformFieldIsInvariant) {
       const auto field = [&](const Vec3& w) { return sqr(sideIndex(m, w, l)); };
       double gathered = 0.0;
       for (const Vec3& wi : outcomes(m, wo, l))
-        gathered += m.eval(TransportMode::Radiance, wi, wo, l, l, SpectralLobe::Elastic) * std::abs(wi.z) * field(wi);
+        gathered += m.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, wi, wo) * std::abs(wi.z) * field(wi);
       EXPECT_NEAR(gathered, field(wo), 1e-5 * field(wo)) << "cos θ_o = " << wo.z << ", λ = " << l;
     }
 }
@@ -356,10 +356,10 @@ TEST(DielectricDispersion, EachWavelengthRefractsIntoItsOwnDirection) {
   EXPECT_NEAR(std::acos(std::clamp(glm::dot(blue, red), -1.0f, 1.0f)), expected, 0.2e-3f);
   EXPECT_GT(std::abs(blue.z), std::abs(red.z)) << "blue bends more, towards the normal";
   // The red lobe does not contain the blue direction, and vice versa.
-  EXPECT_EQ(m.eval(TransportMode::Radiance, blue, w, 700.0f, 700.0f, SpectralLobe::Elastic), 0.0f);
-  EXPECT_EQ(m.eval(TransportMode::Radiance, red, w, 400.0f, 400.0f, SpectralLobe::Elastic), 0.0f);
-  EXPECT_GT(m.eval(TransportMode::Radiance, blue, w, 400.0f, 400.0f, SpectralLobe::Elastic), 0.0f);
-  EXPECT_EQ(m.directionPdf(TransportMode::Radiance, w, blue, SpectralLobe::Elastic, 700.0f, 700.0f), 0.0f);
+  EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 700.0f, 700.0f}, blue, w), 0.0f);
+  EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 400.0f, 400.0f}, red, w), 0.0f);
+  EXPECT_GT(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 400.0f, 400.0f}, blue, w), 0.0f);
+  EXPECT_EQ(m.directionPdf({TransportMode::Radiance, SpectralLobe::Elastic, 700.0f, 700.0f}, w, blue), 0.0f);
   // A constant index does not disperse.
   const Dielectric flat(Ior::constant(1.5), kRange);
   EXPECT_EQ(flat.sample(TransportMode::Radiance, w, 400.0f, Vec3(0.5f, 0.99f, 0.5f))->w,

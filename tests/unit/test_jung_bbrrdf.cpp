@@ -184,14 +184,14 @@ TEST(JungBbrrdfSampling, SampleMatchesPdfAndEval) {
       EXPECT_GT(s->pdf, 0.0f);
       EXPECT_FALSE(s->specular);
       const Event ev = physical(mode, wKnown, lKnown, s->w, s->lambda);
-      const ScatterDensity d = m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe);
+      const ScatterDensity d = m.pdf({mode, s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo);
       EXPECT_TRUE(close(s->pdf, d.pdf, 1e-4)) << toString(mode) << " λ = " << lKnown;
       EXPECT_TRUE(close(s->pdfRev, d.pdfRev, 1e-4, 1e-30)) << toString(mode) << " λ = " << lKnown;
       // The reverse density is the forward density of the other mode (one computation, two views).
-      const ScatterDensity back = m.pdf(flip(mode), ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe);
+      const ScatterDensity back = m.pdf({flip(mode), s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo);
       EXPECT_TRUE(close(d.pdfRev, back.pdf, 1e-6, 1e-30));
       EXPECT_TRUE(close(d.pdf, back.pdfRev, 1e-6, 1e-30));
-      EXPECT_TRUE(close(s->f, m.eval(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe), 1e-6));
+      EXPECT_TRUE(close(s->f, m.eval({mode, s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo), 1e-6));
       // f·|cos θ_sampled| / pdf = albedoOut(λ_o) (camera paths) or albedoIn(λ_i) (light paths).
       EXPECT_TRUE(close(s->f * std::abs(s->w.z) / s->pdf, albedo, 1e-4)) << toString(mode) << " λ = " << lKnown;
     }
@@ -220,10 +220,10 @@ TEST(JungBbrrdfSampling, DensityIntegratesToOne) {
         const float albedo = mode == TransportMode::Radiance ? m.albedoOut(lKnown) : m.albedoIn(lKnown);
         const double total = sphereIntegral(8, 4, [&](const Vec3& w) {
           const Event ee = physical(mode, wKnown, lKnown, w, lKnown);
-          double sum = m.pdf(mode, ee.wi, ee.wo, ee.lambdaIn, ee.lambdaOut, SpectralLobe::Elastic).pdf;
+          double sum = m.pdf({mode, SpectralLobe::Elastic, ee.lambdaIn, ee.lambdaOut}, ee.wi, ee.wo).pdf;
           for (int k = 0; k < nL; ++k) {
             const Event ev = physical(mode, wKnown, lKnown, w, float(kRange.min + (k + 0.5) * dl));
-            sum += dl * m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, SpectralLobe::Fluorescent).pdf;
+            sum += dl * m.pdf({mode, SpectralLobe::Fluorescent, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo).pdf;
           }
           return sum;
         });
@@ -243,10 +243,11 @@ TEST(JungBbrrdfSampling, DensityIntegratesToOne) {
 double numericAlbedoIn(const JungBbrrdf& m, const Vec3& wi, float lambdaIn, double dl) {
   const int nL = int(kRange.width() / dl);
   return sphereIntegral(4, 2, [&](const Vec3& wo) {
-    double f = m.eval(TransportMode::Radiance, wi, wo, lambdaIn, lambdaIn, SpectralLobe::Elastic);
+    double f = m.eval({TransportMode::Radiance, SpectralLobe::Elastic, lambdaIn, lambdaIn}, wi, wo);
     for (int k = 0; k < nL; ++k)
-      f += dl * m.eval(TransportMode::Radiance, wi, wo, lambdaIn, float(kRange.min + (k + 0.5) * dl),
-                       SpectralLobe::Fluorescent);
+      f += dl *
+           m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, lambdaIn, float(kRange.min + (k + 0.5) * dl)},
+                  wi, wo);
     return f * std::abs(wo.z);
   });
 }
@@ -255,10 +256,11 @@ double numericAlbedoIn(const JungBbrrdf& m, const Vec3& wi, float lambdaIn, doub
 double numericAlbedoOut(const JungBbrrdf& m, const Vec3& wo, float lambdaOut, double dl) {
   const int nL = int(kRange.width() / dl);
   return sphereIntegral(4, 2, [&](const Vec3& wi) {
-    double f = m.eval(TransportMode::Radiance, wi, wo, lambdaOut, lambdaOut, SpectralLobe::Elastic);
+    double f = m.eval({TransportMode::Radiance, SpectralLobe::Elastic, lambdaOut, lambdaOut}, wi, wo);
     for (int k = 0; k < nL; ++k)
-      f += dl * m.eval(TransportMode::Radiance, wi, wo, float(kRange.min + (k + 0.5) * dl), lambdaOut,
-                       SpectralLobe::Fluorescent);
+      f += dl *
+           m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, float(kRange.min + (k + 0.5) * dl), lambdaOut},
+                  wi, wo);
     return f * std::abs(wi.z);
   });
 }
@@ -374,15 +376,15 @@ TEST(JungBbrrdfReciprocity, DirectionsAreReciprocalForBothLobes) {
       const float l1 = kRange.min + rng.uniform() * kRange.width();
       const float l2 = kRange.min + rng.uniform() * kRange.width();
       for (const SpectralLobe lobe : {SpectralLobe::Elastic, SpectralLobe::Fluorescent}) {
-        EXPECT_EQ(m.eval(TransportMode::Radiance, a, b, l1, l2, lobe),
-                  m.eval(TransportMode::Radiance, b, a, l1, l2, lobe));
+        EXPECT_EQ(m.eval({TransportMode::Radiance, lobe, l1, l2}, a, b),
+                  m.eval({TransportMode::Radiance, lobe, l1, l2}, b, a));
         if (a.z * b.z < 0.0f) {
-          EXPECT_EQ(m.eval(TransportMode::Radiance, a, b, l1, l2, lobe), 0.0f) << "no transmission";
+          EXPECT_EQ(m.eval({TransportMode::Radiance, lobe, l1, l2}, a, b), 0.0f) << "no transmission";
         }
       }
       // The densities are reciprocal in direction too: pdf(a → b) in one mode = pdfRev.
-      const ScatterDensity d = m.pdf(TransportMode::Importance, a, b, l1, l1, SpectralLobe::Elastic);
-      const ScatterDensity e = m.pdf(TransportMode::Radiance, a, b, l1, l1, SpectralLobe::Elastic);
+      const ScatterDensity d = m.pdf({TransportMode::Importance, SpectralLobe::Elastic, l1, l1}, a, b);
+      const ScatterDensity e = m.pdf({TransportMode::Radiance, SpectralLobe::Elastic, l1, l1}, a, b);
       EXPECT_TRUE(close(d.pdf, e.pdfRev, 1e-6, 1e-30));
     }
   }
@@ -394,8 +396,9 @@ TEST(JungBbrrdfReciprocity, WavelengthsAreNotReciprocal) {
     // Box spectra: f(420 → 575) = c·a(420)·Q·e(575)/π = 1·0.8·0.9·(1/50)/π = 0.0144/π,
     // f(575 → 420) = c·a(575)·Q·e(420)/π = 0 (no absorption at 575 nm, no emission at 420 nm).
     const JungBbrrdf m(boxParams(), kRange);
-    EXPECT_NEAR(m.eval(TransportMode::Radiance, wi, wo, 420.0f, 575.0f, SpectralLobe::Fluorescent), 0.0144 / kPi, 1e-7);
-    EXPECT_EQ(m.eval(TransportMode::Radiance, wi, wo, 575.0f, 420.0f, SpectralLobe::Fluorescent), 0.0f);
+    EXPECT_NEAR(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, 420.0f, 575.0f}, wi, wo), 0.0144 / kPi,
+                1e-7);
+    EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, 575.0f, 420.0f}, wi, wo), 0.0f);
   }
   {
     // Overlapping Gaussians: both directions fluoresce, with different values.
@@ -410,11 +413,11 @@ TEST(JungBbrrdfReciprocity, WavelengthsAreNotReciprocal) {
     const double f12 = 0.6 * a(l1) * 0.7 * e(l2) / kPi, f21 = 0.6 * a(l2) * 0.7 * e(l1) / kPi;
     // f12 ≈ 1.70e-3, f21 ≈ 1.75e-4: about a factor of 10 apart.
     ASSERT_GT(f12 / f21, 5.0);
-    EXPECT_TRUE(close(m.eval(TransportMode::Radiance, wi, wo, l1, l2, SpectralLobe::Fluorescent), f12, 2e-3));
-    EXPECT_TRUE(close(m.eval(TransportMode::Radiance, wi, wo, l2, l1, SpectralLobe::Fluorescent), f21, 2e-3));
+    EXPECT_TRUE(close(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, l1, l2}, wi, wo), f12, 2e-3));
+    EXPECT_TRUE(close(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, l2, l1}, wi, wo), f21, 2e-3));
     // Directions swapped, wavelengths kept: unchanged.
-    EXPECT_EQ(m.eval(TransportMode::Radiance, wi, wo, l1, l2, SpectralLobe::Fluorescent),
-              m.eval(TransportMode::Radiance, wo, wi, l1, l2, SpectralLobe::Fluorescent));
+    EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, l1, l2}, wi, wo),
+              m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, l1, l2}, wo, wi));
   }
 }
 

@@ -75,8 +75,9 @@ TEST(LambertianChi2, DirectionsBothModesBothSides) {
               for (int b = 0; b < sub; ++b) {
                 const Vec3 w = dirFromCosPhi(float(-1.0 + dc * (ic + (a + 0.5) / sub)), float(dp * (ip + (b + 0.5) / sub)));
                 const Event ev = physical(mode, wKnown, lKnown, w, lKnown);
-                expected[ic * nPhi + ip] += n * (dc / sub) * (dp / sub) *
-                                            m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, SpectralLobe::Elastic).pdf;
+                expected[ic * nPhi + ip] +=
+                    n * (dc / sub) * (dp / sub) *
+                    m.pdf({mode, SpectralLobe::Elastic, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo).pdf;
               }
         EXPECT_GT(test::chi2PValue(observed, expected), 1e-3);
       }
@@ -102,13 +103,13 @@ TEST(LambertianSampling, SampleMatchesPdfAndEval) {
     EXPECT_FALSE(s->specular);
     EXPECT_GT(s->w.z * wKnown.z, 0.0f) << "reflection stays on the known side";
     const Event ev = physical(mode, wKnown, lKnown, s->w, s->lambda);
-    const ScatterDensity d = m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, SpectralLobe::Elastic);
+    const ScatterDensity d = m.pdf({mode, SpectralLobe::Elastic, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo);
     EXPECT_TRUE(close(s->pdf, d.pdf, 1e-4));
     EXPECT_TRUE(close(s->pdfRev, d.pdfRev, 1e-4));
     // cosine-weighted both ways: pdf = |cos θ_sampled|/π, pdfRev = |cos θ_known|/π
     EXPECT_TRUE(close(s->pdf, std::abs(s->w.z) / kPi, 1e-5));
     EXPECT_TRUE(close(s->pdfRev, std::abs(wKnown.z) / kPi, 1e-5));
-    EXPECT_TRUE(close(s->f, m.eval(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, SpectralLobe::Elastic), 1e-6));
+    EXPECT_TRUE(close(s->f, m.eval({mode, SpectralLobe::Elastic, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo), 1e-6));
     EXPECT_TRUE(close(s->f, r / kPi, 1e-6));
     // weight f·|cos|/pdf = r(λ) exactly (perfect importance sampling)
     EXPECT_TRUE(close(s->f * std::abs(s->w.z) / s->pdf, r, 1e-5));
@@ -129,7 +130,7 @@ TEST(LambertianSampling, DensityIntegratesToOne) {
         for (int i = 0; i < nCos; ++i)
           for (int j = 0; j < nPhi; ++j) {
             const Event ev = physical(mode, wKnown, l, dirFromCosPhi(float(-1.0 + (i + 0.5) * dc), float((j + 0.5) * dp)), l);
-            total += dc * dp * m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, SpectralLobe::Elastic).pdf;
+            total += dc * dp * m.pdf({mode, SpectralLobe::Elastic, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo).pdf;
           }
         if (m.reflectance()(l) > 0.0f) {
           EXPECT_NEAR(total, 1.0, 1e-5) << toString(mode) << " λ = " << l;
@@ -146,20 +147,20 @@ TEST(LambertianEval, ValueIsReflectanceOverPiAndNoTransmission) {
   // r(600) = 0.4 + 0.2·(100/200) = 0.5; r(800) = 0.
   const Vec3 up1 = glm::normalize(Vec3(0.1f, 0.2f, 0.9f)), up2 = glm::normalize(Vec3(-0.6f, 0.3f, 0.2f));
   const Vec3 down1 = glm::normalize(Vec3(0.4f, -0.1f, -0.8f)), down2 = glm::normalize(Vec3(-0.3f, -0.3f, -0.4f));
-  EXPECT_NEAR(m.eval(TransportMode::Radiance, up1, up2, 450.0f, 450.0f, SpectralLobe::Elastic), 0.5 / kPi, 1e-7);
-  EXPECT_NEAR(m.eval(TransportMode::Radiance, up1, up2, 500.0f, 500.0f, SpectralLobe::Elastic), 0.4 / kPi, 1e-7);
+  EXPECT_NEAR(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 450.0f, 450.0f}, up1, up2), 0.5 / kPi, 1e-7);
+  EXPECT_NEAR(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, up1, up2), 0.4 / kPi, 1e-7);
   // two-sided
-  EXPECT_NEAR(m.eval(TransportMode::Radiance, down1, down2, 600.0f, 600.0f, SpectralLobe::Elastic), 0.5 / kPi, 1e-7);
-  EXPECT_EQ(m.eval(TransportMode::Radiance, up1, up2, 800.0f, 800.0f, SpectralLobe::Elastic), 0.0f);
+  EXPECT_NEAR(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 600.0f, 600.0f}, down1, down2), 0.5 / kPi, 1e-7);
+  EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 800.0f, 800.0f}, up1, up2), 0.0f);
   // Opposite hemispheres: no transmission, and no density for it.
   for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
-    EXPECT_EQ(m.eval(mode, up1, down1, 450.0f, 450.0f, SpectralLobe::Elastic), 0.0f);
-    EXPECT_EQ(m.eval(mode, down2, up2, 450.0f, 450.0f, SpectralLobe::Elastic), 0.0f);
-    const ScatterDensity d = m.pdf(mode, up1, down1, 450.0f, 450.0f, SpectralLobe::Elastic);
+    EXPECT_EQ(m.eval({mode, SpectralLobe::Elastic, 450.0f, 450.0f}, up1, down1), 0.0f);
+    EXPECT_EQ(m.eval({mode, SpectralLobe::Elastic, 450.0f, 450.0f}, down2, up2), 0.0f);
+    const ScatterDensity d = m.pdf({mode, SpectralLobe::Elastic, 450.0f, 450.0f}, up1, down1);
     EXPECT_EQ(d.pdf, 0.0f);
     EXPECT_EQ(d.pdfRev, 0.0f);
     // No fluorescent lobe.
-    EXPECT_EQ(m.eval(mode, up1, up2, 450.0f, 600.0f, SpectralLobe::Fluorescent), 0.0f);
+    EXPECT_EQ(m.eval({mode, SpectralLobe::Fluorescent, 450.0f, 600.0f}, up1, up2), 0.0f);
     EXPECT_EQ(m.spectralPdf(mode, 450.0f, 600.0f, SpectralLobe::Fluorescent), 0.0f);
     EXPECT_EQ(m.spectralPdf(mode, 450.0f, 450.0f, SpectralLobe::Elastic), 1.0f);
     EXPECT_EQ(m.spectralPdf(mode, 800.0f, 800.0f, SpectralLobe::Elastic), 0.0f);
@@ -169,8 +170,8 @@ TEST(LambertianEval, ValueIsReflectanceOverPiAndNoTransmission) {
   for (int i = 0; i < 1000; ++i) {
     const Vec3 a = randomDirection(rng), b = randomDirection(rng);
     const float l = kRange.min + rng.uniform() * kRange.width();
-    EXPECT_EQ(m.eval(TransportMode::Radiance, a, b, l, l, SpectralLobe::Elastic),
-              m.eval(TransportMode::Radiance, b, a, l, l, SpectralLobe::Elastic));
+    EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, a, b),
+              m.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, b, a));
   }
 }
 

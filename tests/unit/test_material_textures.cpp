@@ -148,7 +148,7 @@ TEST_F(MaterialTextures, PerHitModelLivesInTheBsdf) {
   const auto plain = material(R"({"type": "lambertian", "reflectance": 1})", dir);
   const Vec3 wi = glm::normalize(Vec3(0.3f, 0.1f, 0.9f)), wo = glm::normalize(Vec3(-0.2f, 0.4f, 0.8f));
   const auto value = [&](const Bsdf& b) {
-    return b.eval(TransportMode::Radiance, wi, wo, 550.0f, 550.0f, SpectralLobe::Elastic) * kPi;
+    return b.eval({TransportMode::Radiance, SpectralLobe::Elastic, 550.0f, 550.0f}, wi, wo) * kPi;
   };
   const auto inside = [](const Bsdf& b) {
     const auto* p = reinterpret_cast<const unsigned char*>(&b.model());
@@ -207,7 +207,7 @@ TEST_F(MaterialTextures, RgbReflectanceIsTheJakobHanikaSpectrum) {
   const Bsdf b = test::localBsdf(*m, 550.0f, Vec2(0.3f, 0.6f));
   const Vec3 w(0.0f, 0.0f, 1.0f);
   for (float l = 300.0f; l <= 830.0f; l += 10.0f) {
-    const float r = b.eval(TransportMode::Radiance, w, w, l, l, SpectralLobe::Elastic) * kPi;
+    const float r = b.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, w, w) * kPi;
     EXPECT_NEAR(r, 0.5f * s(l), 1e-6f) << l;
     EXPECT_GE(r, 0.0f);
     EXPECT_LE(r, 0.5f);

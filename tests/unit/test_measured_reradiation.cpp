@@ -90,10 +90,10 @@ TEST(MeasuredReradiation, SampleMatchesPdfAndDensitiesIntegrateToOne) {
     const auto s = m.sample(mode, w, l, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
     if (!s) continue;
     const test::Event ev = test::physical(mode, w, l, s->w, s->lambda);
-    const ScatterDensity d = m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe);
+    const ScatterDensity d = m.pdf({mode, s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo);
     EXPECT_TRUE(close(s->pdf, d.pdf, 1e-4));
     EXPECT_TRUE(close(s->pdfRev, d.pdfRev, 1e-4, 1e-30));
-    EXPECT_TRUE(close(s->f, m.eval(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe), 1e-6));
+    EXPECT_TRUE(close(s->f, m.eval({mode, s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo), 1e-6));
     // The sample weight is the albedo of the known side: d + A (light) or d + B (camera).
     const float albedo = m.diagonal(l) + (mode == TransportMode::Importance ? m.A(l) : m.B(l));
     EXPECT_TRUE(close(s->f * std::abs(s->w.z) / s->pdf, albedo, 1e-3)) << toString(mode) << " λ = " << l;
@@ -117,11 +117,12 @@ TEST(MeasuredReradiation, DirectionallyReciprocalNotSpectrally) {
     const Vec3 a = test::randomDirection(rng), b = test::randomDirection(rng);
     const float li = 350.0f + 150.0f * rng.uniform(), lo = 500.0f + 200.0f * rng.uniform();
     for (const SpectralLobe lobe : {SpectralLobe::Elastic, SpectralLobe::Fluorescent})
-      EXPECT_EQ(m.eval(TransportMode::Radiance, a, b, li, lo, lobe), m.eval(TransportMode::Importance, b, a, li, lo, lobe));
+      EXPECT_EQ(m.eval({TransportMode::Radiance, lobe, li, lo}, a, b),
+                m.eval({TransportMode::Importance, lobe, li, lo}, b, a));
   }
   const Vec3 n(0, 0, 1);
-  EXPECT_GT(m.eval(TransportMode::Radiance, n, n, 425.0f, 550.0f, SpectralLobe::Fluorescent), 0.0f);
-  EXPECT_EQ(m.eval(TransportMode::Radiance, n, n, 550.0f, 425.0f, SpectralLobe::Fluorescent), 0.0f);
+  EXPECT_GT(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, 425.0f, 550.0f}, n, n), 0.0f);
+  EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, 550.0f, 425.0f}, n, n), 0.0f);
 }
 
 TEST(MeasuredReradiation, EnergyAboveOneIsAnError) {

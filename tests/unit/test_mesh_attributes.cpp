@@ -91,7 +91,7 @@ float reflectanceAt(const Scene& s, uint32_t prim, Vec2 bary, float lambda) {
   h.prim = prim;
   h.bary = bary;
   const Vec3 n(0, 0, 1);
-  return s.bsdf(h, {&lambda, 1}).eval(TransportMode::Radiance, n, n, lambda, lambda, SpectralLobe::Elastic) * kPi;
+  return s.bsdf(h, {&lambda, 1}).eval({TransportMode::Radiance, SpectralLobe::Elastic, lambda, lambda}, n, n) * kPi;
 }
 
 TEST_F(MeshAttributes, VertexValuesInterpolateFaceValuesAreConstant) {
@@ -136,8 +136,8 @@ TEST_F(MeshAttributes, VertexValuesInterpolateFaceValuesAreConstant) {
                                                        std::to_string(alpha) + "}"));
   const Bsdf untextured = plain->bsdf(h, {&lambda, 1});
   const Vec3 wi = glm::normalize(Vec3(0.3f, 0.1f, 0.8f)), wo = glm::normalize(Vec3(-0.2f, 0.2f, 0.9f));
-  EXPECT_NEAR(textured.eval(TransportMode::Radiance, wi, wo, lambda, lambda, SpectralLobe::Elastic),
-              untextured.eval(TransportMode::Radiance, wi, wo, lambda, lambda, SpectralLobe::Elastic), 1e-4f);
+  EXPECT_NEAR(textured.eval({TransportMode::Radiance, SpectralLobe::Elastic, lambda, lambda}, wi, wo),
+              untextured.eval({TransportMode::Radiance, SpectralLobe::Elastic, lambda, lambda}, wi, wo), 1e-4f);
 }
 
 // The same vertex colours from a binary file (r, g, b floats, big-endian) read the same.

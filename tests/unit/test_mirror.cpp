@@ -56,7 +56,7 @@ TEST(MirrorSampling, ReflectsWithProbabilityOneAndWeightR) {
     EXPECT_TRUE(close(s->f * std::abs(s->w.z) / s->pdf, r, 1e-6));
     // sample() and pdf() agree, forward and reverse.
     const Event ev = physical(mode, wKnown, s->w);
-    const ScatterDensity d = m.pdf(mode, ev.wi, ev.wo, l, l, SpectralLobe::Elastic);
+    const ScatterDensity d = m.pdf({mode, SpectralLobe::Elastic, l, l}, ev.wi, ev.wo);
     EXPECT_EQ(d.pdf, s->pdf);
     EXPECT_EQ(d.pdfRev, s->pdfRev);
   }
@@ -74,20 +74,21 @@ TEST(MirrorEval, DeltaCoefficientAtTheMirrorDirectionOnly) {
     const float l = kRange.min + rng.uniform() * (780.0f - kRange.min);
     for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
       // R/|cos θ|, the same in both modes (reflection keeps solid angle), reciprocal, two-sided.
-      EXPECT_TRUE(close(m.eval(mode, a, b, l, l, SpectralLobe::Elastic), m.reflectance()(l) / std::abs(a.z), 1e-6));
-      EXPECT_EQ(m.eval(mode, a, b, l, l, SpectralLobe::Elastic), m.eval(mode, b, a, l, l, SpectralLobe::Elastic));
-      EXPECT_EQ(m.eval(mode, a, b, l, l, SpectralLobe::Elastic), m.eval(flip(mode), a, b, l, l, SpectralLobe::Elastic));
-      EXPECT_EQ(m.eval(mode, a, b, l, l, SpectralLobe::Fluorescent), 0.0f);
+      EXPECT_TRUE(close(m.eval({mode, SpectralLobe::Elastic, l, l}, a, b), m.reflectance()(l) / std::abs(a.z), 1e-6));
+      EXPECT_EQ(m.eval({mode, SpectralLobe::Elastic, l, l}, a, b), m.eval({mode, SpectralLobe::Elastic, l, l}, b, a));
+      EXPECT_EQ(m.eval({mode, SpectralLobe::Elastic, l, l}, a, b),
+                m.eval({flip(mode), SpectralLobe::Elastic, l, l}, a, b));
+      EXPECT_EQ(m.eval({mode, SpectralLobe::Fluorescent, l, l}, a, b), 0.0f);
       EXPECT_EQ(m.spectralPdf(mode, l, l, SpectralLobe::Fluorescent), 0.0f);
       // Any other direction: nothing, and no density.
       if (glm::dot(other, b) < 0.999f) {
-        EXPECT_EQ(m.eval(mode, a, other, l, l, SpectralLobe::Elastic), 0.0f);
-        EXPECT_EQ(m.eval(mode, other, a, l, l, SpectralLobe::Elastic), 0.0f);
-        EXPECT_EQ(m.pdf(mode, a, other, l, l, SpectralLobe::Elastic).pdf, 0.0f);
-        EXPECT_EQ(m.pdf(mode, a, other, l, l, SpectralLobe::Elastic).pdfRev, 0.0f);
+        EXPECT_EQ(m.eval({mode, SpectralLobe::Elastic, l, l}, a, other), 0.0f);
+        EXPECT_EQ(m.eval({mode, SpectralLobe::Elastic, l, l}, other, a), 0.0f);
+        EXPECT_EQ(m.pdf({mode, SpectralLobe::Elastic, l, l}, a, other).pdf, 0.0f);
+        EXPECT_EQ(m.pdf({mode, SpectralLobe::Elastic, l, l}, a, other).pdfRev, 0.0f);
       }
       // Transmission never happens: −b is on the other side.
-      EXPECT_EQ(m.eval(mode, a, -b, l, l, SpectralLobe::Elastic), 0.0f);
+      EXPECT_EQ(m.eval({mode, SpectralLobe::Elastic, l, l}, a, -b), 0.0f);
     }
   }
 }
@@ -99,10 +100,10 @@ TEST(MirrorEval, MatchesDirectionsUpToRounding) {
   const Vec3 mirror(-wo.x, -wo.y, wo.z);
   const Vec3 nudged = glm::normalize(mirror + Vec3(1e-4f, 0.0f, 0.0f));
   const Vec3 far = glm::normalize(mirror + Vec3(2e-2f, 0.0f, 0.0f));
-  EXPECT_GT(m.eval(TransportMode::Radiance, nudged, wo, 500.0f, 500.0f, SpectralLobe::Elastic), 0.0f);
-  EXPECT_EQ(m.directionPdf(TransportMode::Radiance, wo, nudged, SpectralLobe::Elastic, 500.0f, 500.0f), 1.0f);
-  EXPECT_EQ(m.eval(TransportMode::Radiance, far, wo, 500.0f, 500.0f, SpectralLobe::Elastic), 0.0f);
-  EXPECT_EQ(m.directionPdf(TransportMode::Radiance, wo, far, SpectralLobe::Elastic, 500.0f, 500.0f), 0.0f);
+  EXPECT_GT(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, nudged, wo), 0.0f);
+  EXPECT_EQ(m.directionPdf({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, wo, nudged), 1.0f);
+  EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, far, wo), 0.0f);
+  EXPECT_EQ(m.directionPdf({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, wo, far), 0.0f);
 }
 
 TEST(MirrorSampling, NothingReflectedGivesNoSample) {
@@ -111,7 +112,7 @@ TEST(MirrorSampling, NothingReflectedGivesNoSample) {
     EXPECT_FALSE(m.sample(mode, Vec3(0, 0, 1), 800.0f, Vec3(0.5f)));
     EXPECT_EQ(m.spectralPdf(mode, 800.0f, 800.0f, SpectralLobe::Elastic), 0.0f);
     // A grazing known direction has no mirror direction off the surface.
-    EXPECT_FALSE(m.sampleDirection(mode, Vec3(1, 0, 0), SpectralLobe::Elastic, 500.0f, 500.0f, Vec2(0.5f)));
+    EXPECT_FALSE(m.sampleDirection({mode, SpectralLobe::Elastic, 500.0f, 500.0f}, Vec3(1, 0, 0), Vec2(0.5f)));
   }
 }
 

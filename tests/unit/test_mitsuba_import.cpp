@@ -645,7 +645,7 @@ TEST_F(MitsubaImport, BitmapTextures) {
   const float lambda = 600.0f;
   const Bsdf b = s->materials[0]->bsdf(HitContext{Vec2(0.25f, 0.5f), world, world, {&lambda, 1}});
   const Vec3 n(0, 0, 1);
-  EXPECT_NEAR(b.eval(TransportMode::Radiance, n, n, lambda, lambda, SpectralLobe::Elastic) * kPi,
+  EXPECT_NEAR(b.eval({TransportMode::Radiance, SpectralLobe::Elastic, lambda, lambda}, n, n) * kPi,
               rgbToSigmoid(Vec3(0.25f, 0.5f, 0.75f))(lambda), 1e-6f);
   // Bad values are errors naming the plugin; other texture plugins are refused.
   EXPECT_TRUE(contains(error(std::string(kLight) + R"(<shape type="rectangle"><bsdf type="diffuse">
@@ -850,8 +850,10 @@ TEST_F(MitsubaImport, CheckerboardAndMeshAttributeTextures) {
   const Frame world{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
   const Vec3 n(0, 0, 1);
   const auto at = [&](Vec2 uv) {
-    return s->materials[0]->bsdf(HitContext{uv, world, world, {&lambda, 1}}).eval(TransportMode::Radiance, n, n, lambda,
-                                                                                 lambda, SpectralLobe::Elastic) * kPi;
+    return s->materials[0]
+               ->bsdf(HitContext{uv, world, world, {&lambda, 1}})
+               .eval({TransportMode::Radiance, SpectralLobe::Elastic, lambda, lambda}, n, n) *
+           kPi;
   };
   ASSERT_EQ(s->materialNames[0], "floor");
   EXPECT_NEAR(at(Vec2(0.01f, 0.1f)), rgbToSigmoid(Vec3(0.2f))(lambda), 1e-6f);  // (0.58, 3.85): color0
@@ -963,11 +965,11 @@ TEST_F(MitsubaImport, BlendScattersAsItsJsonTwin) {
     for (float c = -0.95f; c < 1.0f; c += 0.1f) {
       const Vec3 wo = glm::normalize(Vec3(0.3f, -0.2f, 0.7f)), wi = glm::normalize(Vec3(std::sqrt(1 - c * c), 0.1f, c));
       for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
-        EXPECT_EQ(a.eval(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic),
-                  b.eval(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic));
-        EXPECT_EQ(a.pdf(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic).pdf,
-                  b.pdf(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic).pdf);
-        compared += a.eval(mode, wi, wo, lambda, lambda, SpectralLobe::Elastic) > 0.0f;
+        EXPECT_EQ(a.eval({mode, SpectralLobe::Elastic, lambda, lambda}, wi, wo),
+                  b.eval({mode, SpectralLobe::Elastic, lambda, lambda}, wi, wo));
+        EXPECT_EQ(a.pdf({mode, SpectralLobe::Elastic, lambda, lambda}, wi, wo).pdf,
+                  b.pdf({mode, SpectralLobe::Elastic, lambda, lambda}, wi, wo).pdf);
+        compared += a.eval({mode, SpectralLobe::Elastic, lambda, lambda}, wi, wo) > 0.0f;
       }
     }
   }
@@ -975,7 +977,8 @@ TEST_F(MitsubaImport, BlendScattersAsItsJsonTwin) {
   // The twin's weight matters: the two colours give different values.
   const Vec3 wo(0.0f, 0.0f, 1.0f), wi = glm::normalize(Vec3(0.1f, 0.0f, 1.0f));
   const auto at = [&](Vec2 uv) {
-    return imported.bsdf(HitContext{uv, world, world, {&lambda, 1}}).eval(TransportMode::Radiance, wi, wo, lambda, lambda, SpectralLobe::Elastic);
+    return imported.bsdf(HitContext{uv, world, world, {&lambda, 1}})
+        .eval({TransportMode::Radiance, SpectralLobe::Elastic, lambda, lambda}, wi, wo);
   };
   EXPECT_NE(at(Vec2(0.25f, 0.25f)), at(Vec2(0.75f, 0.25f)));
   // Not two nested BSDFs, or a weight outside [0, 1]: errors.

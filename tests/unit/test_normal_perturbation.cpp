@@ -49,8 +49,8 @@ void expectSameScattering(const Bsdf& a, const Bsdf& b, float lambda, double rel
   for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance})
     for (const Vec3& wi : dirs)
       for (const Vec3& wo : dirs) {
-        const float fa = a.eval(mode, a.toLocal(wi), a.toLocal(wo), lambda, lambda, SpectralLobe::Elastic);
-        const float fb = b.eval(mode, b.toLocal(wi), b.toLocal(wo), lambda, lambda, SpectralLobe::Elastic);
+        const float fa = a.eval({mode, SpectralLobe::Elastic, lambda, lambda}, a.toLocal(wi), a.toLocal(wo));
+        const float fb = b.eval({mode, SpectralLobe::Elastic, lambda, lambda}, b.toLocal(wi), b.toLocal(wo));
         EXPECT_NEAR(fa, fb, rel * std::max(fa, fb)) << "wi " << wi.x << " " << wi.y << ", wo " << wo.x << " " << wo.y;
         nonzero += fa > 0.0f;
       }
@@ -158,10 +158,10 @@ TEST_F(NormalPerturbation, TiltedNormalMapIsTheShadingNormal) {
   // And not the untilted material.
   const Bsdf flat = material.nested().bsdf(HitContext{s->uv(h), geometric, geometric, {&lambda, 1}});
   const Vec3 wi = glm::normalize(Vec3(0.3f, -0.2f, 1.0f)), wo = glm::normalize(Vec3(-0.5f, 0.1f, 0.8f));
-  EXPECT_GT(std::abs(mapped.eval(TransportMode::Radiance, mapped.toLocal(wi), mapped.toLocal(wo), lambda, lambda,
-                                 SpectralLobe::Elastic) -
-                     flat.eval(TransportMode::Radiance, flat.toLocal(wi), flat.toLocal(wo), lambda, lambda,
-                               SpectralLobe::Elastic)),
+  EXPECT_GT(std::abs(mapped.eval({TransportMode::Radiance, SpectralLobe::Elastic, lambda, lambda}, mapped.toLocal(wi),
+                                 mapped.toLocal(wo)) -
+                     flat.eval({TransportMode::Radiance, SpectralLobe::Elastic, lambda, lambda}, flat.toLocal(wi),
+                               flat.toLocal(wo))),
             1e-3f);
 }
 

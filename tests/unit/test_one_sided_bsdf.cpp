@@ -31,22 +31,22 @@ TEST(OneSidedBsdf, ScattersOnlyInFrontAsTheTwoSidedOne) {
   // Local directions: the sheet's normal is local +z (its front faces the camera).
   const Vec3 front1 = glm::normalize(Vec3(0.3f, 0.1f, 0.9f)), front2 = glm::normalize(Vec3(-0.2f, 0.2f, 0.8f));
   const Vec3 back1 = Vec3(front1.x, front1.y, -front1.z), back2 = Vec3(front2.x, front2.y, -front2.z);
-  ASSERT_GT(b2.eval(r, front1, front2, 550, 550, el), 0.0f);
-  EXPECT_EQ(b1.eval(r, front1, front2, 550, 550, el), b2.eval(r, front1, front2, 550, 550, el));
-  EXPECT_EQ(b1.directionPdf(r, front2, front1, el, 550, 550), b2.directionPdf(r, front2, front1, el, 550, 550));
-  EXPECT_EQ(b1.pdf(r, front1, front2, 550, 550, el).pdf, b2.pdf(r, front1, front2, 550, 550, el).pdf);
-  ASSERT_GT(b2.eval(r, back1, back2, 550, 550, el), 0.0f);  // the two-sided one reflects behind
+  ASSERT_GT(b2.eval({r, el, 550, 550}, front1, front2), 0.0f);
+  EXPECT_EQ(b1.eval({r, el, 550, 550}, front1, front2), b2.eval({r, el, 550, 550}, front1, front2));
+  EXPECT_EQ(b1.directionPdf({r, el, 550, 550}, front2, front1), b2.directionPdf({r, el, 550, 550}, front2, front1));
+  EXPECT_EQ(b1.pdf({r, el, 550, 550}, front1, front2).pdf, b2.pdf({r, el, 550, 550}, front1, front2).pdf);
+  ASSERT_GT(b2.eval({r, el, 550, 550}, back1, back2), 0.0f);  // the two-sided one reflects behind
   for (const auto& [wi, wo] : {std::pair{back1, back2}, std::pair{front1, back2}, std::pair{back1, front2}}) {
-    EXPECT_EQ(b1.eval(r, wi, wo, 550, 550, el), 0.0f);
-    EXPECT_EQ(b1.directionPdf(r, wo, wi, el, 550, 550), 0.0f);
-    EXPECT_EQ(b1.pdf(r, wi, wo, 550, 550, el).pdf, 0.0f);
+    EXPECT_EQ(b1.eval({r, el, 550, 550}, wi, wo), 0.0f);
+    EXPECT_EQ(b1.directionPdf({r, el, 550, 550}, wo, wi), 0.0f);
+    EXPECT_EQ(b1.pdf({r, el, 550, 550}, wi, wo).pdf, 0.0f);
   }
   // Sampled from behind: nothing; from the front: the two-sided sample.
   int sampledBehind = 0;
   for (int i = 0; i < 64; ++i) {
     const Vec3 u((float(i) + 0.5f) / 64.0f, float((i * 37) % 64 + 0.5f) / 64.0f, float((i * 11) % 64 + 0.5f) / 64.0f);
     sampledBehind += b1.sample(r, back2, 550, u).has_value();
-    sampledBehind += b1.sampleDirection(r, back2, el, 550, 550, Vec2(u.y, u.z)).has_value();
+    sampledBehind += b1.sampleDirection({r, el, 550, 550}, back2, Vec2(u.y, u.z)).has_value();
     const std::optional<ScatterSample> s1 = b1.sample(r, front2, 550, u), s2 = b2.sample(r, front2, 550, u);
     ASSERT_EQ(s1.has_value(), s2.has_value() && s2->w.z > 0.0f);
     if (s1) EXPECT_EQ(s1->f, s2->f);

@@ -39,7 +39,7 @@ TEST(MaskModel, SamplesMatchTheirDensitiesAndPassThroughOneMinusAlpha) {
         const bool radiance = mode == TransportMode::Radiance;
         const Vec3 wi = radiance ? s->w : known, wo = radiance ? known : s->w;
         const float li = radiance ? s->lambda : 480.0f, lo = radiance ? 480.0f : s->lambda;
-        const ScatterDensity d = b.pdf(mode, wi, wo, li, lo, s->lobe);
+        const ScatterDensity d = b.pdf({mode, s->lobe, li, lo}, wi, wo);
         EXPECT_TRUE(test::close(s->pdf, d.pdf, 1e-4)) << nested;
         EXPECT_TRUE(test::close(s->pdfRev, d.pdfRev, 1e-4)) << nested;
         ++checked;
@@ -67,7 +67,9 @@ TEST(MaskModel, TransparentMaskPassesEverything) {
     EXPECT_TRUE(s->specular);
     EXPECT_EQ(s->w, -known);
   }
-  EXPECT_EQ(b.eval(TransportMode::Radiance, test::dirFromCosPhi(0.5f, 0.0f), known, 480.0f, 480.0f, SpectralLobe::Elastic), 0.0f);
+  EXPECT_EQ(
+      b.eval({TransportMode::Radiance, SpectralLobe::Elastic, 480.0f, 480.0f}, test::dirFromCosPhi(0.5f, 0.0f), known),
+      0.0f);
   EXPECT_EQ(b.fluorescenceProbability(TransportMode::Radiance, 480.0f), 0.0f);
 }
 

@@ -152,13 +152,13 @@ TEST(RoughConductorEval, ReciprocalAndTheSameInBothModes) {
   for (int i = 0; i < 5000; ++i) {
     const Vec3 a = randomDirection(rng), b = randomDirection(rng);
     const float l = 400.0f + 300.0f * rng.uniform();
-    const float fab = m.eval(TransportMode::Radiance, a, b, l, l, SpectralLobe::Elastic);
-    EXPECT_TRUE(close(fab, m.eval(TransportMode::Radiance, b, a, l, l, SpectralLobe::Elastic), 1e-5));
-    EXPECT_EQ(fab, m.eval(TransportMode::Importance, a, b, l, l, SpectralLobe::Elastic));
+    const float fab = m.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, a, b);
+    EXPECT_TRUE(close(fab, m.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, b, a), 1e-5));
+    EXPECT_EQ(fab, m.eval({TransportMode::Importance, SpectralLobe::Elastic, l, l}, a, b));
     if (a.z * b.z < 0.0f) {
       EXPECT_EQ(fab, 0.0f) << "no transmission";
     }
-    EXPECT_EQ(m.eval(TransportMode::Radiance, a, b, l, 600.0f, SpectralLobe::Fluorescent), 0.0f);
+    EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, l, 600.0f}, a, b), 0.0f);
   }
 }
 
@@ -171,7 +171,7 @@ TEST(RoughConductorEnergy, WhiteFurnaceAlbedo) {
     for (const Vec3& w : knownDirections()) {
       // f is symmetric and the same in both modes, so one quadrature serves both.
       const double quad = test::sphereQuadrature(2000, 500, [&](const Vec3& o) {
-        return double(m.eval(TransportMode::Radiance, w, o, 500.0f, 500.0f, SpectralLobe::Elastic)) * std::abs(o.z);
+        return double(m.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, w, o)) * std::abs(o.z);
       });
       for (const TransportMode mode : kModes) {
         const test::BatchStats st = test::sampledAlbedo(m, mode, w, 500.0f, seed++);

@@ -101,12 +101,12 @@ TEST(RoughDielectricEval, VeachRelationAndOneValueForBothModes) {
   for (int i = 0; i < 20000; ++i) {
     const Vec3 a = randomDirection(rng), b = randomDirection(rng);
     const float l = 400.0f + 300.0f * rng.uniform();
-    const float fab = m.eval(TransportMode::Radiance, a, b, l, l, SpectralLobe::Elastic);
-    const float fba = m.eval(TransportMode::Radiance, b, a, l, l, SpectralLobe::Elastic);
-    EXPECT_EQ(fab, m.eval(TransportMode::Importance, a, b, l, l, SpectralLobe::Elastic));
+    const float fab = m.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, a, b);
+    const float fba = m.eval({TransportMode::Radiance, SpectralLobe::Elastic, l, l}, b, a);
+    EXPECT_EQ(fab, m.eval({TransportMode::Importance, SpectralLobe::Elastic, l, l}, a, b));
     EXPECT_TRUE(close(fab / sqr(m.sideIndex(b, l)), fba / sqr(m.sideIndex(a, l)), 1e-4, 1e-12));
     transmitted += a.z * b.z < 0.0f && fab > 0.0f;
-    EXPECT_EQ(m.eval(TransportMode::Radiance, a, b, l, 600.0f, SpectralLobe::Fluorescent), 0.0f);
+    EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, l, 600.0f}, a, b), 0.0f);
   }
   EXPECT_GT(transmitted, 1000);
   // By hand at normal incidence on n = 1.5, through the facet m = z: h_t = z, F = 0.04, G1 = 1,
@@ -114,10 +114,12 @@ TEST(RoughDielectricEval, VeachRelationAndOneValueForBothModes) {
   // denominator is (η_i(ω_i·h) + η_o(ω_o·h))² = (1 − 1.5)² = 0.25.
   const RoughDielectric g(Ior::constant(1.5), 0.3f, 0.3f, kRange);
   const double D = 1.0 / (kPi * 0.09);
-  EXPECT_TRUE(close(g.eval(TransportMode::Radiance, Vec3(0, 0, 1), Vec3(0, 0, -1), 500.0f, 500.0f, SpectralLobe::Elastic),
-                    2.25 * 0.96 * D / 0.25, 1e-5));
-  EXPECT_TRUE(close(g.eval(TransportMode::Radiance, Vec3(0, 0, -1), Vec3(0, 0, 1), 500.0f, 500.0f, SpectralLobe::Elastic),
-                    1.0 * 0.96 * D / 0.25, 1e-5));
+  EXPECT_TRUE(
+      close(g.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, Vec3(0, 0, 1), Vec3(0, 0, -1)),
+            2.25 * 0.96 * D / 0.25, 1e-5));
+  EXPECT_TRUE(
+      close(g.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, Vec3(0, 0, -1), Vec3(0, 0, 1)),
+            1.0 * 0.96 * D / 0.25, 1e-5));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -132,7 +134,7 @@ TEST(RoughDielectricEnergy, AlbedoByQuadratureEqualsSampledWeight) {
       for (const TransportMode mode : kModes) {
         const double quad = test::sphereQuadrature(2000, 500, [&](const Vec3& o) {
           const auto [wi, wo] = test::physicalOrder(mode, w, o);
-          return double(m.eval(mode, wi, wo, 500.0f, 500.0f, SpectralLobe::Elastic)) * std::abs(o.z);
+          return double(m.eval({mode, SpectralLobe::Elastic, 500.0f, 500.0f}, wi, wo)) * std::abs(o.z);
         });
         const test::BatchStats st = test::sampledAlbedo(m, mode, w, 500.0f, seed++);
         EXPECT_NEAR(st.mean, quad, 4.0 * st.stderr_ + 3e-3 * quad)

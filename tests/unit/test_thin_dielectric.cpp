@@ -33,7 +33,7 @@ TEST(ThinDielectric, SamplesBothLobesWithTheirProbabilitiesFromBothSides) {
       int reflected = 0;
       constexpr int kN = 4000;
       for (int k = 0; k < kN; ++k) {
-        const auto ds = slab.sampleDirection(TransportMode::Radiance, w, SpectralLobe::Elastic, 500.0f, 500.0f,
+        const auto ds = slab.sampleDirection({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f}, w,
                                              Vec2((float(k) + 0.5f) / kN, 0.5f));
         ASSERT_TRUE(ds && ds->specular);
         const bool reflect = specular::matches(ds->w, specular::reflect(w));
@@ -43,15 +43,16 @@ TEST(ThinDielectric, SamplesBothLobesWithTheirProbabilitiesFromBothSides) {
         for (const TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
           // Path weight f·|cos|/pdf = 1 in both modes: lossless, no index change across the slab.
           const Vec3 wi = mode == TransportMode::Radiance ? ds->w : w, wo = mode == TransportMode::Radiance ? w : ds->w;
-          const float f = slab.eval(mode, wi, wo, 500.0f, 500.0f, SpectralLobe::Elastic);
+          const float f = slab.eval({mode, SpectralLobe::Elastic, 500.0f, 500.0f}, wi, wo);
           EXPECT_NEAR(f * std::abs(ds->w.z) / ds->pdf, 1.0f, 1e-5f);
-          EXPECT_FLOAT_EQ(slab.directionPdf(mode, w, ds->w, SpectralLobe::Elastic, 500.0f, 500.0f), ds->pdf);
+          EXPECT_FLOAT_EQ(slab.directionPdf({mode, SpectralLobe::Elastic, 500.0f, 500.0f}, w, ds->w), ds->pdf);
         }
       }
       EXPECT_NEAR(double(reflected) / kN, R, 1.0 / kN + 1e-6);  // stratified u: exact to one sample
       // Nothing anywhere else.
-      EXPECT_EQ(slab.eval(TransportMode::Radiance, test::dirFromCosPhi(0.3f, 1.0f), w, 500.0f, 500.0f,
-                          SpectralLobe::Elastic), 0.0f);
+      EXPECT_EQ(slab.eval({TransportMode::Radiance, SpectralLobe::Elastic, 500.0f, 500.0f},
+                          test::dirFromCosPhi(0.3f, 1.0f), w),
+                0.0f);
     }
 }
 

@@ -158,12 +158,14 @@ TEST(VolumeScatteringDirection, ElasticIsHenyeyGreensteinAboutTheContinuingDirec
       SCOPED_TRACE(std::string(toString(mode)) + " g = " + std::to_string(g));
       expectHenyeyGreenstein(
           [&](Vec2 u) {
-            const std::optional<DirectionSample> ds = vs.sampleDirection(mode, wKnown, SpectralLobe::Elastic, 500, 500, u);
+            const std::optional<DirectionSample> ds =
+                vs.sampleDirection({mode, SpectralLobe::Elastic, 500, 500}, wKnown, u);
             EXPECT_TRUE(ds.has_value());
             if (!ds) return Vec3(0.0f, 0.0f, 1.0f);
             const double mu = -glm::dot(wKnown, ds->w);
             EXPECT_TRUE(test::close(ds->pdf, hgExact(mu, g), 2e-3, 1e-6));
-            EXPECT_TRUE(test::close(ds->pdf, vs.directionPdf(mode, wKnown, ds->w, SpectralLobe::Elastic, 500, 500), 1e-5));
+            EXPECT_TRUE(
+                test::close(ds->pdf, vs.directionPdf({mode, SpectralLobe::Elastic, 500, 500}, wKnown, ds->w), 1e-5));
             return ds->w;
           },
           -wKnown, g, seed++);
@@ -181,11 +183,13 @@ TEST(VolumeScatteringDirection, FluorescentIsUniformOverTheSphere) {
     SCOPED_TRACE(toString(mode));
     expectHenyeyGreenstein(
         [&](Vec2 u) {
-          const std::optional<DirectionSample> ds = vs.sampleDirection(mode, wKnown, SpectralLobe::Fluorescent, 420, 560, u);
+          const std::optional<DirectionSample> ds =
+              vs.sampleDirection({mode, SpectralLobe::Fluorescent, 420, 560}, wKnown, u);
           EXPECT_TRUE(ds.has_value());
           if (!ds) return Vec3(0.0f, 0.0f, 1.0f);
           EXPECT_NEAR(ds->pdf, 1.0 / (4.0 * kPiD), 1e-7);
-          EXPECT_NEAR(vs.directionPdf(mode, wKnown, ds->w, SpectralLobe::Fluorescent, 420, 560), 1.0 / (4.0 * kPiD), 1e-7);
+          EXPECT_NEAR(vs.directionPdf({mode, SpectralLobe::Fluorescent, 420, 560}, wKnown, ds->w), 1.0 / (4.0 * kPiD),
+                      1e-7);
           return ds->w;
         },
         -wKnown, 0.0, seed++);
@@ -277,8 +281,8 @@ TEST(VolumeScatteringEvent, WeightOfASampledEventIsTheAlbedoWeight) {
       fluorescent += s->lobe == SpectralLobe::Fluorescent;
       ASSERT_TRUE(test::close(s->f / s->pdf, total, 2e-3)) << "lobe " << int(s->lobe) << " λ " << s->lambda;
       const test::Event e = test::physical(mode, wKnown, known, s->w, s->lambda);
-      ASSERT_TRUE(test::close(vs.eval(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, s->lobe), s->f, 1e-5));
-      ASSERT_TRUE(test::close(vs.pdf(mode, e.wi, e.wo, e.lambdaIn, e.lambdaOut, s->lobe).pdf, s->pdf, 1e-4));
+      ASSERT_TRUE(test::close(vs.eval({mode, s->lobe, e.lambdaIn, e.lambdaOut}, e.wi, e.wo), s->f, 1e-5));
+      ASSERT_TRUE(test::close(vs.pdf({mode, s->lobe, e.lambdaIn, e.lambdaOut}, e.wi, e.wo).pdf, s->pdf, 1e-4));
     }
     if (ref.fluorescent(mode, known) > 0.05 * total) {
       EXPECT_GT(fluorescent, 0);

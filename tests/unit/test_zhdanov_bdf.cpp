@@ -94,12 +94,12 @@ TEST(ZhdanovSampling, SampleMatchesPdfAndEval) {
       if (!s) continue;
       ++checked;
       const Event ev = physical(mode, wKnown, lKnown, s->w, s->lambda);
-      const ScatterDensity d = m.pdf(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe);
+      const ScatterDensity d = m.pdf({mode, s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo);
       EXPECT_TRUE(close(s->pdf, d.pdf, 1e-4)) << toString(mode) << " λ = " << lKnown;
       EXPECT_TRUE(close(s->pdfRev, d.pdfRev, 1e-4, 1e-30));
-      const ScatterDensity back = m.pdf(flip(mode), ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe);
+      const ScatterDensity back = m.pdf({flip(mode), s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo);
       EXPECT_TRUE(close(d.pdfRev, back.pdf, 1e-6, 1e-30));
-      EXPECT_TRUE(close(s->f, m.eval(mode, ev.wi, ev.wo, ev.lambdaIn, ev.lambdaOut, s->lobe), 1e-6));
+      EXPECT_TRUE(close(s->f, m.eval({mode, s->lobe, ev.lambdaIn, ev.lambdaOut}, ev.wi, ev.wo), 1e-6));
       EXPECT_GT(s->f, 0.0f);
     }
     EXPECT_GT(checked, 8000);
@@ -123,11 +123,11 @@ TEST(ZhdanovSampling, SpectralDensityIntegratesToOne) {
       }
     const Vec3 wKnown = glm::normalize(Vec3(0.2f, 0.3f, 0.9f));
     const double fl = test::sphereIntegral(64, 32, [&](const Vec3& w) {
-      return m.directionPdf(TransportMode::Radiance, wKnown, w, SpectralLobe::Fluorescent, 420.0f, 560.0f);
+      return m.directionPdf({TransportMode::Radiance, SpectralLobe::Fluorescent, 420.0f, 560.0f}, wKnown, w);
     });
     EXPECT_TRUE(close(fl, 1.0, 1e-4));
     const double el = test::sphereIntegral(800, 128, [&](const Vec3& w) {
-      return m.directionPdf(TransportMode::Importance, wKnown, w, SpectralLobe::Elastic, 560.0f, 560.0f);
+      return m.directionPdf({TransportMode::Importance, SpectralLobe::Elastic, 560.0f, 560.0f}, wKnown, w);
     });
     EXPECT_LE(el, 1.0 + 1e-3);
     if (m.gloss() == 0.0f) EXPECT_TRUE(close(el, 1.0, 1e-4));
@@ -143,12 +143,12 @@ TEST(ZhdanovEnergy, DirectionallyReciprocalNotSpectrally) {
     const Vec3 a = test::randomDirection(rng), b = test::randomDirection(rng);
     const float l1 = 380.0f + 100.0f * rng.uniform(), l2 = 500.0f + 150.0f * rng.uniform();
     for (const SpectralLobe lobe : {SpectralLobe::Elastic, SpectralLobe::Fluorescent})
-      EXPECT_TRUE(close(m.eval(TransportMode::Radiance, a, b, l1, l2, lobe),
-                        m.eval(TransportMode::Importance, b, a, l1, l2, lobe), 1e-5, 1e-12));
+      EXPECT_TRUE(close(m.eval({TransportMode::Radiance, lobe, l1, l2}, a, b),
+                        m.eval({TransportMode::Importance, lobe, l1, l2}, b, a), 1e-5, 1e-12));
   }
-  EXPECT_GT(m.eval(TransportMode::Radiance, Vec3(0, 0, 1), Vec3(0, 0, 1), 430.0f, 560.0f, SpectralLobe::Fluorescent),
+  EXPECT_GT(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, 430.0f, 560.0f}, Vec3(0, 0, 1), Vec3(0, 0, 1)),
             0.0f);
-  EXPECT_EQ(m.eval(TransportMode::Radiance, Vec3(0, 0, 1), Vec3(0, 0, 1), 560.0f, 430.0f, SpectralLobe::Fluorescent),
+  EXPECT_EQ(m.eval({TransportMode::Radiance, SpectralLobe::Fluorescent, 560.0f, 430.0f}, Vec3(0, 0, 1), Vec3(0, 0, 1)),
             0.0f);
 }
 
@@ -160,9 +160,12 @@ double albedoIn(const ZhdanovBdf& m, const Vec3& wi, float li) {
   double fl = 0.0;
   for (int k = 0; k < nL; ++k) fl += dl * m.E(float(kRange.min + (k + 0.5) * dl));
   fl *= m.A(li);  // ∫E dλ_o · A(λ_i); the fluorescent and passive lobes are Lambertian (albedo = π·f)
-  return test::sphereIntegral(400, 64, [&](const Vec3& wo) {
-           return m.eval(TransportMode::Radiance, wi, wo, li, li, SpectralLobe::Elastic) * std::max(0.0f, wo.z);
-         }) + fl;
+  return test::sphereIntegral(
+             400, 64,
+             [&](const Vec3& wo) {
+               return m.eval({TransportMode::Radiance, SpectralLobe::Elastic, li, li}, wi, wo) * std::max(0.0f, wo.z);
+             }) +
+         fl;
 }
 
 TEST(ZhdanovEnergy, AlbedoIsGlossPlusPassivePlusExcitation) {
