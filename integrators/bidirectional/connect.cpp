@@ -115,9 +115,12 @@ void nextEvent(const Context& c, const std::vector<PathVertex>& C, int t, Sample
   for (int k = x1.firstLane(); k < x1.endLane(c.lanes); ++k) value[k] *= transmittance(toLight);
   const int lightIndex = int(li);  // a structured binding cannot be captured (clang 14)
   const LightEnd end = lightEnd(c, lightIndex, x0, x1, toLight, lambdaIn);
-  const double pCam0 = cameraSide(c.scene, x1, wo, wi, x0, x1.lobe, lambdaIn, lambdaX1, toLight);
+  const double pCam0 =
+      densityToward(c.scene, {TransportMode::Radiance, x1.lobe, lambdaIn, lambdaX1}, x1, wo, wi, x0, toLight);
   const double pLight2 =
-      x2.kind != Kind::Camera ? lightSide(c.scene, x1, wi, wo, x2, x1.lobe, lambdaIn, lambdaX1, x1.arrival) : 0.0;
+      x2.kind != Kind::Camera
+          ? densityToward(c.scene, {TransportMode::Importance, x1.lobe, lambdaIn, lambdaX1}, x1, wi, wo, x2, x1.arrival)
+          : 0.0;
   const MisSums m1 = firstVertexMultiplicity(true, x1.lobe, x1.spectralPdf, end.finite, c.walk.strategies);
   MisSums own;
   own.nee = x1.spectralPdf * double(x1.spectralPdf);
@@ -179,9 +182,12 @@ void connectLightVertex(const Context& c, const std::vector<PathVertex>& L, cons
   const int lane = b.firstLane();
   const float G = a.cosine(w) * fb.cosineFactor(bWi) / dist2;
   const LightEnd end = lightEnd(c, a.light, a, b, segment, a.lambda);
-  const double pCam0 = cameraSide(c.scene, b, bWo, bWi, a, F, a.lambda, b.lambda, segment);
+  const double pCam0 =
+      densityToward(c.scene, {TransportMode::Radiance, F, a.lambda, b.lambda}, b, bWo, bWi, a, segment);
   const double pLight2 =
-      bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, F, a.lambda, b.lambda, b.arrival) : 0.0;
+      bNext.kind != Kind::Camera
+          ? densityToward(c.scene, {TransportMode::Importance, F, a.lambda, b.lambda}, b, bWi, bWo, bNext, b.arrival)
+          : 0.0;
   const double specCam1 = specCamera(b, F, a.lambda, b.lambda);
   MisSums own;
   own.own = 1.0;
@@ -303,11 +309,16 @@ void connect(const Context& c, const std::vector<PathVertex>& L, LightFamily fam
       p.lambdaA = lambdaA = a.lambdaOf(c.lanes, k0), p.lambdaB = lambdaB = b.lambdaOf(c.lanes, k0);
     }
     // The four densities next to the connection, for its lobes and wavelengths.
-    const double pLightB = lightSide(c.scene, a, aWi, aWo, b, p.la, lambdaA, p.lambdaA, segment);
-    const double pLightBNext =
-        bNext.kind != Kind::Camera ? lightSide(c.scene, b, bWi, bWo, bNext, p.lb, p.lambdaB, lambdaB, b.arrival) : 0.0;
-    const double pCamA = cameraSide(c.scene, b, bWo, bWi, a, p.lb, p.lambdaB, lambdaB, segment);
-    const double pCamAPrev = cameraSide(c.scene, a, aWo, aWi, aPrev, p.la, lambdaA, p.lambdaA, a.arrival);
+    const double pLightB =
+        densityToward(c.scene, {TransportMode::Importance, p.la, lambdaA, p.lambdaA}, a, aWi, aWo, b, segment);
+    const double pLightBNext = bNext.kind != Kind::Camera
+                                   ? densityToward(c.scene, {TransportMode::Importance, p.lb, p.lambdaB, lambdaB}, b,
+                                                   bWi, bWo, bNext, b.arrival)
+                                   : 0.0;
+    const double pCamA =
+        densityToward(c.scene, {TransportMode::Radiance, p.lb, p.lambdaB, lambdaB}, b, bWo, bWi, a, segment);
+    const double pCamAPrev =
+        densityToward(c.scene, {TransportMode::Radiance, p.la, lambdaA, p.lambdaA}, a, aWo, aWi, aPrev, a.arrival);
     const Strategies& st = c.walk.strategies;
     // The beam ratios of the ends over the connection, each for the side that reaches it along it.
     const double beamA = st.merge.beam > 0.0 || st.merge.photonBeam > 0.0 ? cameraBeamRatio(c.scene, segment, a, p.lambdaB) : 0.0;
@@ -448,7 +459,7 @@ void connectToCamera(const Context& c, const std::vector<PathVertex>& L, LightFa
       any = any || fa > 0.0f;
     }
     if (laneZero) laneZeroThroughMedia(c, value);
-    pCamAPrev = cameraSide(c.scene, a, wo, wi, aPrev, a.lobe, lambdaA, lambda, a.arrival);
+    pCamAPrev = densityToward(c.scene, {TransportMode::Radiance, a.lobe, lambdaA, lambda}, a, wo, wi, aPrev, a.arrival);
     here = lightTracingMultiplicity(true, a.spectralPdf, c.walk.strategies);
     (shared ? own.shared : own.ownSplat) = double(a.spectralPdf) * a.spectralPdf;
     // a, next to the camera, is the path's first gather vertex.

@@ -18,20 +18,14 @@ double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathV
   return toAreaDensity(pdfSA, at, target);
 }
 
-double cameraSide(const Scene& scene, const PathVertex& at, const Vec3& wCam, const Vec3& wTarget,
-                  const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut,
-                  const SegmentDepth& segment) {
-  const float pdf = at.bsdf->spectralPdf(TransportMode::Radiance, lambdaOut, lambdaIn, lobe) *
-                    at.bsdf->directionPdf({TransportMode::Radiance, lobe, lambdaIn, lambdaOut}, wCam, wTarget);
-  return toArea(scene, pdf, at, target) * flightFactor(scene, TransportMode::Radiance, segment, target, lambdaIn);
-}
-
-double lightSide(const Scene& scene, const PathVertex& at, const Vec3& wLight, const Vec3& wTarget,
-                 const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut,
-                 const SegmentDepth& segment) {
-  const float pdf = at.bsdf->spectralPdf(TransportMode::Importance, lambdaIn, lambdaOut, lobe) *
-                    at.bsdf->directionPdf({TransportMode::Importance, lobe, lambdaIn, lambdaOut}, wLight, wTarget);
-  return toArea(scene, pdf, at, target) * flightFactor(scene, TransportMode::Importance, segment, target, lambdaOut);
+double densityToward(const Scene& scene, ScatterQuery query, const PathVertex& at, const Vec3& wKnown,
+                     const Vec3& wTarget, const PathVertex& target, const SegmentDepth& segment) {
+  const bool radiance = query.mode == TransportMode::Radiance;
+  const float known = radiance ? query.lambdaOut : query.lambdaIn;
+  const float sampled = radiance ? query.lambdaIn : query.lambdaOut;
+  const float pdf =
+      at.bsdf->spectralPdf(query.mode, known, sampled, query.lobe) * at.bsdf->directionPdf(query, wKnown, wTarget);
+  return toArea(scene, pdf, at, target) * flightFactor(scene, query.mode, segment, target, sampled);
 }
 
 LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathVertex& x1, const SegmentDepth& segment,

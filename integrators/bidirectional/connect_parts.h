@@ -19,19 +19,14 @@ Vec3 towards(const PathVertex& from, const PathVertex& to);
 // other strategy can sample (the pinhole, delta lights) get 0.
 double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathVertex& target);
 
-// Camera-side (Radiance) density of `target` sampled at `at`: the spectral event (lobe, λ_in given
-// λ_out), the direction from wCam (towards at's camera-side neighbour) to wTarget (towards
-// target), both in at's shading frame (the caller's, which it has for its own f), and the free
-// flight over `segment` (the optical depths between at and target at λ_in; path_media.h).
-double cameraSide(const Scene& scene, const PathVertex& at, const Vec3& wCam, const Vec3& wTarget,
-                  const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut,
-                  const SegmentDepth& segment);
-
-// Light-side (Importance) density of `target` sampled at `at`, wLight towards at's light-side
-// neighbour (shading frame); `segment` at λ_out.
-double lightSide(const Scene& scene, const PathVertex& at, const Vec3& wLight, const Vec3& wTarget,
-                 const PathVertex& target, SpectralLobe lobe, float lambdaIn, float lambdaOut,
-                 const SegmentDepth& segment);
+// The density of `target` sampled at `at` by the subpath of the query's mode (Radiance: the camera
+// side's, Importance: the light side's): the spectral event (the query's lobe, the sampled side's
+// wavelength given the known one), the direction from wKnown (towards at's neighbour on that
+// subpath) to wTarget (towards target), both in at's shading frame (the caller's, which it has for
+// its own f), and the free flight over `segment` (the optical depths between at and target at the
+// sampled side's wavelength; path_media.h).
+double densityToward(const Scene& scene, ScatterQuery query, const PathVertex& at, const Vec3& wKnown,
+                     const Vec3& wTarget, const PathVertex& target, const SegmentDepth& segment);
 
 // The light end x_0 seen from its neighbour x_1: its positional densities.
 struct LightEnd {
