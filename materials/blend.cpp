@@ -36,7 +36,7 @@ float BlendModel::directionShare(int c, SpectralLobe lobe) const {
   return hasLobe(c) && total > 0.0f ? share(c) / total : 0.0f;
 }
 
-float BlendModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+float BlendModel::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   const bool radiance = query.mode == TransportMode::Radiance;
   const Owners own =
       owners(query.mode, radiance ? wo : wi, radiance ? wi : wo, query.lobe, query.lambdaIn, query.lambdaOut);
@@ -71,7 +71,8 @@ SpectralChoice BlendModel::sampleSpectral(TransportMode mode, float lambdaKnown,
   return {SpectralLobe::Elastic, lambdaKnown, u < fluorescent + elastic ? elastic : 0.0f};
 }
 
-std::optional<DirectionSample> BlendModel::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+std::optional<DirectionSample> BlendModel::sampleDirection(const ScatterQuery& query, const Vec3& wKnown,
+                                                           Vec2 u) const {
   const float first = directionShare(0, query.lobe), second = directionShare(1, query.lobe);
   if (first + second <= 0.0f) return std::nullopt;
   const int c = u.x < first ? 0 : 1;
@@ -85,7 +86,7 @@ std::optional<DirectionSample> BlendModel::sampleDirection(ScatterQuery query, c
   return ds;
 }
 
-float BlendModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+float BlendModel::directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const {
   const Owners own = owners(query.mode, wKnown, wSampled, query.lobe, query.lambdaIn, query.lambdaOut);
   float pdf = 0.0f;
   for (int c = 0; c < 2; ++c)

@@ -46,7 +46,7 @@ class BlendModel final : public BsdfModel {
       : components_{&first, &second}, weight_(weight) {}
 
   // Σ a_c·f_c over the components that own the event (owners()).
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
   // Σ a_c·P_fl,c and Σ a_c·p_c(lobe, λ): the mixture's spectral stage.
   float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
@@ -54,9 +54,9 @@ class BlendModel final : public BsdfModel {
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   // One component's direction (chosen with π_c), reported with the mixture's density and as
   // specular where a delta owns it.
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
   // Σ π_c·p_c over the components that own the event.
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   BsdfFlags flags() const override { return blendFlags(components_[0]->flags(), components_[1]->flags()); }
 
   // A blend's flags from its components': all deltas if both are, fluorescent if either is,

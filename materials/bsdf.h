@@ -95,7 +95,7 @@ class Bsdf {
 
   // f in physical order (ω_i, λ_i → ω_o, λ_o) of one lobe; per nm if fluorescent, deltas left out.
   // With a shading normal, f·|cos θ_s| of the sampled direction is Veach's f_s (shading_normal.h).
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
     if (!front(wi) || !front(wo)) return 0.0f;
     const float c = correction_.factor(query.mode, wi, wo);
     return c > 0.0f ? c * model_->eval(query, wi, wo) : 0.0f;
@@ -116,14 +116,14 @@ class Bsdf {
   }
   // Directional stage given the lobe and both wavelengths: the unknown direction, its density
   // per steradian (a probability if specular).
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const {
     if (!correction_.consistent(wKnown) || !front(wKnown)) return std::nullopt;
     std::optional<DirectionSample> ds = model_->sampleDirection(query, wKnown, u);
     if (ds && (!correction_.consistent(ds->w) || !front(ds->w))) return std::nullopt;
     return ds;
   }
   // That stage's density of wSampled, per steradian.
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const {
     if (!front(wKnown) || !front(wSampled)) return 0.0f;
     return model_->directionPdf(query, wKnown, wSampled);
   }
@@ -138,7 +138,7 @@ class Bsdf {
     return s->f > 0.0f ? s : std::nullopt;
   }
   // Both densities (this mode, reverse) of an event in physical order: spectral × directional.
-  ScatterDensity pdf(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+  ScatterDensity pdf(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
     if (!front(wi) || !front(wo)) return {};
     return model_->pdf(query, wi, wo);
   }

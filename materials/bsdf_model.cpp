@@ -27,7 +27,7 @@ std::optional<ScatterSample> BsdfModel::sample(TransportMode mode, const Vec3& w
   return s;
 }
 
-ScatterDensity BsdfModel::pdf(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+ScatterDensity BsdfModel::pdf(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   const bool radiance = query.mode == TransportMode::Radiance;
   const Vec3& wKnown = radiance ? wo : wi;
   const Vec3& wOther = radiance ? wi : wo;

@@ -115,7 +115,7 @@ class BsdfModel {
   // solid angle of that sampled direction, so that f·|cos θ_sampled|/pdf is the path weight in
   // both modes. Refraction maps solid angles with dω_o/dω_i = η_i²|cos θ_i| / (η_o²|cos θ_o|), so
   // there the two coefficients differ (Veach97 §5.2); every non-specular f is the same in both.
-  virtual float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const = 0;
+  virtual float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const = 0;
 
   // Spectral stage: chooses the lobe and the unknown wavelength given the known one (λ_o in
   // Radiance mode, λ_i in Importance mode): the fluorescent lobe exactly when
@@ -133,8 +133,9 @@ class BsdfModel {
   // Directional stage given the query's spectral event (lobe and both wavelengths, which a
   // dispersive model needs); wKnown is ω_o (Radiance) or ω_i (Importance). The density is per
   // steradian (for a specular lobe, the discrete probability).
-  virtual std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const = 0;
-  virtual float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const = 0;
+  virtual std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown,
+                                                         Vec2 u) const = 0;
+  virtual float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const = 0;
 
   // DeltaDirection, Fluorescent, WavelengthDependentDirection (BsdfFlags).
   virtual BsdfFlags flags() const = 0;
@@ -142,7 +143,7 @@ class BsdfModel {
   // Both stages: u.x for the spectral stage, (u.y, u.z) for the direction.
   std::optional<ScatterSample> sample(TransportMode mode, const Vec3& wKnown, float lambdaKnown, Vec3 u) const;
   // Densities of an event given in physical order, sampled in `mode` (and reverse).
-  ScatterDensity pdf(ScatterQuery query, const Vec3& wi, const Vec3& wo) const;
+  ScatterDensity pdf(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const;
 
  protected:
   // Models are owned by their materials (or built for one hit), never deleted through this type.

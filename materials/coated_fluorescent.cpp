@@ -31,7 +31,7 @@ float CoatedModel::coatFresnel(float c, float lambda) const {
   return eta == 1.0f ? 0.0f : fresnelDielectric(c, eta);  // exactly 0 when index-matched, not rounding residue
 }
 
-float CoatedModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+float CoatedModel::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
   const float ti = 1.0f - coatFresnel(std::abs(wi.z), query.lambdaIn);
   if (query.lobe == SpectralLobe::Fluorescent) {
@@ -86,7 +86,8 @@ float CoatedModel::probCoat(const Vec3& wKnown, float lambda) const {
   return F + base > 0.0f ? F / (F + base) : 0.0f;  // neither reflects: the base's cosine sampling
 }
 
-std::optional<DirectionSample> CoatedModel::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+std::optional<DirectionSample> CoatedModel::sampleDirection(const ScatterQuery& query, const Vec3& wKnown,
+                                                            Vec2 u) const {
   if (wKnown.z == 0.0f) return std::nullopt;
   if (query.lobe == SpectralLobe::Fluorescent) return diffuse::sample(wKnown, u);
   const float pc = probCoat(wKnown, query.lambdaIn);
@@ -103,7 +104,7 @@ std::optional<DirectionSample> CoatedModel::sampleDirection(ScatterQuery query, 
   return DirectionSample{w, pdf, false};
 }
 
-float CoatedModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+float CoatedModel::directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const {
   const float diffusePdf = diffuse::pdf(wKnown, wSampled);
   if (query.lobe == SpectralLobe::Fluorescent) return diffusePdf;
   const float pc = probCoat(wKnown, query.lambdaIn);

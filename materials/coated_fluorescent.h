@@ -41,11 +41,11 @@ class CoatedModel : public BsdfModel {
   // `coatIor` must outlive the model (the material's).
   CoatedModel(JungModel base, const Ior& coatIor, Ggx ggx) : base_(base), ior_(&coatIor), ggx_(ggx) {}
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   // The elastic lobe picks the coat with a probability weighted by F(λ) and r(λ).
   BsdfFlags flags() const override {
     return flagIf(base_.fluoresces(), BsdfFlags::Fluorescent) | BsdfFlags::WavelengthDependentDirection;

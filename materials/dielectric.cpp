@@ -32,7 +32,7 @@ Dielectric::Match Dielectric::match(const Vec3& wKnown, const Vec3& wSampled, fl
   return m;
 }
 
-float Dielectric::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+float Dielectric::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   if (query.lobe != SpectralLobe::Elastic) return 0.0f;
   const bool radiance = query.mode == TransportMode::Radiance;
   const Vec3& wKnown = radiance ? wo : wi;
@@ -46,7 +46,8 @@ float Dielectric::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const
   return f;
 }
 
-std::optional<DirectionSample> Dielectric::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+std::optional<DirectionSample> Dielectric::sampleDirection(const ScatterQuery& query, const Vec3& wKnown,
+                                                           Vec2 u) const {
   if (query.lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
   const float eta = relativeEta(wKnown, query.lambdaIn);
   const float F = fresnelDielectric(std::abs(wKnown.z), eta);
@@ -56,7 +57,7 @@ std::optional<DirectionSample> Dielectric::sampleDirection(ScatterQuery query, c
   return DirectionSample{*t, 1.0f - F, true};
 }
 
-float Dielectric::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+float Dielectric::directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const {
   return query.lobe == SpectralLobe::Elastic ? match(wKnown, wSampled, query.lambdaIn).prob : 0.0f;
 }
 

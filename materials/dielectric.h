@@ -28,9 +28,9 @@ class Dielectric final : public SmoothDielectric {
  public:
   using SmoothDielectric::SmoothDielectric;
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   std::string describe() const override { return "dielectric (" + ior_.describe() + ")"; }
 
   // η_far/η_w: the index on the far side of the surface from w over the index on w's side.

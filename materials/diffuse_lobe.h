@@ -31,10 +31,10 @@ namespace kasha {
 template <class Base>
 class DiffuseModel : public Base {
  public:
-  std::optional<DirectionSample> sampleDirection(ScatterQuery, const Vec3& wKnown, Vec2 u) const final {
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery&, const Vec3& wKnown, Vec2 u) const final {
     return diffuse::sample(wKnown, u);
   }
-  float directionPdf(ScatterQuery, const Vec3& wKnown, const Vec3& wSampled) const final {
+  float directionPdf(const ScatterQuery&, const Vec3& wKnown, const Vec3& wSampled) const final {
     return diffuse::pdf(wKnown, wSampled);
   }
 

@@ -47,7 +47,7 @@ JungBbrrdf::JungBbrrdf(JungParams params, WavelengthRange range, JungTextures te
       spectra_(std::move(params), range),
       textures_(std::move(textures)) {}
 
-float JungModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+float JungModel::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
   const float ca = c() * a(query.lambdaIn);
   if (query.lobe == SpectralLobe::Elastic) return (1.0f - ca) * r(query.lambdaIn) * kInvPi;  // Jung18 eq. 3

@@ -57,7 +57,7 @@ class JungModel : public DiffuseModel<BsdfModel> {
   // `spectra` must outlive the model (the material's).
   JungModel(const JungSpectra& spectra, HitReflectance r, float c, float q) : s_(&spectra), r_(r), c_(c), q_(q) {}
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   BsdfFlags flags() const override {

@@ -13,7 +13,7 @@ class LambertianModel : public DiffuseModel<ElasticModel> {
  public:
   explicit LambertianModel(HitReflectance r) : r_(r) {}
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
   BsdfFlags flags() const override { return BsdfFlags::None; }
 
  private:

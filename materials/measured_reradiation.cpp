@@ -137,7 +137,7 @@ float MeasuredModel::probFluorescence(TransportMode mode, float lambdaKnown) con
   return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
 }
 
-float MeasuredModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+float MeasuredModel::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
   return (query.lobe == SpectralLobe::Elastic ? diagonal(query.lambdaIn) : F(query.lambdaOut, query.lambdaIn)) * kInvPi;
 }

@@ -74,7 +74,7 @@ class MeasuredModel : public DiffuseModel<BsdfModel> {
   MeasuredModel(const MeasuredMatrix& matrix, float diagonalScale, float reradiationScale)
       : m_(&matrix), diagonalScale_(diagonalScale), reradiationScale_(reradiationScale) {}
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   BsdfFlags flags() const override {

@@ -25,9 +25,9 @@ class MirrorModel : public ElasticModel {
  public:
   explicit MirrorModel(ConductorFresnel f) : f_(f) {}
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   BsdfFlags flags() const override { return BsdfFlags::DeltaDirection; }
 
  private:

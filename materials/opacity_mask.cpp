@@ -29,7 +29,7 @@ float MaskModel::passThroughShare(TransportMode mode, float lambda) const {
   return elastic > 0.0f ? (1.0f - opacity_) / elastic : 0.0f;
 }
 
-float MaskModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+float MaskModel::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   if (query.lobe == SpectralLobe::Elastic && opacity_ < 1.0f && isPassThrough(wi, wo))
     return wi.z != 0.0f ? (1.0f - opacity_) / std::abs(wi.z) : 0.0f;
   return opacity_ * nested_->eval(query, wi, wo);
@@ -55,7 +55,7 @@ float MaskModel::spectralPdf(TransportMode mode, float lambdaKnown, float lambda
   return opacity_ * nested_->spectralPdf(mode, lambdaKnown, lambdaOther, lobe);
 }
 
-std::optional<DirectionSample> MaskModel::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+std::optional<DirectionSample> MaskModel::sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const {
   if (query.lobe == SpectralLobe::Fluorescent) return nested_->sampleDirection(query, wKnown, u);
   const float q = passThroughShare(query.mode, query.lambdaIn);
   if (u.x < q) return DirectionSample{-wKnown, q, true};
@@ -64,7 +64,7 @@ std::optional<DirectionSample> MaskModel::sampleDirection(ScatterQuery query, co
   return ds;
 }
 
-float MaskModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+float MaskModel::directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const {
   if (query.lobe == SpectralLobe::Fluorescent) return nested_->directionPdf(query, wKnown, wSampled);
   const float q = passThroughShare(query.mode, query.lambdaIn);
   if (q > 0.0f && isPassThrough(wKnown, wSampled)) return q;

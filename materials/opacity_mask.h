@@ -27,12 +27,12 @@ class MaskModel final : public BsdfModel {
  public:
   MaskModel(const BsdfModel& nested, float opacity) : nested_(&nested), opacity_(opacity) {}
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override;
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   // Opaque (α = 1), the nested model's; else maskFlags.
   BsdfFlags flags() const override { return opacity_ < 1.0f ? maskFlags(nested_->flags()) : nested_->flags(); }
 

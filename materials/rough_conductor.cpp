@@ -25,7 +25,7 @@ RoughConductorModel RoughConductor::modelAt(const TexturePoint& p) const {
                              texturedGgx(ggx(), textures_.alpha, p));
 }
 
-float RoughConductorModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+float RoughConductorModel::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   if (query.lobe != SpectralLobe::Elastic) return 0.0f;
   const float r = ggx_.reflection(wi, wo);
   if (r <= 0.0f) return 0.0f;
@@ -33,7 +33,7 @@ float RoughConductorModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& 
   return f_(std::abs(glm::dot(wi, h)), query.lambdaIn) * r;  // Walter07 eq. 20
 }
 
-std::optional<DirectionSample> RoughConductorModel::sampleDirection(ScatterQuery query, const Vec3& wKnown,
+std::optional<DirectionSample> RoughConductorModel::sampleDirection(const ScatterQuery& query, const Vec3& wKnown,
                                                                     Vec2 u) const {
   if (query.lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
   const Vec3 w = reflectAbout(wKnown, ggx_.sampleVisible(wKnown, u));
@@ -42,7 +42,7 @@ std::optional<DirectionSample> RoughConductorModel::sampleDirection(ScatterQuery
   return DirectionSample{w, pdf, false};
 }
 
-float RoughConductorModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+float RoughConductorModel::directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const {
   return query.lobe == SpectralLobe::Elastic ? ggx_.reflectionPdf(wKnown, wSampled) : 0.0f;
 }
 

@@ -37,9 +37,9 @@ class RoughConductorModel : public ElasticModel {
  public:
   RoughConductorModel(ConductorFresnel f, Ggx ggx) : f_(f), ggx_(ggx) {}
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   BsdfFlags flags() const override { return BsdfFlags::None; }
 
   const Ggx& ggx() const { return ggx_; }

@@ -37,7 +37,7 @@ float RoughDielectricModel::reflectProbability(const Vec3& w, float lambda) cons
   return std::clamp(F, kMinReflectProbability, 1.0f - kMinReflectProbability);
 }
 
-float RoughDielectricModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+float RoughDielectricModel::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   if (query.lobe != SpectralLobe::Elastic || wi.z == 0.0f || wo.z == 0.0f) return 0.0f;
   const float etaI = sideIndex(wi, query.lambdaIn), etaO = sideIndex(wo, query.lambdaIn);
   if (wi.z * wo.z > 0.0f) {
@@ -58,7 +58,7 @@ float RoughDielectricModel::eval(ScatterQuery query, const Vec3& wi, const Vec3&
          ggx_.g1(wo) / denom;
 }
 
-std::optional<DirectionSample> RoughDielectricModel::sampleDirection(ScatterQuery query, const Vec3& wKnown,
+std::optional<DirectionSample> RoughDielectricModel::sampleDirection(const ScatterQuery& query, const Vec3& wKnown,
                                                                      Vec2 u) const {
   if (query.lobe != SpectralLobe::Elastic || wKnown.z == 0.0f) return std::nullopt;
   const float pr = reflectProbability(wKnown, query.lambdaIn);
@@ -77,7 +77,7 @@ std::optional<DirectionSample> RoughDielectricModel::sampleDirection(ScatterQuer
   return DirectionSample{w, pdf, false};
 }
 
-float RoughDielectricModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+float RoughDielectricModel::directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const {
   return query.lobe == SpectralLobe::Elastic ? density(wKnown, wSampled, query.lambdaIn) : 0.0f;
 }
 

@@ -44,9 +44,9 @@ class RoughDielectricModel : public ElasticModel {
  public:
   RoughDielectricModel(Ior ior, Ggx ggx) : ior_(std::move(ior)), ggx_(ggx) {}
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   // Dispersion changes the refracted direction and the Fresnel choice between the lobes.
   BsdfFlags flags() const override { return flagIf(ior_.dispersive(), BsdfFlags::WavelengthDependentDirection); }
 

@@ -18,9 +18,9 @@ class ThinDielectric final : public SmoothDielectric {
  public:
   using SmoothDielectric::SmoothDielectric;
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   std::string describe() const override { return "thin_dielectric (" + ior_.describe() + ")"; }
 
   // The slab's reflectance R = 2F/(1 + F) for light arriving at |cos θ| = cosTheta.

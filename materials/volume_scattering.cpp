@@ -55,7 +55,7 @@ float VolumeScattering::albedoWeight(TransportMode mode, float lambdaKnown) cons
   return scattering(lambdaKnown) + fluorescentWeight(mode, lambdaKnown);
 }
 
-float VolumeScattering::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+float VolumeScattering::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   if (query.lobe == SpectralLobe::Elastic)  // media.md eq. 3
     return scattering(query.lambdaIn) * henyeyGreenstein(-glm::dot(wi, wo), medium_->params().g);
   float f = 0.0f;  // media.md eq. 4
@@ -113,7 +113,8 @@ float VolumeScattering::spectralPdf(TransportMode mode, float lambdaKnown, float
   return f / kUniformSpherePdf / total;
 }
 
-std::optional<DirectionSample> VolumeScattering::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+std::optional<DirectionSample> VolumeScattering::sampleDirection(const ScatterQuery& query, const Vec3& wKnown,
+                                                                 Vec2 u) const {
   DirectionSample ds;
   if (query.lobe == SpectralLobe::Fluorescent) {
     ds.w = sampleUniformSphere(u);
@@ -128,7 +129,7 @@ std::optional<DirectionSample> VolumeScattering::sampleDirection(ScatterQuery qu
   return ds;
 }
 
-float VolumeScattering::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+float VolumeScattering::directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const {
   if (query.lobe == SpectralLobe::Fluorescent) return kUniformSpherePdf;
   const Vec3& wi = query.mode == TransportMode::Radiance ? wSampled : wKnown;
   const Vec3& wo = query.mode == TransportMode::Radiance ? wKnown : wSampled;

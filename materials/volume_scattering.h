@@ -36,12 +36,12 @@ class VolumeScattering final : public BsdfModel {
   // with an albedo field (Medium::albedo); nullopt: the medium's own σ_s(λ).
   explicit VolumeScattering(const Medium& medium, std::optional<RgbSigmoid> albedoHere = std::nullopt);
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override;
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   BsdfFlags flags() const override { return flags_; }
 
   // A_el + A_fl at the known wavelength: what f/pdf of a sampled event is.

@@ -46,7 +46,7 @@ ZhdanovModel ZhdanovBdf::modelAt(const TexturePoint& at) const {
                                            textures_.passive.at(p.passive, at), textures_.excitation.at(1.0f, at)});
 }
 
-float ZhdanovModel::eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const {
+float ZhdanovModel::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const {
   if (!diffuse::sameSide(wi, wo)) return 0.0f;
   if (query.lobe == SpectralLobe::Elastic)  // Zhdanov eq. 2, passive part: gloss peak + Lambert
     return (h_.gloss > 0.0f ? h_.gloss * gloss::value(wi, wo, h_.glossExponent) : 0.0f) +
@@ -94,7 +94,8 @@ namespace {
 float glossChoice(float gloss, float passive) { return gloss + passive > 0.0f ? gloss / (gloss + passive) : 0.0f; }
 }  // namespace
 
-std::optional<DirectionSample> ZhdanovModel::sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const {
+std::optional<DirectionSample> ZhdanovModel::sampleDirection(const ScatterQuery& query, const Vec3& wKnown,
+                                                             Vec2 u) const {
   if (query.lobe == SpectralLobe::Fluorescent) return diffuse::sample(wKnown, u);
   const float pg = glossChoice(h_.gloss, passive(query.lambdaIn));
   std::optional<DirectionSample> s;
@@ -108,7 +109,7 @@ std::optional<DirectionSample> ZhdanovModel::sampleDirection(ScatterQuery query,
   return s;
 }
 
-float ZhdanovModel::directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const {
+float ZhdanovModel::directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const {
   if (query.lobe == SpectralLobe::Fluorescent) return diffuse::pdf(wKnown, wSampled);
   const float pg = glossChoice(h_.gloss, passive(query.lambdaIn));
   const float lambert = (1.0f - pg) * diffuse::pdf(wKnown, wSampled);

@@ -55,11 +55,11 @@ class ZhdanovModel : public BsdfModel {
   // `spectra` must outlive the model (the material's).
   ZhdanovModel(const ZhdanovSpectra& spectra, ZhdanovHit hit) : s_(&spectra), h_(hit) {}
 
-  float eval(ScatterQuery query, const Vec3& wi, const Vec3& wo) const override;
+  float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
   SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
   float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
-  std::optional<DirectionSample> sampleDirection(ScatterQuery query, const Vec3& wKnown, Vec2 u) const override;
-  float directionPdf(ScatterQuery query, const Vec3& wKnown, const Vec3& wSampled) const override;
+  std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
+  float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   // The elastic lobe picks the gloss peak with a probability weighted by p(λ).
   BsdfFlags flags() const override {
     return flagIf(fluoresces(), BsdfFlags::Fluorescent | BsdfFlags::FactorisedFluorescence) |

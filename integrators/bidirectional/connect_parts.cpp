@@ -18,7 +18,7 @@ double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathV
   return toAreaDensity(pdfSA, at, target);
 }
 
-double densityToward(const Scene& scene, ScatterQuery query, const PathVertex& at, const Vec3& wKnown,
+double densityToward(const Scene& scene, const ScatterQuery& query, const PathVertex& at, const Vec3& wKnown,
                      const Vec3& wTarget, const PathVertex& target, const SegmentDepth& segment) {
   const bool radiance = query.mode == TransportMode::Radiance;
   const float known = radiance ? query.lambdaOut : query.lambdaIn;

@@ -25,7 +25,7 @@ double toArea(const Scene& scene, float pdfSA, const PathVertex& at, const PathV
 // subpath) to wTarget (towards target), both in at's shading frame (the caller's, which it has for
 // its own f), and the free flight over `segment` (the optical depths between at and target at the
 // sampled side's wavelength; path_media.h).
-double densityToward(const Scene& scene, ScatterQuery query, const PathVertex& at, const Vec3& wKnown,
+double densityToward(const Scene& scene, const ScatterQuery& query, const PathVertex& at, const Vec3& wKnown,
                      const Vec3& wTarget, const PathVertex& target, const SegmentDepth& segment);
 
 // The light end x_0 seen from its neighbour x_1: its positional densities.
