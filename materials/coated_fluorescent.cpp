@@ -49,7 +49,7 @@ float CoatedModel::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& w
   return base + coatFresnel(std::abs(glm::dot(wi, h)), query.lambdaIn) * r;  // Walter07 eq. 20
 }
 
-float CoatedModel::probFluorescence(TransportMode mode, float l) const {
+float CoatedModel::fluorescentShare(TransportMode mode, float l) const {
   // Jung18 eqs. 6 (Importance, λ_i known) and 7 (Radiance, λ_o known), the coat's R0 added to the
   // elastic weight.
   const float ca = base_.c() * base_.a(l);
@@ -57,27 +57,6 @@ float CoatedModel::probFluorescence(TransportMode mode, float l) const {
                                                    : ca * base_.q();
   const float el = (1.0f - ca) * base_.r(l) + coatFresnel(1.0f, l);
   return fl + el > 0.0f ? fl / (fl + el) : -1.0f;  // −1: nothing is scattered
-}
-
-SpectralChoice CoatedModel::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
-  const float pFluor = probFluorescence(mode, lambdaKnown);
-  if (pFluor < 0.0f) return {};
-  if (u < pFluor) {
-    const bool radiance = mode == TransportMode::Radiance;
-    const SpectralDistribution& d = radiance ? base_.absorptionDistribution() : base_.emissionDistribution();
-    const WavelengthSample ws = d.sample(std::min(u / pFluor, 0x1.fffffep-1f));
-    if (ws.pdf <= 0.0f) return {};
-    return {SpectralLobe::Fluorescent, ws.lambda, pFluor * ws.pdf};
-  }
-  return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
-}
-
-float CoatedModel::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
-  const float pFluor = probFluorescence(mode, lambdaKnown);
-  if (pFluor < 0.0f) return 0.0f;
-  if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
-  const bool radiance = mode == TransportMode::Radiance;
-  return pFluor * (radiance ? base_.absorptionDistribution() : base_.emissionDistribution()).pdf(lambdaOther);
 }
 
 float CoatedModel::probCoat(const Vec3& wKnown, float lambda) const {

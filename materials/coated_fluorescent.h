@@ -27,6 +27,7 @@
 //                   is the mixture of both.
 #include <algorithm>
 
+#include "materials/factorised_fluorescent_model.h"
 #include "materials/ggx.h"
 #include "materials/ior.h"
 #include "materials/jung_bbrrdf.h"
@@ -36,34 +37,32 @@
 namespace kasha {
 
 // The model at one hit.
-class CoatedModel : public BsdfModel {
+class CoatedModel : public FactorisedFluorescentModel {
  public:
   // `coatIor` must outlive the model (the material's).
   CoatedModel(JungModel base, const Ior& coatIor, Ggx ggx) : base_(base), ior_(&coatIor), ggx_(ggx) {}
 
   float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
-  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
-  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
   float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   // The elastic lobe picks the coat with a probability weighted by F(λ) and r(λ).
   BsdfFlags flags() const override {
     return flagIf(base_.fluoresces(), BsdfFlags::Fluorescent) | BsdfFlags::WavelengthDependentDirection;
   }
-  float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override {
-    return std::max(probFluorescence(mode, lambdaKnown), 0.0f);
-  }
   const JungModel& base() const { return base_; }
   const Ior& coatIor() const { return *ior_; }
   const Ggx& ggx() const { return ggx_; }
   // Coat Fresnel reflectance at |cos θ| = c and λ.
   float coatFresnel(float c, float lambda) const;
-  // Probability of the fluorescent lobe in the spectral stage, given the known wavelength.
-  float probFluorescence(TransportMode mode, float lambdaKnown) const;
   // Probability of sampling the coat's reflection in the elastic directional stage.
   float probCoat(const Vec3& wKnown, float lambda) const;
 
  private:
+  // Jung18 eqs. 7 (Radiance) and 6 (Importance) with the coat's R0 added to the elastic weight.
+  float fluorescentShare(TransportMode mode, float lambdaKnown) const override;
+  const SpectralDistribution& unknownWavelength(TransportMode mode) const override {
+    return mode == TransportMode::Radiance ? base_.absorptionDistribution() : base_.emissionDistribution();
+  }
   JungModel base_;
   const Ior* ior_;
   Ggx ggx_;

@@ -54,22 +54,18 @@ float JungModel::eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo)
   return ca * q() * e(query.lambdaOut) * kInvPi;                                             // Jung18 eq. 2
 }
 
-float JungModel::probFluorescenceLight(float lambdaIn) const {
-  // Jung18 eq. 6: P_l = c·a(λ_i)·Q / (c·a(λ_i)·Q + (1 − c·a(λ_i))·r(λ_i))
-  const float ca = c() * a(lambdaIn);
-  const float fl = ca * q(), el = (1.0f - ca) * r(lambdaIn);
-  return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
-}
-
-float JungModel::probFluorescenceCamera(float lambdaOut) const {
-  // Jung18 eq. 7: P_c = c·∫a·Q·e(λ_o) / (c·∫a·Q·e(λ_o) + (1 − c·a(λ_o))·r(λ_o))
-  const float fl = c() * absorptionIntegral() * q() * e(lambdaOut);
-  const float el = (1.0f - c() * a(lambdaOut)) * r(lambdaOut);
-  return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
-}
-
-float JungModel::fluorescenceProbability(TransportMode mode, float lambdaKnown) const {
-  return mode == TransportMode::Radiance ? probFluorescenceCamera(lambdaKnown) : probFluorescenceLight(lambdaKnown);
+float JungModel::fluorescentShare(TransportMode mode, float lambdaKnown) const {
+  float fl, el;
+  if (mode == TransportMode::Radiance) {
+    // Jung18 eq. 7: P_c = c·∫a·Q·e(λ_o) / (c·∫a·Q·e(λ_o) + (1 − c·a(λ_o))·r(λ_o))
+    fl = c() * absorptionIntegral() * q() * e(lambdaKnown);
+    el = (1.0f - c() * a(lambdaKnown)) * r(lambdaKnown);
+  } else {
+    // Jung18 eq. 6: P_l = c·a(λ_i)·Q / (c·a(λ_i)·Q + (1 − c·a(λ_i))·r(λ_i))
+    const float ca = c() * a(lambdaKnown);
+    fl = ca * q(), el = (1.0f - ca) * r(lambdaKnown);
+  }
+  return fl + el > 0.0f ? fl / (fl + el) : -1.0f;
 }
 
 std::optional<FluorophoreSpectra> JungModel::fluorophoreSpectra() const {
@@ -85,29 +81,6 @@ float JungModel::albedoIn(float lambdaIn) const {
 
 float JungModel::albedoOut(float lambdaOut) const {
   return (1.0f - c() * a(lambdaOut)) * r(lambdaOut) + c() * q() * absorptionIntegral() * e(lambdaOut);
-}
-
-SpectralChoice JungModel::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
-  const bool radiance = mode == TransportMode::Radiance;
-  const bool anything = radiance ? albedoOut(lambdaKnown) > 0.0f : albedoIn(lambdaKnown) > 0.0f;
-  if (!anything) return {};
-  const float pFluor = fluorescenceProbability(mode, lambdaKnown);
-  if (u < pFluor) {
-    // Radiance: λ_i ∝ a (camera paths); Importance: λ_o ∝ e (light paths).
-    const WavelengthSample ws = (radiance ? s_->absorption : s_->emission).sample(std::min(u / pFluor, 0x1.fffffep-1f));
-    if (ws.pdf <= 0.0f) return {};
-    return {SpectralLobe::Fluorescent, ws.lambda, pFluor * ws.pdf};
-  }
-  return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
-}
-
-float JungModel::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
-  const bool radiance = mode == TransportMode::Radiance;
-  const bool anything = radiance ? albedoOut(lambdaKnown) > 0.0f : albedoIn(lambdaKnown) > 0.0f;
-  if (!anything) return 0.0f;
-  const float pFluor = fluorescenceProbability(mode, lambdaKnown);
-  if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
-  return pFluor * (radiance ? s_->absorption.pdf(lambdaOther) : s_->emission.pdf(lambdaOther));
 }
 
 ReradiationMatrix JungModel::reradiationMatrix(const std::vector<float>& grid) const {

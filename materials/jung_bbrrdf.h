@@ -10,6 +10,7 @@
 
 #include "core/spectral_distribution.h"
 #include "materials/diffuse_lobe.h"
+#include "materials/factorised_fluorescent_model.h"
 #include "materials/surface_texture.h"
 #include "materials/textured_material.h"
 
@@ -52,27 +53,19 @@ struct JungSpectra {
 };
 
 // The BBRRDF at one hit: the surface's spectra with this hit's r(λ), c and Q.
-class JungModel : public DiffuseModel<BsdfModel> {
+class JungModel : public DiffuseModel<FactorisedFluorescentModel> {
  public:
   // `spectra` must outlive the model (the material's).
   JungModel(const JungSpectra& spectra, HitReflectance r, float c, float q) : s_(&spectra), r_(r), c_(c), q_(q) {}
 
   float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
-  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
-  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   BsdfFlags flags() const override {
     return flagIf(fluoresces(), BsdfFlags::Fluorescent | BsdfFlags::FactorisedFluorescence);
   }
   bool fluoresces() const { return c_ > 0.0f && q_ > 0.0f; }
-  // P_c (Radiance) or P_l (Importance).
-  float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override;
   // absorbed = c·a(λ); reemitted = Q·(∫c·a)·e(λ) (Jung18 eq. 2 integrated over λ_i under unit light).
   std::optional<FluorophoreSpectra> fluorophoreSpectra() const;
 
-  // Jung18 eq. 6: probability of the fluorescent lobe on a light path, given λ_i.
-  float probFluorescenceLight(float lambdaIn) const;
-  // Jung18 eq. 7: probability of the fluorescent lobe on a camera path, given λ_o.
-  float probFluorescenceCamera(float lambdaOut) const;
   // Hemispherical-spectral albedo for light arriving at λ_i: ∫∫ f cos dω_o dλ_o (eq. 8's left side).
   float albedoIn(float lambdaIn) const;
   // Energy leaving at λ_o per unit of white (constant 1) incident light: ∫∫ f cos dω_i dλ_i.
@@ -93,6 +86,11 @@ class JungModel : public DiffuseModel<BsdfModel> {
   ReradiationMatrix reradiationMatrix(const std::vector<float>& grid) const;
 
  private:
+  // P_c (Jung18 eq. 7, Radiance, λ_o known) or P_l (eq. 6, Importance, λ_i known).
+  float fluorescentShare(TransportMode mode, float lambdaKnown) const override;
+  const SpectralDistribution& unknownWavelength(TransportMode mode) const override {
+    return mode == TransportMode::Radiance ? s_->absorption : s_->emission;
+  }
   const JungSpectra* s_;
   HitReflectance r_;
   float c_, q_;

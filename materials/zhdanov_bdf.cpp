@@ -65,28 +65,9 @@ std::optional<FluorophoreSpectra> ZhdanovModel::fluorophoreSpectra() const {
                             s_->params.emission.scaled(excitationIntegral() / s_->emission.integral())};
 }
 
-float ZhdanovModel::probFluorescence(TransportMode mode, float lambdaKnown) const {
+float ZhdanovModel::fluorescentShare(TransportMode mode, float lambdaKnown) const {
   const float fl = fluorescentWeight(mode, lambdaKnown), el = elasticWeight(lambdaKnown);
-  return fl + el > 0.0f ? fl / (fl + el) : 0.0f;
-}
-
-SpectralChoice ZhdanovModel::sampleSpectral(TransportMode mode, float lambdaKnown, float u) const {
-  if (!(fluorescentWeight(mode, lambdaKnown) + elasticWeight(lambdaKnown) > 0.0f)) return {};
-  const float pFluor = probFluorescence(mode, lambdaKnown);
-  if (u < pFluor) {
-    const bool radiance = mode == TransportMode::Radiance;
-    const WavelengthSample ws = (radiance ? s_->excitation : s_->emission).sample(std::min(u / pFluor, 0x1.fffffep-1f));
-    if (ws.pdf <= 0.0f) return {};
-    return {SpectralLobe::Fluorescent, ws.lambda, pFluor * ws.pdf};
-  }
-  return {SpectralLobe::Elastic, lambdaKnown, 1.0f - pFluor};
-}
-
-float ZhdanovModel::spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const {
-  if (!(fluorescentWeight(mode, lambdaKnown) + elasticWeight(lambdaKnown) > 0.0f)) return 0.0f;
-  const float pFluor = probFluorescence(mode, lambdaKnown);
-  if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
-  return pFluor * (mode == TransportMode::Radiance ? s_->excitation.pdf(lambdaOther) : s_->emission.pdf(lambdaOther));
+  return fl + el > 0.0f ? fl / (fl + el) : -1.0f;
 }
 
 namespace {

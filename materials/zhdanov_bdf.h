@@ -17,6 +17,7 @@
 #include <string>
 
 #include "core/spectral_distribution.h"
+#include "materials/factorised_fluorescent_model.h"
 #include "materials/surface_texture.h"
 #include "materials/textured_material.h"
 
@@ -50,14 +51,12 @@ struct ZhdanovHit {
   float excitationScale = 1.0f;
 };
 
-class ZhdanovModel : public BsdfModel {
+class ZhdanovModel : public FactorisedFluorescentModel {
  public:
   // `spectra` must outlive the model (the material's).
   ZhdanovModel(const ZhdanovSpectra& spectra, ZhdanovHit hit) : s_(&spectra), h_(hit) {}
 
   float eval(const ScatterQuery& query, const Vec3& wi, const Vec3& wo) const override;
-  SpectralChoice sampleSpectral(TransportMode mode, float lambdaKnown, float u) const override;
-  float spectralPdf(TransportMode mode, float lambdaKnown, float lambdaOther, SpectralLobe lobe) const override;
   std::optional<DirectionSample> sampleDirection(const ScatterQuery& query, const Vec3& wKnown, Vec2 u) const override;
   float directionPdf(const ScatterQuery& query, const Vec3& wKnown, const Vec3& wSampled) const override;
   // The elastic lobe picks the gloss peak with a probability weighted by p(λ).
@@ -66,9 +65,6 @@ class ZhdanovModel : public BsdfModel {
            flagIf(h_.gloss > 0.0f, BsdfFlags::WavelengthDependentDirection);
   }
   bool fluoresces() const { return excitationIntegral() > 0.0f; }
-  float fluorescenceProbability(TransportMode mode, float lambdaKnown) const override {
-    return probFluorescence(mode, lambdaKnown);
-  }
   // absorbed = A(λ_i); reemitted = E(λ_o)·∫A (eq. 3 integrated over λ_i under unit light).
   std::optional<FluorophoreSpectra> fluorophoreSpectra() const;
 
@@ -77,10 +73,13 @@ class ZhdanovModel : public BsdfModel {
   float E(float l) const { return s_->emission.pdf(l); }
   float gloss() const { return h_.gloss; }
   float glossExponent() const { return h_.glossExponent; }
-  // Probability of the fluorescent lobe given the known wavelength (light paths: λ_i; camera: λ_o).
-  float probFluorescence(TransportMode mode, float lambdaKnown) const;
 
  private:
+  // The fluorescent weight over both weights at the known wavelength (light paths: λ_i; camera: λ_o).
+  float fluorescentShare(TransportMode mode, float lambdaKnown) const override;
+  const SpectralDistribution& unknownWavelength(TransportMode mode) const override {
+    return mode == TransportMode::Radiance ? s_->excitation : s_->emission;
+  }
   float excitationIntegral() const { return h_.excitationScale * s_->excitation.integral(); }
   float elasticWeight(float l) const { return h_.gloss + passive(l); }
   float fluorescentWeight(TransportMode mode, float lambdaKnown) const;

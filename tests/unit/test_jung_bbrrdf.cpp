@@ -429,13 +429,13 @@ TEST(JungBbrrdfLobeProbability, Eq6And7BoxSpectraByHand) {
     // c = 1, Q = 0.9, a = 0.8 on [400, 450), e = 1/50 on [550, 600), r = 0.5, ∫a = 40.
     const JungBbrrdf m(boxParams(), kRange);
     // P_l(420) = 0.72 / (0.72 + 0.2·0.5) = 0.72 / 0.82
-    EXPECT_NEAR(m.probFluorescenceLight(420.0f), 0.8780488, 1e-6);
-    EXPECT_NEAR(m.probFluorescenceLight(500.0f), 0.0, 1e-7);  // no absorption
-    EXPECT_NEAR(m.probFluorescenceLight(575.0f), 0.0, 1e-7);
+    EXPECT_NEAR(m.fluorescenceProbability(TransportMode::Importance, 420.0f), 0.8780488, 1e-6);
+    EXPECT_NEAR(m.fluorescenceProbability(TransportMode::Importance, 500.0f), 0.0, 1e-7);  // no absorption
+    EXPECT_NEAR(m.fluorescenceProbability(TransportMode::Importance, 575.0f), 0.0, 1e-7);
     // P_c(575) = 1·40·0.9·0.02 / (0.72 + 1·0.5) = 0.72 / 1.22
-    EXPECT_NEAR(m.probFluorescenceCamera(575.0f), 0.5901639, 1e-6);
-    EXPECT_NEAR(m.probFluorescenceCamera(420.0f), 0.0, 1e-7);  // no emission
-    EXPECT_NEAR(m.probFluorescenceCamera(500.0f), 0.0, 1e-7);
+    EXPECT_NEAR(m.fluorescenceProbability(TransportMode::Radiance, 575.0f), 0.5901639, 1e-6);
+    EXPECT_NEAR(m.fluorescenceProbability(TransportMode::Radiance, 420.0f), 0.0, 1e-7);  // no emission
+    EXPECT_NEAR(m.fluorescenceProbability(TransportMode::Radiance, 500.0f), 0.0, 1e-7);
     // The spectral stage uses them: elastic mass 1 − P, fluorescent density P·a/∫a or P·e.
     EXPECT_NEAR(m.spectralPdf(TransportMode::Importance, 420.0f, 420.0f, SpectralLobe::Elastic), 0.1 / 0.82, 1e-6);
     EXPECT_NEAR(m.spectralPdf(TransportMode::Importance, 420.0f, 575.0f, SpectralLobe::Fluorescent),
@@ -449,25 +449,25 @@ TEST(JungBbrrdfLobeProbability, Eq6And7BoxSpectraByHand) {
     // c = 0.5, Q = 0.6, r = 0.6 below 650 nm and 0 above.
     const JungBbrrdf m(partialParams(), kRange);
     // P_l(420) = 0.5·0.8·0.6 / (0.24 + (1 − 0.4)·0.6) = 0.24 / 0.6
-    EXPECT_NEAR(m.probFluorescenceLight(420.0f), 0.4, 1e-6);
+    EXPECT_NEAR(m.fluorescenceProbability(TransportMode::Importance, 420.0f), 0.4, 1e-6);
     // P_c(575) = 0.5·40·0.6·0.02 / (0.24 + 0.6) = 0.24 / 0.84
-    EXPECT_NEAR(m.probFluorescenceCamera(575.0f), 0.2857143, 1e-6);
+    EXPECT_NEAR(m.fluorescenceProbability(TransportMode::Radiance, 575.0f), 0.2857143, 1e-6);
     // Nothing reflected or emitted at 700 nm: both probabilities are defined as 0.
-    EXPECT_EQ(m.probFluorescenceLight(700.0f), 0.0f);
-    EXPECT_EQ(m.probFluorescenceCamera(700.0f), 0.0f);
+    EXPECT_EQ(m.fluorescenceProbability(TransportMode::Importance, 700.0f), 0.0f);
+    EXPECT_EQ(m.fluorescenceProbability(TransportMode::Radiance, 700.0f), 0.0f);
   }
   {
     // Pure fluorescence at 575 nm on a camera path when r = 0 there: P_c = 1.
     JungParams p = boxParams();
     p.reflectance = Spectrum::constant(0.0f);
     const JungBbrrdf m(p, kRange);
-    EXPECT_NEAR(m.probFluorescenceCamera(575.0f), 1.0, 1e-7);
-    EXPECT_NEAR(m.probFluorescenceLight(420.0f), 1.0, 1e-7);
+    EXPECT_NEAR(m.fluorescenceProbability(TransportMode::Radiance, 575.0f), 1.0, 1e-7);
+    EXPECT_NEAR(m.fluorescenceProbability(TransportMode::Importance, 420.0f), 1.0, 1e-7);
   }
   {
     const JungBbrrdf m(nonFluorescentParams(), kRange);
-    EXPECT_EQ(m.probFluorescenceLight(420.0f), 0.0f);
-    EXPECT_EQ(m.probFluorescenceCamera(575.0f), 0.0f);
+    EXPECT_EQ(m.fluorescenceProbability(TransportMode::Importance, 420.0f), 0.0f);
+    EXPECT_EQ(m.fluorescenceProbability(TransportMode::Radiance, 575.0f), 0.0f);
     EXPECT_FALSE(m.fluoresces());
   }
 }
@@ -490,12 +490,12 @@ TEST(JungBbrrdfLobeProbability, Eq6And7OverlappingGaussiansFromFormula) {
   for (const double l : {430.0, 470.0, 490.0, 510.0, 530.0, 560.0, 600.0}) {
     const double pl = c * a(l) * q / (c * a(l) * q + (1.0 - c * a(l)) * r(l));
     const double pc = c * intA * q * e(l) / (c * intA * q * e(l) + (1.0 - c * a(l)) * r(l));
-    EXPECT_TRUE(close(m.probFluorescenceLight(float(l)), pl, 1e-3)) << "λ = " << l;
-    EXPECT_TRUE(close(m.probFluorescenceCamera(float(l)), pc, 1e-3)) << "λ = " << l;
+    EXPECT_TRUE(close(m.fluorescenceProbability(TransportMode::Importance, float(l)), pl, 1e-3)) << "λ = " << l;
+    EXPECT_TRUE(close(m.fluorescenceProbability(TransportMode::Radiance, float(l)), pc, 1e-3)) << "λ = " << l;
   }
   // Outside both bands there is nothing to fluoresce.
-  EXPECT_EQ(m.probFluorescenceLight(700.0f), 0.0f);
-  EXPECT_EQ(m.probFluorescenceCamera(700.0f), 0.0f);
+  EXPECT_EQ(m.fluorescenceProbability(TransportMode::Importance, 700.0f), 0.0f);
+  EXPECT_EQ(m.fluorescenceProbability(TransportMode::Radiance, 700.0f), 0.0f);
 }
 
 // ---------------------------------------------------------------------------------------------
