@@ -14,6 +14,7 @@ const Observer& Observer::cie1931() {
     Observer o{spectrumFromTable(t, "xbar").zeroOutside(), spectrumFromTable(t, "ybar").zeroOutside(),
                spectrumFromTable(t, "zbar").zeroOutside(), 0.0f};
     o.yIntegral = o.ybar.integral(360.0f, 830.0f);
+    o.sharedKnots = o.xbar.lambdas() == o.ybar.lambdas() && o.zbar.lambdas() == o.ybar.lambdas();
     return o;
   }();
   return obs;

@@ -13,9 +13,19 @@ struct Observer {
   Spectrum xbar, ybar, zbar;
   float yIntegral;  // ∫ȳ dλ over 360–830 nm
 
+  bool sharedKnots = false;  // x̄, ȳ, z̄ tabulated at the same wavelengths: one lookup finds all three
+
   // The film's normalisation: XYZ = ∫ (x̄, ȳ, z̄)(λ) L(λ) dλ / ∫ȳ dλ, so a constant radiance of 1
   // has Y = 1. One wavelength sample contributes weight(λ)·L/p(λ).
-  Vec3 weight(float lambda) const { return Vec3(xbar(lambda), ybar(lambda), zbar(lambda)) / yIntegral; }
+  Vec3 weight(float lambda) const {
+    size_t i;
+    float t;
+    if (sharedKnots && ybar.uniformSegment(lambda, i, t)) {
+      const auto at = [&](const Spectrum& s) { return s.values()[i] + t * (s.values()[i + 1] - s.values()[i]); };
+      return Vec3(at(xbar), at(ybar), at(zbar)) / yIntegral;
+    }
+    return Vec3(xbar(lambda), ybar(lambda), zbar(lambda)) / yIntegral;
+  }
   // The film's XYZ of radiance L over the range: ∫_range weight(λ)·L(λ) dλ, exact up to rounding
   // (both are piecewise linear, so Simpson's rule is exact between their merged knots).
   Vec3 xyz(const Spectrum& L, WavelengthRange range) const;

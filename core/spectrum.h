@@ -39,12 +39,18 @@ class Spectrum {
 
   float operator()(float lambda) const {
     // Inline: the lookup of equally spaced knots, the common case in the hot loops.
-    if (uniformStep_ > 0.0f && lambda > x_[i0_] && lambda < x_[i1_]) {
-      const size_t i = std::min(i0_ + size_t((lambda - x_[i0_]) / uniformStep_), i1_ - 1);
-      const float t = (lambda - x_[i]) / (x_[i + 1] - x_[i]);
-      return y_[i] + t * (y_[i + 1] - y_[i]);
-    }
+    size_t i;
+    float t;
+    if (uniformSegment(lambda, i, t)) return y_[i] + t * (y_[i + 1] - y_[i]);
     return evaluateByKnotSearch(lambda);
+  }
+  // Where λ lies among equally spaced knots: the segment [x_i, x_i+1] and the fraction t along it;
+  // false elsewhere (operator() then searches the knots). Spectra with the same knots share it.
+  bool uniformSegment(float lambda, size_t& i, float& t) const {
+    if (!(uniformStep_ > 0.0f && lambda > x_[i0_] && lambda < x_[i1_])) return false;
+    i = std::min(i0_ + size_t((lambda - x_[i0_]) / uniformStep_), i1_ - 1);
+    t = (lambda - x_[i]) / (x_[i + 1] - x_[i]);
+    return true;
   }
   // Limit from the left (differs from operator() only at a step).
   float leftLimit(float lambda) const;

@@ -7,21 +7,20 @@ namespace {
 constexpr float kBelowOne = 0x1.fffffep-1f;
 }  // namespace
 
-void LaneLightTable::reset(const Scene& scene, std::span<const float> lambda) {
+void LaneLightTable::reset(const Scene& scene, std::span<const float> lambda, bool perLane) {
   n_ = int(lambda.size());
   lights_ = scene.lights.size();
   power_.resize(size_t(n_) * lights_);
-  single_.resize(size_t(n_) * lights_);
   total_.assign(size_t(n_), 0.0f);
   mixture_.assign(lights_, 0.0f);
-  for (int k = 0; k < n_; ++k) {
+  for (int k = 0; k < n_; ++k)
+    for (size_t l = 0; l < lights_; ++l)
+      total_[size_t(k)] += power_[size_t(k) * lights_ + l] = scene.lights[l]->power(lambda[size_t(k)]);
+  single_.resize(perLane ? size_t(n_) * lights_ : 0);
+  for (int k = 0; k < n_ && perLane; ++k) {
     const float selectorTotal = scene.lightSelector->totalPower(lambda[size_t(k)]);
-    for (size_t l = 0; l < lights_; ++l) {
-      const float power = scene.lights[l]->power(lambda[size_t(k)]);
-      power_[size_t(k) * lights_ + l] = power;
-      single_[size_t(k) * lights_ + l] = selectorTotal > 0.0f ? power / selectorTotal : 0.0f;  // as probability()
-      total_[size_t(k)] += power;
-    }
+    for (size_t l = 0; l < lights_; ++l)  // as LightSelector::probability
+      single_[size_t(k) * lights_ + l] = selectorTotal > 0.0f ? power_[size_t(k) * lights_ + l] / selectorTotal : 0.0f;
   }
   for (size_t l = 0; l < lights_; ++l) {
     float sum = 0.0f;

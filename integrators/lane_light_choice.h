@@ -32,13 +32,14 @@ namespace kasha {
 class LaneLightTable {
  public:
   // Every light's power at every lane, evaluated once (BDPT chooses lights and weighs them several
-  // times per camera sample).
-  void reset(const Scene& scene, std::span<const float> lambda);
+  // times per camera sample); with `perLane`, also laneProbability's table (BDPT's weights need it,
+  // a light subpath's start does not).
+  void reset(const Scene& scene, std::span<const float> lambda, bool perLane = false);
   // The light chosen with u (a lane with the first part of u, the light with the rest) and P(l);
   // probability 0 if no light emits at the chosen lane.
   std::pair<size_t, float> select(float u) const;
   float probability(size_t light) const { return mixture_[light]; }
-  // p(light | λ_k), LightSelector::probability at lane k's wavelength.
+  // p(light | λ_k), LightSelector::probability at lane k's wavelength (after a reset with perLane).
   float laneProbability(size_t light, int k) const { return single_[size_t(k) * lights_ + light]; }
 
  private:

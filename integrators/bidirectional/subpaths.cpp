@@ -300,7 +300,7 @@ Lanes sensorLanes(const Scene& scene, const WavelengthDensity& sensor, float u, 
     lanes.lightPdf[k] = own && !merged && n > 1 ? own->pdf(lanes.lambda[k]) : 0.0f;
   }
   if (n > 1) {
-    tables.lights.reset(scene, {lanes.lambda, size_t(n)});
+    tables.lights.reset(scene, {lanes.lambda, size_t(n)}, /*perLane=*/true);
     lanes.lights = &tables.lights;
   }
   if (n > 1 && merged) {

@@ -20,30 +20,37 @@ bool cameraTransmittance(const Scene& scene, const Hit& v, VertexMedium where, c
                               where.leaving(scene, v, c.wi), lambda, tr, ctx.counter);
 }
 
-// The XYZ of lane k's value[k] at lambda[k] (the sensor responds with W(λ_k)), summed over the lanes.
-Vec3 lanesXyz(const float* lambda, const float* value, int n) {
+// The sensor's XYZ response W(λ_k) to each lane, where the film keeps XYZ alone (with spectral bins
+// each splat finds its own).
+void laneResponses(const SampleContext& ctx, const float* lambda, int n, Vec3* W) {
+  if (!ctx.recordSpectral)
+    for (int k = 0; k < n; ++k) W[k] = Observer::cie1931().weight(lambda[k]);
+}
+
+// The XYZ of the lanes' values, Σ_k W(λ_k)·value[k].
+Vec3 lanesXyz(const Vec3* W, const float* value, int n) {
   Vec3 xyz(0.0f);
-  for (int k = 0; k < n; ++k) xyz += Observer::cie1931().weight(lambda[k]) * value[k];
+  for (int k = 0; k < n; ++k) xyz += W[k] * value[k];
   return xyz;
 }
 
 // Whether the lanes add anything the film keeps: XYZ, and with spectral bins any lane's value.
-bool contributes(const SampleContext& ctx, const float* lambda, const float* value, int n) {
+bool contributes(const SampleContext& ctx, const Vec3* W, const float* value, int n) {
   if (ctx.recordSpectral) return std::any_of(value, value + n, [](float v) { return v != 0.0f; });
-  return lanesXyz(lambda, value, n) != Vec3(0.0f);
+  return lanesXyz(W, value, n) != Vec3(0.0f);
 }
 
 // Splats the lanes' values, each times `scale`: as one XYZ splat, or with spectral bins one splat
 // per lane, so that each bin gets its lane's share.
-void splatLanes(SampleContext& ctx, Vec2 pixel, const float* lambda, const float* value, int n, float scale) {
+void splatLanes(SampleContext& ctx, Vec2 pixel, const float* lambda, const Vec3* W, const float* value, int n,
+                float scale) {
   if (!ctx.recordSpectral) {
-    ctx.splats.push_back({pixel, lanesXyz(lambda, value, n) * scale});
+    ctx.splats.push_back({pixel, lanesXyz(W, value, n) * scale});
     return;
   }
   for (int k = 0; k < n; ++k)
     if (value[k] != 0.0f) ctx.splats.push_back(spectralSplat(pixel, lambda[k], value[k] * scale));
 }
-
 
 }  // namespace
 
@@ -77,11 +84,14 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
     if (const auto c = scene.camera.connect(es.p, uLens, scene.pixelFilter.filmMargin())) {
       const auto& area = static_cast<const AreaLight&>(*st.light);
       float value[kMaxLanes], tr[kMaxLanes];
+      Vec3 W[kMaxLanes];
       for (int j = 0; j < n; ++j) value[j] = area.shape().emission->eval(lanes.lambda[j], es.n, c->wi) * st.start[j];
-      if (contributes(ctx, lanes.lambda, value, n) &&
+      laneResponses(ctx, lanes.lambda, n, W);
+      if (contributes(ctx, W, value, n) &&
           cameraTransmittance(scene, origin, atLight, *c, {lanes.lambda, size_t(n)}, tr, ctx)) {
         for (int j = 0; j < n; ++j) value[j] *= tr[j];
-        splatLanes(ctx, c->pixel, lanes.lambda, value, n, std::abs(glm::dot(es.n, c->wi)) / es.pdfPos * c->importance * perPath(scene));
+        splatLanes(ctx, c->pixel, lanes.lambda, W, value, n,
+                   std::abs(glm::dot(es.n, c->wi)) / es.pdfPos * c->importance * perPath(scene));
       }
     }
   }
@@ -112,12 +122,14 @@ Vec3 LightTracer::samplePixel(const Scene& scene, Vec2, Sampler& rng, SampleCont
       if (const auto c = scene.camera.connect(vertex.p, uLens, scene.pixelFilter.filmMargin())) {
         const Vec3 wo = bsdf.toLocal(c->wi);
         float value[kMaxLanes], tr[kMaxLanes];
+        Vec3 W[kMaxLanes];
         for (int k = 0; k < e.n; ++k)
           value[k] = laneWeight(bsdf, TransportMode::Importance, known, lanes.beta, e, k, wo, wi) * bsdf.cosineFactor(wo);
-        if (contributes(ctx, e.lambda, value, e.n) &&
+        laneResponses(ctx, e.lambda, e.n, W);
+        if (contributes(ctx, W, value, e.n) &&
             cameraTransmittance(scene, vertex, where, *c, {e.lambda, size_t(e.n)}, tr, ctx)) {
           for (int k = 0; k < e.n; ++k) value[k] *= tr[k] * mis;
-          splatLanes(ctx, c->pixel, e.lambda, value, e.n, c->importance * perPath(scene));
+          splatLanes(ctx, c->pixel, e.lambda, W, value, e.n, c->importance * perPath(scene));
         }
       }
     }

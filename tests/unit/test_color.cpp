@@ -64,6 +64,19 @@ TEST(Cie1931, ColourMatchingIntegrals) {
   }
 }
 
+TEST(Cie1931, WeightIsTheThreeTablesLookedUpOneByOne) {
+  // weight() finds the segment once for the three tables; it must give each table's own lookup,
+  // bit for bit, on and between the knots, at the ends and outside the tables.
+  const Observer& o = Observer::cie1931();
+  ASSERT_TRUE(o.sharedKnots);
+  for (float lambda = 340.0f; lambda <= 850.0f; lambda += 0.0371f) {
+    const Vec3 each = Vec3(o.xbar(lambda), o.ybar(lambda), o.zbar(lambda)) / o.yIntegral;
+    ASSERT_EQ(o.weight(lambda), each) << "λ = " << lambda;
+  }
+  for (const float lambda : {360.0f, 360.5f, 361.0f, 829.5f, 830.0f, 555.0f})
+    EXPECT_EQ(o.weight(lambda), Vec3(o.xbar(lambda), o.ybar(lambda), o.zbar(lambda)) / o.yIntegral) << lambda;
+}
+
 TEST(Cie1931, D65ChromaticityAndWhiteInSrgb) {
   const auto d65 = presetSpectrum("D65");
   ASSERT_TRUE(d65);

@@ -74,7 +74,7 @@ TEST(LaneLightChoice, WithoutThePowerShareItIsEachLanesMixture) {
 TEST(LaneLightTable, SelectChoosesEachLightWithItsProbabilityAndEachLaneAsTheSelector) {
   const auto scene = load("single_plane_uv_white.json");
   LaneLightTable table;
-  table.reset(*scene, kLanes);
+  table.reset(*scene, kLanes, /*perLane=*/true);
   expectSelectionFollowsProbabilities(table);
   for (int k = 0; k < 4; ++k)
     for (size_t l = 0; l < 2; ++l)
