@@ -12,6 +12,8 @@ using Vec3 = glm::vec3;
 inline constexpr float kPi = 3.14159265358979323846f;
 inline constexpr float kInvPi = 1.0f / kPi;
 inline constexpr float kInf = std::numeric_limits<float>::infinity();
+// The largest float below 1: where a rescaled uniform must stay in [0, 1).
+inline constexpr float kBelowOne = 0x1.fffffep-1f;
 
 inline float sqr(float x) { return x * x; }
 

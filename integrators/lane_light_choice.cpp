@@ -3,9 +3,6 @@
 #include <algorithm>
 
 namespace kasha {
-namespace {
-constexpr float kBelowOne = 0x1.fffffep-1f;
-}  // namespace
 
 void LaneLightTable::reset(const Scene& scene, std::span<const float> lambda, bool perLane) {
   n_ = int(lambda.size());

@@ -3,9 +3,6 @@
 #include <algorithm>
 
 namespace kasha {
-namespace {
-constexpr float kBelowOne = 0x1.fffffep-1f;
-}  // namespace
 
 float laneStratum(float u, int k, int n) {
   const float x = u + float(k) / float(n);

@@ -25,8 +25,6 @@
 //                   reflection (visible normals, Heitz18) with probability
 //                   P_coat = F(θ_k)/(F(θ_k) + T(θ_k)·(1 − c·a)·r), else cosine-weighted; the density
 //                   is the mixture of both.
-#include <algorithm>
-
 #include "materials/factorised_fluorescent_model.h"
 #include "materials/ggx.h"
 #include "materials/ior.h"
@@ -60,7 +58,7 @@ class CoatedModel : public FactorisedFluorescentModel {
  private:
   // Jung18 eqs. 7 (Radiance) and 6 (Importance) with the coat's R0 added to the elastic weight.
   float fluorescentShare(TransportMode mode, float lambdaKnown) const override;
-  const SpectralDistribution& unknownWavelength(TransportMode mode) const override {
+  const SpectralDistribution& unknownWavelengthDensity(TransportMode mode) const override {
     return mode == TransportMode::Radiance ? base_.absorptionDistribution() : base_.emissionDistribution();
   }
   JungModel base_;

@@ -1,7 +1,7 @@
 #pragma once
-// The spectral stage of every model whose fluorescence follows Kasha's rule
-// (BsdfFlags::FactorisedFluorescence: f_fl = k·a(λ_i)·e(λ_o), the Jung BBRRDF, its coated form and
-// Zhdanov's BDF), written once as elastic_model.h writes the elastic-only one. From the known
+// The spectral stage of every model whose fluorescence follows Kasha's rule, its emission spectrum
+// the same whatever the excitation (the Jung BBRRDF, its coated form and Zhdanov's BDF), written
+// once as elastic_model.h writes the elastic-only one. From the known
 // wavelength, the fluorescent lobe has probability P_fl (Jung18 eq. 7's P_c on a camera path,
 // eq. 6's P_l on a light path, each model's own weights), and its unknown wavelength is drawn from
 // a density that does not depend on the known one: the excitation's (λ_i ∝ a) on a camera path, the
@@ -20,7 +20,7 @@ class FactorisedFluorescentModel : public BsdfModel {
     const float pFluor = fluorescentShare(mode, lambdaKnown);
     if (pFluor < 0.0f) return {};
     if (u < pFluor) {
-      const WavelengthSample ws = unknownWavelength(mode).sample(std::min(u / pFluor, 0x1.fffffep-1f));
+      const WavelengthSample ws = unknownWavelengthDensity(mode).sample(std::min(u / pFluor, kBelowOne));
       if (ws.pdf <= 0.0f) return {};
       return {SpectralLobe::Fluorescent, ws.lambda, pFluor * ws.pdf};
     }
@@ -30,7 +30,7 @@ class FactorisedFluorescentModel : public BsdfModel {
     const float pFluor = fluorescentShare(mode, lambdaKnown);
     if (pFluor < 0.0f) return 0.0f;
     if (lobe == SpectralLobe::Elastic) return 1.0f - pFluor;
-    return pFluor * unknownWavelength(mode).pdf(lambdaOther);
+    return pFluor * unknownWavelengthDensity(mode).pdf(lambdaOther);
   }
   float fluorescenceProbability(TransportMode mode, float lambdaKnown) const final {
     return std::max(fluorescentShare(mode, lambdaKnown), 0.0f);
@@ -42,7 +42,7 @@ class FactorisedFluorescentModel : public BsdfModel {
   virtual float fluorescentShare(TransportMode mode, float lambdaKnown) const = 0;
   // The density of the fluorescent lobe's unknown wavelength: the excitation's (Radiance mode) or
   // the emission's (Importance mode).
-  virtual const SpectralDistribution& unknownWavelength(TransportMode mode) const = 0;
+  virtual const SpectralDistribution& unknownWavelengthDensity(TransportMode mode) const = 0;
   ~FactorisedFluorescentModel() = default;
 };
 

@@ -88,7 +88,7 @@ class JungModel : public DiffuseModel<FactorisedFluorescentModel> {
  private:
   // P_c (Jung18 eq. 7, Radiance, λ_o known) or P_l (eq. 6, Importance, λ_i known).
   float fluorescentShare(TransportMode mode, float lambdaKnown) const override;
-  const SpectralDistribution& unknownWavelength(TransportMode mode) const override {
+  const SpectralDistribution& unknownWavelengthDensity(TransportMode mode) const override {
     return mode == TransportMode::Radiance ? s_->absorption : s_->emission;
   }
   const JungSpectra* s_;

@@ -77,7 +77,7 @@ class ZhdanovModel : public FactorisedFluorescentModel {
  private:
   // The fluorescent weight over both weights at the known wavelength (light paths: λ_i; camera: λ_o).
   float fluorescentShare(TransportMode mode, float lambdaKnown) const override;
-  const SpectralDistribution& unknownWavelength(TransportMode mode) const override {
+  const SpectralDistribution& unknownWavelengthDensity(TransportMode mode) const override {
     return mode == TransportMode::Radiance ? s_->excitation : s_->emission;
   }
   float excitationIntegral() const { return h_.excitationScale * s_->excitation.integral(); }

@@ -47,12 +47,12 @@ LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s) {
   return {L[0].pdfFwd, s >= 2 ? double(L[1].pdfFwd) : 0.0, L[0].kind == Kind::Light};
 }
 
-MisFactors factors(const Context& c, int light, float lambda0, int lane, double pdf, bool oneGroup,
+MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup,
                    bool lanesKept, float ownStart) {
   MisFactors f;
   f.sharedFamily = c.families.shared;
   f.ownFamily = c.families.independent;
-  f.pdf = pdf;
+  f.sensorPdf = sensorPdf;
   f.lambda0 = lambda0;
   f.oneGroup = oneGroup;
   if (lanesKept && f.ownFamily && c.walk.lightFirst) f.laneGain = c.lanes.n;
@@ -87,7 +87,7 @@ FullPath layout(const Context& c, const std::vector<PathVertex>* L, int s, const
                 const LightEnd& end, const MisFactors& f, bool connection) {
   FullPath fp;
   fp.families = c.families;
-  fp.pdf = f.pdf;
+  fp.sensorPdf = f.sensorPdf;
   fp.laneGain = f.laneGain;
   fp.cameraChoice = f.cameraChoice;
   fp.sharedChoice = f.sharedChoice;

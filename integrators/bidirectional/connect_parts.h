@@ -44,7 +44,7 @@ LightEnd lightEnd(const Context& c, int light, const PathVertex& x0, const PathV
 LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s);
 
 // The wavelength factors of the weights (mis_sums.h, docs/bdpt-mis.md §10) for a path whose light
-// end is `light` at wavelength lambda0 and whose last wavelength the sensor draws with pdf.
+// end is `light` at wavelength lambda0 and whose last wavelength the sensor draws with sensorPdf.
 // lane: the camera sample's lane whose wavelength lambda0 is (the path has one group), or −1.
 // The camera family's light choice is the true one, the lanes' mixture, where it is the same for
 // every strategy that can make the path (one group, the shared family alone); with the own family
@@ -53,7 +53,7 @@ LightEnd storedLightEnd(const std::vector<PathVertex>& L, int s);
 // one), and the shared light subpath's is its true one, the merged start's Q(l).
 // lanesKept: every interior vertex of the path keeps the lanes (MisFactors::laneGain). ownStart: the
 // own family's ℓ where the caller knows it (an own subpath's L[0].choicePdf), else 0.
-MisFactors factors(const Context& c, int light, float lambda0, int lane, double pdf, bool oneGroup,
+MisFactors factors(const Context& c, int light, float lambda0, int lane, double sensorPdf, bool oneGroup,
                    bool lanesKept, float ownStart = 0.0f);
 
 // The full recomputation (test oracle, docs/bdpt-mis.md §5): the stored densities of L[0..s−1],

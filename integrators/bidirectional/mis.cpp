@@ -95,9 +95,9 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
     if (isPhotonBeam(variant)) d *= p.v[size_t(s)].lightBeam * p.v[size_t(s)].beamSine;
     for (int i = 0; i <= s; ++i) d *= p.v[size_t(i)].pdfLight;
     for (int i = s; i <= k; ++i) d *= p.v[size_t(i)].pdfCam;
-    if (variant == Variant::kMerge || variant == Variant::kBeam || variant == Variant::kPhotonBeam) return d * p.pdf * p.sharedChoice * p.laneGain;
+    if (variant == Variant::kMerge || variant == Variant::kBeam || variant == Variant::kPhotonBeam) return d * p.sensorPdf * p.sharedChoice * p.laneGain;
     if (variant == Variant::kMergeSplat) return d * p.ownChoice;  // the light draws every group's wavelength
-    d *= p.pdf * p.ownChoice;
+    d *= p.sensorPdf * p.ownChoice;
     return variant == Variant::kMergeMollified ? d * p.mollifyWidth : d;
   }
   const bool nee = s == 1 && k >= 2 && variant == Variant::kStandard;
@@ -113,10 +113,10 @@ double strategyDensity(const FullPath& p, int s, Variant variant) {
   // cameraChoice, the shared light subpath with sharedChoice, the independent family the light
   // with the first group's wavelength; every
   // strategy but the independent family's t = 1 has the sensor draw the last group's wavelength.
-  if (s == 0) return d * p.pdf * p.laneGain;
-  if (variant == Variant::kStandard) return d * p.pdf * (nee ? p.cameraChoice : p.sharedChoice) * p.laneGain;
+  if (s == 0) return d * p.sensorPdf * p.laneGain;
+  if (variant == Variant::kStandard) return d * p.sensorPdf * (nee ? p.cameraChoice : p.sharedChoice) * p.laneGain;
   if (s == k) return d * p.ownChoice;
-  d *= p.pdf * p.ownChoice;
+  d *= p.sensorPdf * p.ownChoice;
   // Both sides sampled the connecting group's wavelength; the kernel accepts a window ε_h of the
   // camera side's (docs/bdpt-mis.md eq. 6).
   if (variant == Variant::kMollified) d *= p.mollifyWidth;

@@ -15,7 +15,7 @@ struct FullVertex {
   // Light-side density of this vertex (from x_{i-1}); x_0: its position's (per sr for a light at
   // infinity): the light choice is a factor of each strategy (cameraChoice, ownChoice).
   double pdfLight = 0.0;
-  // Camera-side density (from x_{i+1}); x_{k-1}: the camera direction's (pdf is a factor).
+  // Camera-side density (from x_{i+1}); x_{k-1}: the camera direction's (sensorPdf is a factor).
   double pdfCam = 0.0;
   SpectralLobe lobe = SpectralLobe::Elastic;  // interior vertices: the lobe the path uses here
   bool connectible = true;                    // a connection may end here (no delta lobe)
@@ -64,11 +64,11 @@ struct FullPath {
   std::vector<FullVertex> v;  // x_0 … x_k; v[k] is the camera (pdfCam 1)
   Families families;
   // The factors of the strategies' densities (docs/bdpt-mis.md §5, §10): every strategy but the
-  // independent family's t = 1 has the sensor draw the last group's wavelength (pdf); next-event
+  // independent family's t = 1 has the sensor draw the last group's wavelength (sensorPdf); next-event
   // estimation chooses the light with cameraChoice, the shared family's light subpath with
   // sharedChoice, the independent family the light and the first group's wavelength together with
   // ownChoice = p_light(λ_0)·p(light | λ_0).
-  double pdf = 0.0;
+  double sensorPdf = 0.0;
   double cameraChoice = 0.0;
   double sharedChoice = 0.0;
   double ownChoice = 0.0;

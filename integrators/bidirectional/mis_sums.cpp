@@ -16,7 +16,7 @@ double combine(const MisSums& m, const MisFactors& f) {
     sensed += l2 * (own + f.mollifyWidth * f.mollifyWidth * mollified);
     sum += l2 * ownSplat;
   }
-  return sum + f.pdf * f.pdf * sensed;
+  return sum + f.sensorPdf * f.sensorPdf * sensed;
 }
 
 MisSums joinMultiplicity(bool connectible, SpectralLobe la, SpectralLobe lb, const Strategies& st) {

@@ -49,7 +49,7 @@ struct MisSums {
 // What decides the sums' factors for one full path (and one lane).
 struct MisFactors {
   bool sharedFamily = false, ownFamily = false;  // which light subpaths were traced
-  double pdf = 0.0;                        // σ = p_sensor(λ_{k−1})
+  double sensorPdf = 0.0;                        // σ = p_sensor(λ_{k−1})
   double cameraChoice = 0.0;                     // κ = next-event estimation's probability of the path's light
   double sharedChoice = 0.0;                     // S = the shared light subpath's probability of it
   double ownChoice = 0.0;                        // ℓ = p_light(λ_0)·p(light | λ_0)

@@ -38,10 +38,10 @@ void PilotObserver::onWeight(const WeightEvent& e) {
   const double ownAlone =
       f.ownFamily && walk.lightFirst ? double(walk.lightWavelengths->pdf(f.lambda0)) * f.cameraChoice : 0.0;
   PilotMoments::Alternative* a = moments_.alone;
-  const bool shared = w > 0.0f && !f.oneGroup && f.pdf > 0.0 && f.cameraChoice > 0.0;
+  const bool shared = w > 0.0f && !f.oneGroup && f.sensorPdf > 0.0 && f.cameraChoice > 0.0;
   a[int(Alone::Shared)].pending = shared ? densityOverAlone(Alone::Shared, e.total, f, e.sum, ownAlone) : 1.0;
   a[int(Alone::Own)].pending = w > 0.0f ? densityOverAlone(Alone::Own, e.total, f, e.sum, ownAlone) : 1.0;
-  const bool sensed = w > 0.0f && f.pdf > 0.0 && f.cameraChoice > 0.0;
+  const bool sensed = w > 0.0f && f.sensorPdf > 0.0 && f.cameraChoice > 0.0;
   a[int(Alone::Camera)].pending = sensed ? densityOverAlone(Alone::Camera, e.total, f, e.sum, ownAlone) : 1.0;
   // Without merges (bdpt's pilot) the connections alone are the estimator itself: ρ = 1.
   const bool merges = w > 0.0f && e.c.walk.strategies.merge.any();

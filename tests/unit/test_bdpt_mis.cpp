@@ -18,7 +18,7 @@ FullPath randomPath(const std::vector<SpectralLobe>& interior, Families families
   p.ownChoice = 0.01 + rng.uniform();
   p.cameraChoice = 0.01 + rng.uniform();
   p.sharedChoice = 0.01 + rng.uniform();
-  p.pdf = 0.01 + rng.uniform();
+  p.sensorPdf = 0.01 + rng.uniform();
   p.v.resize(interior.size() + 2);
   for (size_t i = 0; i < p.v.size(); ++i) {
     p.v[i].pdfLight = 0.01 + rng.uniform();
@@ -134,7 +134,7 @@ TEST(BdptMis, AnOwnMergeAtTheCameraRaysHitTakesTheLightVertexsWavelength) {
   const double ratio = misWeight(p, 2, Variant::kMergeSplat) / misWeight(p, 3, Variant::kOwn);
   const double splat = p.mergeEta.gather * p.v[2].pdfCam / p.specLightLast;  // over t = 1's density
   EXPECT_NEAR(ratio, splat * splat, 1e-5 * ratio);
-  p.pdf *= 3.0;  // neither draws the last wavelength at the sensor
+  p.sensorPdf *= 3.0;  // neither draws the last wavelength at the sensor
   EXPECT_NEAR(misWeight(p, 2, Variant::kMergeSplat) / misWeight(p, 3, Variant::kOwn), ratio, 1e-5 * ratio);
   FullPath q = randomPath({E, F}, kBoth, rng);
   q.mergeEta = {2.0, 7.0};
@@ -226,10 +226,10 @@ TEST(BdptMis, TheTwoLightTracingStrategiesDifferByTheirWavelengthDensities) {
   for (int k = 1; k <= 4; ++k) {
     FullPath p = randomPath(std::vector<SpectralLobe>(size_t(k - 1), E), kBoth, rng);
     const double ratio = misWeight(p, k, Variant::kOwn) / misWeight(p, k, Variant::kStandard);
-    const double shared = p.pdf * p.sharedChoice;
+    const double shared = p.sensorPdf * p.sharedChoice;
     EXPECT_NEAR(ratio, (p.ownChoice / shared) * (p.ownChoice / shared), 1e-5 * ratio) << k;
     // The shared t = 1 against the camera hitting the light: every factor written out.
-    double light = shared, camera = p.pdf;
+    double light = shared, camera = p.sensorPdf;
     for (int i = 0; i < k; ++i) light *= p.v[size_t(i)].pdfLight;
     if (k >= 2) light *= p.specLightLast;
     for (int i = 0; i <= k; ++i) camera *= p.v[size_t(i)].pdfCam;

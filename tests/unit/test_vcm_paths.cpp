@@ -32,7 +32,7 @@ bidir::MisFactors factorsByHand() {
   bidir::MisFactors f;
   f.sharedFamily = f.ownFamily = true;
   f.oneGroup = true;
-  f.pdf = 0.5, f.laneGain = 2.0, f.cameraChoice = 0.25, f.sharedChoice = 0.5, f.ownChoice = 3.0;
+  f.sensorPdf = 0.5, f.laneGain = 2.0, f.cameraChoice = 0.25, f.sharedChoice = 0.5, f.ownChoice = 3.0;
   f.mollifyWidth = 0.1;
   return f;
 }
